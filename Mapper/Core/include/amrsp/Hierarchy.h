@@ -1,0 +1,137 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/// @file
+/// The core's description of a structured AMR hierarchy: integer boxes per level, refinement
+/// ratios, origin and level-0 spacing. Plain C++17 + GLM; no VTK, no OpenGL.
+///
+/// Index space conventions (used everywhere in the core and in the shaders):
+/// - Each level l has its own integer cell index space. Cell (i,j,k) of level l covers, in
+///   *level-0 index units*, the box [i,i+1) x [j,j+1) x [k,k+1) scaled by 1/CumulativeRatio(l).
+/// - World position of level-0 index coordinate u is Origin + u * Spacing0 (component-wise).
+/// - Boxes are half-open: [Lo, Hi) in cells of their level. Hi - Lo >= 1 on every axis.
+/// - Level l's index space refines level l-1's by RefinementRatio[l] (per axis, >= 1), so a
+///   level-(l-1) cell index i maps to level-l cells [i*r, (i+1)*r).
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace amrsp
+{
+
+/// Half-open integer box [Lo, Hi) in the cells of one level.
+struct Box
+{
+  glm::i64vec3 Lo{ 0 };
+  glm::i64vec3 Hi{ 0 };
+
+  glm::i64vec3 Extent() const { return Hi - Lo; }
+  bool Empty() const { return Hi.x <= Lo.x || Hi.y <= Lo.y || Hi.z <= Lo.z; }
+  int64_t Cells() const
+  {
+    if (Empty())
+    {
+      return 0;
+    }
+    const glm::i64vec3 e = Extent();
+    return e.x * e.y * e.z;
+  }
+  bool Contains(const Box& o) const
+  {
+    return o.Lo.x >= Lo.x && o.Lo.y >= Lo.y && o.Lo.z >= Lo.z && o.Hi.x <= Hi.x &&
+      o.Hi.y <= Hi.y && o.Hi.z <= Hi.z;
+  }
+  bool Overlaps(const Box& o) const
+  {
+    return o.Lo.x < Hi.x && o.Lo.y < Hi.y && o.Lo.z < Hi.z && Lo.x < o.Hi.x && Lo.y < o.Hi.y &&
+      Lo.z < o.Hi.z;
+  }
+  Box Intersection(const Box& o) const
+  {
+    return Box{ glm::max(Lo, o.Lo), glm::min(Hi, o.Hi) };
+  }
+  bool operator==(const Box& o) const { return Lo == o.Lo && Hi == o.Hi; }
+  /// The same region in the cells of a level refined by `ratio` relative to this box's level.
+  Box Refined(const glm::i64vec3& ratio) const { return Box{ Lo * ratio, Hi * ratio }; }
+};
+
+/// One AMR subgrid (patch). Its cells are the data of one brick.
+struct Grid
+{
+  int Level = 0;
+  Box Cells;             ///< in cells of `Level`
+  int64_t SourceId = -1; ///< caller's identifier (e.g. the flat VTK block index); not used by the core
+};
+
+/// Per-grid scalar values, x fastest, then y, then z: one float per cell of Grid::Cells for
+/// cell-centred data, or one per vertex ((extent + 1) per axis) when Hierarchy::VertexCentred.
+/// An empty vector means "no data loaded" (structure-only hierarchies, e.g. for tree statistics).
+using GridValues = std::vector<float>;
+
+/// A structured AMR hierarchy. Grids are stored level by level (non-decreasing Level).
+struct Hierarchy
+{
+  glm::dvec3 Origin{ 0.0 };   ///< world position of level-0 index coordinate (0,0,0)
+  glm::dvec3 Spacing0{ 1.0 }; ///< world size of one level-0 cell
+  /// RefinementRatio[l] refines level l-1 into level l; RefinementRatio[0] is (1,1,1).
+  std::vector<glm::ivec3> RefinementRatio{ glm::ivec3(1) };
+  std::vector<Grid> Grids;
+  /// Values[g] belongs to Grids[g]; either empty (no data) or sized Grids.size().
+  std::vector<GridValues> Values;
+  /// True when the values are vertex-centred (texels on vertices); false for cell-centred data.
+  bool VertexCentred = false;
+  std::string ArrayName;
+
+  int NumberOfLevels() const { return static_cast<int>(RefinementRatio.size()); }
+
+  /// Product of the refinement ratios of levels 1..level (per axis); (1,1,1) for level 0.
+  glm::i64vec3 CumulativeRatio(int level) const
+  {
+    glm::i64vec3 r(1);
+    for (int l = 1; l <= level; ++l)
+    {
+      r *= glm::i64vec3(RefinementRatio[l]);
+    }
+    return r;
+  }
+
+  /// Size of one cell of `level`, in level-0 index units.
+  glm::dvec3 CellSize(int level) const { return 1.0 / glm::dvec3(CumulativeRatio(level)); }
+
+  /// A box of `level` expressed in the cells of a finer-or-equal level `target`.
+  Box ToLevel(const Box& box, int level, int target) const
+  {
+    glm::i64vec3 r(1);
+    for (int l = level + 1; l <= target; ++l)
+    {
+      r *= glm::i64vec3(RefinementRatio[l]);
+    }
+    return box.Refined(r);
+  }
+
+  /// World-space bounds of a box of `level`: lower and upper corner.
+  glm::dvec3 WorldLo(const Box& box, int level) const
+  {
+    return Origin + glm::dvec3(box.Lo) * CellSize(level) * Spacing0;
+  }
+  glm::dvec3 WorldHi(const Box& box, int level) const
+  {
+    return Origin + glm::dvec3(box.Hi) * CellSize(level) * Spacing0;
+  }
+
+  bool HasValues() const { return !Values.empty() && Values.size() == Grids.size(); }
+
+  int64_t TotalCells() const
+  {
+    int64_t n = 0;
+    for (const Grid& g : Grids)
+    {
+      n += g.Cells.Cells();
+    }
+    return n;
+  }
+};
+
+} // namespace amrsp

@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/// @file
+/// CPU kd-restart traversal of the ENCODED tree (Kaehler & Abel 2013, section 4.3). It reads only
+/// the tree and data-nodes texels and mirrors the GLSL raycaster step for step (float arithmetic,
+/// same plane and tie rules), so tests of it test the encoding and the shader's logic.
+
+#include "amrsp/KdTreeEncoding.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace amrsp
+{
+
+/// One ray segment inside one kD node, front to back.
+struct RaySegment
+{
+  float T0 = 0.0f;
+  float T1 = 0.0f;
+  uint32_t Node = 0;  ///< linear tree-texel index
+  uint32_t Data = 0;  ///< data-nodes index; 0 for empty space
+  int Level = 0;      ///< data level (of the grid sampled); -1 for empty space
+};
+
+/// Level-of-detail selection at type (a) nodes: the traversal stops descending when one cell of
+/// the node's data level projects to fewer than ThresholdPixels pixels at the segment's entry.
+struct LevelOfDetail
+{
+  float ThresholdPixels = 0.0f;    ///< 0 disables LOD (always the finest level)
+  float PixelSizePerDistance = 0.0f; ///< perspective: world size of a pixel at distance 1
+  float ParallelPixelSize = 0.0f;  ///< parallel projection: world size of a pixel (used if > 0)
+  glm::vec3 Spacing0{ 1.0f };      ///< world size of a level-0 cell
+};
+
+/// Ray: origin + t * direction in level-0 index units. When direction is a unit world direction
+/// divided by the level-0 spacing, t is the world distance. Appends the segments of [tMin, tMax]
+/// that lie inside the root box; empty-space segments are included (Data == 0).
+void TraverseKdTree(const EncodedKdTree& tree, const glm::vec3& origin, const glm::vec3& direction,
+  float tMin, float tMax, const LevelOfDetail& lod, std::vector<RaySegment>& segments);
+
+/// Slab test of a ray against a box; returns false when they miss. Mirrors the shader.
+bool IntersectBox(const glm::vec3& lo, const glm::vec3& hi, const glm::vec3& origin,
+  const glm::vec3& direction, float& tEnter, float& tExit);
+
+} // namespace amrsp

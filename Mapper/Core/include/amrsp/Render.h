@@ -1,0 +1,157 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/// @file
+/// CPU ray integration with the conventions the mapper uses, so that images can be compared:
+///
+/// - Camera: VTK's. A pinhole at Position looking at FocalPoint, ViewAngle the full vertical
+///   angle in degrees; or parallel projection with ParallelScale = half the view height (world).
+///   Pixel (i, j) is sampled through its centre; row 0 is the bottom row (as vtkImageData).
+/// - Transfer function: VTK's vtkColorTransferFunction / vtkPiecewiseFunction with clamping:
+///   piecewise linear in the scalar, constant beyond the end points.
+/// - Emission-absorption, front to back, premultiplied: C += (1 - A) a c; A += (1 - A) a, where a
+///   sample that represents a ray length dt has a = 1 - (1 - opacity(s))^(dt / UnitDistance)
+///   (vtkVolumeProperty's ScalarOpacityUnitDistance). The pixel is C + (1 - A) * Background.
+/// - Sampling rule of the kD-tree integrator (and of the GPU shader): a segment of data level d,
+///   [t0, t1], is cut into n = max(1, ceil((t1 - t0) / D)) equal steps, D = SampleDistanceFactor
+///   times the smallest world-space edge of a level-d cell; samples sit at the step midpoints.
+///   Cell-centred data is sampled nearest-cell.
+/// - Reference integrator: no kD-tree. It marches the root box with steps of
+///   ReferenceSampleFactor times the smallest edge of the finest cell at the current point, found
+///   directly from the hierarchy (finest grid containing the point), and samples step midpoints.
+
+#include "amrsp/Hierarchy.h"
+#include "amrsp/KdTraversal.h"
+#include "amrsp/KdTreeEncoding.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace amrsp
+{
+
+struct Camera
+{
+  glm::dvec3 Position{ 0.0, 0.0, 1.0 };
+  glm::dvec3 FocalPoint{ 0.0 };
+  glm::dvec3 ViewUp{ 0.0, 1.0, 0.0 };
+  double ViewAngle = 30.0; ///< degrees, full vertical angle
+  bool Parallel = false;
+  double ParallelScale = 1.0;
+
+  /// World-space ray through the pixel position (px, py) in [0, width] x [0, height].
+  void Ray(int width, int height, double px, double py, glm::dvec3& origin,
+    glm::dvec3& direction) const;
+
+  /// vtkRenderer::ResetCamera for the box [lo, hi] seen along -z with +y up: focal point at the
+  /// centre, distance = half diagonal / sin(ViewAngle / 2), ParallelScale = half diagonal.
+  static Camera ResetTo(const glm::dvec3& lo, const glm::dvec3& hi);
+  /// vtkCamera::Azimuth: rotates the position about ViewUp through the focal point (degrees).
+  void Azimuth(double degrees);
+  /// vtkCamera::Elevation: rotates the position about the camera's left axis (degrees).
+  void Elevation(double degrees);
+  /// vtkCamera::OrthogonalizeViewUp.
+  void OrthogonalizeViewUp();
+  /// vtkCamera::Zoom: divides ViewAngle (perspective) or ParallelScale (parallel).
+  void Zoom(double factor);
+};
+
+struct TransferFunction
+{
+  struct ColorPoint
+  {
+    double X;
+    glm::dvec3 Rgb;
+  };
+  struct OpacityPoint
+  {
+    double X;
+    double Opacity;
+  };
+  std::vector<ColorPoint> Color;     ///< sorted by X
+  std::vector<OpacityPoint> Opacity; ///< sorted by X
+  double UnitDistance = 1.0;         ///< world length over which Opacity applies unchanged
+
+  glm::dvec3 EvaluateColor(double s) const;
+  double EvaluateOpacity(double s) const;
+
+  /// A named preset spanning [lo, hi]: "default" (blue-white-red, opacity ramp), "grey",
+  /// "hot". Throws std::invalid_argument for an unknown name.
+  static TransferFunction Preset(const std::string& name, double lo, double hi,
+    double unitDistance);
+  static std::vector<std::string> PresetNames();
+};
+
+struct RenderSettings
+{
+  int Width = 256;
+  int Height = 256;
+  Camera View;
+  TransferFunction Transfer;
+  glm::dvec3 Background{ 0.0 };
+  double SampleDistanceFactor = 1.0;
+  double ReferenceSampleFactor = 0.5;
+  float LodThresholdPixels = 0.0f; ///< kD-tree integrator only; 0 = always the finest level
+  int Threads = 0;                 ///< 0 = hardware concurrency
+};
+
+/// RGBA float image, row 0 at the bottom. Alpha is the accumulated opacity.
+struct Image
+{
+  int Width = 0;
+  int Height = 0;
+  std::vector<glm::vec4> Pixels;
+
+  /// 8-bit RGB, rows bottom to top (vtkImageData order).
+  std::vector<std::uint8_t> Rgb8() const;
+};
+
+/// Root-mean-square difference of the RGB channels in 0-255 units.
+double Rmse(const Image& a, const Image& b);
+double Rmse8(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b);
+
+/// Finds the finest grid cell containing a point straight from the hierarchy's boxes (per-level
+/// uniform buckets), with no kD-tree: the reference's independent lookup.
+class FinestCellLocator
+{
+public:
+  explicit FinestCellLocator(const Hierarchy& h);
+  /// Point in level-0 index units. Returns the grid index (or -1 outside every grid) and the
+  /// cell of that grid containing the point.
+  int32_t Find(const glm::dvec3& p, glm::i64vec3& cell) const;
+
+private:
+  struct LevelBuckets
+  {
+    glm::dvec3 Lo{ 0.0 };
+    glm::dvec3 BucketSize{ 1.0 };
+    glm::ivec3 Count{ 0 };
+    std::vector<std::vector<int32_t>> Grids;
+  };
+  const Hierarchy& H;
+  std::vector<LevelBuckets> Levels;
+  std::vector<glm::dvec3> CumRatio;
+};
+
+/// Value of grid `g` at cell `cell` (clamped into the grid). Requires cell-centred values.
+float CellValue(const Hierarchy& h, int32_t g, glm::i64vec3 cell);
+
+/// Renders with the CPU kD-tree integrator over the encoded textures.
+Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSettings& s);
+/// Renders the independent reference (no kD-tree).
+Image RenderReference(const Hierarchy& h, const RenderSettings& s);
+
+/// The samples the kD-tree integrator takes along one world-space ray: position in level-0
+/// index units (double, computed from the float segment bounds), the grid sampled and its cell.
+struct TreeSample
+{
+  glm::dvec3 Position;
+  int32_t Grid;
+  glm::i64vec3 Cell;
+};
+void SampleRayKdTree(const Hierarchy& h, const EncodedKdTree& tree, const glm::dvec3& origin,
+  const glm::dvec3& direction, double sampleDistanceFactor, std::vector<TreeSample>& samples);
+
+} // namespace amrsp

@@ -1,0 +1,127 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "amrsp/KdTraversal.h"
+
+#include "amrsp/KdTreeLayout.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace amrsp
+{
+
+bool IntersectBox(const glm::vec3& lo, const glm::vec3& hi, const glm::vec3& origin,
+  const glm::vec3& direction, float& tEnter, float& tExit)
+{
+  const float inf = std::numeric_limits<float>::infinity();
+  tEnter = -inf;
+  tExit = inf;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (direction[a] == 0.0f)
+    {
+      if (origin[a] < lo[a] || origin[a] > hi[a])
+      {
+        return false;
+      }
+      continue;
+    }
+    float t0 = (lo[a] - origin[a]) / direction[a];
+    float t1 = (hi[a] - origin[a]) / direction[a];
+    if (t0 > t1)
+    {
+      std::swap(t0, t1);
+    }
+    tEnter = std::max(tEnter, t0);
+    tExit = std::min(tExit, t1);
+  }
+  return tEnter < tExit;
+}
+
+void TraverseKdTree(const EncodedKdTree& tree, const glm::vec3& origin, const glm::vec3& direction,
+  float tMin, float tMax, const LevelOfDetail& lod, std::vector<RaySegment>& segments)
+{
+  using namespace layout;
+  float tEnter, tExit;
+  if (!IntersectBox(tree.RootLo, tree.RootHi, origin, direction, tEnter, tExit))
+  {
+    return;
+  }
+  float t = std::max(tEnter, tMin);
+  const float tEnd = std::min(tExit, tMax);
+  const float inf = std::numeric_limits<float>::infinity();
+  // Every restart ends on a distinct split plane or the exit, so the number of segments is
+  // bounded by the number of nodes; the guard only protects against corrupt textures.
+  const int64_t guard = 4 * tree.NodeCount + 16;
+  for (int64_t iteration = 0; t < tEnd && iteration < guard; ++iteration)
+  {
+    uint node = 0;
+    glm::vec3 lo = tree.RootLo;
+    glm::vec3 hi = tree.RootHi;
+    float tLeave = tEnd;
+    uvec2 texel = tree.Tree.Texels[0];
+    for (;;)
+    {
+      const uint child = amrspNodeFirstChild(texel);
+      if (child == 0u)
+      {
+        break;
+      }
+      const uint data = amrspNodeData(texel);
+      if (data != 0u && lod.ThresholdPixels > 0.0f)
+      {
+        const uint dataLevel = amrspDataLevel(tree.DataNodes.Texels[data]);
+        const glm::vec3 cell = tree.LevelCellSize[dataLevel] * lod.Spacing0;
+        const float cellWorld = std::max(cell.x, std::max(cell.y, cell.z));
+        const float pixel = lod.ParallelPixelSize > 0.0f ? lod.ParallelPixelSize
+                                                         : t * lod.PixelSizePerDistance;
+        if (cellWorld < lod.ThresholdPixels * pixel)
+        {
+          break;
+        }
+      }
+      const int axis = static_cast<int>(amrspNodeAxis(texel));
+      const uint level = amrspNodeLevel(texel);
+      const float plane =
+        lo[axis] + static_cast<float>(amrspNodeSplit(texel)) * tree.LevelCellSize[level][axis];
+      const float o = origin[axis];
+      const float d = direction[axis];
+      const bool originBelow = o < plane || (o == plane && d > 0.0f);
+      const float tSplit = d != 0.0f ? (plane - o) / d : inf;
+      bool lower;
+      if (tSplit >= tLeave || tSplit < 0.0f)
+      {
+        lower = originBelow; // the whole rest of the interval is on the origin's side
+      }
+      else if (tSplit <= t)
+      {
+        lower = !originBelow; // already past the plane
+      }
+      else
+      {
+        lower = originBelow;
+        tLeave = tSplit;
+      }
+      if (lower)
+      {
+        hi[axis] = plane;
+        node = child;
+      }
+      else
+      {
+        lo[axis] = plane;
+        node = child + 1u;
+      }
+      texel = tree.Tree.Texels[node];
+    }
+    RaySegment s;
+    s.T0 = t;
+    s.T1 = tLeave;
+    s.Node = node;
+    s.Data = amrspNodeData(texel);
+    s.Level = s.Data != 0u ? static_cast<int>(amrspDataLevel(tree.DataNodes.Texels[s.Data])) : -1;
+    segments.push_back(s);
+    t = tLeave;
+  }
+}
+
+} // namespace amrsp

@@ -1,0 +1,542 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "amrsp/Render.h"
+
+#include "amrsp/KdTreeLayout.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <stdexcept>
+#include <thread>
+
+namespace amrsp
+{
+
+void Camera::Ray(int width, int height, double px, double py, glm::dvec3& origin,
+  glm::dvec3& direction) const
+{
+  const glm::dvec3 forward = glm::normalize(FocalPoint - Position);
+  const glm::dvec3 right = glm::normalize(glm::cross(forward, ViewUp));
+  const glm::dvec3 up = glm::cross(right, forward);
+  const double aspect = static_cast<double>(width) / static_cast<double>(height);
+  const double x = 2.0 * px / width - 1.0;
+  const double y = 2.0 * py / height - 1.0;
+  if (Parallel)
+  {
+    origin = Position + x * ParallelScale * aspect * right + y * ParallelScale * up;
+    direction = forward;
+    return;
+  }
+  const double h = std::tan(glm::radians(ViewAngle) * 0.5);
+  origin = Position;
+  direction = glm::normalize(forward + x * h * aspect * right + y * h * up);
+}
+
+Camera Camera::ResetTo(const glm::dvec3& lo, const glm::dvec3& hi)
+{
+  Camera c;
+  c.FocalPoint = 0.5 * (lo + hi);
+  double radius = 0.5 * glm::length(hi - lo);
+  radius = radius > 0.0 ? radius : 1.0;
+  const double distance = radius / std::sin(glm::radians(c.ViewAngle) * 0.5);
+  c.Position = c.FocalPoint + glm::dvec3(0.0, 0.0, distance);
+  c.ViewUp = glm::dvec3(0.0, 1.0, 0.0);
+  c.ParallelScale = radius;
+  return c;
+}
+
+namespace
+{
+/// Rotation of `v` by `degrees` about the unit `axis` (right-handed, as vtkTransform::RotateWXYZ).
+glm::dvec3 Rotate(const glm::dvec3& v, const glm::dvec3& axis, double degrees)
+{
+  const double a = glm::radians(degrees);
+  const glm::dvec3 k = glm::normalize(axis);
+  return v * std::cos(a) + glm::cross(k, v) * std::sin(a) + k * glm::dot(k, v) * (1.0 - std::cos(a));
+}
+} // namespace
+
+void Camera::Azimuth(double degrees)
+{
+  Position = FocalPoint + Rotate(Position - FocalPoint, ViewUp, degrees);
+}
+
+void Camera::Elevation(double degrees)
+{
+  const glm::dvec3 right = glm::normalize(glm::cross(FocalPoint - Position, ViewUp));
+  Position = FocalPoint + Rotate(Position - FocalPoint, -right, degrees);
+}
+
+void Camera::OrthogonalizeViewUp()
+{
+  const glm::dvec3 forward = glm::normalize(FocalPoint - Position);
+  const glm::dvec3 right = glm::normalize(glm::cross(forward, ViewUp));
+  ViewUp = glm::cross(right, forward);
+}
+
+void Camera::Zoom(double factor)
+{
+  if (factor <= 0.0)
+  {
+    return;
+  }
+  if (Parallel)
+  {
+    ParallelScale /= factor;
+  }
+  else
+  {
+    ViewAngle /= factor;
+  }
+}
+
+namespace
+{
+template <typename Point, typename Value, typename Get>
+Value Interpolate(const std::vector<Point>& points, double s, Value fallback, Get get)
+{
+  if (points.empty())
+  {
+    return fallback;
+  }
+  if (s <= points.front().X)
+  {
+    return get(points.front());
+  }
+  if (s >= points.back().X)
+  {
+    return get(points.back());
+  }
+  const auto upper = std::upper_bound(points.begin(), points.end(), s,
+    [](double v, const Point& p) { return v < p.X; });
+  const Point& b = *upper;
+  const Point& a = *(upper - 1);
+  const double w = b.X > a.X ? (s - a.X) / (b.X - a.X) : 0.0;
+  return get(a) * (1.0 - w) + get(b) * w;
+}
+} // namespace
+
+glm::dvec3 TransferFunction::EvaluateColor(double s) const
+{
+  return Interpolate(
+    Color, s, glm::dvec3(1.0), [](const ColorPoint& p) { return p.Rgb; });
+}
+
+double TransferFunction::EvaluateOpacity(double s) const
+{
+  return Interpolate(Opacity, s, 0.0, [](const OpacityPoint& p) { return p.Opacity; });
+}
+
+std::vector<std::string> TransferFunction::PresetNames()
+{
+  return { "default", "grey", "hot" };
+}
+
+TransferFunction TransferFunction::Preset(const std::string& name, double lo, double hi,
+  double unitDistance)
+{
+  if (!(hi > lo))
+  {
+    hi = lo + 1.0;
+  }
+  const auto at = [&](double f) { return lo + f * (hi - lo); };
+  TransferFunction tf;
+  tf.UnitDistance = unitDistance;
+  if (name == "default")
+  {
+    tf.Color = { { at(0.0), { 0.23, 0.30, 0.75 } }, { at(0.5), { 0.87, 0.87, 0.87 } },
+      { at(1.0), { 0.71, 0.02, 0.15 } } };
+    tf.Opacity = { { at(0.0), 0.0 }, { at(0.2), 0.02 }, { at(1.0), 0.6 } };
+  }
+  else if (name == "grey")
+  {
+    tf.Color = { { at(0.0), { 0.0, 0.0, 0.0 } }, { at(1.0), { 1.0, 1.0, 1.0 } } };
+    tf.Opacity = { { at(0.0), 0.0 }, { at(1.0), 0.5 } };
+  }
+  else if (name == "hot")
+  {
+    tf.Color = { { at(0.0), { 0.0, 0.0, 0.0 } }, { at(0.4), { 0.9, 0.0, 0.0 } },
+      { at(0.8), { 1.0, 0.9, 0.0 } }, { at(1.0), { 1.0, 1.0, 1.0 } } };
+    tf.Opacity = { { at(0.0), 0.0 }, { at(0.3), 0.05 }, { at(1.0), 0.8 } };
+  }
+  else
+  {
+    throw std::invalid_argument("unknown transfer-function preset '" + name +
+      "' (known: default, grey, hot)");
+  }
+  return tf;
+}
+
+std::vector<std::uint8_t> Image::Rgb8() const
+{
+  std::vector<std::uint8_t> out(Pixels.size() * 3);
+  for (std::size_t i = 0; i < Pixels.size(); ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const float v = std::min(1.0f, std::max(0.0f, Pixels[i][c]));
+      out[3 * i + c] = static_cast<std::uint8_t>(std::lround(v * 255.0f));
+    }
+  }
+  return out;
+}
+
+double Rmse8(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b)
+{
+  if (a.size() != b.size() || a.empty())
+  {
+    throw std::invalid_argument("images of different sizes cannot be compared");
+  }
+  double sum = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+  {
+    const double d = static_cast<double>(a[i]) - static_cast<double>(b[i]);
+    sum += d * d;
+  }
+  return std::sqrt(sum / static_cast<double>(a.size()));
+}
+
+double Rmse(const Image& a, const Image& b)
+{
+  return Rmse8(a.Rgb8(), b.Rgb8());
+}
+
+FinestCellLocator::FinestCellLocator(const Hierarchy& h)
+  : H(h)
+{
+  const int levels = h.NumberOfLevels();
+  Levels.resize(levels);
+  for (int l = 0; l < levels; ++l)
+  {
+    CumRatio.push_back(glm::dvec3(h.CumulativeRatio(l)));
+  }
+  std::vector<std::vector<int32_t>> perLevel(levels);
+  for (std::size_t g = 0; g < h.Grids.size(); ++g)
+  {
+    perLevel[h.Grids[g].Level].push_back(static_cast<int32_t>(g));
+  }
+  for (int l = 0; l < levels; ++l)
+  {
+    LevelBuckets& b = Levels[l];
+    if (perLevel[l].empty())
+    {
+      continue;
+    }
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    for (int32_t g : perLevel[l])
+    {
+      lo = glm::min(lo, glm::dvec3(h.Grids[g].Cells.Lo) / CumRatio[l]);
+      hi = glm::max(hi, glm::dvec3(h.Grids[g].Cells.Hi) / CumRatio[l]);
+    }
+    const int n = std::max(1,
+      std::min(64, static_cast<int>(std::cbrt(static_cast<double>(perLevel[l].size())) * 2.0)));
+    b.Lo = lo;
+    b.Count = glm::ivec3(n);
+    b.BucketSize = (hi - lo) / glm::dvec3(n);
+    b.Grids.resize(static_cast<std::size_t>(n) * n * n);
+    for (int32_t g : perLevel[l])
+    {
+      const glm::dvec3 glo = glm::dvec3(h.Grids[g].Cells.Lo) / CumRatio[l];
+      const glm::dvec3 ghi = glm::dvec3(h.Grids[g].Cells.Hi) / CumRatio[l];
+      const glm::ivec3 a =
+        glm::clamp(glm::ivec3(glm::floor((glo - lo) / b.BucketSize)), glm::ivec3(0), b.Count - 1);
+      const glm::ivec3 z =
+        glm::clamp(glm::ivec3(glm::floor((ghi - lo) / b.BucketSize)), glm::ivec3(0), b.Count - 1);
+      for (int k = a.z; k <= z.z; ++k)
+      {
+        for (int j = a.y; j <= z.y; ++j)
+        {
+          for (int i = a.x; i <= z.x; ++i)
+          {
+            b.Grids[(static_cast<std::size_t>(k) * n + j) * n + i].push_back(g);
+          }
+        }
+      }
+    }
+  }
+}
+
+int32_t FinestCellLocator::Find(const glm::dvec3& p, glm::i64vec3& cell) const
+{
+  for (int l = static_cast<int>(Levels.size()) - 1; l >= 0; --l)
+  {
+    const LevelBuckets& b = Levels[l];
+    if (b.Grids.empty())
+    {
+      continue;
+    }
+    const glm::ivec3 bucket =
+      glm::clamp(glm::ivec3(glm::floor((p - b.Lo) / b.BucketSize)), glm::ivec3(0), b.Count - 1);
+    const glm::i64vec3 c = glm::i64vec3(glm::floor(p * CumRatio[l]));
+    for (int32_t g : b.Grids[(static_cast<std::size_t>(bucket.z) * b.Count.y + bucket.y) *
+             b.Count.x +
+           bucket.x])
+    {
+      const Box& box = H.Grids[g].Cells;
+      if (c.x >= box.Lo.x && c.y >= box.Lo.y && c.z >= box.Lo.z && c.x < box.Hi.x &&
+        c.y < box.Hi.y && c.z < box.Hi.z)
+      {
+        cell = c;
+        return g;
+      }
+    }
+  }
+  return -1;
+}
+
+float CellValue(const Hierarchy& h, int32_t g, glm::i64vec3 cell)
+{
+  const Box& box = h.Grids[g].Cells;
+  cell = glm::clamp(cell, box.Lo, box.Hi - glm::i64vec3(1)) - box.Lo;
+  const glm::i64vec3 e = box.Extent();
+  return h.Values[g][static_cast<std::size_t>((cell.z * e.y + cell.y) * e.x + cell.x)];
+}
+
+namespace
+{
+
+void ForEachRow(int height, int threads, const std::function<void(int)>& row)
+{
+  int n = threads > 0 ? threads : static_cast<int>(std::thread::hardware_concurrency());
+  n = std::max(1, std::min(n, height));
+  std::vector<std::thread> pool;
+  for (int t = 0; t < n; ++t)
+  {
+    pool.emplace_back([&, t]() {
+      for (int j = t; j < height; j += n)
+      {
+        row(j);
+      }
+    });
+  }
+  for (std::thread& th : pool)
+  {
+    th.join();
+  }
+}
+
+/// Front-to-back accumulation of one ray, in the precision `T` of the integrator.
+template <typename T>
+struct Accumulator
+{
+  glm::tvec3<T, glm::defaultp> Color{ 0 };
+  T Alpha = 0;
+
+  void Add(const TransferFunction& tf, double scalar, double dt)
+  {
+    const T opacity = static_cast<T>(tf.EvaluateOpacity(scalar));
+    if (opacity <= T(0))
+    {
+      return;
+    }
+    const T a = T(1) -
+      std::pow(T(1) - std::min(opacity, T(1)), static_cast<T>(dt / tf.UnitDistance));
+    const glm::tvec3<T, glm::defaultp> c(tf.EvaluateColor(scalar));
+    Color += (T(1) - Alpha) * a * c;
+    Alpha += (T(1) - Alpha) * a;
+  }
+
+  glm::vec4 Pixel(const glm::dvec3& background) const
+  {
+    const glm::dvec3 rgb = glm::dvec3(Color) + (1.0 - static_cast<double>(Alpha)) * background;
+    return glm::vec4(glm::vec3(rgb), static_cast<float>(Alpha));
+  }
+};
+
+void RequireValues(const Hierarchy& h)
+{
+  if (!h.HasValues())
+  {
+    throw std::invalid_argument("the hierarchy has no scalar values to render");
+  }
+  if (h.VertexCentred)
+  {
+    throw std::invalid_argument("the CPU integrators sample cell-centred data only");
+  }
+}
+
+double MinEdge(const glm::dvec3& v)
+{
+  return std::min(v.x, std::min(v.y, v.z));
+}
+
+} // namespace
+
+void SampleRayKdTree(const Hierarchy& h, const EncodedKdTree& tree, const glm::dvec3& origin,
+  const glm::dvec3& direction, double sampleDistanceFactor, std::vector<TreeSample>& samples)
+{
+  using namespace layout;
+  const glm::dvec3 o = (origin - h.Origin) / h.Spacing0;
+  const glm::dvec3 d = direction / h.Spacing0;
+  std::vector<RaySegment> segments;
+  TraverseKdTree(tree, glm::vec3(o), glm::vec3(d), 0.0f, std::numeric_limits<float>::infinity(),
+    LevelOfDetail(), segments);
+  for (const RaySegment& s : segments)
+  {
+    if (s.Data == 0)
+    {
+      continue;
+    }
+    const int32_t g = static_cast<int32_t>(amrspDataBrick(tree.DataNodes.Texels[s.Data]));
+    const glm::dvec3 ratio(h.CumulativeRatio(s.Level));
+    const double step = sampleDistanceFactor * MinEdge(h.Spacing0 / ratio);
+    const double length = static_cast<double>(s.T1) - static_cast<double>(s.T0);
+    const int n = std::max(1, static_cast<int>(std::ceil(length / step)));
+    const double dt = length / n;
+    for (int k = 0; k < n; ++k)
+    {
+      const double t = static_cast<double>(s.T0) + (k + 0.5) * dt;
+      const glm::dvec3 p = o + t * d;
+      samples.push_back(TreeSample{ p, g, glm::i64vec3(glm::floor(p * ratio)) });
+    }
+  }
+}
+
+Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSettings& s)
+{
+  using namespace layout;
+  RequireValues(h);
+  Image img;
+  img.Width = s.Width;
+  img.Height = s.Height;
+  img.Pixels.resize(static_cast<std::size_t>(s.Width) * s.Height);
+  LevelOfDetail lod;
+  lod.ThresholdPixels = s.LodThresholdPixels;
+  lod.Spacing0 = glm::vec3(h.Spacing0);
+  if (s.View.Parallel)
+  {
+    lod.ParallelPixelSize = static_cast<float>(2.0 * s.View.ParallelScale / s.Height);
+  }
+  else
+  {
+    lod.PixelSizePerDistance =
+      static_cast<float>(2.0 * std::tan(glm::radians(s.View.ViewAngle) * 0.5) / s.Height);
+  }
+  std::vector<float> stepOfLevel;
+  for (int l = 0; l < h.NumberOfLevels(); ++l)
+  {
+    stepOfLevel.push_back(
+      static_cast<float>(s.SampleDistanceFactor * MinEdge(h.Spacing0 * h.CellSize(l))));
+  }
+  const glm::vec3 spacing(h.Spacing0), worldOrigin(h.Origin);
+
+  ForEachRow(s.Height, s.Threads, [&](int j) {
+    std::vector<RaySegment> segments;
+    for (int i = 0; i < s.Width; ++i)
+    {
+      glm::dvec3 wo, wd;
+      s.View.Ray(s.Width, s.Height, i + 0.5, j + 0.5, wo, wd);
+      const glm::vec3 o = (glm::vec3(wo) - worldOrigin) / spacing;
+      const glm::vec3 d = glm::vec3(wd) / spacing;
+      segments.clear();
+      TraverseKdTree(tree, o, d, 0.0f, std::numeric_limits<float>::infinity(), lod, segments);
+      Accumulator<float> acc;
+      for (const RaySegment& seg : segments)
+      {
+        if (seg.Data == 0)
+        {
+          continue;
+        }
+        const uvec2 dn = tree.DataNodes.Texels[seg.Data];
+        const int32_t g = static_cast<int32_t>(amrspDataBrick(dn));
+        const glm::vec3 cellSize = tree.LevelCellSize[seg.Level];
+        const float length = seg.T1 - seg.T0;
+        const int n =
+          std::max(1, static_cast<int>(std::ceil(length / stepOfLevel[seg.Level])));
+        const float dt = length / static_cast<float>(n);
+        for (int k = 0; k < n; ++k)
+        {
+          const float t = seg.T0 + (static_cast<float>(k) + 0.5f) * dt;
+          const glm::vec3 p = o + t * d;
+          const float v = CellValue(h, g, glm::i64vec3(glm::floor(p / cellSize)));
+          acc.Add(s.Transfer, v, dt);
+        }
+      }
+      img.Pixels[static_cast<std::size_t>(j) * s.Width + i] = acc.Pixel(s.Background);
+    }
+  });
+  return img;
+}
+
+Image RenderReference(const Hierarchy& h, const RenderSettings& s)
+{
+  RequireValues(h);
+  Image img;
+  img.Width = s.Width;
+  img.Height = s.Height;
+  img.Pixels.resize(static_cast<std::size_t>(s.Width) * s.Height);
+  const FinestCellLocator locator(h);
+
+  // the root box: bounding box of the level-0 grids, in level-0 index units
+  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+  for (const Grid& g : h.Grids)
+  {
+    if (g.Level == 0)
+    {
+      lo = glm::min(lo, glm::dvec3(g.Cells.Lo));
+      hi = glm::max(hi, glm::dvec3(g.Cells.Hi));
+    }
+  }
+  std::vector<double> stepOfLevel;
+  for (int l = 0; l < h.NumberOfLevels(); ++l)
+  {
+    stepOfLevel.push_back(s.ReferenceSampleFactor * MinEdge(h.Spacing0 * h.CellSize(l)));
+  }
+
+  ForEachRow(s.Height, s.Threads, [&](int j) {
+    for (int i = 0; i < s.Width; ++i)
+    {
+      glm::dvec3 wo, wd;
+      s.View.Ray(s.Width, s.Height, i + 0.5, j + 0.5, wo, wd);
+      const glm::dvec3 o = (wo - h.Origin) / h.Spacing0;
+      const glm::dvec3 d = wd / h.Spacing0;
+      double tEnter = -std::numeric_limits<double>::infinity();
+      double tExit = std::numeric_limits<double>::infinity();
+      bool hit = true;
+      for (int a = 0; a < 3 && hit; ++a)
+      {
+        if (d[a] == 0.0)
+        {
+          hit = o[a] >= lo[a] && o[a] <= hi[a];
+          continue;
+        }
+        double t0 = (lo[a] - o[a]) / d[a], t1 = (hi[a] - o[a]) / d[a];
+        if (t0 > t1)
+        {
+          std::swap(t0, t1);
+        }
+        tEnter = std::max(tEnter, t0);
+        tExit = std::min(tExit, t1);
+      }
+      Accumulator<double> acc;
+      double t = std::max(0.0, tEnter);
+      while (hit && t < tExit)
+      {
+        // shrink the step until the level found at its midpoint does not ask for a smaller one
+        double dt = std::min(stepOfLevel[0], tExit - t);
+        int32_t g = -1;
+        glm::i64vec3 cell;
+        for (;;)
+        {
+          g = locator.Find(o + (t + 0.5 * dt) * d, cell);
+          const double wanted = g >= 0 ? stepOfLevel[h.Grids[g].Level] : stepOfLevel[0];
+          if (wanted >= dt * (1.0 - 1e-12))
+          {
+            break;
+          }
+          dt = wanted;
+        }
+        if (g >= 0)
+        {
+          acc.Add(s.Transfer, CellValue(h, g, cell), dt);
+        }
+        t += dt;
+      }
+      img.Pixels[static_cast<std::size_t>(j) * s.Width + i] = acc.Pixel(s.Background);
+    }
+  });
+  return img;
+}
+
+} // namespace amrsp

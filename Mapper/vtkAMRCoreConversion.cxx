@@ -1,0 +1,288 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkAMRCoreConversion.h"
+
+#include "vtkAMRBox.h"
+#include "vtkAMRUtilities.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkNew.h"
+#include "vtkOverlappingAMR.h"
+#include "vtkSmartPointer.h"
+#include "vtkStructuredData.h"
+#include "vtkUniformGrid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace
+{
+vtkUniformGrid* FirstBlock(vtkOverlappingAMR* amr)
+{
+  for (unsigned int l = 0; l < amr->GetNumberOfLevels(); ++l)
+  {
+    for (unsigned int i = 0; i < amr->GetNumberOfDataSets(l); ++i)
+    {
+      if (vtkUniformGrid* g = amr->GetDataSet(l, i))
+      {
+        return g;
+      }
+    }
+  }
+  return nullptr;
+}
+
+std::string Join(const std::vector<std::string>& names)
+{
+  std::string s;
+  for (const std::string& n : names)
+  {
+    s += (s.empty() ? "" : ", ") + n;
+  }
+  return s.empty() ? "none" : s;
+}
+} // namespace
+
+std::vector<std::string> vtkAMRCoreConversion::CellArrayNames(vtkOverlappingAMR* amr)
+{
+  std::vector<std::string> names;
+  if (vtkUniformGrid* g = FirstBlock(amr))
+  {
+    vtkCellData* cd = g->GetCellData();
+    for (int a = 0; a < cd->GetNumberOfArrays(); ++a)
+    {
+      vtkDataArray* arr = cd->GetArray(a);
+      if (arr && arr->GetName() && std::string(arr->GetName()) != vtkDataSetAttributes::GhostArrayName())
+      {
+        names.emplace_back(arr->GetName());
+      }
+    }
+  }
+  return names;
+}
+
+bool vtkAMRCoreConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
+  const ArraySelection& selection, amrsp::Hierarchy& out, std::string& error)
+{
+  out = amrsp::Hierarchy();
+  if (!amr || amr->GetNumberOfLevels() == 0 || amr->GetTotalNumberOfBlocks() == 0)
+  {
+    error = "the AMR hierarchy has no blocks";
+    return false;
+  }
+  const unsigned int levels = amr->GetNumberOfLevels();
+  const double* origin = amr->GetOrigin();
+  out.Origin = glm::dvec3(origin[0], origin[1], origin[2]);
+  std::vector<glm::dvec3> spacing(levels);
+  for (unsigned int l = 0; l < levels; ++l)
+  {
+    double s[3];
+    amr->GetSpacing(l, s);
+    spacing[l] = glm::dvec3(s[0], s[1], s[2]);
+    if (!(s[0] > 0.0 && s[1] > 0.0 && s[2] > 0.0))
+    {
+      std::ostringstream m;
+      m << "level " << l << " has a non-positive spacing (" << s[0] << ", " << s[1] << ", " << s[2]
+        << "); volume rendering needs 3D data";
+      error = m.str();
+      return false;
+    }
+  }
+  out.Spacing0 = spacing[0];
+  out.RefinementRatio.assign(1, glm::ivec3(1));
+  for (unsigned int l = 1; l < levels; ++l)
+  {
+    glm::ivec3 r;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double q = spacing[l - 1][a] / spacing[l][a];
+      r[a] = static_cast<int>(std::lround(q));
+      if (r[a] < 1 || std::abs(q - r[a]) > 1e-3 * q)
+      {
+        std::ostringstream m;
+        m << "unsupported refinement: level " << l << " refines level " << l - 1 << " by " << q
+          << " along axis " << a << " (an integer ratio >= 1 is required)";
+        error = m.str();
+        return false;
+      }
+    }
+    out.RefinementRatio.push_back(r);
+  }
+
+  // the array: by name, or the first cell array
+  std::string name = selection.Name;
+  const std::vector<std::string> available = CellArrayNames(amr);
+  if (name.empty())
+  {
+    if (available.empty() && selection.CopyValues)
+    {
+      error = "the AMR blocks have no cell array to render";
+      return false;
+    }
+    name = available.empty() ? std::string() : available.front();
+  }
+  else if (std::find(available.begin(), available.end(), name) == available.end())
+  {
+    error = "no cell array named '" + name + "' (available: " + Join(available) + ")";
+    return false;
+  }
+  out.ArrayName = name;
+
+  for (unsigned int l = 0; l < levels; ++l)
+  {
+    for (unsigned int i = 0; i < amr->GetNumberOfDataSets(l); ++i)
+    {
+      const vtkAMRBox& box = amr->GetAMRBox(l, i);
+      if (box.IsInvalid())
+      {
+        continue;
+      }
+      const int* lo = box.GetLoCorner();
+      const int* hi = box.GetHiCorner();
+      amrsp::Grid g;
+      g.Level = static_cast<int>(l);
+      g.SourceId = static_cast<int64_t>(amr->GetCompositeIndex(l, i));
+      for (int a = 0; a < 3; ++a)
+      {
+        if (hi[a] < lo[a])
+        {
+          error = "block " + std::to_string(i) + " of level " + std::to_string(l) +
+            " is flat; volume rendering needs 3D data";
+          return false;
+        }
+        g.Cells.Lo[a] = lo[a];
+        g.Cells.Hi[a] = static_cast<int64_t>(hi[a]) + 1;
+      }
+      out.Grids.push_back(g);
+      if (!selection.CopyValues)
+      {
+        continue;
+      }
+
+      vtkUniformGrid* block = amr->GetDataSet(l, i);
+      if (!block)
+      {
+        error = "block " + std::to_string(i) + " of level " + std::to_string(l) +
+          " has no data loaded";
+        return false;
+      }
+      vtkDataArray* arr = block->GetCellData()->GetArray(name.c_str());
+      if (!arr)
+      {
+        error = "block " + std::to_string(i) + " of level " + std::to_string(l) +
+          " lacks the cell array '" + name + "'";
+        return false;
+      }
+      // blocks may carry ghost layers around the box: keep the box's cells only
+      int dims[3];
+      block->GetDimensions(dims);
+      const glm::i64vec3 extent = g.Cells.Extent();
+      glm::i64vec3 cellDims, ghost;
+      for (int a = 0; a < 3; ++a)
+      {
+        cellDims[a] = std::max(1, dims[a] - 1);
+        ghost[a] = (cellDims[a] - extent[a]) / 2;
+        if (cellDims[a] < extent[a] || (cellDims[a] - extent[a]) % 2 != 0)
+        {
+          error = "block " + std::to_string(i) + " of level " + std::to_string(l) +
+            " has cell dimensions that do not match its AMR box";
+          return false;
+        }
+      }
+      const int components = arr->GetNumberOfComponents();
+      const int component =
+        components == 1 ? 0 : (selection.Component < components ? selection.Component : -1);
+      amrsp::GridValues values(static_cast<std::size_t>(g.Cells.Cells()));
+      vtkFloatArray* fast = vtkFloatArray::SafeDownCast(arr);
+      std::size_t k = 0;
+      for (int64_t z = 0; z < extent.z; ++z)
+      {
+        for (int64_t y = 0; y < extent.y; ++y)
+        {
+          for (int64_t x = 0; x < extent.x; ++x, ++k)
+          {
+            const vtkIdType c = ((z + ghost.z) * cellDims.y + (y + ghost.y)) * cellDims.x + x + ghost.x;
+            if (fast && components == 1)
+            {
+              values[k] = fast->GetValue(c);
+            }
+            else if (component >= 0)
+            {
+              values[k] = static_cast<float>(arr->GetComponent(c, component));
+            }
+            else
+            {
+              double sum = 0.0;
+              for (int q = 0; q < components; ++q)
+              {
+                const double v = arr->GetComponent(c, q);
+                sum += v * v;
+              }
+              values[k] = static_cast<float>(std::sqrt(sum));
+            }
+          }
+        }
+      }
+      out.Values.push_back(std::move(values));
+    }
+  }
+  if (out.Grids.empty())
+  {
+    error = "the AMR hierarchy has no blocks";
+    return false;
+  }
+  return true;
+}
+
+void vtkAMRCoreConversion::ToOverlappingAMR(const amrsp::Hierarchy& h, vtkOverlappingAMR* out)
+{
+  const int levels = h.NumberOfLevels();
+  std::vector<int> blocksPerLevel(static_cast<std::size_t>(levels), 0);
+  for (const amrsp::Grid& g : h.Grids)
+  {
+    ++blocksPerLevel[g.Level];
+  }
+  out->Initialize(levels, blocksPerLevel.data());
+  const double origin[3] = { h.Origin.x, h.Origin.y, h.Origin.z };
+  out->SetOrigin(origin);
+  out->SetGridDescription(VTK_XYZ_GRID);
+  for (int l = 0; l < levels; ++l)
+  {
+    const glm::dvec3 s = h.Spacing0 * h.CellSize(l);
+    const double spacing[3] = { s.x, s.y, s.z };
+    out->SetSpacing(l, spacing);
+    // vtkOverlappingAMR keeps one isotropic ratio per level: the one to the next finer level
+    out->SetRefinementRatio(l, l + 1 < levels ? h.RefinementRatio[l + 1].x : 2);
+  }
+  std::vector<int> next(static_cast<std::size_t>(levels), 0);
+  for (std::size_t gi = 0; gi < h.Grids.size(); ++gi)
+  {
+    const amrsp::Grid& g = h.Grids[gi];
+    const int index = next[g.Level]++;
+    const int lo[3] = { static_cast<int>(g.Cells.Lo.x), static_cast<int>(g.Cells.Lo.y),
+      static_cast<int>(g.Cells.Lo.z) };
+    const int hi[3] = { static_cast<int>(g.Cells.Hi.x) - 1, static_cast<int>(g.Cells.Hi.y) - 1,
+      static_cast<int>(g.Cells.Hi.z) - 1 };
+    const vtkAMRBox box(lo, hi);
+    out->SetAMRBox(g.Level, index, box);
+
+    const glm::dvec3 spacing = h.Spacing0 * h.CellSize(g.Level);
+    const glm::dvec3 corner = h.Origin + glm::dvec3(g.Cells.Lo) * spacing;
+    vtkNew<vtkUniformGrid> grid;
+    grid->SetOrigin(corner.x, corner.y, corner.z);
+    grid->SetSpacing(spacing.x, spacing.y, spacing.z);
+    const glm::i64vec3 e = g.Cells.Extent();
+    grid->SetDimensions(static_cast<int>(e.x) + 1, static_cast<int>(e.y) + 1, static_cast<int>(e.z) + 1);
+    if (h.HasValues())
+    {
+      vtkNew<vtkFloatArray> values;
+      values->SetName(h.ArrayName.empty() ? "values" : h.ArrayName.c_str());
+      values->SetNumberOfTuples(static_cast<vtkIdType>(h.Values[gi].size()));
+      std::copy(h.Values[gi].begin(), h.Values[gi].end(), values->GetPointer(0));
+      grid->GetCellData()->AddArray(values);
+    }
+    out->SetDataSet(g.Level, index, grid);
+  }
+  vtkAMRUtilities::BlankCells(out);
+}

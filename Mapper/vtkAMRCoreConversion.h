@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkAMRCoreConversion
+ * @brief   converts between vtkOverlappingAMR and the core's amrsp::Hierarchy
+ *
+ * Private to the module (the header exposes core types). vtkOverlappingAMR boxes are inclusive
+ * cell ranges in each level's index space relative to the global origin; the core uses half-open
+ * boxes in the same index spaces. Refinement ratios are recovered per axis from the level
+ * spacings, so anisotropic and per-level ratios survive; a non-integer ratio is an error.
+ */
+#ifndef vtkAMRCoreConversion_h
+#define vtkAMRCoreConversion_h
+
+#include "amrsp/Hierarchy.h"
+
+#include <string>
+#include <vector>
+
+class vtkOverlappingAMR;
+
+class vtkAMRCoreConversion
+{
+public:
+  struct ArraySelection
+  {
+    /// Name of a cell array; empty selects the first cell array of the first non-empty block.
+    std::string Name;
+    /// Component of a multi-component array; -1 takes the magnitude (VTK's vector mode
+    /// convention). Ignored for one-component arrays.
+    int Component = -1;
+    /// false: structure only, no values copied (statistics of large hierarchies).
+    bool CopyValues = true;
+  };
+
+  /// Fills `out` from `amr`. Returns false and a one-line `error` naming the problem (no blocks,
+  /// missing array, non-integer refinement, 2D data, missing block data, bad ghost layers).
+  static bool FromOverlappingAMR(vtkOverlappingAMR* amr, const ArraySelection& selection,
+    amrsp::Hierarchy& out, std::string& error);
+
+  /// Writes `h` (cell-centred values) into `out` as vtkUniformGrid blocks with blanking.
+  static void ToOverlappingAMR(const amrsp::Hierarchy& h, vtkOverlappingAMR* out);
+
+  /// Names of the cell arrays of the first non-empty block.
+  static std::vector<std::string> CellArrayNames(vtkOverlappingAMR* amr);
+};
+
+#endif

@@ -1,0 +1,68 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkAMRCosmoSource
+ * @brief   synthetic cosmology-like vtkOverlappingAMR for tests and benchmarks
+ *
+ * Produces a properly nested hierarchy with refinement ratio 2 and several root grids that
+ * refines a procedural, clustered density field (halos around cluster centres): deep levels
+ * concentrate around density peaks as in a cosmological simulation. The statistics requested
+ * (grids, levels, cells) are reproduced closely enough to rebuild the hierarchies of Kaehler &
+ * Abel (2013), Table 1. The output is deterministic for a seed. The cell array is "Density".
+ *
+ * The domain is the unit cube; level-0 spacing is 1 / (root cells per axis).
+ */
+#ifndef vtkAMRCosmoSource_h
+#define vtkAMRCosmoSource_h
+
+#include "vtkOverlappingAMRAlgorithm.h"
+#include "vtkSinglePassAMRModule.h" // for export macro
+
+class VTKSINGLEPASSAMR_EXPORT vtkAMRCosmoSource : public vtkOverlappingAMRAlgorithm
+{
+public:
+  static vtkAMRCosmoSource* New();
+  vtkTypeMacro(vtkAMRCosmoSource, vtkOverlappingAMRAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// Requested number of grids over all levels (default 2666, the paper's dataset 1).
+  vtkSetClampMacro(NumberOfGrids, vtkIdType, 1, VTK_ID_MAX);
+  vtkGetMacro(NumberOfGrids, vtkIdType);
+  ///@}
+
+  ///@{
+  /// Number of levels (default 4).
+  vtkSetClampMacro(NumberOfLevels, int, 1, 30);
+  vtkGetMacro(NumberOfLevels, int);
+  ///@}
+
+  ///@{
+  /// Requested number of cells over all grids, covered cells included (default 19e6).
+  vtkSetClampMacro(NumberOfCells, vtkIdType, 1, VTK_ID_MAX);
+  vtkGetMacro(NumberOfCells, vtkIdType);
+  ///@}
+
+  ///@{
+  /// Seed of the procedural field (default 1).
+  vtkSetMacro(Seed, int);
+  vtkGetMacro(Seed, int);
+  ///@}
+
+protected:
+  vtkAMRCosmoSource();
+  ~vtkAMRCosmoSource() override = default;
+
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  vtkIdType NumberOfGrids = 2666;
+  int NumberOfLevels = 4;
+  vtkIdType NumberOfCells = 19000000;
+  int Seed = 1;
+
+private:
+  vtkAMRCosmoSource(const vtkAMRCosmoSource&) = delete;
+  void operator=(const vtkAMRCosmoSource&) = delete;
+};
+
+#endif

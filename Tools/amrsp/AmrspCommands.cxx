@@ -1,0 +1,627 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "AmrspCommands.h"
+
+#include "AmrspDataset.h"
+
+#include "amrsp/Invariants.h"
+#include "amrsp/KdTree.h"
+#include "amrsp/KdTreeEncoding.h"
+#include "amrsp/Render.h"
+
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPNGWriter.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkPointData.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <sstream>
+
+namespace amrsp
+{
+namespace tool
+{
+
+const char* const DefaultDataset = "synthetic:cosmo:grids=200,levels=4,cells=1M,seed=7";
+
+using Json = nlohmann::ordered_json;
+using Clock = std::chrono::steady_clock;
+
+std::string Arguments::Get(const std::string& key, const std::string& fallback) const
+{
+  const auto it = Options.find(key);
+  return it == Options.end() ? fallback : it->second;
+}
+
+double Arguments::GetNumber(const std::string& key, double fallback) const
+{
+  const auto it = Options.find(key);
+  if (it == Options.end())
+  {
+    return fallback;
+  }
+  try
+  {
+    std::size_t used = 0;
+    const double v = std::stod(it->second, &used);
+    if (used == it->second.size() && std::isfinite(v))
+    {
+      return v;
+    }
+  }
+  catch (const std::exception&)
+  {
+  }
+  throw UsageError{ "--" + key + " expects a number, got '" + it->second + "'" };
+}
+
+Arguments ParseArguments(int argc, char** argv, int first,
+  const std::vector<std::string>& valueOptions, const std::vector<std::string>& flags)
+{
+  Arguments a;
+  for (int i = first; i < argc; ++i)
+  {
+    std::string s = argv[i];
+    if (s == "-o")
+    {
+      s = "--output";
+    }
+    if (s.size() > 2 && s.compare(0, 2, "--") == 0)
+    {
+      std::string key = s.substr(2), value;
+      const std::size_t eq = key.find('=');
+      if (eq != std::string::npos)
+      {
+        value = key.substr(eq + 1);
+        key = key.substr(0, eq);
+      }
+      const bool takesValue =
+        std::find(valueOptions.begin(), valueOptions.end(), key) != valueOptions.end();
+      const bool isFlag = std::find(flags.begin(), flags.end(), key) != flags.end() || key == "help";
+      if (!takesValue && !isFlag)
+      {
+        throw UsageError{ "unknown option --" + key };
+      }
+      if (takesValue && eq == std::string::npos)
+      {
+        if (i + 1 >= argc)
+        {
+          throw UsageError{ "--" + key + " needs a value" };
+        }
+        value = argv[++i];
+      }
+      a.Options[key] = takesValue ? value : "1";
+    }
+    else
+    {
+      a.Positional.push_back(s);
+    }
+  }
+  return a;
+}
+
+namespace
+{
+
+double Seconds(Clock::time_point since)
+{
+  return std::chrono::duration<double>(Clock::now() - since).count();
+}
+
+int Fail(const std::string& message)
+{
+  std::cerr << "amrsp: error: " << message << "\n";
+  return 1;
+}
+
+const std::vector<std::string> DatasetOptions = { "array", "component" };
+const std::vector<std::string> ViewOptions = { "size", "azimuth", "elevation", "zoom", "tf",
+  "scale", "unit-distance", "sample-factor", "reference-sample-factor", "lod", "threads" };
+
+std::vector<std::string> Concat(std::initializer_list<std::vector<std::string>> lists)
+{
+  std::vector<std::string> all;
+  for (const auto& l : lists)
+  {
+    all.insert(all.end(), l.begin(), l.end());
+  }
+  return all;
+}
+
+const char* const DatasetHelp =
+  "DATASET is one of\n"
+  "  PATH.hierarchy              an Enzo hierarchy (vtkAMREnzoReader)\n"
+  "  PLOTFILE_FOLDER             an AMReX/BoxLib plotfile (vtkAMReXGridReader)\n"
+  "  PATH.vthb | PATH.vth        VTK XML AMR (vtkXMLUniformGridAMRReader)\n"
+  "  synthetic:pulse             VTK's vtkAMRGaussianPulseSource\n"
+  "  synthetic:cosmo[:grids=N,levels=L,cells=C,seed=S]\n"
+  "                              the project's cosmology-like generator (N and C accept k/M)\n"
+  "Dataset options:\n"
+  "  --array NAME                cell array to use (default: the first cell array)\n"
+  "  --component I               component of a vector array (default: magnitude)\n";
+
+const char* const ViewHelp =
+  "View options (conventions of VTK's vtkCamera/vtkVolumeProperty; see README):\n"
+  "  --size WxH                  image size (default 512x512)\n"
+  "  --azimuth A --elevation E   degrees, applied after ResetCamera (default 30, 20)\n"
+  "  --zoom Z                    vtkCamera::Zoom factor (default 1)\n"
+  "  --tf PRESET                 transfer function: default, grey, hot\n"
+  "  --scale auto|linear|log     scalar mapping; auto = log10 when the data is positive and\n"
+  "                              spans more than 3 decades (default auto)\n"
+  "  --unit-distance D           ScalarOpacityUnitDistance in world units (default: diagonal/20)\n"
+  "  --sample-factor F           samples per cell of each segment's level = 1/F (default 1)\n"
+  "  --reference-sample-factor F step of the reference in finest-cell edges (default 0.5)\n"
+  "  --lod PIXELS                level-of-detail threshold in pixels (default 0 = off)\n"
+  "  --threads N                 CPU threads (default: all cores)\n";
+
+LoadedDataset Load(const Arguments& a, bool needValues, bool needVTK)
+{
+  DatasetRequest r;
+  r.Spec = a.Positional.size() > 1 ? a.Positional[1] : DefaultDataset;
+  r.Array = a.Get("array", "");
+  r.Component = static_cast<int>(a.GetNumber("component", -1));
+  r.NeedValues = needValues;
+  r.NeedVTK = needVTK;
+  return LoadDataset(r);
+}
+
+/// Maps the scalars for display (log10 when asked or automatic) and returns their range.
+void PrepareScalars(Hierarchy& h, const std::string& scale, double& lo, double& hi)
+{
+  lo = std::numeric_limits<double>::max();
+  hi = -std::numeric_limits<double>::max();
+  for (const GridValues& v : h.Values)
+  {
+    for (float x : v)
+    {
+      if (std::isfinite(x))
+      {
+        lo = std::min(lo, static_cast<double>(x));
+        hi = std::max(hi, static_cast<double>(x));
+      }
+    }
+  }
+  if (lo > hi)
+  {
+    throw DatasetError("the array '" + h.ArrayName + "' has no finite value");
+  }
+  bool useLog = scale == "log";
+  if (scale == "auto")
+  {
+    useLog = lo > 0.0 && hi / lo > 1e3;
+  }
+  else if (scale != "log" && scale != "linear")
+  {
+    throw UsageError{ "--scale must be auto, linear or log" };
+  }
+  if (!useLog)
+  {
+    return;
+  }
+  if (!(hi > 0.0))
+  {
+    throw DatasetError("--scale log needs positive values in '" + h.ArrayName + "'");
+  }
+  const double floor = lo > 0.0 ? lo : hi * 1e-12;
+  for (GridValues& v : h.Values)
+  {
+    for (float& x : v)
+    {
+      x = static_cast<float>(std::log10(std::max(static_cast<double>(x), floor)));
+    }
+  }
+  h.ArrayName = "log10(" + h.ArrayName + ")";
+  lo = std::log10(floor);
+  hi = std::log10(hi);
+}
+
+void Bounds(const Hierarchy& h, glm::dvec3& lo, glm::dvec3& hi)
+{
+  lo = glm::dvec3(std::numeric_limits<double>::max());
+  hi = glm::dvec3(-std::numeric_limits<double>::max());
+  for (const Grid& g : h.Grids)
+  {
+    if (g.Level == 0)
+    {
+      lo = glm::min(lo, h.WorldLo(g.Cells, 0));
+      hi = glm::max(hi, h.WorldHi(g.Cells, 0));
+    }
+  }
+}
+
+RenderSettings MakeSettings(Hierarchy& h, const Arguments& a)
+{
+  RenderSettings s;
+  const std::string size = a.Get("size", "512x512");
+  const std::size_t x = size.find('x');
+  try
+  {
+    if (x == std::string::npos)
+    {
+      throw std::invalid_argument(size);
+    }
+    s.Width = std::stoi(size.substr(0, x));
+    s.Height = std::stoi(size.substr(x + 1));
+  }
+  catch (const std::exception&)
+  {
+    throw UsageError{ "--size expects WxH, got '" + size + "'" };
+  }
+  if (s.Width < 1 || s.Height < 1 || s.Width > 16384 || s.Height > 16384)
+  {
+    throw UsageError{ "--size must be between 1x1 and 16384x16384" };
+  }
+  glm::dvec3 lo, hi;
+  Bounds(h, lo, hi);
+  s.View = Camera::ResetTo(lo, hi);
+  s.View.Azimuth(a.GetNumber("azimuth", 30.0));
+  s.View.Elevation(a.GetNumber("elevation", 20.0));
+  s.View.OrthogonalizeViewUp();
+  s.View.Zoom(a.GetNumber("zoom", 1.0));
+  double vlo, vhi;
+  PrepareScalars(h, a.Get("scale", "auto"), vlo, vhi);
+  const double unit = a.GetNumber("unit-distance", glm::length(hi - lo) / 20.0);
+  if (!(unit > 0.0))
+  {
+    throw UsageError{ "--unit-distance must be positive" };
+  }
+  try
+  {
+    s.Transfer = TransferFunction::Preset(a.Get("tf", "default"), vlo, vhi, unit);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    throw UsageError{ e.what() };
+  }
+  s.SampleDistanceFactor = a.GetNumber("sample-factor", 1.0);
+  s.ReferenceSampleFactor = a.GetNumber("reference-sample-factor", 0.5);
+  if (!(s.SampleDistanceFactor > 0.0) || !(s.ReferenceSampleFactor > 0.0))
+  {
+    throw UsageError{ "sample factors must be positive" };
+  }
+  s.LodThresholdPixels = static_cast<float>(a.GetNumber("lod", 0.0));
+  s.Threads = static_cast<int>(a.GetNumber("threads", 0.0));
+  return s;
+}
+
+void WritePng(const Image& img, const std::string& path)
+{
+  vtkNew<vtkImageData> data;
+  data->SetDimensions(img.Width, img.Height, 1);
+  vtkNew<vtkUnsignedCharArray> rgb;
+  rgb->SetNumberOfComponents(3);
+  rgb->SetNumberOfTuples(static_cast<vtkIdType>(img.Width) * img.Height);
+  const std::vector<std::uint8_t> bytes = img.Rgb8();
+  std::copy(bytes.begin(), bytes.end(), rgb->GetPointer(0));
+  data->GetPointData()->SetScalars(rgb);
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetFileName(path.c_str());
+  writer->SetInputData(data);
+  writer->Write();
+  if (writer->GetErrorCode() != 0)
+  {
+    throw DatasetError("cannot write " + path);
+  }
+}
+
+Json BoxJson(const glm::dvec3& lo, const glm::dvec3& hi)
+{
+  return Json::array({ lo.x, hi.x, lo.y, hi.y, lo.z, hi.z });
+}
+
+Json TextureJson(const UIntTexture3D& t)
+{
+  return Json{ { "dims", { t.Dims.x, t.Dims.y, t.Dims.z } }, { "bytes", t.Bytes() } };
+}
+
+bool WantsHelp(const Arguments& a)
+{
+  return a.Has("help");
+}
+
+} // namespace
+
+int RunInspect(int argc, char** argv)
+{
+  const char* help =
+    "usage: amrsp inspect [DATASET] [--json] [--array NAME]\n"
+    "Loads the hierarchy, builds and encodes the kD-tree, checks its invariants and prints the\n"
+    "statistics (with --json: one JSON object; see README for the fields).\n";
+  try
+  {
+    const Arguments a = ParseArguments(argc, argv, 1, DatasetOptions, { "json" });
+    if (WantsHelp(a))
+    {
+      std::cout << help << DatasetHelp;
+      return 0;
+    }
+    LoadedDataset d = Load(a, false, false);
+    const Hierarchy& h = d.Data;
+
+    auto t0 = Clock::now();
+    const KdTree tree = BuildKdTree(h);
+    const double kdSeconds = Seconds(t0);
+    t0 = Clock::now();
+    const EncodedKdTree enc = EncodeKdTree(h, tree);
+    const double encodeSeconds = Seconds(t0);
+    const InvariantReport inv = CheckKdTree(h, tree, &enc);
+    const KdTreeStatistics st = tree.Statistics();
+
+    std::vector<int64_t> perLevel(static_cast<std::size_t>(h.NumberOfLevels()), 0);
+    for (const Grid& g : h.Grids)
+    {
+      ++perLevel[g.Level];
+    }
+    Json ratios = Json::array();
+    for (int l = 1; l < h.NumberOfLevels(); ++l)
+    {
+      const glm::ivec3 r = h.RefinementRatio[l];
+      ratios.push_back({ r.x, r.y, r.z });
+    }
+    glm::dvec3 lo, hi;
+    Bounds(h, lo, hi);
+    Json j;
+    j["dataset"] = d.Spec;
+    j["format"] = d.Format;
+    j["array"] = h.ArrayName;
+    j["levels"] = h.NumberOfLevels();
+    j["grids"] = h.Grids.size();
+    j["grids_per_level"] = perLevel;
+    j["cells"] = h.TotalCells();
+    j["bounds"] = BoxJson(lo, hi);
+    j["origin"] = { h.Origin.x, h.Origin.y, h.Origin.z };
+    j["spacing0"] = { h.Spacing0.x, h.Spacing0.y, h.Spacing0.z };
+    j["refinement_ratios"] = ratios;
+    j["kd_nodes"] = st.Nodes;
+    j["kd_data_nodes"] = st.DataNodes;
+    j["node_types"] = { { "a", st.Refined }, { "b", st.Leaves }, { "c", st.Mixed },
+      { "empty", st.Empty } };
+    j["kd_depth"] = st.Depth;
+    j["tree_texture"] = TextureJson(enc.Tree);
+    j["data_nodes_texture"] = TextureJson(enc.DataNodes);
+    j["times_s"] = { { "load", d.LoadSeconds }, { "kdtree", kdSeconds },
+      { "encode", encodeSeconds } };
+    j["invariants"] = { { "ok", inv.Ok }, { "failure_count", inv.FailureCount },
+      { "failures", inv.Failures } };
+
+    if (a.Has("json"))
+    {
+      std::cout << j.dump(2) << "\n";
+    }
+    else
+    {
+      std::cout << "dataset      " << d.Spec << " (" << d.Format << "), array "
+                << (h.ArrayName.empty() ? "-" : h.ArrayName) << "\n"
+                << "levels       " << h.NumberOfLevels() << "\n"
+                << "grids        " << h.Grids.size() << " per level " << j["grids_per_level"].dump()
+                << "\n"
+                << "cells        " << h.TotalCells() << "\n"
+                << "bounds       " << j["bounds"].dump() << "\n"
+                << "kD nodes     " << st.Nodes << " (data nodes " << st.DataNodes << "; types a "
+                << st.Refined << ", b " << st.Leaves << ", c " << st.Mixed << ", empty " << st.Empty
+                << "; depth " << st.Depth << ")\n"
+                << "textures     tree " << j["tree_texture"].dump() << ", data nodes "
+                << j["data_nodes_texture"].dump() << "\n"
+                << "times (s)    load " << d.LoadSeconds << ", kD-tree " << kdSeconds
+                << ", encode " << encodeSeconds << "\n"
+                << "invariants   " << (inv.Ok ? "ok" : "FAILED") << "\n";
+      for (const std::string& f : inv.Failures)
+      {
+        std::cout << "  " << f << "\n";
+      }
+    }
+    return inv.Ok ? 0 : 3;
+  }
+  catch (const UsageError& e)
+  {
+    return Fail(e.Message + " (see amrsp inspect --help)");
+  }
+  catch (const std::exception& e)
+  {
+    return Fail(e.what());
+  }
+}
+
+namespace
+{
+int RunImageCommand(int argc, char** argv, bool reference)
+{
+  const std::string name = reference ? "reference" : "render";
+  const std::string help = "usage: amrsp " + name +
+    " [DATASET] [-o FILE.png] [view options] [dataset options]\n" +
+    (reference
+        ? "Renders the independent CPU reference image: no kD-tree; each sample finds the finest\n"
+          "cell containing it directly from the hierarchy's boxes.\n"
+        : "Renders the dataset with the single-pass kD-tree raycaster and prints which method\n"
+          "rendered. Methods: cpu-kdtree (the CPU traversal of the encoded tree textures that\n"
+          "mirrors the GLSL shader).\n"
+          "  --method M                  cpu-kdtree (default)\n");
+  try
+  {
+    std::vector<std::string> valueOptions = Concat({ DatasetOptions, ViewOptions, { "output" } });
+    if (!reference)
+    {
+      valueOptions.push_back("method");
+    }
+    const Arguments a = ParseArguments(argc, argv, 1, valueOptions, {});
+    if (WantsHelp(a))
+    {
+      std::cout << help << "  -o, --output FILE           PNG to write (default " << name
+                << ".png)\n"
+                << ViewHelp << DatasetHelp;
+      return 0;
+    }
+    if (a.Positional.size() > 2)
+    {
+      throw UsageError{ "unexpected argument '" + a.Positional[2] + "'" };
+    }
+    const std::string method = a.Get("method", "cpu-kdtree");
+    if (!reference && method != "cpu-kdtree")
+    {
+      throw UsageError{ "unknown --method '" + method + "' (available in this build: cpu-kdtree)" };
+    }
+    const std::string output = a.Get("output", name + ".png");
+    LoadedDataset d = Load(a, true, false);
+    RenderSettings s = MakeSettings(d.Data, a);
+
+    auto t0 = Clock::now();
+    Image img;
+    double preprocess = 0.0;
+    if (reference)
+    {
+      img = RenderReference(d.Data, s);
+    }
+    else
+    {
+      const EncodedKdTree enc = EncodeKdTree(d.Data, BuildKdTree(d.Data));
+      preprocess = Seconds(t0);
+      t0 = Clock::now();
+      img = RenderKdTree(d.Data, enc, s);
+    }
+    const double renderSeconds = Seconds(t0);
+    WritePng(img, output);
+    std::cout << "method: " << (reference ? "cpu-reference" : method) << "\n"
+              << "dataset: " << d.Spec << " (" << d.Format << "), array " << d.Data.ArrayName
+              << ", " << d.Data.Grids.size() << " grids, " << d.Data.NumberOfLevels()
+              << " levels\n"
+              << "image: " << output << " (" << s.Width << "x" << s.Height << ")\n"
+              << "times (s): load " << d.LoadSeconds << ", preprocess " << preprocess
+              << ", render " << renderSeconds << "\n";
+    return 0;
+  }
+  catch (const UsageError& e)
+  {
+    return Fail(e.Message + " (see amrsp " + name + " --help)");
+  }
+  catch (const std::exception& e)
+  {
+    return Fail(e.what());
+  }
+}
+} // namespace
+
+int RunReference(int argc, char** argv)
+{
+  return RunImageCommand(argc, argv, true);
+}
+
+int RunRender(int argc, char** argv)
+{
+  return RunImageCommand(argc, argv, false);
+}
+
+int RunBench(int argc, char** argv)
+{
+  const char* help =
+    "usage: amrsp bench [DATASET] [--size WxH] [--frames N] [--methods LIST] [--json FILE]\n"
+    "Renders an orbit of N frames per method in one process and reports ms/frame, fps,\n"
+    "preprocessing seconds and the RMSE/PSNR of frame 0 against the CPU reference.\n"
+    "Methods in this build: cpu-kdtree. GPU methods (packing, bindless, multipass,\n"
+    "vtk-amr-resample, uniform-gpu) are listed with an error until the mapper implements them.\n";
+  try
+  {
+    const Arguments a = ParseArguments(
+      argc, argv, 1, Concat({ DatasetOptions, ViewOptions, { "frames", "methods", "json" } }), {});
+    if (WantsHelp(a))
+    {
+      std::cout << help << ViewHelp << DatasetHelp;
+      return 0;
+    }
+    const int frames = static_cast<int>(a.GetNumber("frames", 8));
+    if (frames < 1)
+    {
+      throw UsageError{ "--frames must be at least 1" };
+    }
+    std::vector<std::string> methods;
+    std::stringstream list(a.Get("methods", "cpu-kdtree,packing,bindless,multipass"));
+    for (std::string m; std::getline(list, m, ',');)
+    {
+      if (!m.empty())
+      {
+        methods.push_back(m);
+      }
+    }
+    Arguments viewArgs = a;
+    if (!a.Has("size"))
+    {
+      viewArgs.Options["size"] = "256x256";
+    }
+    LoadedDataset d = Load(viewArgs, true, false);
+    RenderSettings s = MakeSettings(d.Data, viewArgs);
+    const Image reference = RenderReference(d.Data, s);
+
+    Json j;
+    j["dataset"] = d.Spec;
+    j["image"] = { s.Width, s.Height };
+    j["frames"] = frames;
+    j["methods"] = Json::object();
+    for (const std::string& m : methods)
+    {
+      if (m != "cpu-kdtree")
+      {
+        j["methods"][m] = { { "error", "not available in this build (the GPU mapper is not "
+                                       "implemented yet)" } };
+        continue;
+      }
+      auto t0 = Clock::now();
+      const KdTree tree = BuildKdTree(d.Data);
+      const double kd = Seconds(t0);
+      t0 = Clock::now();
+      const EncodedKdTree enc = EncodeKdTree(d.Data, tree);
+      const double encode = Seconds(t0);
+      std::vector<double> ms;
+      double rmse = 0.0;
+      const Camera start = s.View;
+      for (int f = 0; f < frames; ++f)
+      {
+        RenderSettings fs = s;
+        fs.View = start;
+        fs.View.Azimuth(360.0 * f / frames);
+        t0 = Clock::now();
+        const Image img = RenderKdTree(d.Data, enc, fs);
+        ms.push_back(1000.0 * Seconds(t0));
+        if (f == 0)
+        {
+          rmse = Rmse(img, reference);
+        }
+      }
+      std::vector<double> sorted = ms;
+      std::sort(sorted.begin(), sorted.end());
+      double mean = 0.0;
+      for (double v : ms)
+      {
+        mean += v / frames;
+      }
+      const double median = sorted[sorted.size() / 2];
+      j["methods"][m] = { { "fps", 1000.0 / mean }, { "ms_mean", mean }, { "ms_median", median },
+        { "rmse", rmse },
+        { "psnr", rmse > 0.0 ? 20.0 * std::log10(255.0 / rmse) : 99.0 },
+        { "gpu_bytes", enc.Tree.Bytes() + enc.DataNodes.Bytes() },
+        { "preprocess_s", { { "kdtree", kd }, { "encode", encode } } } };
+    }
+    if (a.Has("json"))
+    {
+      std::ofstream(a.Get("json", "")) << j.dump(2) << "\n";
+    }
+    std::cout << j.dump(2) << "\n";
+    return 0;
+  }
+  catch (const UsageError& e)
+  {
+    return Fail(e.Message + " (see amrsp bench --help)");
+  }
+  catch (const std::exception& e)
+  {
+    return Fail(e.what());
+  }
+}
+
+} // namespace tool
+} // namespace amrsp

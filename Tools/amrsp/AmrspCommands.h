@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/// @file
+/// The subcommands of the amrsp tool. Each returns the process exit code; errors are printed as
+/// one line "amrsp: error: ..." on stderr.
+
+#include <iosfwd>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace amrsp
+{
+namespace tool
+{
+
+/// Parsed command line: positional arguments and --options (flags map to "1").
+struct Arguments
+{
+  std::vector<std::string> Positional;
+  std::map<std::string, std::string> Options;
+
+  bool Has(const std::string& key) const { return Options.count(key) != 0; }
+  std::string Get(const std::string& key, const std::string& fallback) const;
+  double GetNumber(const std::string& key, double fallback) const;
+};
+
+/// Thrown for bad command-line usage; what() is one line.
+struct UsageError
+{
+  std::string Message;
+};
+
+/// Parses `argv[first..]`. `valueOptions` lists the options that take a value; any other
+/// --option is a flag. Throws UsageError for an unknown option.
+Arguments ParseArguments(int argc, char** argv, int first,
+  const std::vector<std::string>& valueOptions, const std::vector<std::string>& flags);
+
+int RunInspect(int argc, char** argv);
+int RunReference(int argc, char** argv);
+int RunRender(int argc, char** argv);
+int RunBench(int argc, char** argv);
+
+/// The dataset used when none is given: small enough to render in a second on two CPU cores.
+extern const char* const DefaultDataset;
+
+} // namespace tool
+} // namespace amrsp

@@ -1,0 +1,469 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "AmrspDataset.h"
+
+#include "amrsp/SyntheticCosmo.h"
+#include "vtkAMRCoreConversion.h"
+
+#include "vtkAMRBaseReader.h"
+#include "vtkAMREnzoReader.h"
+#include "vtkAMRGaussianPulseSource.h"
+#include "vtkAMReXGridReader.h"
+#include "vtkAlgorithm.h"
+#include "vtkAMRCosmoSource.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOutputWindow.h"
+#include "vtkAMRBox.h"
+#include "vtkAMRUtilities.h"
+#include "vtkImageData.h"
+#include "vtkUniformGrid.h"
+#include "vtkXMLDataElement.h"
+#include "vtkXMLDataParser.h"
+#include "vtkXMLImageDataReader.h"
+#include "vtkXMLUniformGridAMRReader.h"
+
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <unistd.h>
+
+namespace amrsp
+{
+namespace tool
+{
+namespace
+{
+
+/// Collects VTK's error and warning text instead of printing it, so that a failing reader
+/// becomes one line of ours that quotes the reader's first message.
+class CollectingOutputWindow : public vtkOutputWindow
+{
+public:
+  static CollectingOutputWindow* New();
+  vtkTypeMacro(CollectingOutputWindow, vtkOutputWindow);
+  void DisplayText(const char* text) override
+  {
+    if (text && First.empty())
+    {
+      std::string t(text);
+      // VTK prefixes "ERROR: In file, line N\nclass (address): message": keep the message
+      const std::size_t colon = t.find("): ");
+      First = colon != std::string::npos ? t.substr(colon + 3) : t;
+      while (!First.empty() && (First.back() == '\n' || First.back() == ' '))
+      {
+        First.pop_back();
+      }
+      for (char& c : First)
+      {
+        c = c == '\n' ? ' ' : c;
+      }
+    }
+  }
+  std::string First;
+};
+vtkStandardNewMacro(CollectingOutputWindow);
+
+/// Installs the collector for the lifetime of this object.
+class CaptureVTKMessages
+{
+public:
+  CaptureVTKMessages()
+    : Previous(vtkOutputWindow::GetInstance())
+  {
+    vtkOutputWindow::SetInstance(Collector);
+  }
+  ~CaptureVTKMessages() { vtkOutputWindow::SetInstance(Previous); }
+  std::string First() const { return Collector->First; }
+
+private:
+  vtkSmartPointer<vtkOutputWindow> Previous;
+  vtkNew<CollectingOutputWindow> Collector;
+};
+
+/// While alive, the readers' own diagnostics (HDF5's error stack, vtkLogger warnings) written
+/// straight to file descriptor 2 go to a temporary file instead of the user's terminal, and a
+/// crash inside a reader ends the process with one line that names the reader and the file
+/// instead of a bare segmentation fault.
+class ReaderGuard
+{
+public:
+  explicit ReaderGuard(const std::string& what)
+  {
+    std::snprintf(Message, sizeof(Message),
+      "amrsp: error: %s crashed inside VTK's reader (a reader bug, not ours)\n", what.c_str());
+    std::fflush(stderr);
+    SavedStderr = dup(2);
+    Sink = std::tmpfile();
+    if (Sink)
+    {
+      dup2(fileno(Sink), 2);
+    }
+    struct sigaction action;
+    std::memset(&action, 0, sizeof(action));
+    action.sa_handler = &ReaderGuard::OnCrash;
+    for (int i = 0; i < 4; ++i)
+    {
+      sigaction(Signals[i], &action, &Previous[i]);
+    }
+  }
+  ~ReaderGuard()
+  {
+    for (int i = 0; i < 4; ++i)
+    {
+      sigaction(Signals[i], &Previous[i], nullptr);
+    }
+    std::fflush(stderr);
+    if (SavedStderr >= 0)
+    {
+      dup2(SavedStderr, 2);
+      close(SavedStderr);
+      SavedStderr = -1;
+    }
+    if (Sink)
+    {
+      std::fclose(Sink);
+    }
+  }
+  ReaderGuard(const ReaderGuard&) = delete;
+  ReaderGuard& operator=(const ReaderGuard&) = delete;
+
+private:
+  static void OnCrash(int)
+  {
+    const int fd = SavedStderr >= 0 ? SavedStderr : 2;
+    const ssize_t ignored = write(fd, Message, std::strlen(Message));
+    (void)ignored;
+    _exit(70);
+  }
+  static constexpr int Signals[4] = { SIGSEGV, SIGBUS, SIGFPE, SIGILL };
+  static char Message[1024];
+  static int SavedStderr;
+  std::FILE* Sink = nullptr;
+  struct sigaction Previous[4];
+};
+char ReaderGuard::Message[1024];
+int ReaderGuard::SavedStderr = -1;
+constexpr int ReaderGuard::Signals[4];
+
+/// Files of the old vtkHierarchicalBoxDataSet XML format (version 0.1, e.g. converted Chombo
+/// output). VTK's vtkXMLUniformGridAMRReader crashes on them (VTK 9.1/9.2), so they are read here:
+/// one .vti file per block, `amr_box` = inclusive cell ranges "x0 x1 y0 y1 z0 z1" per level.
+bool IsHierarchicalBoxV01(const std::string& path)
+{
+  std::ifstream in(path);
+  std::string head(512, '\0');
+  in.read(&head[0], static_cast<std::streamsize>(head.size()));
+  return head.find("type=\"vtkHierarchicalBoxDataSet\"") != std::string::npos &&
+    head.find("version=\"0.1\"") != std::string::npos;
+}
+
+vtkSmartPointer<vtkOverlappingAMR> ReadHierarchicalBoxV01(const std::string& path)
+{
+  vtkNew<vtkXMLDataParser> parser;
+  parser->SetFileName(path.c_str());
+  if (!parser->Parse() || !parser->GetRootElement())
+  {
+    throw DatasetError("cannot parse the XML of " + path);
+  }
+  vtkXMLDataElement* root = parser->GetRootElement()->FindNestedElementWithName(
+    "vtkHierarchicalBoxDataSet");
+  if (!root)
+  {
+    throw DatasetError(path + " has no vtkHierarchicalBoxDataSet element");
+  }
+  struct Block
+  {
+    int Level, Index, Box[6];
+    std::string File;
+  };
+  std::vector<Block> blocks;
+  std::map<int, int> ratioOfLevel;
+  for (int i = 0; i < root->GetNumberOfNestedElements(); ++i)
+  {
+    vtkXMLDataElement* e = root->GetNestedElement(i);
+    if (std::strcmp(e->GetName(), "RefinementRatio") == 0)
+    {
+      int level = 0, ratio = 2;
+      e->GetScalarAttribute("level", level);
+      e->GetScalarAttribute("refinement", ratio);
+      ratioOfLevel[level] = ratio;
+    }
+    else if (std::strcmp(e->GetName(), "DataSet") == 0)
+    {
+      Block b{};
+      if (!e->GetScalarAttribute("group", b.Level) || !e->GetScalarAttribute("dataset", b.Index) ||
+        e->GetVectorAttribute("amr_box", 6, b.Box) != 6 || !e->GetAttribute("file"))
+      {
+        throw DatasetError(path + ": a DataSet element lacks group, dataset, amr_box or file");
+      }
+      b.File = e->GetAttribute("file");
+      blocks.push_back(b);
+    }
+  }
+  if (blocks.empty())
+  {
+    throw DatasetError("the AMR hierarchy has no blocks (" + path + ")");
+  }
+  int levels = 0;
+  for (const Block& b : blocks)
+  {
+    levels = std::max(levels, b.Level + 1);
+  }
+  std::vector<int> perLevel(static_cast<std::size_t>(levels), 0);
+  for (const Block& b : blocks)
+  {
+    perLevel[b.Level] = std::max(perLevel[b.Level], b.Index + 1);
+  }
+  auto amr = vtkSmartPointer<vtkOverlappingAMR>::New();
+  amr->Initialize(levels, perLevel.data());
+  amr->SetGridDescription(VTK_XYZ_GRID);
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  std::vector<bool> levelSet(static_cast<std::size_t>(levels), false);
+  for (const Block& b : blocks)
+  {
+    vtkNew<vtkXMLImageDataReader> reader;
+    const std::string file = (folder / b.File).string();
+    reader->SetFileName(file.c_str());
+    reader->Update();
+    vtkImageData* image = reader->GetOutput();
+    if (!image || image->GetNumberOfPoints() == 0)
+    {
+      throw DatasetError("cannot read block file " + file);
+    }
+    double spacing[3], origin[3];
+    image->GetSpacing(spacing);
+    image->GetOrigin(origin);
+    const int lo[3] = { b.Box[0], b.Box[2], b.Box[4] };
+    const int hi[3] = { b.Box[1], b.Box[3], b.Box[5] };
+    if (!levelSet[b.Level])
+    {
+      amr->SetSpacing(b.Level, spacing);
+      levelSet[b.Level] = true;
+      if (b.Level == 0)
+      {
+        const double global[3] = { origin[0] - lo[0] * spacing[0], origin[1] - lo[1] * spacing[1],
+          origin[2] - lo[2] * spacing[2] };
+        amr->SetOrigin(global);
+      }
+    }
+    amr->SetAMRBox(b.Level, b.Index, vtkAMRBox(lo, hi));
+    vtkNew<vtkUniformGrid> grid;
+    grid->ShallowCopy(image);
+    amr->SetDataSet(b.Level, b.Index, grid);
+  }
+  for (int l = 0; l < levels; ++l)
+  {
+    amr->SetRefinementRatio(l, ratioOfLevel.count(l) ? ratioOfLevel[l] : 2);
+  }
+  vtkAMRUtilities::BlankCells(amr);
+  return amr;
+}
+
+std::string Lower(std::string s)
+{
+  for (char& c : s)
+  {
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  return s;
+}
+
+vtkSmartPointer<vtkOverlappingAMR> RunAlgorithm(
+  vtkAlgorithm* algorithm, const std::string& what, CaptureVTKMessages& capture)
+{
+  algorithm->Update();
+  auto* amr = vtkOverlappingAMR::SafeDownCast(algorithm->GetOutputDataObject(0));
+  if (!amr || amr->GetNumberOfLevels() == 0 || amr->GetTotalNumberOfBlocks() == 0)
+  {
+    const std::string why = capture.First();
+    throw DatasetError(what + (why.empty() ? " produced no AMR blocks" : " failed: " + why));
+  }
+  return amr;
+}
+
+/// Enzo and AMReX readers share vtkAMRBaseReader: enable only the requested cell array.
+void SelectReaderArray(vtkAMRBaseReader* reader, const DatasetRequest& request,
+  const std::string& what, CaptureVTKMessages& capture)
+{
+  reader->SetMaxLevel(1000);
+  reader->UpdateInformation();
+  const int n = reader->GetNumberOfCellArrays();
+  if (n == 0)
+  {
+    const std::string why = capture.First();
+    throw DatasetError(what + (why.empty() ? " has no cell arrays" : " failed: " + why));
+  }
+  std::string names;
+  bool found = false;
+  for (int i = 0; i < n; ++i)
+  {
+    const std::string name = reader->GetCellArrayName(i);
+    names += (i ? ", " : "") + name;
+    found = found || name == request.Array;
+  }
+  if (!request.Array.empty() && !found)
+  {
+    throw DatasetError("no cell array named '" + request.Array + "' in " + what +
+      " (available: " + names + ")");
+  }
+  for (int i = 0; i < n; ++i)
+  {
+    reader->SetCellArrayStatus(reader->GetCellArrayName(i), 0);
+  }
+  reader->SetCellArrayStatus(
+    request.Array.empty() ? reader->GetCellArrayName(0) : request.Array.c_str(), 1);
+}
+
+} // namespace
+
+LoadedDataset LoadDataset(const DatasetRequest& request)
+{
+  const auto start = std::chrono::steady_clock::now();
+  LoadedDataset out;
+  out.Spec = request.Spec;
+  CaptureVTKMessages capture;
+  const std::string& spec = request.Spec;
+
+  if (spec.rfind("synthetic:cosmo", 0) == 0)
+  {
+    out.Format = "synthetic:cosmo";
+    std::string params;
+    if (spec.size() > 15)
+    {
+      if (spec[15] != ':')
+      {
+        throw DatasetError("unknown dataset '" + spec +
+          "' (expected synthetic:cosmo[:grids=N,levels=L,cells=C,seed=S])");
+      }
+      params = spec.substr(16);
+    }
+    CosmoParameters p;
+    try
+    {
+      p = ParseCosmoParameters(params);
+    }
+    catch (const std::exception& e)
+    {
+      throw DatasetError(std::string("bad synthetic:cosmo parameters: ") + e.what());
+    }
+    if (!request.Array.empty() && request.Array != "Density")
+    {
+      throw DatasetError(
+        "no cell array named '" + request.Array + "' in synthetic:cosmo (available: Density)");
+    }
+    p.GenerateValues = request.NeedValues || request.NeedVTK;
+    try
+    {
+      out.Data = GenerateCosmo(p);
+    }
+    catch (const std::exception& e)
+    {
+      throw DatasetError(std::string("cannot generate synthetic:cosmo: ") + e.what());
+    }
+    if (request.NeedVTK)
+    {
+      out.Amr = vtkSmartPointer<vtkOverlappingAMR>::New();
+      vtkAMRCoreConversion::ToOverlappingAMR(out.Data, out.Amr);
+    }
+    out.LoadSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+  }
+
+  if (spec == "synthetic:pulse")
+  {
+    out.Format = "synthetic:pulse";
+    vtkNew<vtkAMRGaussianPulseSource> pulse;
+    pulse->SetDimension(3);
+    pulse->SetNumberOfLevels(2);
+    pulse->SetRefinementRatio(2);
+    out.Amr = RunAlgorithm(pulse, "vtkAMRGaussianPulseSource", capture);
+  }
+  else if (spec.rfind("synthetic:", 0) == 0)
+  {
+    throw DatasetError("unknown synthetic dataset '" + spec +
+      "' (known: synthetic:pulse, synthetic:cosmo[:grids=N,levels=L,cells=C,seed=S])");
+  }
+  else
+  {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path path(spec);
+    if (!fs::exists(path, ec))
+    {
+      throw DatasetError("no such file or directory: " + spec);
+    }
+    const std::string ext = Lower(path.extension().string());
+    if (fs::is_directory(path, ec))
+    {
+      if (!fs::exists(path / "Header", ec))
+      {
+        throw DatasetError("unknown format: " + spec +
+          " is a folder without an AMReX plotfile Header");
+      }
+      out.Format = "amrex";
+      ReaderGuard guard("reading the AMReX plotfile " + spec);
+      vtkNew<vtkAMReXGridReader> reader;
+      reader->SetFileName(spec.c_str());
+      SelectReaderArray(reader, request, "the AMReX plotfile " + spec, capture);
+      out.Amr = RunAlgorithm(reader, "reading the AMReX plotfile " + spec, capture);
+    }
+    else if (ext == ".hierarchy")
+    {
+      out.Format = "enzo";
+      ReaderGuard guard("reading the Enzo hierarchy " + spec);
+      vtkNew<vtkAMREnzoReader> reader;
+      reader->SetFileName(spec.c_str());
+      SelectReaderArray(reader, request, "the Enzo hierarchy " + spec, capture);
+      out.Amr = RunAlgorithm(reader, "reading the Enzo hierarchy " + spec, capture);
+    }
+    else if ((ext == ".vthb" || ext == ".vth" || ext == ".vtm") && IsHierarchicalBoxV01(spec) &&
+      !std::getenv("AMRSP_USE_VTK_XML_AMR_READER")) // the variable exists to test the crash guard
+    {
+      out.Format = "vtk-xml-hierarchical-box-0.1";
+      ReaderGuard guard("reading " + spec);
+      out.Amr = ReadHierarchicalBoxV01(spec);
+    }
+    else if (ext == ".vthb" || ext == ".vth" || ext == ".vtm")
+    {
+      out.Format = "vtk-xml-amr";
+      ReaderGuard guard("reading the VTK XML AMR file " + spec);
+      vtkNew<vtkXMLUniformGridAMRReader> reader;
+      reader->SetFileName(spec.c_str());
+      reader->SetMaximumLevelsToReadByDefault(0); // all levels
+      out.Amr = RunAlgorithm(reader, "reading the VTK XML AMR file " + spec, capture);
+    }
+    else
+    {
+      throw DatasetError("unknown format: " + spec +
+        " (expected an Enzo .hierarchy, an AMReX plotfile folder, a .vthb/.vth file, "
+        "synthetic:pulse or synthetic:cosmo)");
+    }
+  }
+
+  vtkAMRCoreConversion::ArraySelection selection;
+  selection.Name = request.Array;
+  if (selection.Name.empty() && out.Format == "synthetic:pulse")
+  {
+    selection.Name = "Gaussian-Pulse"; // its first array is the 3-component "Centroid"
+  }
+  selection.Component = request.Component;
+  selection.CopyValues = request.NeedValues;
+  std::string error;
+  if (!vtkAMRCoreConversion::FromOverlappingAMR(out.Amr, selection, out.Data, error))
+  {
+    throw DatasetError(error + " (" + spec + ")");
+  }
+  out.LoadSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+} // namespace tool
+} // namespace amrsp

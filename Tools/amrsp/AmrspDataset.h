@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/// @file
+/// Dataset arguments of the amrsp tool: a path (Enzo .hierarchy, AMReX plotfile folder,
+/// VTK XML AMR .vthb/.vth/.vtm), `synthetic:pulse`, or
+/// `synthetic:cosmo[:grids=N,levels=L,cells=C,seed=S]`.
+
+#include "amrsp/Hierarchy.h"
+
+#include "vtkOverlappingAMR.h"
+#include "vtkSmartPointer.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace amrsp
+{
+namespace tool
+{
+
+/// A problem with the dataset argument; what() is one line for the user.
+class DatasetError : public std::runtime_error
+{
+public:
+  using std::runtime_error::runtime_error;
+};
+
+struct DatasetRequest
+{
+  std::string Spec;
+  std::string Array;  ///< empty: the first cell array
+  int Component = -1; ///< -1: magnitude of multi-component arrays
+  bool NeedValues = true;
+  bool NeedVTK = true; ///< false: synthetic:cosmo may skip building a vtkOverlappingAMR
+};
+
+struct LoadedDataset
+{
+  std::string Spec;
+  std::string Format; ///< enzo, amrex, vtk-xml-amr, synthetic:pulse, synthetic:cosmo
+  vtkSmartPointer<vtkOverlappingAMR> Amr; ///< null only when NeedVTK was false
+  Hierarchy Data;
+  double LoadSeconds = 0.0;
+};
+
+/// Loads the dataset. Throws DatasetError with one line naming the problem: missing path,
+/// unknown format, reader failure (with the reader's own message), missing array, no blocks.
+LoadedDataset LoadDataset(const DatasetRequest& request);
+
+} // namespace tool
+} // namespace amrsp
