@@ -155,7 +155,7 @@ const char* const ViewHelp =
   "  --tf PRESET                 transfer function: default, grey, hot\n"
   "  --scale auto|linear|log     scalar mapping; auto = log10 when the data is positive and\n"
   "                              spans more than 3 decades (default auto)\n"
-  "  --unit-distance D           ScalarOpacityUnitDistance in world units (default: diagonal/20)\n"
+  "  --unit-distance D           ScalarOpacityUnitDistance in world units (default: diagonal/100)\n"
   "  --sample-factor F           samples per cell of each segment's level = 1/F (default 1)\n"
   "  --reference-sample-factor F step of the reference in finest-cell edges (default 0.5)\n"
   "  --lod PIXELS                level-of-detail threshold in pixels (default 0 = off)\n"
@@ -172,11 +172,14 @@ LoadedDataset Load(const Arguments& a, bool needValues, bool needVTK)
   return LoadDataset(r);
 }
 
-/// Maps the scalars for display (log10 when asked or automatic) and returns their range.
+/// Maps the scalars for display (log10 when asked, or automatically for non-negative data whose
+/// positive values span more than 3 decades; zeros map to the smallest positive value) and
+/// returns their range.
 void PrepareScalars(Hierarchy& h, const std::string& scale, double& lo, double& hi)
 {
   lo = std::numeric_limits<double>::max();
   hi = -std::numeric_limits<double>::max();
+  double minPositive = std::numeric_limits<double>::max();
   for (const GridValues& v : h.Values)
   {
     for (float x : v)
@@ -185,6 +188,10 @@ void PrepareScalars(Hierarchy& h, const std::string& scale, double& lo, double& 
       {
         lo = std::min(lo, static_cast<double>(x));
         hi = std::max(hi, static_cast<double>(x));
+        if (x > 0.0f)
+        {
+          minPositive = std::min(minPositive, static_cast<double>(x));
+        }
       }
     }
   }
@@ -195,7 +202,7 @@ void PrepareScalars(Hierarchy& h, const std::string& scale, double& lo, double& 
   bool useLog = scale == "log";
   if (scale == "auto")
   {
-    useLog = lo > 0.0 && hi / lo > 1e3;
+    useLog = lo >= 0.0 && hi > 0.0 && hi / minPositive > 1e3;
   }
   else if (scale != "log" && scale != "linear")
   {
@@ -209,16 +216,15 @@ void PrepareScalars(Hierarchy& h, const std::string& scale, double& lo, double& 
   {
     throw DatasetError("--scale log needs positive values in '" + h.ArrayName + "'");
   }
-  const double floor = lo > 0.0 ? lo : hi * 1e-12;
   for (GridValues& v : h.Values)
   {
     for (float& x : v)
     {
-      x = static_cast<float>(std::log10(std::max(static_cast<double>(x), floor)));
+      x = static_cast<float>(std::log10(std::max(static_cast<double>(x), minPositive)));
     }
   }
   h.ArrayName = "log10(" + h.ArrayName + ")";
-  lo = std::log10(floor);
+  lo = std::log10(minPositive);
   hi = std::log10(hi);
 }
 
@@ -236,7 +242,7 @@ void Bounds(const Hierarchy& h, glm::dvec3& lo, glm::dvec3& hi)
   }
 }
 
-RenderSettings MakeSettings(Hierarchy& h, const Arguments& a)
+RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range = nullptr)
 {
   RenderSettings s;
   const std::string size = a.Get("size", "512x512");
@@ -267,7 +273,11 @@ RenderSettings MakeSettings(Hierarchy& h, const Arguments& a)
   s.View.Zoom(a.GetNumber("zoom", 1.0));
   double vlo, vhi;
   PrepareScalars(h, a.Get("scale", "auto"), vlo, vhi);
-  const double unit = a.GetNumber("unit-distance", glm::length(hi - lo) / 20.0);
+  if (range)
+  {
+    *range = glm::dvec2(vlo, vhi);
+  }
+  const double unit = a.GetNumber("unit-distance", glm::length(hi - lo) / 100.0);
   if (!(unit > 0.0))
   {
     throw UsageError{ "--unit-distance must be positive" };
@@ -469,7 +479,8 @@ int RunImageCommand(int argc, char** argv, bool reference)
     }
     const std::string output = a.Get("output", name + ".png");
     LoadedDataset d = Load(a, true, false);
-    RenderSettings s = MakeSettings(d.Data, a);
+    glm::dvec2 range;
+    RenderSettings s = MakeSettings(d.Data, a, &range);
 
     auto t0 = Clock::now();
     Image img;
@@ -491,9 +502,22 @@ int RunImageCommand(int argc, char** argv, bool reference)
               << "dataset: " << d.Spec << " (" << d.Format << "), array " << d.Data.ArrayName
               << ", " << d.Data.Grids.size() << " grids, " << d.Data.NumberOfLevels()
               << " levels\n"
+              << "scalars: " << d.Data.ArrayName << " in [" << range.x << ", " << range.y
+              << "], transfer function '" << a.Get("tf", "default") << "'\n"
               << "image: " << output << " (" << s.Width << "x" << s.Height << ")\n"
               << "times (s): load " << d.LoadSeconds << ", preprocess " << preprocess
               << ", render " << renderSeconds << "\n";
+    double covered = 0.0;
+    for (const glm::vec4& p : img.Pixels)
+    {
+      covered += p.a > 0.02f ? 1.0 : 0.0;
+    }
+    if (covered < 0.001 * img.Pixels.size())
+    {
+      std::cerr << "amrsp: warning: the image is nearly empty: the transfer function gives the "
+                   "data almost no opacity (try --scale log, another --array, or a smaller "
+                   "--unit-distance)\n";
+    }
     return 0;
   }
   catch (const UsageError& e)

@@ -145,9 +145,10 @@ TransferFunction TransferFunction::Preset(const std::string& name, double lo, do
   tf.UnitDistance = unitDistance;
   if (name == "default")
   {
+    // cool-to-warm colours; opacity rising with the value so that peaks stand out
     tf.Color = { { at(0.0), { 0.23, 0.30, 0.75 } }, { at(0.5), { 0.87, 0.87, 0.87 } },
       { at(1.0), { 0.71, 0.02, 0.15 } } };
-    tf.Opacity = { { at(0.0), 0.0 }, { at(0.2), 0.02 }, { at(1.0), 0.6 } };
+    tf.Opacity = { { at(0.0), 0.0 }, { at(0.3), 0.05 }, { at(0.7), 0.4 }, { at(1.0), 0.9 } };
   }
   else if (name == "grey")
   {

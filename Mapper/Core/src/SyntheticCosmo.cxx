@@ -42,12 +42,21 @@ public:
   double Uniform() { return static_cast<double>(this->Next() >> 11) * (1.0 / 9007199254740992.0); }
   /// Uniform in [a, b).
   double Uniform(double a, double b) { return a + (b - a) * this->Uniform(); }
+  /// Uniform in [a, b)^3, drawn x, then y, then z. (Never draw twice within one expression or
+  /// argument list: C++ leaves their evaluation order to the compiler.)
+  glm::dvec3 UniformVector(double a, double b)
+  {
+    const double x = this->Uniform(a, b);
+    const double y = this->Uniform(a, b);
+    const double z = this->Uniform(a, b);
+    return glm::dvec3(x, y, z);
+  }
   /// A point uniformly distributed in the unit ball (rejection from the cube).
   glm::dvec3 InBall()
   {
     for (;;)
     {
-      const glm::dvec3 v(this->Uniform(-1.0, 1.0), this->Uniform(-1.0, 1.0), this->Uniform(-1.0, 1.0));
+      const glm::dvec3 v = this->UniformVector(-1.0, 1.0);
       if (v.x * v.x + v.y * v.y + v.z * v.z <= 1.0)
       {
         return v;
@@ -216,8 +225,8 @@ struct CosmoField::Impl
     double bg = this->Base;
     for (const Wave& w : this->Waves)
     {
-      bg += w.Amp * Bump(w.K[0] * x + w.P[0]) * Bump(w.K[1] * y + w.P[1]) *
-        Bump(w.K[2] * z + w.P[2]);
+      bg +=
+        w.Amp * Bump(w.K[0] * x + w.P[0]) * Bump(w.K[1] * y + w.P[1]) * Bump(w.K[2] * z + w.P[2]);
     }
     return bg;
   }
@@ -326,8 +335,12 @@ struct CosmoField::Impl
     // softening), so the peak density A/eps^2 grows with the halo radius and the deepest levels
     // go to the most massive halos.
     const double epsBase = 3e-6;
-    auto amplitude = [&rng](double r) { return 8.0 * rng.Uniform(0.75, 1.25) * r * r; };
-    auto softening = [&rng, epsBase]() { return epsBase * rng.Uniform(0.5, 1.5); };
+    // Draws the amplitude factor, then the softening factor.
+    auto addHalo = [this, &rng, epsBase](const glm::dvec3& centre, double r) {
+      const double amp = 8.0 * rng.Uniform(0.75, 1.25) * r * r;
+      const double eps = epsBase * rng.Uniform(0.5, 1.5);
+      this->AddHaloToCatalogue(centre, r, amp, eps);
+    };
 
     const int clusters = 32;
     const double clusterRMin = 0.05, clusterRMax = 0.18;
@@ -335,11 +348,11 @@ struct CosmoField::Impl
     std::vector<double> radii;
     for (int c = 0; c < clusters; ++c)
     {
-      const glm::dvec3 p(rng.Uniform(0.08, 0.92), rng.Uniform(0.08, 0.92), rng.Uniform(0.08, 0.92));
+      const glm::dvec3 p = rng.UniformVector(0.08, 0.92);
       const double r = PowerLawRadius(rng, clusterRMin, clusterRMax);
       centres.push_back(p);
       radii.push_back(r);
-      this->AddHaloToCatalogue(p, r, amplitude(r), softening());
+      addHalo(p, r);
     }
     // Satellites: uniformly in a ball of 1.3 cluster radii, more around bigger clusters.
     for (int c = 0; c < clusters; ++c)
@@ -352,11 +365,11 @@ struct CosmoField::Impl
       {
         const glm::dvec3 p = centres[static_cast<std::size_t>(c)] + 1.3 * rc * rng.InBall();
         const double r = PowerLawRadius(rng, 0.004, rmax);
-        this->AddHaloToCatalogue(p, r, amplitude(r), softening());
+        addHalo(p, r);
       }
     }
     // Filaments: each cluster to its two nearest neighbours (each pair once), a string of small
-    // halos with a transverse scatter of about 0.01.
+    // halos scattered by about 0.006 per axis around the segment.
     std::vector<std::pair<int, int>> pairs;
     for (int c = 0; c < clusters; ++c)
     {
@@ -368,7 +381,8 @@ struct CosmoField::Impl
         {
           continue;
         }
-        const glm::dvec3 d = centres[static_cast<std::size_t>(o)] - centres[static_cast<std::size_t>(c)];
+        const glm::dvec3 d =
+          centres[static_cast<std::size_t>(o)] - centres[static_cast<std::size_t>(c)];
         const double d2 = d.x * d.x + d.y * d.y + d.z * d.z;
         if (d2 < bestD[0])
         {
@@ -402,21 +416,20 @@ struct CosmoField::Impl
       for (int i = 0; i < n; ++i)
       {
         const double t = rng.Uniform(0.1, 0.9);
-        glm::dvec3 scatter;
-        for (int k = 0; k < 3; ++k)
-        {
-          scatter[k] = 0.006 * (rng.Uniform(-1.0, 1.0) + rng.Uniform(-1.0, 1.0) + rng.Uniform(-1.0, 1.0));
-        }
+        // A sum of three uniforms: a bell-shaped transverse offset.
+        glm::dvec3 scatter = rng.UniformVector(-1.0, 1.0);
+        scatter += rng.UniformVector(-1.0, 1.0);
+        scatter += rng.UniformVector(-1.0, 1.0);
         const double r = PowerLawRadius(rng, 0.003, 0.02);
-        this->AddHaloToCatalogue(a + t * d + scatter, r, amplitude(r), softening());
+        addHalo(a + t * d + 0.006 * scatter, r);
       }
     }
     // Isolated field halos.
     for (int i = 0; i < 400; ++i)
     {
-      const glm::dvec3 p(rng.Uniform(), rng.Uniform(), rng.Uniform());
+      const glm::dvec3 p = rng.UniformVector(0.0, 1.0);
       const double r = PowerLawRadius(rng, 0.003, 0.015);
-      this->AddHaloToCatalogue(p, r, amplitude(r), softening());
+      addHalo(p, r);
     }
     this->BuildBuckets();
   }
@@ -507,7 +520,8 @@ void CosmoField::Sample(const Box& box, double cellSize, std::vector<float>& val
                 double d2 = 0.0;
                 for (int a = 0; a < 3; ++a)
                 {
-                  const double d = c[a] < lo[a] ? lo[a] - c[a] : (c[a] > hi[a] ? c[a] - hi[a] : 0.0);
+                  const double d =
+                    c[a] < lo[a] ? lo[a] - c[a] : (c[a] > hi[a] ? c[a] - hi[a] : 0.0);
                   d2 += d * d;
                 }
                 if (d2 < halo.R2)
@@ -609,8 +623,9 @@ uint64_t ParseUnsigned(const std::string& key, const std::string& value, bool su
   }
   if (digits == 0)
   {
-    BadValue(key, value, suffixes ? "expected a non-negative integer, optionally with a k or M suffix"
-                                  : "expected a non-negative integer");
+    BadValue(key, value,
+      suffixes ? "expected a non-negative integer, optionally with a k or M suffix"
+               : "expected a non-negative integer");
   }
   uint64_t fracPart = 0;
   uint64_t fracScale = 1;
@@ -840,7 +855,7 @@ struct Tiling
 {
   struct Parent
   {
-    int64_t Offset = 0; ///< first tile's index in the flat tile arrays
+    int64_t Offset = 0;  ///< first tile's index in the flat tile arrays
     glm::i64vec3 N{ 1 }; ///< tiles per axis (>= 1, <= extent)
     glm::i64vec3 Lo{ 0 };
     glm::i64vec3 Ext{ 1 };
@@ -881,22 +896,35 @@ struct LevelBox
   int32_t Parent = 0;
 };
 
+/// Candidate tiles and their selection for one level at a time. One builder serves all levels
+/// so that its large scratch arrays are allocated (and touched) once.
 class LevelBuilder
 {
 public:
-  LevelBuilder(const CosmoField& field, const std::vector<Box>& parentsRefined, double cellSize)
+  explicit LevelBuilder(const CosmoField& field)
     : Field(field)
-    , ParentsRefined(parentsRefined)
-    , CellSize(cellSize)
   {
-    for (const Box& b : parentsRefined)
-    {
-      const glm::i64vec3 e = b.Extent();
-      this->MaxExtent = std::max(this->MaxExtent, std::max(e.x, std::max(e.y, e.z)));
-    }
   }
 
-  int64_t MaxExtent = 1;
+  /// Starts a level: `parents` are the level-(l-1) boxes, `cellSize` the world size of a
+  /// level-l cell.
+  void SetParents(const std::vector<Box>& parents, double cellSize)
+  {
+    this->ParentsRefined.clear();
+    this->MaxExtent = 1;
+    for (const Box& b : parents)
+    {
+      const Box r = b.Refined(glm::i64vec3(2));
+      this->ParentsRefined.push_back(r);
+      const glm::i64vec3 e = r.Extent();
+      this->MaxExtent = std::max(this->MaxExtent, std::max(e.x, std::max(e.y, e.z)));
+    }
+    this->CellSize = cellSize;
+  }
+
+  const CosmoField& GetField() const { return this->Field; }
+  /// Longest parent edge in cells of the level being built.
+  int64_t GetMaxExtent() const { return this->MaxExtent; }
 
   /// Tiles the parents with tiles of edge about `tile`, samples the field at the tile centres,
   /// selects the densest tiles worth `targetCells` cells and merges each parent's selected tiles
@@ -999,8 +1027,9 @@ public:
 
 private:
   const CosmoField& Field;
-  const std::vector<Box>& ParentsRefined;
-  double CellSize;
+  std::vector<Box> ParentsRefined;
+  double CellSize = 1.0;
+  int64_t MaxExtent = 1;
   Tiling T;
   // Scratch buffers reused between evaluations.
   std::vector<int64_t> Order;
@@ -1037,8 +1066,8 @@ private:
     for (std::size_t pi = 0; pi < t.Parents.size(); ++pi)
     {
       const Tiling::Parent& p = t.Parents[pi];
-      std::fill(t.ParentOf.begin() + p.Offset, t.ParentOf.begin() + p.Offset + p.N.x * p.N.y * p.N.z,
-        static_cast<int32_t>(pi));
+      std::fill(t.ParentOf.begin() + p.Offset,
+        t.ParentOf.begin() + p.Offset + p.N.x * p.N.y * p.N.z, static_cast<int32_t>(pi));
     }
     const double cs = this->CellSize;
     const CosmoField& field = this->Field;
@@ -1245,8 +1274,8 @@ void JoinToCount(std::vector<LevelBox>& boxes, int64_t count)
 /// hold at most `targetCells` cells (within 2%) or every box is a single cell. Only needed when a
 /// level has very few, coarse tiles (e.g. one grid on a level). Boxes only shrink, so they stay
 /// inside their parents and disjoint.
-void TrimToCells(std::vector<LevelBox>& boxes, int64_t targetCells, const CosmoField& field,
-  double cellSize)
+void TrimToCells(
+  std::vector<LevelBox>& boxes, int64_t targetCells, const CosmoField& field, double cellSize)
 {
   int64_t total = CellsOf(boxes);
   const int64_t limit = targetCells + targetCells / 50;
@@ -1302,16 +1331,11 @@ void TrimToCells(std::vector<LevelBox>& boxes, int64_t targetCells, const CosmoF
 /// Builds one refined level with exactly `grids` boxes (when the parents have room) holding about
 /// `targetCells` cells. `tileGuess` carries the tile edge, relative to the cube root of the mean
 /// grid size, from level to level.
-std::vector<LevelBox> BuildLevel(const CosmoField& field, const std::vector<Box>& parents,
+std::vector<LevelBox> BuildLevel(LevelBuilder& builder, const std::vector<Box>& parents,
   double cellSize, int64_t grids, int64_t targetCells, double& tileGuess)
 {
-  std::vector<Box> refined;
-  refined.reserve(parents.size());
-  for (const Box& b : parents)
-  {
-    refined.push_back(b.Refined(glm::i64vec3(2)));
-  }
-  LevelBuilder builder(field, refined, cellSize);
+  builder.SetParents(parents, cellSize);
+  const CosmoField& field = builder.GetField();
 
   // Search the tile edge T. With the cell budget fixed, bigger tiles give fewer boxes (about
   // B ~ T^-2: a blob of volume V tiled by T^3 tiles merges into ~ (V^(1/3)/T)^2 runs). Aim for a
@@ -1319,9 +1343,9 @@ std::vector<LevelBox> BuildLevel(const CosmoField& field, const std::vector<Box>
   // the biggest boxes. (Smaller tiles would need fewer splits but cost time: the field is
   // sampled at every candidate tile for every T tried.)
   const double meanGrid = static_cast<double>(targetCells) / static_cast<double>(grids);
-  const double tmax = static_cast<double>(builder.MaxExtent) + 1.0;
+  const double tmax = static_cast<double>(builder.GetMaxExtent()) + 1.0;
   double t = std::max(MinTile, std::min(tmax, tileGuess * CubeRoot(meanGrid)));
-  double tBelow = 0.0;                               // largest T known to give too many boxes
+  double tBelow = 0.0;                                // largest T known to give too many boxes
   double tAbove = std::numeric_limits<double>::max(); // smallest T known to give few enough
   std::vector<LevelBox> best;
   double bestTile = t;
@@ -1360,8 +1384,8 @@ std::vector<LevelBox> BuildLevel(const CosmoField& field, const std::vector<Box>
     next = std::max(0.5 * t, std::min(2.0 * t, next));
     if (next <= tBelow || next >= tAbove)
     {
-      next = (tAbove < std::numeric_limits<double>::max()) ? std::sqrt(tBelow * tAbove)
-                                                           : 2.0 * tBelow;
+      next =
+        (tAbove < std::numeric_limits<double>::max()) ? std::sqrt(tBelow * tAbove) : 2.0 * tBelow;
     }
     next = std::max(MinTile, std::min(tmax, next));
     // B(T) jumps where the tile counts per parent change; once the bracket is this narrow,
@@ -1498,8 +1522,8 @@ Hierarchy GenerateCosmo(const CosmoParameters& p)
   if (p.Cells / minCellsPerGrid < p.Grids)
   {
     throw std::invalid_argument(what + "cells too small for the grids: need at least " +
-      std::to_string(minCellsPerGrid) + " cells per grid on average (cells >= " +
-      std::to_string(minCellsPerGrid * p.Grids) + ")");
+      std::to_string(minCellsPerGrid) +
+      " cells per grid on average (cells >= " + std::to_string(minCellsPerGrid * p.Grids) + ")");
   }
 
   const std::vector<int64_t> refinedGrids = GridsPerRefinedLevel(p.Grids - roots, p.Levels);
@@ -1540,6 +1564,7 @@ Hierarchy GenerateCosmo(const CosmoParameters& p)
     h.Grids.push_back(Grid{ 0, b, static_cast<int64_t>(h.Grids.size()) });
   }
 
+  LevelBuilder builder(field);
   double tileGuess = 0.6;
   double scale = static_cast<double>(n0); // cells of the current level per unit length
   for (int l = 1; l < p.Levels; ++l)
@@ -1553,12 +1578,12 @@ Hierarchy GenerateCosmo(const CosmoParameters& p)
     }
     // This level's share of the remaining cell budget, capped by the room in the parents and
     // at least 8 cells per grid.
-    double target = static_cast<double>(remaining) * static_cast<double>(grids) /
-      static_cast<double>(gridsLeft);
+    double target =
+      static_cast<double>(remaining) * static_cast<double>(grids) / static_cast<double>(gridsLeft);
     target = std::min(target, MaxVolumeFraction * 8.0 * static_cast<double>(levelCells));
     target = std::max(target, 8.0 * static_cast<double>(grids));
-    const std::vector<LevelBox> boxes = BuildLevel(
-      field, level, 1.0 / scale, grids, static_cast<int64_t>(target + 0.5), tileGuess);
+    const std::vector<LevelBox> boxes =
+      BuildLevel(builder, level, 1.0 / scale, grids, static_cast<int64_t>(target + 0.5), tileGuess);
     if (boxes.empty())
     {
       throw std::invalid_argument(what + "no room for level " + std::to_string(l));

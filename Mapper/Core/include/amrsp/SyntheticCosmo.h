@@ -6,8 +6,15 @@
 /// Table 1. Plain C++17 + GLM; no VTK, no OpenGL.
 ///
 /// The hierarchy produced by GenerateCosmo():
-/// - Level 0 is the cube [0,N0)^3 of level-0 cells, split into root grids (2x2x2 by default).
-///   World space is the unit cube: Origin = (0,0,0), Spacing0 = 1/N0.
+/// - Level 0 is the cube [0,N0)^3 of level-0 cells, split into root grids by recursive
+///   bisection (2x2x2 by default). World space is the unit cube: Origin = (0,0,0),
+///   Spacing0 = 1/N0. N0 is chosen from the cell budget so that level 1 covers about a tenth of
+///   the domain.
+/// - Refinement: on each level the parents are cut into tiles of a searched edge T; the densest
+///   tiles (field at the tile centre) worth the level's share of the cell budget are selected,
+///   merged into boxes within each parent (runs along x, then rows, then slabs), and the box
+///   count is brought to the level's grid count by halving the biggest boxes (or, on levels
+///   with a handful of grids, by joining neighbours).
 /// - Every level l >= 1 refines level l-1 by 2 on every axis. Each level-l grid lies inside ONE
 ///   level-(l-1) grid (so the hierarchy is properly nested), grids of one level never overlap,
 ///   and every level has at least one grid.
@@ -37,12 +44,14 @@ namespace amrsp
 struct CosmoParameters
 {
   /// Requested total number of grids (all levels, root grids included). Reproduced exactly
-  /// unless a level runs out of room (then the report in CosmoStatistics tells).
+  /// (levels 1.. get geometrically fewer grids, ratio 0.75 per level), unless a level's boxes
+  /// have all been split down to single cells.
   int64_t Grids = 2666;
   /// Number of levels (>= 1). Reproduced exactly.
   int Levels = 4;
-  /// Requested total number of cells over all grids (covered cells included), reproduced to
-  /// within a few percent (the root level is a cube, so its cell count moves in steps).
+  /// Requested total number of cells over all grids (covered cells included). With two or more
+  /// levels the refined levels absorb the rounding of the cubic root domain (typically within
+  /// 1%); with one level the cells are the nearest cube N0^3.
   int64_t Cells = 19000000;
   uint64_t Seed = 1;
   /// False: boxes only (Hierarchy::Values left empty), for fast tree statistics.
@@ -71,9 +80,10 @@ std::string FormatCosmoParameters(const CosmoParameters& p);
 /// clusters with satellites, filaments of small halos between neighbouring clusters, and a few
 /// isolated field halos; halo radii follow a power law (dN/dR ~ R^-3, i.e. dN/dM ~ M^-5/3 for
 /// M ~ R^3) and amplitudes grow as R^2 (isothermal: M(<R) ~ A R). The background is a smooth,
-/// periodic, strictly positive modulation between about 0.35 and 2. The softening eps_h is a
-/// few 1e-6, so the field keeps structure down to about 20 levels of refinement of a 256^3 root.
-/// Always > 0.
+/// periodic, strictly positive modulation between about 0.35 and 2. The softening eps_h is
+/// 1.5e-6 to 4.5e-6 (about the cell size of level 10 of a 256^3 root): deeper levels nest
+/// around the smooth maxima of the halo cores. Always > 0.
+/// Only +, -, *, /, sqrt and floor are used, so the values do not depend on the C library.
 ///
 /// Copies share the (immutable) halo catalogue; evaluation is thread-safe.
 class CosmoField
@@ -108,8 +118,8 @@ Hierarchy GenerateCosmo(const CosmoParameters& p);
 
 /// The density field of GenerateCosmo(p) at a point given in level-0 index units of `h` (the
 /// hierarchy made by GenerateCosmo with a parameter set of seed `seed`): CosmoField(seed) at
-/// h.Origin + indexPos * h.Spacing0. Builds the halo catalogue on every call (about a
-/// millisecond); use CosmoField directly for many points.
+/// h.Origin + indexPos * h.Spacing0. Builds the halo catalogue on every call (about 10 ms);
+/// use CosmoField directly for many points.
 double CosmoDensity(uint64_t seed, const Hierarchy& h, const glm::dvec3& indexPos);
 
 /// Per-level statistics of a hierarchy (any hierarchy, not only synthetic ones).

@@ -1,0 +1,21 @@
+# ctest -P script: installs the build tree into a scratch prefix, then configures, builds and runs
+# the consumer project against that installation (find_package(AMRSinglePass)).
+foreach (v BUILD_DIR SOURCE_DIR VTK_DIR)
+  if (NOT DEFINED ${v})
+    message(FATAL_ERROR "${v} is required")
+  endif ()
+endforeach ()
+set(prefix "${BUILD_DIR}/consumer/install")
+set(build "${BUILD_DIR}/consumer/build")
+file(REMOVE_RECURSE "${BUILD_DIR}/consumer")
+function (run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc)
+  if (NOT rc EQUAL 0)
+    message(FATAL_ERROR "failed (${rc}): ${ARGN}")
+  endif ()
+endfunction ()
+run("${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${prefix}")
+run("${CMAKE_COMMAND}" -S "${SOURCE_DIR}" -B "${build}" "-DCMAKE_PREFIX_PATH=${prefix}"
+  "-DVTK_DIR=${VTK_DIR}")
+run("${CMAKE_COMMAND}" --build "${build}")
+run("${build}/consumer")
