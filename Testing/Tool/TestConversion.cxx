@@ -1,0 +1,103 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// vtkOverlappingAMR -> amrsp::Hierarchy: ghost layers, ratios, bad input.
+#include "vtkAMRCoreConversion.h"
+
+#include "vtkAMRBox.h"
+#include "vtkCellData.h"
+#include "vtkDoubleArray.h"
+#include "vtkNew.h"
+#include "vtkOverlappingAMR.h"
+#include "vtkUniformGrid.h"
+
+#include <gtest/gtest.h>
+
+namespace
+{
+
+/// One level-0 block with box [0,3]^3 and `ghost` layers of ghost cells around it, plus a level-1
+/// block with spacing `fineSpacing`. Cell values: 1000 * level + linear cell index of the block.
+vtkNew<vtkOverlappingAMR> MakeAMR(int ghost, double fineSpacing, int components = 1)
+{
+  vtkNew<vtkOverlappingAMR> amr;
+  const int blocks[2] = { 1, 1 };
+  amr->Initialize(2, blocks);
+  const double origin[3] = { 0, 0, 0 };
+  amr->SetOrigin(origin);
+  amr->SetGridDescription(VTK_XYZ_GRID);
+  const double s0[3] = { 1, 1, 1 }, s1[3] = { fineSpacing, fineSpacing, fineSpacing };
+  amr->SetSpacing(0, s0);
+  amr->SetSpacing(1, s1);
+  amr->SetRefinementRatio(0, 2);
+  amr->SetRefinementRatio(1, 2);
+  const int lo0[3] = { 0, 0, 0 }, hi0[3] = { 3, 3, 3 }, lo1[3] = { 2, 2, 2 }, hi1[3] = { 5, 5, 5 };
+  amr->SetAMRBox(0, 0, vtkAMRBox(lo0, hi0));
+  amr->SetAMRBox(1, 0, vtkAMRBox(lo1, hi1));
+  for (int level = 0; level < 2; ++level)
+  {
+    const int n = 4 + (level == 0 ? 2 * ghost : 0);
+    vtkNew<vtkUniformGrid> g;
+    g->SetDimensions(n + 1, n + 1, n + 1);
+    vtkNew<vtkDoubleArray> a;
+    a->SetName("phi");
+    a->SetNumberOfComponents(components);
+    a->SetNumberOfTuples(n * n * n);
+    for (vtkIdType i = 0; i < n * n * n; ++i)
+    {
+      for (int c = 0; c < components; ++c)
+      {
+        a->SetComponent(i, c, 1000.0 * level + static_cast<double>(i) + c);
+      }
+    }
+    g->GetCellData()->AddArray(a);
+    amr->SetDataSet(level, 0, g);
+  }
+  return amr;
+}
+
+TEST(Conversion, StripsGhostLayers)
+{
+  auto amr = MakeAMR(1, 0.5);
+  vtkAMRCoreConversion::ArraySelection sel;
+  amrsp::Hierarchy h;
+  std::string error;
+  ASSERT_TRUE(vtkAMRCoreConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
+  ASSERT_EQ(h.Grids.size(), 2u);
+  EXPECT_EQ(h.ArrayName, "phi");
+  EXPECT_EQ(h.RefinementRatio[1], glm::ivec3(2));
+  EXPECT_EQ(h.Grids[0].Cells.Hi, glm::i64vec3(4));
+  ASSERT_EQ(h.Values[0].size(), 64u);
+  // inner cell (0,0,0) of the box is ghosted cell (1,1,1) of the 6^3 block
+  EXPECT_EQ(h.Values[0][0], static_cast<float>((1 * 6 + 1) * 6 + 1));
+  EXPECT_EQ(h.Values[0][63], static_cast<float>((4 * 6 + 4) * 6 + 4));
+  EXPECT_EQ(h.Values[1][5], 1005.0f);
+}
+
+TEST(Conversion, VectorMagnitudeAndComponent)
+{
+  auto amr = MakeAMR(0, 0.5, 2);
+  vtkAMRCoreConversion::ArraySelection sel;
+  amrsp::Hierarchy h;
+  std::string error;
+  ASSERT_TRUE(vtkAMRCoreConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
+  EXPECT_FLOAT_EQ(h.Values[0][3], std::sqrt(3.0f * 3.0f + 4.0f * 4.0f));
+  sel.Component = 1;
+  ASSERT_TRUE(vtkAMRCoreConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
+  EXPECT_EQ(h.Values[0][3], 4.0f);
+}
+
+TEST(Conversion, BadInputGivesOneClearError)
+{
+  amrsp::Hierarchy h;
+  std::string error;
+  vtkAMRCoreConversion::ArraySelection sel;
+  EXPECT_FALSE(vtkAMRCoreConversion::FromOverlappingAMR(MakeAMR(0, 0.3), sel, h, error));
+  EXPECT_NE(error.find("unsupported refinement"), std::string::npos) << error;
+  sel.Name = "rho";
+  EXPECT_FALSE(vtkAMRCoreConversion::FromOverlappingAMR(MakeAMR(0, 0.5), sel, h, error));
+  EXPECT_NE(error.find("no cell array named 'rho' (available: phi)"), std::string::npos) << error;
+  vtkNew<vtkOverlappingAMR> empty;
+  EXPECT_FALSE(vtkAMRCoreConversion::FromOverlappingAMR(empty, sel, h, error));
+  EXPECT_NE(error.find("no blocks"), std::string::npos) << error;
+}
+
+} // namespace
