@@ -17,6 +17,7 @@ case "$config" in
     echo "scripts/build.sh: unknown configuration '$config' (paraview or vtk)" >&2; exit 2 ;;
 esac
 build="$repo/build/$config"
+mkdir -p "$repo/build"
 echo "[build] $config -> $build"
 cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release \
   "-DAMRSP_DATA_DIR=${AMRSP_DATA_DIR:-$repo/../shared/data}" "${args[@]}" >"$build.configure.log" 2>&1 \
