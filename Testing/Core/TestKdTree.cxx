@@ -204,6 +204,38 @@ TEST(KdTree, PaperExample)
   EXPECT_EQ(tree.Root().Region.Hi, glm::i64vec3(64, 64, 16));
 }
 
+TEST(KdTree, InvariantCheckerCatchesCorruptTrees)
+{
+  const Hierarchy h = PaperExample();
+  const KdTree good = BuildKdTree(h);
+  ASSERT_TRUE(CheckKdTree(h, good).Ok);
+  std::size_t leaf = 0, inner = 0;
+  for (std::size_t i = 0; i < good.Nodes.size(); ++i)
+  {
+    if (good.Nodes[i].IsLeaf() && h.Grids[good.Nodes[i].Grid].Level == 2)
+    {
+      leaf = i;
+    }
+    if (!good.Nodes[i].IsLeaf() && i > 0)
+    {
+      inner = i;
+    }
+  }
+  KdTree coarser = good; // a level-2 leaf claims the level-0 grid under it
+  coarser.Nodes[leaf].Grid = 0;
+  coarser.Nodes[leaf].Level = 0;
+  EXPECT_FALSE(CheckKdTree(h, coarser).Ok);
+  KdTree shifted = good; // a split moved without moving the children
+  shifted.Nodes[inner].Split += 1;
+  EXPECT_FALSE(CheckKdTree(h, shifted).Ok);
+  KdTree retyped = good;
+  retyped.Nodes[0].Type = NodeType::Refined;
+  EXPECT_FALSE(CheckKdTree(h, retyped).Ok);
+  EncodedKdTree enc = EncodeKdTree(h, good);
+  enc.Tree.Texels[inner].y ^= 1u; // one flipped bit of a split position
+  EXPECT_FALSE(CheckKdTree(h, good, &enc).Ok);
+}
+
 TEST(KdTree, FullyRefinedNodeIsTypeA)
 {
   // A root grid exactly covered by two level-1 grids: the root keeps level-0 data for LOD.
