@@ -230,16 +230,8 @@ void PrepareScalars(Hierarchy& h, const std::string& scale, double& lo, double& 
 
 void Bounds(const Hierarchy& h, glm::dvec3& lo, glm::dvec3& hi)
 {
-  lo = glm::dvec3(std::numeric_limits<double>::max());
-  hi = glm::dvec3(-std::numeric_limits<double>::max());
-  for (const Grid& g : h.Grids)
-  {
-    if (g.Level == 0)
-    {
-      lo = glm::min(lo, h.WorldLo(g.Cells, 0));
-      hi = glm::max(hi, h.WorldHi(g.Cells, 0));
-    }
-  }
+  lo = h.WorldLo(h.RootCells(), 0);
+  hi = h.WorldHi(h.RootCells(), 0);
 }
 
 RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range = nullptr)

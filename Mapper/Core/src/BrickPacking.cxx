@@ -12,6 +12,8 @@
 #include <map>
 #include <numeric>
 #include <sstream>
+#include <cstdio>
+#include <cstdlib>
 
 namespace amrsp
 {
@@ -288,7 +290,7 @@ std::vector<int> GuillotineOrder(const std::vector<glm::ivec3>& e)
 /// How many free boxes a placement inspects, in bottom-left order, before it falls back to the
 /// top slab (the free box above everything placed so far, which every brick fits unless the
 /// height limit is reached). Bounds the work per brick; does not affect correctness.
-constexpr int ScanLimit = 256;
+constexpr int ScanLimit = 1 << 30;
 
 /// One guillotine trial with container base width x depth and height limit maxZ.
 /// Each brick goes to the first free box, in bottom-left order, that holds it, at that box's
@@ -332,6 +334,7 @@ void GuillotineTrial(const std::vector<glm::ivec3>& e, const std::vector<int>& o
       const glm::ivec3& s = chosen->second;
       if (s.x < b.x || s.y < b.y || s.z < b.z)
       {
+        if (getenv("BP_DEBUG")) fprintf(stderr, "fail brick %d ext %d %d %d top %d %d %d size %d %d %d nboxes %zu\n", i, b.x,b.y,b.z, FreeBoxes::Corner(chosen->first).x, FreeBoxes::Corner(chosen->first).y, FreeBoxes::Corner(chosen->first).z, s.x,s.y,s.z, free.Boxes.size());
         return; // height limit reached
       }
     }
@@ -495,6 +498,7 @@ AtlasLayout PackBricks(const std::vector<glm::ivec3>& extents, Packer packer,
       for (int d : ys)
       {
         GuillotineTrial(extents, order, fit, w, d, maxDims.z, trial);
+        if (getenv("BP_DEBUG")) fprintf(stderr, "  trial %d %d ok %d dims %d %d %d eff %.3f\n", w, d, trial.Ok, trial.Dims.x, trial.Dims.y, trial.Dims.z, trial.Ok ? double(layout.UsedTexels)/trial.Texels : 0.0);
         if (Better(trial, best))
         {
           std::swap(best, trial);

@@ -155,17 +155,7 @@ InvariantReport CheckKdTree(const Hierarchy& h, const KdTree& tree, const Encode
   const int finest = tree.FinestLevel;
   const GridIndex index(h, finest);
 
-  Box root;
-  bool first = true;
-  for (std::size_t g = 0; g < h.Grids.size(); ++g)
-  {
-    if (h.Grids[g].Level == 0)
-    {
-      const Box b = index.Fine(static_cast<int32_t>(g));
-      root = first ? b : Box{ glm::min(root.Lo, b.Lo), glm::max(root.Hi, b.Hi) };
-      first = false;
-    }
-  }
+  const Box root = h.ToLevel(h.RootCells(), 0, finest);
   if (!(tree.Root().Region == root))
   {
     r.Fail("the root is not the bounding box of the level-0 grids");

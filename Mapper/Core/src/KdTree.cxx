@@ -162,19 +162,7 @@ public:
     }
 
     KdNode root;
-    bool first = true;
-    for (const Grid& g : H.Grids)
-    {
-      if (g.Level != 0)
-      {
-        continue;
-      }
-      root.Region = first ? g.Cells
-                          : Box{ glm::min(root.Region.Lo, g.Cells.Lo),
-                              glm::max(root.Region.Hi, g.Cells.Hi) };
-      first = false;
-    }
-    root.Region = root.Region.Refined(ToFinest[0]);
+    root.Region = H.RootCells().Refined(ToFinest[0]);
     Nodes.push_back(root);
 
     for (int level = 0; level <= Finest; ++level)

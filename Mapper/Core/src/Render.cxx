@@ -470,15 +470,8 @@ Image RenderReference(const Hierarchy& h, const RenderSettings& s)
   const FinestCellLocator locator(h);
 
   // the root box: bounding box of the level-0 grids, in level-0 index units
-  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-  for (const Grid& g : h.Grids)
-  {
-    if (g.Level == 0)
-    {
-      lo = glm::min(lo, glm::dvec3(g.Cells.Lo));
-      hi = glm::max(hi, glm::dvec3(g.Cells.Hi));
-    }
-  }
+  const Box root = h.RootCells();
+  const glm::dvec3 lo(root.Lo), hi(root.Hi);
   std::vector<double> stepOfLevel;
   for (int l = 0; l < h.NumberOfLevels(); ++l)
   {

@@ -121,6 +121,22 @@ struct Hierarchy
     return Origin + glm::dvec3(box.Hi) * CellSize(level) * Spacing0;
   }
 
+  /// Bounding box of the level-0 grids in level-0 cells (the kD-tree's root); empty if none.
+  Box RootCells() const
+  {
+    Box root;
+    bool first = true;
+    for (const Grid& g : Grids)
+    {
+      if (g.Level == 0)
+      {
+        root = first ? g.Cells : Box{ glm::min(root.Lo, g.Cells.Lo), glm::max(root.Hi, g.Cells.Hi) };
+        first = false;
+      }
+    }
+    return root;
+  }
+
   bool HasValues() const { return !Values.empty() && Values.size() == Grids.size(); }
 
   int64_t TotalCells() const
