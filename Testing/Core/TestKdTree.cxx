@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Tests of the kD-tree builder, its texture encoding and the CPU traversal that mirrors the shader.
+#include "amrsp/BrickAtlas.h"
 #include "amrsp/Invariants.h"
 #include "amrsp/KdTraversal.h"
 #include "amrsp/KdTree.h"
@@ -12,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <iostream>
+#include <limits>
 #include <random>
 
 namespace
@@ -554,4 +556,66 @@ TEST(Render, LevelOfDetailCoarsensFarAway)
   EXPECT_EQ(Rmse(finest, RenderKdTree(h, enc, s)), 0.0);
 }
 
+} // namespace
+
+namespace
+{
+TEST(Atlas, EveryTexelHoldsItsCellAndThePackingPathMatches)
+{
+  std::mt19937_64 rng(11);
+  for (int trial = 0; trial < 12; ++trial)
+  {
+    Hierarchy h = trial == 0 ? PaperExample() : RandomHierarchy(rng);
+    if (trial > 0)
+    {
+      FillValues(h);
+    }
+    for (Packer packer : { Packer::NextFitDecreasingHeight, Packer::Best })
+    {
+      const BrickAtlas atlas = BuildBrickAtlas(h, packer, glm::ivec3(2048, 2048, 1024));
+      for (std::size_t g = 0; g < h.Grids.size(); ++g)
+      {
+        const glm::i64vec3 e = h.Grids[g].Cells.Extent();
+        for (int probe = 0; probe < 50; ++probe)
+        {
+          const glm::i64vec3 c(rng() % e.x, rng() % e.y, rng() % e.z);
+          ASSERT_EQ(atlas.At(atlas.Layout.Origins[g] + glm::ivec3(c)),
+            CellValue(h, static_cast<int32_t>(g), h.Grids[g].Cells.Lo + c));
+        }
+      }
+      // the shader's addressing (data-node offsets into the atlas) samples the same values as
+      // looking the grids up directly
+      const KdTree tree = BuildKdTree(h);
+      const EncodedKdTree plain = EncodeKdTree(h, tree);
+      const EncodedKdTree packed = EncodeKdTree(h, tree, &atlas.Layout.Origins);
+      RenderSettings s = SmallView(h);
+      s.Width = 40;
+      s.Height = 30;
+      const Image direct = RenderKdTree(h, plain, s);
+      const Image viaAtlas = RenderKdTree(h, packed, s, &atlas);
+      ASSERT_EQ(Rmse(direct, viaAtlas), 0.0) << "trial " << trial;
+    }
+  }
+}
+
+TEST(Render, NaNSamplesAreTransparent)
+{
+  Hierarchy h = PaperExample();
+  const EncodedKdTree enc = EncodeKdTree(h, BuildKdTree(h));
+  RenderSettings s = SmallView(h);
+  for (float& v : h.Values[0])
+  {
+    v = std::numeric_limits<float>::quiet_NaN();
+  }
+  const Image withNaN = RenderKdTree(h, enc, s);
+  for (const glm::vec4& p : withNaN.Pixels)
+  {
+    ASSERT_FALSE(std::isnan(p.r) || std::isnan(p.a));
+  }
+  for (float& v : h.Values[0])
+  {
+    v = -1e30f; // below the transfer function: opacity 0, like a NaN
+  }
+  EXPECT_EQ(Rmse(withNaN, RenderKdTree(h, enc, s)), 0.0);
+}
 } // namespace

@@ -3,6 +3,8 @@
 
 #include "AmrspDataset.h"
 
+#include "amrsp/BrickAtlas.h"
+#include "amrsp/BrickPacking.h"
 #include "amrsp/Invariants.h"
 #include "amrsp/KdTree.h"
 #include "amrsp/KdTreeEncoding.h"
@@ -122,6 +124,7 @@ int Fail(const std::string& message)
 }
 
 const std::vector<std::string> DatasetOptions = { "array", "component" };
+const std::vector<std::string> AtlasOptions = { "packer", "max-3d-texture-size", "atlas-budget-mb" };
 const std::vector<std::string> ViewOptions = { "size", "azimuth", "elevation", "zoom", "tf",
   "scale", "unit-distance", "sample-factor", "reference-sample-factor", "lod", "threads" };
 
@@ -146,6 +149,52 @@ const char* const DatasetHelp =
   "Dataset options:\n"
   "  --array NAME                cell array to use (default: the first cell array)\n"
   "  --component I               component of a vector array (default: magnitude)\n";
+
+const char* const AtlasHelp =
+  "Atlas options (packed storage of the grid bricks):\n"
+  "  --packer nfdh|best          the paper's next-fit-decreasing-height, or the layer-guillotine\n"
+  "                              packer (default best)\n"
+  "  --max-3d-texture-size N     per-axis texture limit (default 2048, GL_MAX_3D_TEXTURE_SIZE)\n"
+  "  --atlas-budget-mb M         largest atlas in MiB of float texels (default: no limit)\n";
+
+/// Packing settings from the command line.
+struct AtlasRequest
+{
+  Packer Algorithm = Packer::Best;
+  glm::ivec3 MaxDims{ 2048 };
+  std::size_t MaxBytes = 0;
+};
+
+AtlasRequest ParseAtlasRequest(const Arguments& a)
+{
+  AtlasRequest r;
+  try
+  {
+    r.Algorithm = ParsePacker(a.Get("packer", "best"));
+  }
+  catch (const std::invalid_argument& e)
+  {
+    throw UsageError{ e.what() };
+  }
+  const double size = a.GetNumber("max-3d-texture-size", 2048);
+  const double budget = a.GetNumber("atlas-budget-mb", 0);
+  if (size < 1 || budget < 0)
+  {
+    throw UsageError{ "--max-3d-texture-size and --atlas-budget-mb must be positive" };
+  }
+  r.MaxDims = AtlasLimits(static_cast<int>(size));
+  r.MaxBytes = static_cast<std::size_t>(budget * 1024.0 * 1024.0);
+  return r;
+}
+
+Json AtlasJson(const AtlasLayout& layout)
+{
+  return Json{ { "packer", layout.PackerName },
+    { "dims", { layout.Dims.x, layout.Dims.y, layout.Dims.z } },
+    { "used_texels", layout.UsedTexels }, { "total_texels", layout.TotalTexels },
+    { "efficiency", layout.Efficiency },
+    { "bytes", layout.TotalTexels * static_cast<int64_t>(AtlasTexelBytes) } };
+}
 
 const char* const ViewHelp =
   "View options (conventions of VTK's vtkCamera/vtkVolumeProperty; see README):\n"
@@ -333,17 +382,20 @@ bool WantsHelp(const Arguments& a)
 int RunInspect(int argc, char** argv)
 {
   const char* help =
-    "usage: amrsp inspect [DATASET] [--json] [--array NAME]\n"
-    "Loads the hierarchy, builds and encodes the kD-tree, checks its invariants and prints the\n"
-    "statistics (with --json: one JSON object; see README for the fields).\n";
+    "usage: amrsp inspect [DATASET] [--json] [--array NAME] [--packer P] [--compare-packers]\n"
+    "Loads the hierarchy, builds and encodes the kD-tree, checks its invariants, packs the\n"
+    "bricks (layout only, no data copied) and prints the statistics (with --json: one JSON\n"
+    "object; see README for the fields). --compare-packers adds the layout of every packer.\n";
   try
   {
-    const Arguments a = ParseArguments(argc, argv, 1, DatasetOptions, { "json" });
+    const Arguments a = ParseArguments(
+      argc, argv, 1, Concat({ DatasetOptions, AtlasOptions }), { "json", "compare-packers" });
     if (WantsHelp(a))
     {
-      std::cout << help << DatasetHelp;
+      std::cout << help << AtlasHelp << DatasetHelp;
       return 0;
     }
+    const AtlasRequest atlasRequest = ParseAtlasRequest(a);
     LoadedDataset d = Load(a, false, false);
     const Hierarchy& h = d.Data;
 
@@ -355,6 +407,37 @@ int RunInspect(int argc, char** argv)
     const double encodeSeconds = Seconds(t0);
     const InvariantReport inv = CheckKdTree(h, tree, &enc);
     const KdTreeStatistics st = tree.Statistics();
+    const std::vector<glm::ivec3> extents = BrickExtents(h, false);
+    Json atlas, byPacker = Json::object();
+    double packSeconds = 0.0;
+    try
+    {
+      const AtlasLayout layout = PackBricks(extents, atlasRequest.Algorithm, atlasRequest.MaxDims,
+        static_cast<int64_t>(atlasRequest.MaxBytes / AtlasTexelBytes));
+      atlas = AtlasJson(layout);
+      packSeconds = layout.Seconds;
+    }
+    catch (const PackingError& e)
+    {
+      atlas = Json{ { "error", e.what() } };
+    }
+    if (a.Has("compare-packers"))
+    {
+      for (Packer p : { Packer::NextFitDecreasingHeight, Packer::Best })
+      {
+        try
+        {
+          const AtlasLayout layout = PackBricks(extents, p, atlasRequest.MaxDims,
+            static_cast<int64_t>(atlasRequest.MaxBytes / AtlasTexelBytes));
+          byPacker[PackerName(p)] = AtlasJson(layout);
+          byPacker[PackerName(p)]["seconds"] = layout.Seconds;
+        }
+        catch (const PackingError& e)
+        {
+          byPacker[PackerName(p)] = Json{ { "error", e.what() } };
+        }
+      }
+    }
 
     std::vector<int64_t> perLevel(static_cast<std::size_t>(h.NumberOfLevels()), 0);
     for (const Grid& g : h.Grids)
@@ -388,8 +471,13 @@ int RunInspect(int argc, char** argv)
     j["kd_depth"] = st.Depth;
     j["tree_texture"] = TextureJson(enc.Tree);
     j["data_nodes_texture"] = TextureJson(enc.DataNodes);
+    j["atlas"] = atlas;
+    if (a.Has("compare-packers"))
+    {
+      j["atlas_by_packer"] = byPacker;
+    }
     j["times_s"] = { { "load", d.LoadSeconds }, { "kdtree", kdSeconds },
-      { "encode", encodeSeconds } };
+      { "encode", encodeSeconds }, { "pack", packSeconds } };
     j["invariants"] = { { "ok", inv.Ok }, { "failure_count", inv.FailureCount },
       { "failures", inv.Failures } };
 
@@ -411,8 +499,9 @@ int RunInspect(int argc, char** argv)
                 << "; depth " << st.Depth << ")\n"
                 << "textures     tree " << j["tree_texture"].dump() << ", data nodes "
                 << j["data_nodes_texture"].dump() << "\n"
+                << "atlas        " << atlas.dump() << "\n"
                 << "times (s)    load " << d.LoadSeconds << ", kD-tree " << kdSeconds
-                << ", encode " << encodeSeconds << "\n"
+                << ", encode " << encodeSeconds << ", pack " << packSeconds << "\n"
                 << "invariants   " << (inv.Ok ? "ok" : "FAILED") << "\n";
       for (const std::string& f : inv.Failures)
       {
@@ -443,11 +532,13 @@ int RunImageCommand(int argc, char** argv, bool reference)
           "cell containing it directly from the hierarchy's boxes.\n"
         : "Renders the dataset with the single-pass kD-tree raycaster and prints which method\n"
           "rendered. Methods: cpu-kdtree (the CPU traversal of the encoded tree textures that\n"
-          "mirrors the GLSL shader).\n"
-          "  --method M                  cpu-kdtree (default)\n");
+          "mirrors the GLSL shader, sampling the grids), cpu-packing (the same, sampling the\n"
+          "packed atlas through the data nodes' offsets, as the packing shader does).\n"
+          "  --method M                  cpu-kdtree (default) or cpu-packing\n");
   try
   {
-    std::vector<std::string> valueOptions = Concat({ DatasetOptions, ViewOptions, { "output" } });
+    std::vector<std::string> valueOptions =
+      Concat({ DatasetOptions, ViewOptions, AtlasOptions, { "output" } });
     if (!reference)
     {
       valueOptions.push_back("method");
@@ -457,7 +548,7 @@ int RunImageCommand(int argc, char** argv, bool reference)
     {
       std::cout << help << "  -o, --output FILE           PNG to write (default " << name
                 << ".png)\n"
-                << ViewHelp << DatasetHelp;
+                << ViewHelp << (reference ? "" : AtlasHelp) << DatasetHelp;
       return 0;
     }
     if (a.Positional.size() > 2)
@@ -465,10 +556,12 @@ int RunImageCommand(int argc, char** argv, bool reference)
       throw UsageError{ "unexpected argument '" + a.Positional[2] + "'" };
     }
     const std::string method = a.Get("method", "cpu-kdtree");
-    if (!reference && method != "cpu-kdtree")
+    if (!reference && method != "cpu-kdtree" && method != "cpu-packing")
     {
-      throw UsageError{ "unknown --method '" + method + "' (available in this build: cpu-kdtree)" };
+      throw UsageError{ "unknown --method '" + method +
+        "' (available in this build: cpu-kdtree, cpu-packing)" };
     }
+    const AtlasRequest atlasRequest = ParseAtlasRequest(a);
     const std::string output = a.Get("output", name + ".png");
     LoadedDataset d = Load(a, true, false);
     glm::dvec2 range;
@@ -481,12 +574,22 @@ int RunImageCommand(int argc, char** argv, bool reference)
     {
       img = RenderReference(d.Data, s);
     }
-    else
+    else if (method == "cpu-kdtree")
     {
       const EncodedKdTree enc = EncodeKdTree(d.Data, BuildKdTree(d.Data));
       preprocess = Seconds(t0);
       t0 = Clock::now();
       img = RenderKdTree(d.Data, enc, s);
+    }
+    else
+    {
+      const BrickAtlas atlas = BuildBrickAtlas(
+        d.Data, atlasRequest.Algorithm, atlasRequest.MaxDims, atlasRequest.MaxBytes);
+      const EncodedKdTree enc = EncodeKdTree(d.Data, BuildKdTree(d.Data), &atlas.Layout.Origins);
+      preprocess = Seconds(t0);
+      std::cout << "atlas: " << AtlasJson(atlas.Layout).dump() << "\n";
+      t0 = Clock::now();
+      img = RenderKdTree(d.Data, enc, s, &atlas);
     }
     const double renderSeconds = Seconds(t0);
     WritePng(img, output);

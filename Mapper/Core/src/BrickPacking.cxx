@@ -12,12 +12,13 @@
 #include <map>
 #include <numeric>
 #include <sstream>
+#include <tuple>
 #include <cstdio>
 #include <cstdlib>
 
 namespace amrsp
 {
-
+void SetProto(int split, int score);
 namespace
 {
 
@@ -361,6 +362,77 @@ void GuillotineTrial(const std::vector<glm::ivec3>& e, const std::vector<int>& o
   t.Texels = Volume(hi);
 }
 
+int g_split = 0;
+int g_score = 0;
+/// Box-driven best fit (prototype).
+void BestFitTrial(const std::vector<glm::ivec3>& e, int width, int depth, int maxZ, Trial& t)
+{
+  t.Ok = false;
+  t.Origins.resize(e.size());
+  // distinct shapes sorted by score desc
+  std::map<std::tuple<int,int,int>, std::vector<int>> shapeMap;
+  for (int i = static_cast<int>(e.size()) - 1; i >= 0; --i)
+    shapeMap[std::make_tuple(e[i].x, e[i].y, e[i].z)].push_back(i);
+  struct Shape { glm::ivec3 s; std::vector<int> bricks; };
+  std::vector<Shape> shapes;
+  for (auto& kv : shapeMap)
+    shapes.push_back(Shape{ glm::ivec3(std::get<0>(kv.first), std::get<1>(kv.first), std::get<2>(kv.first)), kv.second });
+  std::sort(shapes.begin(), shapes.end(), [](const Shape& a, const Shape& b) {
+    int64_t va, vb;
+    if (g_score == 0) { va = Volume(a.s); vb = Volume(b.s); }
+    else { va = int64_t(a.s.z) << 32 | (int64_t(a.s.x) * a.s.y); vb = int64_t(b.s.z) << 32 | (int64_t(b.s.x) * b.s.y); }
+    if (va != vb) return va > vb;
+    return std::make_tuple(a.s.z, a.s.y, a.s.x) > std::make_tuple(b.s.z, b.s.y, b.s.x);
+  });
+  std::size_t remaining = e.size();
+  std::map<uint64_t, glm::ivec3> boxes;
+  boxes.emplace(FreeBoxes::Key(glm::ivec3(0)), glm::ivec3(width, depth, maxZ));
+  glm::ivec3 hi(0);
+  std::size_t firstLive = 0;
+  while (remaining > 0 && !boxes.empty())
+  {
+    auto it = boxes.begin();
+    const glm::ivec3 lo = FreeBoxes::Corner(it->first);
+    const glm::ivec3 s = it->second;
+    boxes.erase(it);
+    while (firstLive < shapes.size() && shapes[firstLive].bricks.empty()) ++firstLive;
+    int found = -1;
+    for (std::size_t k = firstLive; k < shapes.size(); ++k)
+    {
+      const Shape& sh = shapes[k];
+      if (!sh.bricks.empty() && sh.s.x <= s.x && sh.s.y <= s.y && sh.s.z <= s.z) { found = static_cast<int>(k); break; }
+    }
+    if (found < 0) continue;
+    Shape& sh = shapes[found];
+    const int i = sh.bricks.back();
+    sh.bricks.pop_back();
+    --remaining;
+    const glm::ivec3 b = sh.s;
+    t.Origins[i] = lo;
+    hi = glm::max(hi, lo + b);
+    glm::ivec3 parts[3][2];
+    parts[0][0] = glm::ivec3(lo.x, lo.y, lo.z + b.z); parts[0][1] = glm::ivec3(s.x, s.y, s.z - b.z);
+    bool yFull = g_split == 0 || (g_split == 2 && (s.x - b.x) < (s.y - b.y));
+    if (yFull)
+    {
+      parts[1][0] = glm::ivec3(lo.x, lo.y + b.y, lo.z); parts[1][1] = glm::ivec3(s.x, s.y - b.y, b.z);
+      parts[2][0] = glm::ivec3(lo.x + b.x, lo.y, lo.z); parts[2][1] = glm::ivec3(s.x - b.x, b.y, b.z);
+    }
+    else
+    {
+      parts[1][0] = glm::ivec3(lo.x, lo.y + b.y, lo.z); parts[1][1] = glm::ivec3(b.x, s.y - b.y, b.z);
+      parts[2][0] = glm::ivec3(lo.x + b.x, lo.y, lo.z); parts[2][1] = glm::ivec3(s.x - b.x, s.y, b.z);
+    }
+    for (const auto& p : parts)
+      if (p[1].x > 0 && p[1].y > 0 && p[1].z > 0)
+        boxes.emplace(FreeBoxes::Key(p[0]), p[1]);
+  }
+  if (remaining > 0) return;
+  t.Ok = true;
+  t.Dims = hi;
+  t.Texels = Volume(hi);
+}
+
 std::string Lower(std::string s)
 {
   for (char& c : s)
@@ -371,6 +443,7 @@ std::string Lower(std::string s)
 }
 
 } // namespace
+void SetProto(int split, int score) { g_split = split; g_score = score; }
 
 //--------------------------------------------------------------------------------------------------
 AtlasLayout PackBricks(const std::vector<glm::ivec3>& extents, Packer packer,
@@ -489,6 +562,7 @@ AtlasLayout PackBricks(const std::vector<glm::ivec3>& extents, Packer packer,
     }
     xs.push_back(maxDims.x);
     ys.push_back(maxDims.y);
+    if (getenv("BP_WIDE")) { xs = Ladder(maxExtent.x, std::min(maxDims.x, int(side*2)), atoi(getenv("BP_WIDE")), {}); ys = Ladder(maxExtent.y, std::min(maxDims.y, int(side*2)), atoi(getenv("BP_WIDE")), {}); }
     std::sort(xs.begin(), xs.end());
     xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
     std::sort(ys.begin(), ys.end());
@@ -497,6 +571,7 @@ AtlasLayout PackBricks(const std::vector<glm::ivec3>& extents, Packer packer,
     {
       for (int d : ys)
       {
+        if (getenv("BP_BF")) BestFitTrial(extents, w, d, maxDims.z, trial); else
         GuillotineTrial(extents, order, fit, w, d, maxDims.z, trial);
         if (getenv("BP_DEBUG")) fprintf(stderr, "  trial %d %d ok %d dims %d %d %d eff %.3f\n", w, d, trial.Ok, trial.Dims.x, trial.Dims.y, trial.Dims.z, trial.Ok ? double(layout.UsedTexels)/trial.Texels : 0.0);
         if (Better(trial, best))

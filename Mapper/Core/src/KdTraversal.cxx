@@ -119,6 +119,8 @@ void TraverseKdTree(const EncodedKdTree& tree, const glm::vec3& origin, const gl
     s.Node = node;
     s.Data = amrspNodeData(texel);
     s.Level = s.Data != 0u ? static_cast<int>(amrspDataLevel(tree.DataNodes.Texels[s.Data])) : -1;
+    s.NodeLo = lo;
+    s.NodeHi = hi;
     segments.push_back(s);
     t = tLeave;
   }

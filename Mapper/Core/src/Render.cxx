@@ -326,6 +326,10 @@ struct Accumulator
 
   void Add(const TransferFunction& tf, double scalar, double dt)
   {
+    if (std::isnan(scalar))
+    {
+      return; // missing data is transparent
+    }
     const T opacity = static_cast<T>(tf.EvaluateOpacity(scalar));
     if (opacity <= T(0))
     {
@@ -394,7 +398,8 @@ void SampleRayKdTree(const Hierarchy& h, const EncodedKdTree& tree, const glm::d
   }
 }
 
-Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSettings& s)
+Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSettings& s,
+  const BrickAtlas* atlas)
 {
   using namespace layout;
   RequireValues(h);
@@ -446,11 +451,25 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
         const int n =
           std::max(1, static_cast<int>(std::ceil(length / stepOfLevel[seg.Level])));
         const float dt = length / static_cast<float>(n);
+        // packing path: the node's first cell sits at the data node's atlas offset; cells of
+        // the node are [first, last] (clamped so float error never reaches a neighbour brick)
+        const glm::ivec3 first = glm::ivec3(glm::floor(seg.NodeLo / cellSize));
+        const glm::ivec3 last = glm::ivec3(glm::ceil(seg.NodeHi / cellSize)) - 1;
+        const glm::ivec3 offset = amrspDataOffset(dn);
         for (int k = 0; k < n; ++k)
         {
           const float t = seg.T0 + (static_cast<float>(k) + 0.5f) * dt;
           const glm::vec3 p = o + t * d;
-          const float v = CellValue(h, g, glm::i64vec3(glm::floor(p / cellSize)));
+          float v;
+          if (atlas)
+          {
+            const glm::ivec3 cell = glm::clamp(glm::ivec3(glm::floor(p / cellSize)), first, last);
+            v = atlas->At(offset + cell - first);
+          }
+          else
+          {
+            v = CellValue(h, g, glm::i64vec3(glm::floor(p / cellSize)));
+          }
           acc.Add(s.Transfer, v, dt);
         }
       }

@@ -23,6 +23,8 @@ struct RaySegment
   uint32_t Node = 0;  ///< linear tree-texel index
   uint32_t Data = 0;  ///< data-nodes index; 0 for empty space
   int Level = 0;      ///< data level (of the grid sampled); -1 for empty space
+  glm::vec3 NodeLo{ 0.0f }; ///< the node's box in level-0 index units, as the shader computes it
+  glm::vec3 NodeHi{ 0.0f };
 };
 
 /// Level-of-detail selection at type (a) nodes: the traversal stops descending when one cell of

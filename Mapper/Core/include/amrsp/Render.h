@@ -19,6 +19,7 @@
 ///   ReferenceSampleFactor times the smallest edge of the finest cell at the current point, found
 ///   directly from the hierarchy (finest grid containing the point), and samples step midpoints.
 
+#include "amrsp/BrickAtlas.h"
 #include "amrsp/Hierarchy.h"
 #include "amrsp/KdTraversal.h"
 #include "amrsp/KdTreeEncoding.h"
@@ -138,8 +139,12 @@ private:
 /// Value of grid `g` at cell `cell` (clamped into the grid). Requires cell-centred values.
 float CellValue(const Hierarchy& h, int32_t g, glm::i64vec3 cell);
 
-/// Renders with the CPU kD-tree integrator over the encoded textures.
-Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSettings& s);
+/// Renders with the CPU kD-tree integrator over the encoded textures. Without `atlas`, samples
+/// come from the grid named by each data node; with it, from the packed atlas through the data
+/// nodes' atlas offsets, exactly as the packing shader addresses it (the tree must then have been
+/// encoded with that atlas's origins). A NaN sample is transparent.
+Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSettings& s,
+  const BrickAtlas* atlas = nullptr);
 /// Renders the independent reference (no kD-tree).
 Image RenderReference(const Hierarchy& h, const RenderSettings& s);
 

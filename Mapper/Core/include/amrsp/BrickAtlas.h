@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/// @file
+/// The packed atlas (paper, section 5.1): one brick per AMR grid, copied into one 3D array of
+/// float texels at the positions computed by PackBricks. Cell-centred data: texel (i,j,k) of a
+/// brick is cell (i,j,k) of its grid (texel centres at cell centres, nearest sampling).
+
+#include "amrsp/BrickPacking.h"
+#include "amrsp/Hierarchy.h"
+
+#include <cstddef>
+#include <vector>
+
+namespace amrsp
+{
+
+struct BrickAtlas
+{
+  AtlasLayout Layout;
+  /// Layout.Dims texels, x fastest; texels outside every brick are 0. Values are copied
+  /// unchanged: a NaN stays NaN (the integrators treat a NaN sample as transparent), +-Inf stays.
+  std::vector<float> Texels;
+
+  std::size_t Bytes() const { return Texels.size() * sizeof(float); }
+  float At(const glm::ivec3& t) const
+  {
+    return Texels[(static_cast<std::size_t>(t.z) * Layout.Dims.y + t.y) * Layout.Dims.x + t.x];
+  }
+};
+
+/// Bytes one float texel takes in the atlas.
+constexpr std::size_t AtlasTexelBytes = sizeof(float);
+
+/// Packs the grids of `h` (cell-centred values required) and copies their values. `maxBytes`
+/// bounds the atlas memory (0 = no bound); it is checked before anything is allocated.
+/// @throws PackingError (from PackBricks) when the atlas does not fit.
+BrickAtlas BuildBrickAtlas(const Hierarchy& h, Packer packer, const glm::ivec3& maxDims,
+  std::size_t maxBytes = 0);
+
+} // namespace amrsp

@@ -1,0 +1,39 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "amrsp/BrickAtlas.h"
+
+#include <stdexcept>
+
+namespace amrsp
+{
+
+BrickAtlas BuildBrickAtlas(const Hierarchy& h, Packer packer, const glm::ivec3& maxDims,
+  std::size_t maxBytes)
+{
+  if (!h.HasValues() || h.VertexCentred)
+  {
+    throw std::invalid_argument("the packed atlas needs cell-centred values for every grid");
+  }
+  BrickAtlas atlas;
+  atlas.Layout = PackBricks(BrickExtents(h, false), packer, maxDims,
+    static_cast<int64_t>(maxBytes / AtlasTexelBytes));
+  const glm::ivec3 d = atlas.Layout.Dims;
+  atlas.Texels.assign(static_cast<std::size_t>(d.x) * d.y * d.z, 0.0f);
+  for (std::size_t g = 0; g < h.Grids.size(); ++g)
+  {
+    const glm::i64vec3 e = h.Grids[g].Cells.Extent();
+    const glm::ivec3 o = atlas.Layout.Origins[g];
+    const float* src = h.Values[g].data();
+    for (int64_t k = 0; k < e.z; ++k)
+    {
+      for (int64_t j = 0; j < e.y; ++j)
+      {
+        float* row = &atlas.Texels[(static_cast<std::size_t>(o.z + k) * d.y + (o.y + j)) * d.x + o.x];
+        std::copy(src, src + e.x, row);
+        src += e.x;
+      }
+    }
+  }
+  return atlas;
+}
+
+} // namespace amrsp
