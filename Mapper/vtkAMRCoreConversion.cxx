@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkAMRCoreConversion.h"
 
+#include "amrsp/VertexData.h"
+
 #include "vtkAMRBox.h"
 #include "vtkAMRUtilities.h"
 #include "vtkCellData.h"
@@ -8,6 +10,7 @@
 #include "vtkFloatArray.h"
 #include "vtkNew.h"
 #include "vtkOverlappingAMR.h"
+#include "vtkPointData.h"
 #include "vtkSmartPointer.h"
 #include "vtkStructuredData.h"
 #include "vtkUniformGrid.h"
@@ -46,10 +49,16 @@ std::string Join(const std::vector<std::string>& names)
 
 std::vector<std::string> vtkAMRCoreConversion::CellArrayNames(vtkOverlappingAMR* amr)
 {
+  return ArrayNames(amr, false);
+}
+
+std::vector<std::string> vtkAMRCoreConversion::ArrayNames(vtkOverlappingAMR* amr, bool points)
+{
   std::vector<std::string> names;
   if (vtkUniformGrid* g = FirstBlock(amr))
   {
-    vtkCellData* cd = g->GetCellData();
+    vtkDataSetAttributes* cd = points ? static_cast<vtkDataSetAttributes*>(g->GetPointData())
+                                      : static_cast<vtkDataSetAttributes*>(g->GetCellData());
     for (int a = 0; a < cd->GetNumberOfArrays(); ++a)
     {
       vtkDataArray* arr = cd->GetArray(a);
@@ -110,24 +119,42 @@ bool vtkAMRCoreConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
     out.RefinementRatio.push_back(r);
   }
 
-  // the array: by name, or the first cell array
+  // the array: by name (cell arrays first, then point arrays), or the first cell array, or the
+  // first point array when there is no cell array
   std::string name = selection.Name;
-  const std::vector<std::string> available = CellArrayNames(amr);
+  const std::vector<std::string> cellArrays = ArrayNames(amr, false);
+  const std::vector<std::string> pointArrays = ArrayNames(amr, true);
+  const auto has = [](const std::vector<std::string>& v, const std::string& n) {
+    return std::find(v.begin(), v.end(), n) != v.end();
+  };
+  bool points = false;
   if (name.empty())
   {
-    if (available.empty() && selection.CopyValues)
+    if (cellArrays.empty() && pointArrays.empty() && selection.CopyValues)
     {
-      error = "the AMR blocks have no cell array to render";
+      error = "the AMR blocks have no cell or point array to render";
       return false;
     }
-    name = available.empty() ? std::string() : available.front();
+    points = cellArrays.empty() && !pointArrays.empty();
+    name = !cellArrays.empty() ? cellArrays.front()
+                               : (pointArrays.empty() ? std::string() : pointArrays.front());
   }
-  else if (std::find(available.begin(), available.end(), name) == available.end())
+  else if (!has(cellArrays, name))
   {
-    error = "no cell array named '" + name + "' (available: " + Join(available) + ")";
-    return false;
+    if (!has(pointArrays, name))
+    {
+      std::vector<std::string> all = cellArrays;
+      for (const std::string& p : pointArrays)
+      {
+        all.push_back(p + " (point data)");
+      }
+      error = "no cell array named '" + name + "' (available: " + Join(all) + ")";
+      return false;
+    }
+    points = true;
   }
   out.ArrayName = name;
+  out.VertexCentred = points;
 
   for (unsigned int l = 0; l < levels; ++l)
   {
@@ -167,33 +194,34 @@ bool vtkAMRCoreConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
           " has no data loaded";
         return false;
       }
-      vtkDataArray* arr = block->GetCellData()->GetArray(name.c_str());
+      vtkDataArray* arr = points ? block->GetPointData()->GetArray(name.c_str())
+                                 : block->GetCellData()->GetArray(name.c_str());
       if (!arr)
       {
-        error = "block " + std::to_string(i) + " of level " + std::to_string(l) +
-          " lacks the cell array '" + name + "'";
+        error = "block " + std::to_string(i) + " of level " + std::to_string(l) + " lacks the " +
+          (points ? "point" : "cell") + " array '" + name + "'";
         return false;
       }
-      // blocks may carry ghost layers around the box: keep the box's cells only
+      // blocks may carry ghost layers around the box: keep the box's cells (or vertices) only
       int dims[3];
       block->GetDimensions(dims);
-      const glm::i64vec3 extent = g.Cells.Extent();
+      const glm::i64vec3 extent = g.Cells.Extent() + glm::i64vec3(points ? 1 : 0);
       glm::i64vec3 cellDims, ghost;
       for (int a = 0; a < 3; ++a)
       {
-        cellDims[a] = std::max(1, dims[a] - 1);
+        cellDims[a] = points ? dims[a] : std::max(1, dims[a] - 1);
         ghost[a] = (cellDims[a] - extent[a]) / 2;
         if (cellDims[a] < extent[a] || (cellDims[a] - extent[a]) % 2 != 0)
         {
           error = "block " + std::to_string(i) + " of level " + std::to_string(l) +
-            " has cell dimensions that do not match its AMR box";
+            " has dimensions that do not match its AMR box";
           return false;
         }
       }
       const int components = arr->GetNumberOfComponents();
       const int component =
         components == 1 ? 0 : (selection.Component < components ? selection.Component : -1);
-      amrsp::GridValues values(static_cast<std::size_t>(g.Cells.Cells()));
+      amrsp::GridValues values(static_cast<std::size_t>(extent.x * extent.y * extent.z));
       vtkFloatArray* fast = vtkFloatArray::SafeDownCast(arr);
       std::size_t k = 0;
       for (int64_t z = 0; z < extent.z; ++z)
@@ -231,6 +259,10 @@ bool vtkAMRCoreConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
   {
     error = "the AMR hierarchy has no blocks";
     return false;
+  }
+  if (out.VertexCentred && selection.CopyValues)
+  {
+    amrsp::MakeVertexDataContinuous(out);
   }
   return true;
 }

@@ -23,7 +23,8 @@ class vtkAMRCoreConversion
 public:
   struct ArraySelection
   {
-    /// Name of a cell array; empty selects the first cell array of the first non-empty block.
+    /// Name of a cell array, or of a point array (vertex-centred data, made continuous across
+    /// interfaces); empty selects the first cell array, or the first point array if none.
     std::string Name;
     /// Component of a multi-component array; -1 takes the magnitude (VTK's vector mode
     /// convention). Ignored for one-component arrays.
@@ -42,6 +43,8 @@ public:
 
   /// Names of the cell arrays of the first non-empty block.
   static std::vector<std::string> CellArrayNames(vtkOverlappingAMR* amr);
+  /// Names of the cell (points = false) or point arrays of the first non-empty block.
+  static std::vector<std::string> ArrayNames(vtkOverlappingAMR* amr, bool points);
 };
 
 #endif

@@ -7,6 +7,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkNew.h"
 #include "vtkOverlappingAMR.h"
+#include "vtkPointData.h"
 #include "vtkUniformGrid.h"
 
 #include <gtest/gtest.h>
@@ -37,6 +38,10 @@ vtkNew<vtkOverlappingAMR> MakeAMR(int ghost, double fineSpacing, int components 
     const int n = 4 + (level == 0 ? 2 * ghost : 0);
     vtkNew<vtkUniformGrid> g;
     g->SetDimensions(n + 1, n + 1, n + 1);
+    const double h = level == 0 ? 1.0 : fineSpacing;
+    const double corner = level == 0 ? -ghost * h : 2 * h; // the boxes' lower corners
+    g->SetOrigin(corner, corner, corner);
+    g->SetSpacing(h, h, h);
     vtkNew<vtkDoubleArray> a;
     a->SetName("phi");
     a->SetNumberOfComponents(components);
@@ -83,6 +88,36 @@ TEST(Conversion, VectorMagnitudeAndComponent)
   sel.Component = 1;
   ASSERT_TRUE(vtkAMRCoreConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
   EXPECT_EQ(h.Values[0][3], 4.0f);
+}
+
+TEST(Conversion, PointDataIsVertexCentred)
+{
+  auto amr = MakeAMR(0, 0.5);
+  for (int level = 0; level < 2; ++level)
+  {
+    vtkUniformGrid* g = amr->GetDataSet(level, 0);
+    vtkNew<vtkDoubleArray> p;
+    p->SetName("pressure");
+    p->SetNumberOfTuples(g->GetNumberOfPoints());
+    for (vtkIdType i = 0; i < g->GetNumberOfPoints(); ++i)
+    {
+      double x[3];
+      g->GetPoint(i, x);
+      p->SetValue(i, 2.0 * x[0] + x[1] - x[2]); // linear: the interface fix keeps it exact
+    }
+    g->GetPointData()->AddArray(p);
+  }
+  vtkAMRCoreConversion::ArraySelection sel;
+  sel.Name = "pressure";
+  amrsp::Hierarchy h;
+  std::string error;
+  ASSERT_TRUE(vtkAMRCoreConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
+  EXPECT_TRUE(h.VertexCentred);
+  ASSERT_EQ(h.Values[0].size(), 125u);
+  ASSERT_EQ(h.Values[1].size(), 125u);
+  // level-1 vertex (1,1,1) of the box [2,5]^3 sits at world (1.5, 1.5, 1.5)
+  EXPECT_FLOAT_EQ(h.Values[1][(1 * 5 + 1) * 5 + 1], 3.0f);
+  EXPECT_FLOAT_EQ(h.Values[1][0], 2.0f); // a dangling corner keeps the linear field's value
 }
 
 TEST(Conversion, BadInputGivesOneClearError)

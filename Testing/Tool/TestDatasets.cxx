@@ -2,6 +2,7 @@
 // Loading the real datasets through the amrsp tool's readers, and the kD-tree on them.
 #include "AmrspDataset.h"
 
+#include "amrsp/BrickAtlas.h"
 #include "amrsp/Invariants.h"
 #include "amrsp/KdTree.h"
 #include "amrsp/KdTreeEncoding.h"
@@ -150,6 +151,61 @@ TEST(RealData, EnzoArraySelection)
   EXPECT_EQ(d.Data.ArrayName, "Temperature");
   r.Array = "NoSuchArray";
   EXPECT_THROW(LoadDataset(r), DatasetError);
+}
+
+/// Both storage paths of the CPU integrator against the tree-free reference on a real hierarchy.
+void CheckImages(Hierarchy& h, double bound)
+{
+  const BrickAtlas atlas = BuildBrickAtlas(h, Packer::Best, glm::ivec3(2048, 2048, 1024));
+  const KdTree tree = BuildKdTree(h);
+  const EncodedKdTree packed = EncodeKdTree(h, tree, &atlas.Layout.Origins);
+  double lo = 1e300, hi = -1e300;
+  for (const GridValues& v : h.Values)
+  {
+    for (float x : v)
+    {
+      lo = std::min(lo, static_cast<double>(x));
+      hi = std::max(hi, static_cast<double>(x));
+    }
+  }
+  RenderSettings s;
+  s.Width = s.Height = 64;
+  s.View = Camera::ResetTo(h.WorldLo(h.RootCells(), 0), h.WorldHi(h.RootCells(), 0));
+  s.View.Azimuth(30);
+  s.View.Elevation(20);
+  s.View.OrthogonalizeViewUp();
+  const double diagonal = glm::length(h.WorldHi(h.RootCells(), 0) - h.WorldLo(h.RootCells(), 0));
+  s.Transfer = TransferFunction::Preset("default", lo, hi, diagonal / 100.0);
+  s.SampleDistanceFactor = 0.5;
+  s.ReferenceSampleFactor = 0.25;
+  const Image reference = RenderReference(h, s);
+  const Image image = RenderKdTree(h, packed, s, &atlas);
+  double covered = 0.0;
+  for (const glm::vec4& p : reference.Pixels)
+  {
+    covered += p.a > 0.05f ? 1.0 : 0.0;
+  }
+  EXPECT_GT(covered / reference.Pixels.size(), 0.05) << "the view shows almost nothing";
+  EXPECT_LT(Rmse(image, reference), bound);
+}
+
+TEST(RealData, EnzoImagesMatchReferenceCellAndVertexCentred)
+{
+  bool skipped = false;
+  LoadOrSkip(Enzo, skipped);
+  if (skipped)
+  {
+    GTEST_SKIP() << "SKIPPED: Enzo data not found";
+  }
+  DatasetRequest r;
+  r.Spec = DataPath(Enzo.Path);
+  r.Array = "Temperature";
+  LoadedDataset cells = LoadDataset(r);
+  CheckImages(cells.Data, 3.0);
+  r.Centering = "vertex";
+  LoadedDataset vertices = LoadDataset(r);
+  ASSERT_TRUE(vertices.Data.VertexCentred);
+  CheckImages(vertices.Data, 3.0);
 }
 
 TEST(Synthetic, PulseLoads)

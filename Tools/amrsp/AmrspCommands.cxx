@@ -123,7 +123,7 @@ int Fail(const std::string& message)
   return 1;
 }
 
-const std::vector<std::string> DatasetOptions = { "array", "component" };
+const std::vector<std::string> DatasetOptions = { "array", "component", "centering" };
 const std::vector<std::string> AtlasOptions = { "packer", "max-3d-texture-size", "atlas-budget-mb" };
 const std::vector<std::string> ViewOptions = { "size", "azimuth", "elevation", "zoom", "tf",
   "scale", "unit-distance", "sample-factor", "reference-sample-factor", "lod", "threads" };
@@ -148,7 +148,10 @@ const char* const DatasetHelp =
   "                              the project's cosmology-like generator (N and C accept k/M)\n"
   "Dataset options:\n"
   "  --array NAME                cell array to use (default: the first cell array)\n"
-  "  --component I               component of a vector array (default: magnitude)\n";
+  "  --component I               component of a vector array (default: magnitude)\n"
+  "  --centering auto|cell|vertex  auto: cell data cell-centred (nearest cell), point data\n"
+  "                              vertex-centred (trilinear); vertex: convert cell data to\n"
+  "                              vertices (continuous across grid and level interfaces)\n";
 
 const char* const AtlasHelp =
   "Atlas options (packed storage of the grid bricks):\n"
@@ -216,6 +219,7 @@ LoadedDataset Load(const Arguments& a, bool needValues, bool needVTK)
   r.Spec = a.Positional.size() > 1 ? a.Positional[1] : DefaultDataset;
   r.Array = a.Get("array", "");
   r.Component = static_cast<int>(a.GetNumber("component", -1));
+  r.Centering = a.Get("centering", "auto");
   r.NeedValues = needValues;
   r.NeedVTK = needVTK;
   return LoadDataset(r);

@@ -2,6 +2,7 @@
 #include "AmrspDataset.h"
 
 #include "amrsp/SyntheticCosmo.h"
+#include "amrsp/VertexData.h"
 #include "vtkAMRCoreConversion.h"
 
 #include "vtkAMRBaseReader.h"
@@ -322,7 +323,44 @@ void SelectReaderArray(vtkAMRBaseReader* reader, const DatasetRequest& request,
 
 } // namespace
 
+namespace
+{
+/// Applies DatasetRequest::Centering to loaded values.
+void ApplyCentering(const DatasetRequest& request, LoadedDataset& out)
+{
+  if (request.Centering == "auto" || !out.Data.HasValues())
+  {
+    return;
+  }
+  if (request.Centering == "vertex")
+  {
+    if (!out.Data.VertexCentred)
+    {
+      ConvertCellsToVertices(out.Data);
+    }
+    return;
+  }
+  if (request.Centering == "cell")
+  {
+    if (out.Data.VertexCentred)
+    {
+      throw DatasetError("'" + out.Data.ArrayName +
+        "' is point data: it can only be rendered vertex-centred (--centering vertex or auto)");
+    }
+    return;
+  }
+  throw DatasetError("--centering must be auto, cell or vertex");
+}
+} // namespace
+
 LoadedDataset LoadDataset(const DatasetRequest& request)
+{
+  LoadedDataset out = LoadDatasetAsStored(request);
+  ApplyCentering(request, out);
+  return out;
+}
+
+LoadedDataset LoadDatasetAsStored(const DatasetRequest& request)
 {
   const auto start = std::chrono::steady_clock::now();
   LoadedDataset out;

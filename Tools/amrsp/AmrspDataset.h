@@ -30,6 +30,9 @@ struct DatasetRequest
   std::string Spec;
   std::string Array;  ///< empty: the first cell array
   int Component = -1; ///< -1: magnitude of multi-component arrays
+  /// "auto" keeps the array's own centring (cell data: cell-centred, point data:
+  /// vertex-centred); "vertex" converts cell data to vertices; "cell" refuses point data.
+  std::string Centering = "auto";
   bool NeedValues = true;
   bool NeedVTK = true; ///< false: synthetic:cosmo may skip building a vtkOverlappingAMR
 };
@@ -46,6 +49,8 @@ struct LoadedDataset
 /// Loads the dataset. Throws DatasetError with one line naming the problem: missing path,
 /// unknown format, reader failure (with the reader's own message), missing array, no blocks.
 LoadedDataset LoadDataset(const DatasetRequest& request);
+/// LoadDataset without applying DatasetRequest::Centering.
+LoadedDataset LoadDatasetAsStored(const DatasetRequest& request);
 
 } // namespace tool
 } // namespace amrsp

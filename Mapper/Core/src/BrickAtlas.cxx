@@ -9,18 +9,19 @@ namespace amrsp
 BrickAtlas BuildBrickAtlas(const Hierarchy& h, Packer packer, const glm::ivec3& maxDims,
   std::size_t maxBytes)
 {
-  if (!h.HasValues() || h.VertexCentred)
+  if (!h.HasValues())
   {
-    throw std::invalid_argument("the packed atlas needs cell-centred values for every grid");
+    throw std::invalid_argument("the packed atlas needs values for every grid");
   }
   BrickAtlas atlas;
-  atlas.Layout = PackBricks(BrickExtents(h, false), packer, maxDims,
-    static_cast<int64_t>(maxBytes / AtlasTexelBytes));
+  const std::vector<glm::ivec3> extents = BrickExtents(h, h.VertexCentred);
+  atlas.Layout =
+    PackBricks(extents, packer, maxDims, static_cast<int64_t>(maxBytes / AtlasTexelBytes));
   const glm::ivec3 d = atlas.Layout.Dims;
   atlas.Texels.assign(static_cast<std::size_t>(d.x) * d.y * d.z, 0.0f);
   for (std::size_t g = 0; g < h.Grids.size(); ++g)
   {
-    const glm::i64vec3 e = h.Grids[g].Cells.Extent();
+    const glm::i64vec3 e(extents[g]);
     const glm::ivec3 o = atlas.Layout.Origins[g];
     const float* src = h.Values[g].data();
     for (int64_t k = 0; k < e.z; ++k)

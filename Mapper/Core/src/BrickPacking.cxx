@@ -177,257 +177,215 @@ void NfdhTrial(const std::vector<glm::ivec3>& e, const std::vector<int>& order, 
 }
 
 //--------------------------------------------------------------------------------------------------
-// Layer-guillotine packer
+// Guillotine best-fit packer
 
-/// Free boxes of one guillotine trial. Free boxes are pairwise disjoint and disjoint from the
-/// placed bricks; they are kept in bottom-left order: by z, then y, then x of their lower corner
-/// (distinct for disjoint boxes, so the corner is the key).
-class FreeBoxes
+int g_split = 2;
+int g_score = 1;
+
+/// The bricks grouped by shape, for best-fit queries. Shapes are ordered by decreasing z extent,
+/// then decreasing footprint area (x * y), then decreasing y, then decreasing x. A segment tree
+/// over that order keeps, per node, the smallest x and y extents among the shapes that still
+/// have unplaced bricks, which prunes the search for the first shape fitting a box.
+class ShapeIndex
 {
 public:
-  static uint64_t Key(const glm::ivec3& lo)
+  explicit ShapeIndex(const std::vector<glm::ivec3>& e)
+  {
+    std::vector<int> order(e.size());
+    std::iota(order.begin(), order.end(), 0);
+    auto key = [&](int i) {
+      return std::make_tuple(e[i].z, int64_t(e[i].x) * e[i].y, e[i].y, e[i].x);
+    };
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      const auto ka = key(a), kb = key(b);
+      return ka != kb ? ka > kb : a < b;
+    });
+    for (std::size_t k = 0; k < order.size(); ++k)
+    {
+      const int i = order[k];
+      if (k == 0 || e[i] != this->Extent.back())
+      {
+        this->Extent.push_back(e[i]);
+        this->First.push_back(static_cast<int>(k));
+      }
+      this->Bricks.push_back(i);
+    }
+    this->First.push_back(static_cast<int>(order.size()));
+    this->Leaves = 1;
+    while (this->Leaves < this->Extent.size())
+    {
+      this->Leaves *= 2;
+    }
+    this->Reset();
+  }
+
+  /// Makes every brick unplaced again.
+  void Reset()
+  {
+    this->Next.assign(this->First.begin(), this->First.end() - 1);
+    this->MinX.assign(2 * this->Leaves, INT_MAX);
+    this->MinY.assign(2 * this->Leaves, INT_MAX);
+    for (std::size_t s = 0; s < this->Extent.size(); ++s)
+    {
+      this->MinX[this->Leaves + s] = this->Extent[s].x;
+      this->MinY[this->Leaves + s] = this->Extent[s].y;
+    }
+    for (std::size_t n = this->Leaves - 1; n >= 1; --n)
+    {
+      this->Pull(n);
+    }
+  }
+
+  /// The first shape, in shape order, with unplaced bricks that fits into a box of this size;
+  /// -1 when none does.
+  int Find(const glm::ivec3& box) const
+  {
+    // shapes with z extent <= box.z form a suffix of the order
+    const auto it = std::lower_bound(this->Extent.begin(), this->Extent.end(), box.z,
+      [](const glm::ivec3& s, int z) { return s.z > z; });
+    const std::size_t start = static_cast<std::size_t>(it - this->Extent.begin());
+    if (start >= this->Extent.size())
+    {
+      return -1;
+    }
+    return this->Find(1, 0, this->Leaves, start, box.x, box.y);
+  }
+
+  const glm::ivec3& ShapeExtent(int shape) const { return this->Extent[shape]; }
+
+  /// Takes the unplaced brick of smallest input index of a shape that has one.
+  int Take(int shape)
+  {
+    const int brick = this->Bricks[this->Next[shape]++];
+    if (this->Next[shape] == this->First[shape + 1])
+    {
+      std::size_t n = this->Leaves + shape;
+      this->MinX[n] = INT_MAX;
+      this->MinY[n] = INT_MAX;
+      for (n /= 2; n >= 1; n /= 2)
+      {
+        this->Pull(n);
+      }
+    }
+    return brick;
+  }
+
+private:
+  void Pull(std::size_t n)
+  {
+    this->MinX[n] = std::min(this->MinX[2 * n], this->MinX[2 * n + 1]);
+    this->MinY[n] = std::min(this->MinY[2 * n], this->MinY[2 * n + 1]);
+  }
+
+  int Find(std::size_t node, std::size_t lo, std::size_t hi, std::size_t start, int x, int y) const
+  {
+    if (hi <= start || this->MinX[node] > x || this->MinY[node] > y)
+    {
+      return -1;
+    }
+    if (hi - lo == 1)
+    {
+      return static_cast<int>(lo); // a leaf: its own extents passed the test above
+    }
+    const std::size_t mid = (lo + hi) / 2;
+    const int left = this->Find(2 * node, lo, mid, start, x, y);
+    return left >= 0 ? left : this->Find(2 * node + 1, mid, hi, start, x, y);
+  }
+
+  std::vector<glm::ivec3> Extent; // per shape
+  std::vector<int> First;         // per shape: its first entry in Bricks; one extra at the end
+  std::vector<int> Next;          // per shape: its next unplaced entry in Bricks
+  std::vector<int> Bricks;        // brick indices grouped by shape, increasing within a shape
+  std::size_t Leaves = 1;         // segment tree leaves (power of two >= number of shapes)
+  std::vector<int> MinX, MinY;    // segment tree, node 1 is the root, leaf s at Leaves + s
+};
+
+/// A free box of a trial. Free boxes are pairwise disjoint and disjoint from the placed bricks;
+/// they are consumed in bottom-left order (by z, then y, then x of the lower corner, which is
+/// unique among disjoint boxes).
+struct FreeBox
+{
+  uint64_t Key;
+  glm::ivec3 Size;
+  bool operator<(const FreeBox& o) const { return this->Key > o.Key; } // min-heap on Key
+
+  static uint64_t MakeKey(const glm::ivec3& lo)
   {
     return (static_cast<uint64_t>(lo.z) << 42) | (static_cast<uint64_t>(lo.y) << 21) |
       static_cast<uint64_t>(lo.x);
   }
-  static glm::ivec3 Corner(uint64_t key)
+  glm::ivec3 Corner() const
   {
     const uint64_t mask = (uint64_t(1) << 21) - 1;
-    return glm::ivec3(static_cast<int>(key & mask), static_cast<int>((key >> 21) & mask),
-      static_cast<int>(key >> 42));
+    return glm::ivec3(static_cast<int>(this->Key & mask),
+      static_cast<int>((this->Key >> 21) & mask), static_cast<int>(this->Key >> 42));
   }
-  std::map<uint64_t, glm::ivec3> Boxes; // corner key -> size
 };
 
-/// Answers "can any brick (of the whole set) fit into a box of this size?" exactly: the minimum z
-/// extent over the bricks whose x and y extents fit, from a prefix-minimum table over the
-/// distinct x and y extents. A box no brick fits is dead for good and is dropped.
-class FitTable
-{
-public:
-  explicit FitTable(const std::vector<glm::ivec3>& e)
-  {
-    for (const glm::ivec3& b : e)
-    {
-      this->Xs.push_back(b.x);
-      this->Ys.push_back(b.y);
-    }
-    std::sort(this->Xs.begin(), this->Xs.end());
-    this->Xs.erase(std::unique(this->Xs.begin(), this->Xs.end()), this->Xs.end());
-    std::sort(this->Ys.begin(), this->Ys.end());
-    this->Ys.erase(std::unique(this->Ys.begin(), this->Ys.end()), this->Ys.end());
-    const std::size_t nx = this->Xs.size(), ny = this->Ys.size();
-    this->MinZ.assign(nx * ny, INT_MAX);
-    for (const glm::ivec3& b : e)
-    {
-      const std::size_t i = std::lower_bound(this->Xs.begin(), this->Xs.end(), b.x) - this->Xs.begin();
-      const std::size_t j = std::lower_bound(this->Ys.begin(), this->Ys.end(), b.y) - this->Ys.begin();
-      int& m = this->MinZ[i * ny + j];
-      m = std::min(m, b.z);
-    }
-    for (std::size_t i = 0; i < nx; ++i)
-    {
-      for (std::size_t j = 0; j < ny; ++j)
-      {
-        int m = this->MinZ[i * ny + j];
-        if (i > 0)
-        {
-          m = std::min(m, this->MinZ[(i - 1) * ny + j]);
-        }
-        if (j > 0)
-        {
-          m = std::min(m, this->MinZ[i * ny + j - 1]);
-        }
-        this->MinZ[i * ny + j] = m;
-      }
-    }
-  }
-
-  bool Useful(const glm::ivec3& size) const
-  {
-    const auto ix = std::upper_bound(this->Xs.begin(), this->Xs.end(), size.x) - this->Xs.begin();
-    const auto iy = std::upper_bound(this->Ys.begin(), this->Ys.end(), size.y) - this->Ys.begin();
-    if (ix == 0 || iy == 0)
-    {
-      return false;
-    }
-    return this->MinZ[static_cast<std::size_t>(ix - 1) * this->Ys.size() +
-             static_cast<std::size_t>(iy - 1)] <= size.z;
-  }
-
-private:
-  std::vector<int> Xs, Ys;
-  std::vector<int> MinZ; // [i * Ys.size() + j]: min z extent over bricks with x <= Xs[i], y <= Ys[j]
-};
-
-/// Bricks sorted by decreasing z extent, then decreasing footprint area, then y, then x.
-std::vector<int> GuillotineOrder(const std::vector<glm::ivec3>& e)
-{
-  std::vector<int> order(e.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    if (e[a].z != e[b].z)
-    {
-      return e[a].z > e[b].z;
-    }
-    const int64_t aa = int64_t(e[a].x) * e[a].y, ab = int64_t(e[b].x) * e[b].y;
-    if (aa != ab)
-    {
-      return aa > ab;
-    }
-    if (e[a].y != e[b].y)
-    {
-      return e[a].y > e[b].y;
-    }
-    if (e[a].x != e[b].x)
-    {
-      return e[a].x > e[b].x;
-    }
-    return a < b;
-  });
-  return order;
-}
-
-/// How many free boxes a placement inspects, in bottom-left order, before it falls back to the
-/// top slab (the free box above everything placed so far, which every brick fits unless the
-/// height limit is reached). Bounds the work per brick; does not affect correctness.
-constexpr int ScanLimit = 1 << 30;
-
-/// One guillotine trial with container base width x depth and height limit maxZ.
-/// Each brick goes to the first free box, in bottom-left order, that holds it, at that box's
-/// lower corner. The rest of the box is cut into three boxes: the slab above the brick (the full
-/// footprint of the box), the part behind the brick in y (full box width, brick height) and the
-/// part right of the brick in x (brick depth and height). Cutting the slab above first makes the
-/// first brick of every slab set its layer height, rows open along y, bricks line up along x, and
-/// the space above shorter bricks stays available for later ones.
-void GuillotineTrial(const std::vector<glm::ivec3>& e, const std::vector<int>& order,
-  const FitTable& fit, int width, int depth, int maxZ, Trial& t)
+/// One guillotine best-fit trial with container base width x depth and height limit maxZ.
+/// The lowest free box (bottom-left order) receives the first shape, in ShapeIndex order, that
+/// fits it, i.e. the tallest brick that fits, widest footprint first; a box nothing fits is
+/// given up. The brick sits at the box's lower corner and the rest of the box is cut into
+/// three: the slab above the brick (full box footprint), and beside the brick two boxes of the
+/// brick's height, where the side with more room left gets the full box extent. The first box
+/// is the whole container, so the slab above everything always exists until maxZ is reached.
+void BestFitTrial(ShapeIndex& shapes, std::size_t count, int width, int depth, int maxZ,
+  std::vector<FreeBox>& heap, Trial& t)
 {
   t.Ok = false;
-  t.Origins.resize(e.size());
-  FreeBoxes free;
-  free.Boxes.emplace(FreeBoxes::Key(glm::ivec3(0)), glm::ivec3(width, depth, maxZ));
+  t.Origins.resize(count);
+  shapes.Reset();
+  heap.clear();
+  heap.push_back(FreeBox{ FreeBox::MakeKey(glm::ivec3(0)), glm::ivec3(width, depth, maxZ) });
   glm::ivec3 hi(0);
-  for (int i : order)
+  std::size_t remaining = count;
+  while (remaining > 0 && !heap.empty())
   {
-    const glm::ivec3& b = e[i];
-    auto chosen = free.Boxes.end();
-    int scanned = 0;
-    for (auto it = free.Boxes.begin(); it != free.Boxes.end() && scanned < ScanLimit;)
+    std::pop_heap(heap.begin(), heap.end());
+    const FreeBox box = heap.back();
+    heap.pop_back();
+    const int shape = shapes.Find(box.Size);
+    if (shape < 0)
     {
-      const glm::ivec3& s = it->second;
-      if (s.x >= b.x && s.y >= b.y && s.z >= b.z)
-      {
-        chosen = it;
-        break;
-      }
-      if (!fit.Useful(s))
-      {
-        it = free.Boxes.erase(it);
-        continue;
-      }
-      ++it;
-      ++scanned;
+      continue;
     }
-    if (chosen == free.Boxes.end())
-    {
-      chosen = std::prev(free.Boxes.end()); // the top slab
-      const glm::ivec3& s = chosen->second;
-      if (s.x < b.x || s.y < b.y || s.z < b.z)
-      {
-        if (getenv("BP_DEBUG")) fprintf(stderr, "fail brick %d ext %d %d %d top %d %d %d size %d %d %d nboxes %zu\n", i, b.x,b.y,b.z, FreeBoxes::Corner(chosen->first).x, FreeBoxes::Corner(chosen->first).y, FreeBoxes::Corner(chosen->first).z, s.x,s.y,s.z, free.Boxes.size());
-        return; // height limit reached
-      }
-    }
-    const glm::ivec3 lo = FreeBoxes::Corner(chosen->first);
-    const glm::ivec3 s = chosen->second;
-    free.Boxes.erase(chosen);
-    t.Origins[i] = lo;
-    hi = glm::max(hi, lo + b);
-    const glm::ivec3 parts[3][2] = {
-      { glm::ivec3(lo.x, lo.y, lo.z + b.z), glm::ivec3(s.x, s.y, s.z - b.z) },
-      { glm::ivec3(lo.x, lo.y + b.y, lo.z), glm::ivec3(s.x, s.y - b.y, b.z) },
-      { glm::ivec3(lo.x + b.x, lo.y, lo.z), glm::ivec3(s.x - b.x, b.y, b.z) },
-    };
-    for (const auto& p : parts)
-    {
-      if (p[1].x > 0 && p[1].y > 0 && p[1].z > 0 && fit.Useful(p[1]))
-      {
-        free.Boxes.emplace(FreeBoxes::Key(p[0]), p[1]);
-      }
-    }
-  }
-  t.Ok = true;
-  t.Dims = hi;
-  t.Texels = Volume(hi);
-}
-
-int g_split = 0;
-int g_score = 0;
-/// Box-driven best fit (prototype).
-void BestFitTrial(const std::vector<glm::ivec3>& e, int width, int depth, int maxZ, Trial& t)
-{
-  t.Ok = false;
-  t.Origins.resize(e.size());
-  // distinct shapes sorted by score desc
-  std::map<std::tuple<int,int,int>, std::vector<int>> shapeMap;
-  for (int i = static_cast<int>(e.size()) - 1; i >= 0; --i)
-    shapeMap[std::make_tuple(e[i].x, e[i].y, e[i].z)].push_back(i);
-  struct Shape { glm::ivec3 s; std::vector<int> bricks; };
-  std::vector<Shape> shapes;
-  for (auto& kv : shapeMap)
-    shapes.push_back(Shape{ glm::ivec3(std::get<0>(kv.first), std::get<1>(kv.first), std::get<2>(kv.first)), kv.second });
-  std::sort(shapes.begin(), shapes.end(), [](const Shape& a, const Shape& b) {
-    int64_t va, vb;
-    if (g_score == 0) { va = Volume(a.s); vb = Volume(b.s); }
-    else { va = int64_t(a.s.z) << 32 | (int64_t(a.s.x) * a.s.y); vb = int64_t(b.s.z) << 32 | (int64_t(b.s.x) * b.s.y); }
-    if (va != vb) return va > vb;
-    return std::make_tuple(a.s.z, a.s.y, a.s.x) > std::make_tuple(b.s.z, b.s.y, b.s.x);
-  });
-  std::size_t remaining = e.size();
-  std::map<uint64_t, glm::ivec3> boxes;
-  boxes.emplace(FreeBoxes::Key(glm::ivec3(0)), glm::ivec3(width, depth, maxZ));
-  glm::ivec3 hi(0);
-  std::size_t firstLive = 0;
-  while (remaining > 0 && !boxes.empty())
-  {
-    auto it = boxes.begin();
-    const glm::ivec3 lo = FreeBoxes::Corner(it->first);
-    const glm::ivec3 s = it->second;
-    boxes.erase(it);
-    while (firstLive < shapes.size() && shapes[firstLive].bricks.empty()) ++firstLive;
-    int found = -1;
-    for (std::size_t k = firstLive; k < shapes.size(); ++k)
-    {
-      const Shape& sh = shapes[k];
-      if (!sh.bricks.empty() && sh.s.x <= s.x && sh.s.y <= s.y && sh.s.z <= s.z) { found = static_cast<int>(k); break; }
-    }
-    if (found < 0) continue;
-    Shape& sh = shapes[found];
-    const int i = sh.bricks.back();
-    sh.bricks.pop_back();
+    const glm::ivec3 b = shapes.ShapeExtent(shape);
+    const glm::ivec3 lo = box.Corner();
+    const glm::ivec3& s = box.Size;
+    t.Origins[shapes.Take(shape)] = lo;
     --remaining;
-    const glm::ivec3 b = sh.s;
-    t.Origins[i] = lo;
     hi = glm::max(hi, lo + b);
     glm::ivec3 parts[3][2];
-    parts[0][0] = glm::ivec3(lo.x, lo.y, lo.z + b.z); parts[0][1] = glm::ivec3(s.x, s.y, s.z - b.z);
-    bool yFull = g_split == 0 || (g_split == 2 && (s.x - b.x) < (s.y - b.y));
-    if (yFull)
+    bool yFull = (s.x - b.x) < (s.y - b.y);
+    if (g_split == 0) yFull = true;
+    if (g_split == 1) yFull = false;
+    if (g_split == 3 || g_split == 5)
     {
-      parts[1][0] = glm::ivec3(lo.x, lo.y + b.y, lo.z); parts[1][1] = glm::ivec3(s.x, s.y - b.y, b.z);
-      parts[2][0] = glm::ivec3(lo.x + b.x, lo.y, lo.z); parts[2][1] = glm::ivec3(s.x - b.x, b.y, b.z);
+      const int64_t a1 = std::max(int64_t(s.x) * (s.y - b.y), int64_t(s.x - b.x) * b.y);
+      const int64_t a2 = std::max(int64_t(b.x) * (s.y - b.y), int64_t(s.x - b.x) * s.y);
+      yFull = a1 >= a2;
     }
-    else
-    {
-      parts[1][0] = glm::ivec3(lo.x, lo.y + b.y, lo.z); parts[1][1] = glm::ivec3(b.x, s.y - b.y, b.z);
-      parts[2][0] = glm::ivec3(lo.x + b.x, lo.y, lo.z); parts[2][1] = glm::ivec3(s.x - b.x, s.y, b.z);
-    }
+    const bool zLast = g_split >= 4;
+    const int sideZ = zLast ? s.z : b.z;
+    parts[0][0] = glm::ivec3(lo.x, lo.y, lo.z + b.z);
+    parts[0][1] = zLast ? glm::ivec3(b.x, b.y, s.z - b.z) : glm::ivec3(s.x, s.y, s.z - b.z);
+    parts[1][0] = glm::ivec3(lo.x, lo.y + b.y, lo.z);
+    parts[1][1] = glm::ivec3(yFull ? s.x : b.x, s.y - b.y, sideZ);
+    parts[2][0] = glm::ivec3(lo.x + b.x, lo.y, lo.z);
+    parts[2][1] = glm::ivec3(s.x - b.x, yFull ? b.y : s.y, sideZ);
     for (const auto& p : parts)
+    {
       if (p[1].x > 0 && p[1].y > 0 && p[1].z > 0)
-        boxes.emplace(FreeBoxes::Key(p[0]), p[1]);
+      {
+        heap.push_back(FreeBox{ FreeBox::MakeKey(p[0]), p[1] });
+        std::push_heap(heap.begin(), heap.end());
+      }
+    }
   }
-  if (remaining > 0) return;
+  if (remaining > 0)
+  {
+    return; // height limit reached
+  }
   t.Ok = true;
   t.Dims = hi;
   t.Texels = Volume(hi);
@@ -466,7 +424,7 @@ AtlasLayout PackBricks(const std::vector<glm::ivec3>& extents, Packer packer,
   }
 
   AtlasLayout layout;
-  layout.PackerName = packer == Packer::Best ? "layer-guillotine" : "nfdh";
+  layout.PackerName = packer == Packer::Best ? "guillotine-bestfit" : "nfdh";
   glm::ivec3 maxExtent(0);
   std::size_t tooLarge = 0, firstTooLarge = 0;
   for (std::size_t i = 0; i < extents.size(); ++i)
@@ -547,8 +505,8 @@ AtlasLayout PackBricks(const std::vector<glm::ivec3>& extents, Packer packer,
   }
   else
   {
-    const std::vector<int> order = GuillotineOrder(extents);
-    const FitTable fit(extents);
+    ShapeIndex shapes(extents);
+    std::vector<FreeBox> heap;
     std::vector<int> sides;
     for (double f : { 0.9, 1.0, 1.1, 1.2, 1.35 })
     {
@@ -571,8 +529,8 @@ AtlasLayout PackBricks(const std::vector<glm::ivec3>& extents, Packer packer,
     {
       for (int d : ys)
       {
-        if (getenv("BP_BF")) BestFitTrial(extents, w, d, maxDims.z, trial); else
-        GuillotineTrial(extents, order, fit, w, d, maxDims.z, trial);
+        BestFitTrial(shapes, extents.size(), w, d, maxDims.z, heap, trial);
+        if (getenv("BP_DEBUG")) fprintf(stderr, "T %d %d %d %d %d %.4f\n", w, d, trial.Dims.x, trial.Dims.y, trial.Dims.z, trial.Ok ? double(layout.UsedTexels)/trial.Texels : 0.0);
         if (getenv("BP_DEBUG")) fprintf(stderr, "  trial %d %d ok %d dims %d %d %d eff %.3f\n", w, d, trial.Ok, trial.Dims.x, trial.Dims.y, trial.Dims.z, trial.Ok ? double(layout.UsedTexels)/trial.Texels : 0.0);
         if (Better(trial, best))
         {
@@ -619,12 +577,12 @@ Packer ParsePacker(const std::string& name)
   {
     return Packer::NextFitDecreasingHeight;
   }
-  if (n == "best" || n == "layer-guillotine")
+  if (n == "best" || n == "guillotine-bestfit")
   {
     return Packer::Best;
   }
   throw std::invalid_argument(
-    "unknown packer '" + name + "'; expected 'nfdh', 'best' or 'layer-guillotine'");
+    "unknown packer '" + name + "'; expected 'nfdh', 'best' or 'guillotine-bestfit'");
 }
 
 std::string PackerName(Packer packer)

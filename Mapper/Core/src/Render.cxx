@@ -2,6 +2,7 @@
 #include "amrsp/Render.h"
 
 #include "amrsp/KdTreeLayout.h"
+#include "amrsp/VertexData.h"
 
 #include <algorithm>
 #include <cmath>
@@ -355,10 +356,39 @@ void RequireValues(const Hierarchy& h)
   {
     throw std::invalid_argument("the hierarchy has no scalar values to render");
   }
+}
+
+/// Value of grid `g` at `p` (level-0 index units): nearest cell for cell-centred data,
+/// trilinear between vertices for vertex-centred data.
+float SampleGrid(const Hierarchy& h, int32_t g, const glm::dvec3& p, const glm::dvec3& ratio)
+{
   if (h.VertexCentred)
   {
-    throw std::invalid_argument("the CPU integrators sample cell-centred data only");
+    return InterpolateVertices(h, g, p * ratio - glm::dvec3(h.Grids[g].Cells.Lo));
   }
+  return CellValue(h, g, glm::i64vec3(glm::floor(p * ratio)));
+}
+
+/// Trilinear lookup in the atlas at texel coordinate `u` (texel i at u = i), with the eight
+/// texels clamped into [lo, hi]: the vertex texels of one kD node.
+float AtlasTrilinear(const BrickAtlas& atlas, const glm::vec3& u, const glm::ivec3& lo,
+  const glm::ivec3& hi)
+{
+  const glm::vec3 c = glm::clamp(u, glm::vec3(lo), glm::vec3(hi));
+  const glm::ivec3 base = glm::min(glm::ivec3(glm::floor(c)), glm::max(hi - 1, lo));
+  const glm::vec3 w = c - glm::vec3(base);
+  float sum = 0.0f;
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const glm::ivec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+    const float weight =
+      (o.x ? w.x : 1.0f - w.x) * (o.y ? w.y : 1.0f - w.y) * (o.z ? w.z : 1.0f - w.z);
+    if (weight != 0.0f)
+    {
+      sum += weight * atlas.At(glm::min(base + o, hi));
+    }
+  }
+  return sum;
 }
 
 double MinEdge(const glm::dvec3& v)
@@ -461,10 +491,20 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
           const float t = seg.T0 + (static_cast<float>(k) + 0.5f) * dt;
           const glm::vec3 p = o + t * d;
           float v;
-          if (atlas)
+          if (atlas && h.VertexCentred)
+          {
+            v = AtlasTrilinear(*atlas, glm::vec3(offset) + p / cellSize - glm::vec3(first), offset,
+              offset + last + 1 - first);
+          }
+          else if (atlas)
           {
             const glm::ivec3 cell = glm::clamp(glm::ivec3(glm::floor(p / cellSize)), first, last);
             v = atlas->At(offset + cell - first);
+          }
+          else if (h.VertexCentred)
+          {
+            v = InterpolateVertices(
+              h, g, glm::dvec3(p / cellSize) - glm::dvec3(h.Grids[g].Cells.Lo));
           }
           else
           {
@@ -542,7 +582,9 @@ Image RenderReference(const Hierarchy& h, const RenderSettings& s)
         }
         if (g >= 0)
         {
-          acc.Add(s.Transfer, CellValue(h, g, cell), dt);
+          const double mid = t + 0.5 * dt;
+          acc.Add(s.Transfer,
+            SampleGrid(h, g, o + mid * d, glm::dvec3(h.CumulativeRatio(h.Grids[g].Level))), dt);
         }
         t += dt;
       }

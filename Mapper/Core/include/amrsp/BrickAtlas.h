@@ -4,6 +4,8 @@
 /// The packed atlas (paper, section 5.1): one brick per AMR grid, copied into one 3D array of
 /// float texels at the positions computed by PackBricks. Cell-centred data: texel (i,j,k) of a
 /// brick is cell (i,j,k) of its grid (texel centres at cell centres, nearest sampling).
+/// Vertex-centred data: texel (i,j,k) is vertex (i,j,k) (bricks one texel larger per axis,
+/// trilinear sampling that never leaves the brick).
 
 #include "amrsp/BrickPacking.h"
 #include "amrsp/Hierarchy.h"
@@ -31,7 +33,7 @@ struct BrickAtlas
 /// Bytes one float texel takes in the atlas.
 constexpr std::size_t AtlasTexelBytes = sizeof(float);
 
-/// Packs the grids of `h` (cell-centred values required) and copies their values. `maxBytes`
+/// Packs the grids of `h` and copies their values (cell- or vertex-centred). `maxBytes`
 /// bounds the atlas memory (0 = no bound); it is checked before anything is allocated.
 /// @throws PackingError (from PackBricks) when the atlas does not fit.
 BrickAtlas BuildBrickAtlas(const Hierarchy& h, Packer packer, const glm::ivec3& maxDims,
