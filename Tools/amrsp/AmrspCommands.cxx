@@ -155,7 +155,7 @@ const char* const DatasetHelp =
 
 const char* const AtlasHelp =
   "Atlas options (packed storage of the grid bricks):\n"
-  "  --packer nfdh|best          the paper's next-fit-decreasing-height, or the layer-guillotine\n"
+  "  --packer nfdh|best          the paper's next-fit-decreasing-height, or the guillotine-bestfit\n"
   "                              packer (default best)\n"
   "  --max-3d-texture-size N     per-axis texture limit (default 2048, GL_MAX_3D_TEXTURE_SIZE)\n"
   "  --atlas-budget-mb M         largest atlas in MiB of float texels (default: no limit)\n";
@@ -411,7 +411,8 @@ int RunInspect(int argc, char** argv)
     const double encodeSeconds = Seconds(t0);
     const InvariantReport inv = CheckKdTree(h, tree, &enc);
     const KdTreeStatistics st = tree.Statistics();
-    const std::vector<glm::ivec3> extents = BrickExtents(h, false);
+    const bool vertexBricks = h.VertexCentred || a.Get("centering", "auto") == "vertex";
+    const std::vector<glm::ivec3> extents = BrickExtents(h, vertexBricks);
     Json atlas, byPacker = Json::object();
     double packSeconds = 0.0;
     try
@@ -475,6 +476,7 @@ int RunInspect(int argc, char** argv)
     j["kd_depth"] = st.Depth;
     j["tree_texture"] = TextureJson(enc.Tree);
     j["data_nodes_texture"] = TextureJson(enc.DataNodes);
+    j["centering"] = vertexBricks ? "vertex" : "cell";
     j["atlas"] = atlas;
     if (a.Has("compare-packers"))
     {

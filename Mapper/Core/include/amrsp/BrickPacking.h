@@ -16,6 +16,8 @@
 /// - The result depends on the input only (same extents and limits -> same layout), not on
 ///   timing or thread count.
 
+#include "amrsp/Hierarchy.h"
+
 #include <glm/glm.hpp>
 
 #include <cstdint>
@@ -29,10 +31,13 @@ namespace amrsp
 /// Packing algorithms.
 /// - NextFitDecreasingHeight ("nfdh"): the paper's NFDH. Bricks sorted by decreasing z, y, x
 ///   extent fill rows along x, rows fill a layer along y, layers stack along z; repeated over a
-///   ladder of base extents (x,y), keeping the smallest atlas.
-/// - Best ("best", reported as AtlasLayout::PackerName "layer-guillotine"): height-sorted
-///   bottom-left placement into guillotine-split free boxes (rows, layers, and the space above
-///   short bricks is reused), repeated over a set of base extents, keeping the smallest atlas.
+///   ladder of container base extents (x,y), keeping the smallest atlas.
+/// - Best ("best"; AtlasLayout::PackerName "guillotine-bestfit"): box-driven best fit into
+///   guillotine-cut free boxes. The lowest free box takes the tallest brick that fits it (largest
+///   footprint first); the rest of the box is cut into the slab above the brick and two boxes
+///   beside it, so layers and rows form on their own and the space above shorter bricks is
+///   reused. Stacks along the axis with the largest limit, repeated over a set of footprints,
+///   keeping the smallest atlas. About 95% efficient on the synthetic sets of the paper's sizes.
 enum class Packer
 {
   NextFitDecreasingHeight,
@@ -51,7 +56,7 @@ struct AtlasLayout
   int64_t TotalTexels = 0;
   /// UsedTexels / TotalTexels (1 for an empty atlas).
   double Efficiency = 0.0;
-  /// The algorithm that produced the layout: "nfdh" or "layer-guillotine".
+  /// The algorithm that produced the layout: "nfdh" or "guillotine-bestfit".
   std::string PackerName;
   /// Wall-clock time of the packing (sorting, all trials, validation of the input), seconds.
   double Seconds = 0.0;
@@ -68,16 +73,17 @@ public:
 /// Packs the bricks into one atlas.
 /// @param extents brick sizes in texels, every component >= 1.
 /// @param maxDims per-axis atlas limit in texels (e.g. GL_MAX_3D_TEXTURE_SIZE on every axis, or
-///   AtlasLimits() to also respect the data-node offset encoding); every component >= 1.
+///   AtlasLimits() to also respect the data-node offset encoding); every component in [1, 2^21).
 /// @param maxTexels total texel budget of the atlas; 0 = no budget.
 /// @throws PackingError when a brick is larger than maxDims, or no layout found fits maxDims and
 ///   maxTexels. The message names the limit, the shortfall, and suggests the bindless path, a
 ///   smaller array type, or level-of-detail. Bricks are never dropped or truncated.
-/// @throws std::invalid_argument for an extent or limit component < 1, or maxTexels < 0.
+/// @throws std::invalid_argument for an extent component < 1, a limit component outside
+///   [1, 2^21), or maxTexels < 0.
 AtlasLayout PackBricks(const std::vector<glm::ivec3>& extents, Packer packer,
   const glm::ivec3& maxDims, int64_t maxTexels = 0);
 
-/// "nfdh" -> NextFitDecreasingHeight; "best" or "layer-guillotine" -> Best (case-insensitive).
+/// "nfdh" -> NextFitDecreasingHeight; "best" or "guillotine-bestfit" -> Best (case-insensitive).
 /// @throws std::invalid_argument naming the accepted values.
 Packer ParsePacker(const std::string& name);
 
@@ -90,8 +96,7 @@ std::string PackerName(Packer packer);
 glm::ivec3 AtlasLimits(int max3DTextureSize);
 
 /// Brick extents of a hierarchy's grids, in grid order: the cell extents, plus one per axis when
-/// `vertexCentred`. Declared here for convenience; the hierarchy type is amrsp::Hierarchy.
-struct Hierarchy;
+/// `vertexCentred` (pass h.VertexCentred for the hierarchy's own data).
 std::vector<glm::ivec3> BrickExtents(const Hierarchy& h, bool vertexCentred);
 
 } // namespace amrsp
