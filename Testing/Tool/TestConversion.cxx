@@ -5,6 +5,8 @@
 #include "vtkAMRBox.h"
 #include "vtkCellData.h"
 #include "vtkDoubleArray.h"
+#include "vtkIntArray.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkNew.h"
 #include "vtkOverlappingAMR.h"
 #include "vtkPointData.h"
@@ -118,6 +120,38 @@ TEST(Conversion, PointDataIsVertexCentred)
   // level-1 vertex (1,1,1) of the box [2,5]^3 sits at world (1.5, 1.5, 1.5)
   EXPECT_FLOAT_EQ(h.Values[1][(1 * 5 + 1) * 5 + 1], 3.0f);
   EXPECT_FLOAT_EQ(h.Values[1][0], 2.0f); // a dangling corner keeps the linear field's value
+}
+
+TEST(Conversion, IntegerAndDoubleArraysBecomeFloat)
+{
+  auto amr = MakeAMR(0, 0.5);
+  for (int level = 0; level < 2; ++level)
+  {
+    vtkUniformGrid* g = amr->GetDataSet(level, 0);
+    vtkNew<vtkIntArray> ints;
+    ints->SetName("count");
+    vtkNew<vtkUnsignedCharArray> bytes;
+    bytes->SetName("flag");
+    for (vtkIdType i = 0; i < g->GetNumberOfCells(); ++i)
+    {
+      ints->InsertNextValue(static_cast<int>(-7 * i));
+      bytes->InsertNextValue(static_cast<unsigned char>(i % 256));
+    }
+    g->GetCellData()->AddArray(ints);
+    g->GetCellData()->AddArray(bytes);
+  }
+  vtkAMRCoreConversion::ArraySelection sel;
+  amrsp::Hierarchy h;
+  std::string error;
+  sel.Name = "count";
+  ASSERT_TRUE(vtkAMRCoreConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
+  EXPECT_EQ(h.Values[0][9], -63.0f);
+  sel.Name = "flag";
+  ASSERT_TRUE(vtkAMRCoreConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
+  EXPECT_EQ(h.Values[1][63], 63.0f);
+  sel.Name = "phi"; // vtkDoubleArray
+  ASSERT_TRUE(vtkAMRCoreConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
+  EXPECT_EQ(h.Values[1][5], 1005.0f);
 }
 
 TEST(Conversion, BadInputGivesOneClearError)
