@@ -228,6 +228,7 @@ public:
   vtkTimeStamp BoxBufferTime;
   vtkTimeStamp UploadTime;
   vtkOpenGLRenderWindow* Context = nullptr;
+  int UploadLimit = 0; // MaximumAtlasSize of the last upload attempt
 
   // transfer function table
   vtkVolumeProperty* TransferProperty = nullptr;
@@ -267,7 +268,7 @@ public:
     return this->DataValid;
   }
 
-  bool Upload(vtkOpenGLRenderWindow* renWin, std::string& error);
+  bool Upload(vtkOpenGLRenderWindow* renWin, int atlasLimit, std::string& error);
   bool UpdateTransferFunction(vtkOpenGLRenderWindow* renWin, vtkVolumeProperty* property);
   void ReleaseGraphicsResources(vtkWindow* window);
 };
@@ -407,16 +408,24 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(
 
 //------------------------------------------------------------------------------
 bool vtkSinglePassAMRVolumeMapper::vtkInternals::Upload(
-  vtkOpenGLRenderWindow* renWin, std::string& error)
+  vtkOpenGLRenderWindow* renWin, int atlasLimit, std::string& error)
 {
   const auto t0 = std::chrono::steady_clock::now();
   const int max3D = vtkTextureObject::GetMaximumTextureSize3D(renWin);
+  const int limit = atlasLimit > 0 ? std::min(atlasLimit, max3D) : max3D;
   const glm::ivec3 d = this->AtlasDims;
-  if (d.x > max3D || d.y > max3D || d.z > max3D)
+  if (d.x > limit || d.y > limit || d.z > limit)
   {
     std::ostringstream msg;
-    msg << "the packed atlas (" << d.x << " x " << d.y << " x " << d.z
-        << " texels) exceeds GL_MAX_3D_TEXTURE_SIZE = " << max3D << " of this OpenGL context";
+    msg << "the packed atlas (" << d.x << " x " << d.y << " x " << d.z << " texels) exceeds ";
+    if (limit < max3D)
+    {
+      msg << "MaximumAtlasSize = " << limit << " (GL_MAX_3D_TEXTURE_SIZE is " << max3D << ")";
+    }
+    else
+    {
+      msg << "GL_MAX_3D_TEXTURE_SIZE = " << max3D << " of this OpenGL context";
+    }
     error = msg.str();
     return false;
   }
@@ -593,9 +602,12 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWin
   this->BoxArray->ReleaseGraphicsResources();
   this->BoxArrayProgram = nullptr;
   this->Context = nullptr;
-  // the CPU copies were freed after the upload: rebuild from the input next time
-  this->Built = false;
-  this->DataValid = false;
+  if (!this->PendingUpload)
+  {
+    // the CPU copies were freed after the upload: rebuild from the input next time
+    this->Built = false;
+    this->DataValid = false;
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -780,8 +792,10 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     fail(in.BuildError);
     return;
   }
-  if (in.PendingUpload || !in.Atlas || in.Context != renWin)
+  if (in.PendingUpload || !in.Atlas || in.Context != renWin ||
+    in.UploadLimit != this->MaximumAtlasSize)
   {
+    in.UploadLimit = this->MaximumAtlasSize;
     if (!in.PendingUpload)
     {
       // the CPU copies were dropped after an upload to another context: rebuild them
@@ -793,7 +807,7 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       }
     }
     std::string error;
-    if (!in.Upload(renWin, error))
+    if (!in.Upload(renWin, this->MaximumAtlasSize, error))
     {
       // keep the CPU data: a later context (or a smaller input) may succeed
       fail(error);
@@ -859,6 +873,18 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   vtkMatrix4x4::Multiply4x4(wcdc, vol->GetMatrix(), mcdc);
   vtkNew<vtkMatrix4x4> dcmc;
   vtkMatrix4x4::Invert(mcdc, dcmc);
+  // perspective rays start at the eye (README: a pinhole at the camera position), parallel ones
+  // on the near plane
+  const bool parallel = camera->GetParallelProjection() != 0;
+  double eyeWC[4] = { 0.0, 0.0, 0.0, 1.0 };
+  camera->GetPosition(eyeWC);
+  vtkNew<vtkMatrix4x4> wcmc;
+  vtkMatrix4x4::Invert(vol->GetMatrix(), wcmc);
+  double eyeMC[4];
+  wcmc->MultiplyPoint(eyeWC, eyeMC);
+  const float eye[4] = { static_cast<float>(eyeMC[0] / eyeMC[3]),
+    static_cast<float>(eyeMC[1] / eyeMC[3]), static_cast<float>(eyeMC[2] / eyeMC[3]),
+    parallel ? 0.0f : 1.0f };
   float mcdcGL[16], dcmcGL[16];
   ToColumnMajor(mcdc, mcdcGL);
   ToColumnMajor(dcmc, dcmcGL);
@@ -963,6 +989,7 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   program->SetUniformMatrix4x4("amrspMCDCMatrix", mcdcGL);
   program->SetUniformMatrix4x4("amrspDCMCMatrix", dcmcGL);
   program->SetUniform4f("amrspViewport", viewport);
+  program->SetUniform4f("amrspEyeMC", eye);
   program->SetUniform3f("amrspOrigin", origin);
   program->SetUniform3f("amrspSpacing0", spacing);
   program->SetUniform3f("amrspRootLo", &in.RootLo.x);
@@ -1066,6 +1093,7 @@ void vtkSinglePassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   const vtkInternals& in = *this->Internals;
   os << indent << "ArrayComponent: " << this->ArrayComponent << "\n";
   os << indent << "SampleDistanceFactor: " << this->SampleDistanceFactor << "\n";
+  os << indent << "MaximumAtlasSize: " << this->MaximumAtlasSize << "\n";
   os << indent << "UseDepthBuffer: " << (this->UseDepthBuffer ? "on" : "off") << "\n";
   os << indent << "NumberOfBuilds: " << in.NumberOfBuilds << "\n";
   os << indent << "KdNodes: " << in.KdNodes << ", DataNodes: " << in.DataNodes << "\n";

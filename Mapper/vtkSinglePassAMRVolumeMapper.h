@@ -87,6 +87,14 @@ public:
   vtkBooleanMacro(UseDepthBuffer, bool);
   ///@}
 
+  ///@{
+  /// Largest atlas edge accepted, in texels: 0 (default) uses the context's
+  /// GL_MAX_3D_TEXTURE_SIZE; a positive value lowers that limit (to keep memory for others, and
+  /// to exercise the error path in tests).
+  vtkSetClampMacro(MaximumAtlasSize, int, 0, VTK_INT_MAX);
+  vtkGetMacro(MaximumAtlasSize, int);
+  ///@}
+
   /// Renders the volume. Called by vtkVolume during the volumetric pass.
   void Render(vtkRenderer* ren, vtkVolume* vol) override;
 
@@ -126,6 +134,7 @@ protected:
   int ArrayComponent = -1;
   double SampleDistanceFactor = 1.0;
   bool UseDepthBuffer = true;
+  int MaximumAtlasSize = 0;
 
 private:
   vtkSinglePassAMRVolumeMapper(const vtkSinglePassAMRVolumeMapper&) = delete;

@@ -48,6 +48,7 @@ uniform sampler2D amrspDepth;      // depth of the opaque geometry, viewport-siz
 
 uniform mat4 amrspDCMCMatrix; // normalized device -> model coordinates (column-major)
 uniform vec4 amrspViewport;   // lower-left corner and size of the viewport, window pixels
+uniform vec4 amrspEyeMC;      // camera position in model coordinates; w = 0: parallel projection
 
 uniform vec3 amrspOrigin;   // model position of level-0 index (0, 0, 0)
 uniform vec3 amrspSpacing0; // model size of a level-0 cell
@@ -124,12 +125,14 @@ vec4 amrspTransferFunction(float scalar)
 
 void main()
 {
-  // The ray through this pixel's centre, in model coordinates, from the near plane on.
+  // The ray through this pixel's centre, in model coordinates: from the eye (perspective, as
+  // the CPU integrators' pinhole camera) or from the near plane (parallel projection).
   vec2 ndc = 2.0 * (gl_FragCoord.xy - amrspViewport.xy) / amrspViewport.zw - 1.0;
   vec4 nearMC = amrspDCMCMatrix * vec4(ndc, -1.0, 1.0);
   vec4 farMC = amrspDCMCMatrix * vec4(ndc, 1.0, 1.0);
-  vec3 entry = nearMC.xyz / nearMC.w;
-  vec3 dirMC = normalize(farMC.xyz / farMC.w - entry);
+  vec3 nearPoint = nearMC.xyz / nearMC.w;
+  vec3 dirMC = normalize(farMC.xyz / farMC.w - nearPoint);
+  vec3 entry = amrspEyeMC.w != 0.0 ? amrspEyeMC.xyz : nearPoint;
 
   float tMax = AMRSP_INF;
 #ifdef AMRSP_USE_DEPTH
@@ -242,6 +245,10 @@ void main()
           float a = 1.0 - pow(1.0 - min(tf.a, 1.0), exponent);
           colour += (1.0 - alpha) * a * tf.rgb;
           alpha += (1.0 - alpha) * a;
+          if (alpha >= AMRSP_OPAQUE_ALPHA)
+          {
+            break;
+          }
         }
       }
       if (alpha >= AMRSP_OPAQUE_ALPHA)

@@ -243,7 +243,9 @@ void Bounds(const Hierarchy& h, glm::dvec3& lo, glm::dvec3& hi)
   }
 }
 
-RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range = nullptr)
+} // namespace
+
+RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range)
 {
   RenderSettings s;
   const std::string size = a.Get("size", "512x512");
@@ -302,6 +304,9 @@ RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range 
   return s;
 }
 
+namespace
+{
+
 void WritePng(const Image& img, const std::string& path)
 {
   vtkNew<vtkImageData> data;
@@ -337,6 +342,8 @@ bool WantsHelp(const Arguments& a)
   return a.Has("help");
 }
 
+} // namespace
+
 ViewAngles ViewOf(const Arguments& a)
 {
   ViewAngles v;
@@ -358,7 +365,6 @@ double CameraDifference(const Camera& a, const Camera& b)
   return d;
 }
 
-} // namespace
 
 int RunInspect(int argc, char** argv)
 {

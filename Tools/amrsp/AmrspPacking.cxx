@@ -28,6 +28,7 @@
 #include <cstdlib>
 #include <limits>
 #include <sstream>
+#include <thread>
 
 namespace amrsp
 {
@@ -83,13 +84,25 @@ bool PackingRenderer::Available(std::string& why)
           "'. scripts/start-xvfb.sh')";
     return false;
   }
-  Display* d = XOpenDisplay(nullptr);
-  if (!d)
+  // The connection stays open for the life of the process: an X server started without
+  // -noreset (Xvfb's default) resets whenever its last client disconnects, and a window VTK opens
+  // during that reset fails ("bad X server connection", then abort()). Closing the probe right
+  // before VTK connects made every other run abort.
+  static Display* keepAlive = nullptr;
+  // (the previous client's exit may have started such a reset: retry for a second)
+  for (int attempt = 0; !keepAlive && attempt < 10; ++attempt)
+  {
+    keepAlive = XOpenDisplay(nullptr);
+    if (!keepAlive)
+    {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+  }
+  if (!keepAlive)
   {
     why = std::string("cannot open the X display ") + display;
     return false;
   }
-  XCloseDisplay(d);
 #endif
   vtkNew<vtkRenderWindow> window;
   window->SetOffScreenRendering(1);
@@ -166,7 +179,21 @@ Image PackingRenderer::Render(double orbitDegrees, double& milliseconds)
   camera->DeepCopy(I->Start);
   camera->Azimuth(orbitDegrees);
   I->Renderer->ResetCameraClippingRange();
+  return this->RenderAsIs(milliseconds);
+}
 
+vtkRenderer* PackingRenderer::GetRenderer()
+{
+  return I->Renderer;
+}
+
+vtkSinglePassAMRVolumeMapper* PackingRenderer::GetMapper()
+{
+  return I->Mapper;
+}
+
+Image PackingRenderer::RenderAsIs(double& milliseconds)
+{
   const auto t0 = std::chrono::steady_clock::now();
   I->Window->Render();
   I->Window->WaitForCompletion();

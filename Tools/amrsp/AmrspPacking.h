@@ -12,6 +12,9 @@
 #include <stdexcept>
 #include <string>
 
+class vtkRenderer;
+class vtkSinglePassAMRVolumeMapper;
+
 namespace amrsp
 {
 namespace tool
@@ -51,6 +54,12 @@ public:
   /// view set-up) and reads it back. `milliseconds` is the time of Render() until the GPU
   /// finished. Throws GpuError when the mapper reports an error.
   Image Render(double orbitDegrees, double& milliseconds);
+
+  /// Renders with the renderer's current camera and props (tests move the camera or add
+  /// opaque geometry through GetRenderer()).
+  Image RenderAsIs(double& milliseconds);
+  vtkRenderer* GetRenderer();
+  vtkSinglePassAMRVolumeMapper* GetMapper();
 
   /// The VTK camera of the last frame as an amrsp::Camera (to check the conventions agree).
   Camera LastCamera() const;
