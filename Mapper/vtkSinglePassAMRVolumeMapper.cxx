@@ -77,18 +77,21 @@ AtlasLayout PackBricksTemporary(const std::vector<glm::ivec3>& extents, const gl
   {
     order[i] = i;
   }
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    const glm::ivec3 &ea = extents[a], &eb = extents[b];
-    if (ea.z != eb.z)
+  std::stable_sort(order.begin(),
+    order.end(),
+    [&](std::size_t a, std::size_t b)
     {
-      return ea.z > eb.z;
-    }
-    if (ea.y != eb.y)
-    {
-      return ea.y > eb.y;
-    }
-    return ea.x > eb.x;
-  });
+      const glm::ivec3 &ea = extents[a], &eb = extents[b];
+      if (ea.z != eb.z)
+      {
+        return ea.z > eb.z;
+      }
+      if (ea.y != eb.y)
+      {
+        return ea.y > eb.y;
+      }
+      return ea.x > eb.x;
+    });
   int largest = 1;
   double texels = 0.0;
   for (const glm::ivec3& e : extents)
@@ -148,8 +151,8 @@ AtlasLayout PackBricksTemporary(const std::vector<glm::ivec3>& extents, const gl
   {
     std::ostringstream msg;
     msg << "the " << n << " bricks (" << static_cast<long long>(texels)
-        << " texels) do not fit into a packed atlas of at most " << maxDims.x << " x "
-        << maxDims.y << " x " << maxDims.z << " texels";
+        << " texels) do not fit into a packed atlas of at most " << maxDims.x << " x " << maxDims.y
+        << " x " << maxDims.z << " texels";
     throw std::runtime_error(msg.str());
   }
   return best;
@@ -185,9 +188,9 @@ public:
   vtkMTimeType BuiltInputMTime = 0;
   std::string BuiltArray;
   int BuiltComponent = -1;
-  bool Built = false;      // a build was attempted for the key above
-  bool DataValid = false;  // ... and succeeded
-  std::string BuildError;  // ... or failed with this message
+  bool Built = false;     // a build was attempted for the key above
+  bool DataValid = false; // ... and succeeded
+  std::string BuildError; // ... or failed with this message
   vtkTimeStamp BuildTime;
   int NumberOfBuilds = 0;
   double BuildSeconds = 0.0;
@@ -201,7 +204,7 @@ public:
   int RootLoFinest[3] = { 0, 0, 0 };
   int RootHiFinest[3] = { 0, 0, 0 };
   std::vector<glm::vec3> LevelCellSize;
-  std::vector<int> LevelToFinest; // 3 per level
+  std::vector<int> LevelToFinest;   // 3 per level
   std::vector<double> LevelMinEdge; // smallest model-space edge of a cell of each level
   double Bounds[6] = { 0, -1, 0, -1, 0, -1 };
   double ScalarRange[2] = { 0.0, 1.0 };
@@ -274,8 +277,9 @@ public:
 };
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(
-  vtkOverlappingAMR* amr, const std::string& array, int component)
+bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
+  const std::string& array,
+  int component)
 {
   const auto t0 = std::chrono::steady_clock::now();
   this->Built = true;
@@ -389,8 +393,8 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(
     this->ScalarRange[1] = vmin <= vmax ? vmax : 1.0;
     this->TreeTexels = enc.Tree;
     this->DataNodeTexels = enc.DataNodes;
-    this->TextureBytes = static_cast<long long>(this->AtlasTexels.size() * sizeof(float) +
-      enc.Tree.Bytes() + enc.DataNodes.Bytes());
+    this->TextureBytes = static_cast<long long>(
+      this->AtlasTexels.size() * sizeof(float) + enc.Tree.Bytes() + enc.DataNodes.Bytes());
     this->PendingUpload = true;
     this->DataValid = true;
   }
@@ -401,14 +405,14 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(
     return false;
   }
   this->BuildTime.Modified();
-  this->BuildSeconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  this->BuildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return true;
 }
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMRVolumeMapper::vtkInternals::Upload(
-  vtkOpenGLRenderWindow* renWin, int atlasLimit, std::string& error)
+bool vtkSinglePassAMRVolumeMapper::vtkInternals::Upload(vtkOpenGLRenderWindow* renWin,
+  int atlasLimit,
+  std::string& error)
 {
   const auto t0 = std::chrono::steady_clock::now();
   const int max3D = vtkTextureObject::GetMaximumTextureSize3D(renWin);
@@ -441,7 +445,8 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Upload(
   {
   }
 
-  auto makeInteger = [&](vtkSmartPointer<vtkTextureObject>& tex, amrsp::UIntTexture3D& texels) {
+  auto makeInteger = [&](vtkSmartPointer<vtkTextureObject>& tex, amrsp::UIntTexture3D& texels)
+  {
     tex = vtkSmartPointer<vtkTextureObject>::New();
     tex->SetContext(renWin);
     tex->SetInternalFormat(GL_RG32UI);
@@ -453,8 +458,11 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Upload(
     tex->SetWrapT(vtkTextureObject::ClampToEdge);
     tex->SetWrapR(vtkTextureObject::ClampToEdge);
     return tex->Create3DFromRaw(static_cast<unsigned int>(texels.Dims.x),
-      static_cast<unsigned int>(texels.Dims.y), static_cast<unsigned int>(texels.Dims.z), 2,
-      VTK_UNSIGNED_INT, texels.Texels.data());
+      static_cast<unsigned int>(texels.Dims.y),
+      static_cast<unsigned int>(texels.Dims.z),
+      2,
+      VTK_UNSIGNED_INT,
+      texels.Texels.data());
   };
   bool ok = makeInteger(this->Tree, this->TreeTexels);
   ok = ok && makeInteger(this->DataNodesTexture, this->DataNodeTexels);
@@ -471,16 +479,18 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Upload(
     this->Atlas->SetWrapT(vtkTextureObject::ClampToEdge);
     this->Atlas->SetWrapR(vtkTextureObject::ClampToEdge);
     ok = this->Atlas->Create3DFromRaw(static_cast<unsigned int>(d.x),
-      static_cast<unsigned int>(d.y), static_cast<unsigned int>(d.z), 1, VTK_FLOAT,
+      static_cast<unsigned int>(d.y),
+      static_cast<unsigned int>(d.z),
+      1,
+      VTK_FLOAT,
       this->AtlasTexels.data());
   }
   const GLenum glError = glGetError();
   if (!ok || glError != GL_NO_ERROR)
   {
     std::ostringstream msg;
-    msg << "uploading the kD-tree and atlas textures ("
-        << this->TextureBytes / (1024.0 * 1024.0) << " MiB) failed"
-        << (glError == GL_OUT_OF_MEMORY ? ": out of GPU memory" : "")
+    msg << "uploading the kD-tree and atlas textures (" << this->TextureBytes / (1024.0 * 1024.0)
+        << " MiB) failed" << (glError == GL_OUT_OF_MEMORY ? ": out of GPU memory" : "")
         << (glError != GL_NO_ERROR ? " (OpenGL error " + std::to_string(glError) + ")" : "");
     error = msg.str();
     this->Tree = nullptr;
@@ -498,11 +508,11 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Upload(
 
 //------------------------------------------------------------------------------
 bool vtkSinglePassAMRVolumeMapper::vtkInternals::UpdateTransferFunction(
-  vtkOpenGLRenderWindow* renWin, vtkVolumeProperty* property)
+  vtkOpenGLRenderWindow* renWin,
+  vtkVolumeProperty* property)
 {
   if (this->Transfer && this->TransferProperty == property &&
-    this->TransferPropertyMTime == property->GetMTime() &&
-    this->TransferTime > this->BuildTime)
+    this->TransferPropertyMTime == property->GetMTime() && this->TransferTime > this->BuildTime)
   {
     return true;
   }
@@ -513,7 +523,8 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::UpdateTransferFunction(
 
   // tabulate over the union of the functions' ranges; beyond it both clamp to their end points
   double range[2] = { std::numeric_limits<double>::max(), -std::numeric_limits<double>::max() };
-  auto extend = [&range](const double* r, int points) {
+  auto extend = [&range](const double* r, int points)
+  {
     if (points > 0)
     {
       range[0] = std::min(range[0], r[0]);
@@ -626,7 +637,8 @@ vtkSinglePassAMRVolumeMapper::~vtkSinglePassAMRVolumeMapper()
 }
 
 //------------------------------------------------------------------------------
-int vtkSinglePassAMRVolumeMapper::FillInputPortInformation(int vtkNotUsed(port), vtkInformation* info)
+int vtkSinglePassAMRVolumeMapper::FillInputPortInformation(int vtkNotUsed(port),
+  vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkOverlappingAMR");
   return 1;
@@ -723,7 +735,8 @@ void vtkSinglePassAMRVolumeMapper::GetBounds(double bounds[6])
 bool vtkSinglePassAMRVolumeMapper::IsRenderSupported(vtkRenderWindow* window, std::string* why)
 {
   vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
-  auto fail = [why](const std::string& reason) {
+  auto fail = [why](const std::string& reason)
+  {
     if (why)
     {
       *why = reason;
@@ -757,7 +770,8 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   // the same error is reported once, not on every frame
   const std::string previousError = in.LastError;
   in.LastError.clear();
-  auto fail = [&](const std::string& message) {
+  auto fail = [&](const std::string& message)
+  {
     if (message != previousError)
     {
       vtkErrorMacro(<< message);
@@ -844,8 +858,8 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     fail("the single-pass AMR shader failed to compile or link (see the earlier error)");
     return;
   }
-  vtkShaderProgram* program =
-    renWin->GetShaderCache()->ReadyShaderProgram(amrsp_SinglePassAMR_vert_glsl, fragment.c_str(), "");
+  vtkShaderProgram* program = renWin->GetShaderCache()->ReadyShaderProgram(
+    amrsp_SinglePassAMR_vert_glsl, fragment.c_str(), "");
   if (!program)
   {
     in.FailedFragmentSource = fragment;
@@ -883,7 +897,8 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   double eyeMC[4];
   wcmc->MultiplyPoint(eyeWC, eyeMC);
   const float eye[4] = { static_cast<float>(eyeMC[0] / eyeMC[3]),
-    static_cast<float>(eyeMC[1] / eyeMC[3]), static_cast<float>(eyeMC[2] / eyeMC[3]),
+    static_cast<float>(eyeMC[1] / eyeMC[3]),
+    static_cast<float>(eyeMC[2] / eyeMC[3]),
     parallel ? 0.0f : 1.0f };
   float mcdcGL[16], dcmcGL[16];
   ToColumnMajor(mcdc, mcdcGL);
@@ -951,8 +966,9 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       in.Depth->SetMagnificationFilter(vtkTextureObject::Nearest);
       in.Depth->SetWrapS(vtkTextureObject::ClampToEdge);
       in.Depth->SetWrapT(vtkTextureObject::ClampToEdge);
-      in.Depth->AllocateDepth(
-        static_cast<unsigned int>(width), static_cast<unsigned int>(height), vtkTextureObject::Float32);
+      in.Depth->AllocateDepth(static_cast<unsigned int>(width),
+        static_cast<unsigned int>(height),
+        vtkTextureObject::Float32);
     }
     in.Depth->Activate();
     in.Depth->CopyFromFrameBuffer(x0, y0, 0, 0, width, height);
@@ -965,12 +981,16 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     steps.push_back(static_cast<float>(this->SampleDistanceFactor * edge));
   }
-  const float origin[3] = { static_cast<float>(in.Origin.x), static_cast<float>(in.Origin.y),
+  const float origin[3] = { static_cast<float>(in.Origin.x),
+    static_cast<float>(in.Origin.y),
     static_cast<float>(in.Origin.z) };
-  const float spacing[3] = { static_cast<float>(in.Spacing0.x), static_cast<float>(in.Spacing0.y),
+  const float spacing[3] = { static_cast<float>(in.Spacing0.x),
+    static_cast<float>(in.Spacing0.y),
     static_cast<float>(in.Spacing0.z) };
-  const float viewport[4] = { static_cast<float>(x0), static_cast<float>(y0),
-    static_cast<float>(width), static_cast<float>(height) };
+  const float viewport[4] = { static_cast<float>(x0),
+    static_cast<float>(y0),
+    static_cast<float>(width),
+    static_cast<float>(height) };
   const float transferRange[2] = { static_cast<float>(in.TransferRange[0]),
     static_cast<float>(1.0 / (in.TransferRange[1] - in.TransferRange[0])) };
 
@@ -1003,8 +1023,8 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   program->SetUniformi("amrspMaxSegments", static_cast<int>(std::min<long long>(guard, 1 << 30)));
   program->SetUniform2f("amrspTransferRange", transferRange);
   program->SetUniformf("amrspTransferSize", static_cast<float>(TransferTableSize));
-  program->SetUniformf(
-    "amrspUnitDistance", static_cast<float>(std::max(property->GetScalarOpacityUnitDistance(0), 1e-12)));
+  program->SetUniformf("amrspUnitDistance",
+    static_cast<float>(std::max(property->GetScalarOpacityUnitDistance(0), 1e-12)));
 
   // ---- draw the back faces once per pixel, blending premultiplied colour front to back
   {

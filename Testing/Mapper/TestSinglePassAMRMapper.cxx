@@ -94,15 +94,20 @@ RenderSettings Settings(Hierarchy& h, std::vector<std::string> options)
   {
     argv.push_back(&o[0]);
   }
-  const Arguments a = ParseArguments(static_cast<int>(argv.size()), argv.data(), 1,
+  const Arguments a = ParseArguments(static_cast<int>(argv.size()),
+    argv.data(),
+    1,
     { "size", "azimuth", "elevation", "zoom", "tf", "scale", "unit-distance", "sample-factor" },
     {});
   return MakeSettings(h, a);
 }
 
 /// A black, unlit, opaque square of half-size `half` centred at `centre`, facing `normal`.
-vtkSmartPointer<vtkActor> OpaqueSquare(
-  const glm::dvec3& centre, const glm::dvec3& normal, const glm::dvec3& up, double half, double grey)
+vtkSmartPointer<vtkActor> OpaqueSquare(const glm::dvec3& centre,
+  const glm::dvec3& normal,
+  const glm::dvec3& up,
+  double half,
+  double grey)
 {
   const glm::dvec3 n = glm::normalize(normal);
   const glm::dvec3 u = glm::normalize(up - glm::dot(up, n) * n);

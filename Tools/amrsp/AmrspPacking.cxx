@@ -110,7 +110,9 @@ bool PackingRenderer::Available(std::string& why)
   return vtkSinglePassAMRVolumeMapper::IsRenderSupported(window, &why);
 }
 
-PackingRenderer::PackingRenderer(const Hierarchy& h, const RenderSettings& s, const ViewAngles& view)
+PackingRenderer::PackingRenderer(const Hierarchy& h,
+  const RenderSettings& s,
+  const ViewAngles& view)
   : I(new Internals)
 {
   std::string why;
@@ -226,7 +228,8 @@ Image PackingRenderer::RenderAsIs(double& milliseconds)
   vtkImageData* data = grab->GetOutput();
   int dims[3];
   data->GetDimensions(dims);
-  vtkUnsignedCharArray* rgb = vtkUnsignedCharArray::SafeDownCast(data->GetPointData()->GetScalars());
+  vtkUnsignedCharArray* rgb =
+    vtkUnsignedCharArray::SafeDownCast(data->GetPointData()->GetScalars());
   if (!rgb || dims[0] != I->Width || dims[1] != I->Height || rgb->GetNumberOfComponents() != 3)
   {
     throw GpuError("reading the rendered image back failed");
