@@ -537,8 +537,10 @@ int RunImageCommand(int argc, char** argv, bool reference)
       gpuReport << "device: " << gpu.Device() << "\n"
                 << "atlas: " << gpu.AtlasDimensions() << " texels, textures "
                 << gpu.TextureBytes() / (1024.0 * 1024.0) << " MiB\n"
-                << "first frame (s): " << firstMs / 1000.0 << " (build " << gpu.BuildSeconds()
-                << ", upload " << gpu.UploadSeconds() << ", shader compile and render)\n"
+                << "mapper (s): build " << gpu.BuildSeconds()
+                << " (conversion, kD-tree, packing, encoding; done in GetBounds), upload "
+                << gpu.UploadSeconds() << "; first frame " << firstMs / 1000.0
+                << " (upload, shader compile, render)\n"
                 << "camera: VTK's camera and the tool's conventions "
                 << (cameraDifference < 1e-6 ? "agree" : "DIFFER") << " (relative difference "
                 << cameraDifference << ")\n";
