@@ -2,6 +2,7 @@
 #include "AmrspCommands.h"
 
 #include "AmrspDataset.h"
+#include "AmrspPacking.h"
 
 #include "amrsp/BrickAtlas.h"
 #include "amrsp/BrickPacking.h"
@@ -287,7 +288,9 @@ void Bounds(const Hierarchy& h, glm::dvec3& lo, glm::dvec3& hi)
   hi = h.WorldHi(h.RootCells(), 0);
 }
 
-RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range = nullptr)
+} // namespace
+
+RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range)
 {
   RenderSettings s;
   const std::string size = a.Get("size", "512x512");
@@ -346,6 +349,9 @@ RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range 
   return s;
 }
 
+namespace
+{
+
 void WritePng(const Image& img, const std::string& path)
 {
   vtkNew<vtkImageData> data;
@@ -382,6 +388,28 @@ bool WantsHelp(const Arguments& a)
 }
 
 } // namespace
+
+ViewAngles ViewOf(const Arguments& a)
+{
+  ViewAngles v;
+  v.Azimuth = a.GetNumber("azimuth", 30.0);
+  v.Elevation = a.GetNumber("elevation", 20.0);
+  v.Zoom = a.GetNumber("zoom", 1.0);
+  return v;
+}
+
+/// Largest difference between the VTK camera the mapper used and the tool's own camera, relative
+/// to the camera distance (the view angle in degrees / 180).
+double CameraDifference(const Camera& a, const Camera& b)
+{
+  const double scale = std::max(1e-300, glm::length(b.Position - b.FocalPoint));
+  double d = glm::length(a.Position - b.Position) / scale;
+  d = std::max(d, glm::length(a.FocalPoint - b.FocalPoint) / scale);
+  d = std::max(d, glm::length(glm::normalize(a.ViewUp) - glm::normalize(b.ViewUp)));
+  d = std::max(d, std::abs(a.ViewAngle - b.ViewAngle) / 180.0);
+  return d;
+}
+
 
 int RunInspect(int argc, char** argv)
 {
@@ -539,8 +567,12 @@ int RunImageCommand(int argc, char** argv, bool reference)
         : "Renders the dataset with the single-pass kD-tree raycaster and prints which method\n"
           "rendered. Methods: cpu-kdtree (the CPU traversal of the encoded tree textures that\n"
           "mirrors the GLSL shader, sampling the grids), cpu-packing (the same, sampling the\n"
-          "packed atlas through the data nodes' offsets, as the packing shader does).\n"
-          "  --method M                  cpu-kdtree (default) or cpu-packing\n");
+          "packed atlas through the data nodes' offsets, as the packing shader does), packing\n"
+          "(vtkSinglePassAMRVolumeMapper on the GPU: one packed R32F atlas, offscreen\n"
+          "vtkRenderWindow; needs an X display here).\n"
+          "  --method M                  cpu-kdtree (default), cpu-packing or packing\n"
+          "  --compare                   also render the CPU reference and the CPU kD-tree\n"
+          "                              image and print the RMSE (0-255) against them\n");
   try
   {
     std::vector<std::string> valueOptions =
@@ -549,7 +581,8 @@ int RunImageCommand(int argc, char** argv, bool reference)
     {
       valueOptions.push_back("method");
     }
-    const Arguments a = ParseArguments(argc, argv, 1, valueOptions, {});
+    const Arguments a = ParseArguments(argc, argv, 1, valueOptions,
+      reference ? std::vector<std::string>{} : std::vector<std::string>{ "compare" });
     if (WantsHelp(a))
     {
       std::cout << help << "  -o, --output FILE           PNG to write (default " << name
@@ -562,10 +595,10 @@ int RunImageCommand(int argc, char** argv, bool reference)
       throw UsageError{ "unexpected argument '" + a.Positional[2] + "'" };
     }
     const std::string method = a.Get("method", "cpu-kdtree");
-    if (!reference && method != "cpu-kdtree" && method != "cpu-packing")
+    if (!reference && method != "cpu-kdtree" && method != "cpu-packing" && method != "packing")
     {
       throw UsageError{ "unknown --method '" + method +
-        "' (available in this build: cpu-kdtree, cpu-packing)" };
+        "' (available in this build: cpu-kdtree, cpu-packing, packing)" };
     }
     const AtlasRequest atlasRequest = ParseAtlasRequest(a);
     const std::string output = a.Get("output", name + ".png");
@@ -576,9 +609,32 @@ int RunImageCommand(int argc, char** argv, bool reference)
     auto t0 = Clock::now();
     Image img;
     double preprocess = 0.0;
+    double renderSeconds = 0.0;
+    std::ostringstream gpuReport;
     if (reference)
     {
       img = RenderReference(d.Data, s);
+      renderSeconds = Seconds(t0);
+    }
+    else if (method == "packing")
+    {
+      PackingRenderer gpu(d.Data, s, ViewOf(a));
+      double firstMs = 0.0, ms = 0.0;
+      gpu.Render(0.0, firstMs); // converts, builds, packs, uploads and compiles
+      img = gpu.Render(0.0, ms);
+      preprocess = gpu.BuildSeconds() + gpu.UploadSeconds();
+      renderSeconds = ms / 1000.0;
+      const double cameraDifference = CameraDifference(gpu.LastCamera(), s.View);
+      gpuReport << "device: " << gpu.Device() << "\n"
+                << "atlas: " << gpu.AtlasDimensions() << " texels, textures "
+                << gpu.TextureBytes() / (1024.0 * 1024.0) << " MiB\n"
+                << "mapper (s): build " << gpu.BuildSeconds()
+                << " (conversion, kD-tree, packing, encoding; done in GetBounds), upload "
+                << gpu.UploadSeconds() << "; first frame " << firstMs / 1000.0
+                << " (upload, shader compile, render)\n"
+                << "camera: VTK's camera and the tool's conventions "
+                << (cameraDifference < 1e-6 ? "agree" : "DIFFER") << " (relative difference "
+                << cameraDifference << ")\n";
     }
     else if (method == "cpu-kdtree")
     {
@@ -586,6 +642,7 @@ int RunImageCommand(int argc, char** argv, bool reference)
       preprocess = Seconds(t0);
       t0 = Clock::now();
       img = RenderKdTree(d.Data, enc, s);
+      renderSeconds = Seconds(t0);
     }
     else
     {
@@ -596,8 +653,8 @@ int RunImageCommand(int argc, char** argv, bool reference)
       std::cout << "atlas: " << AtlasJson(atlas.Layout).dump() << "\n";
       t0 = Clock::now();
       img = RenderKdTree(d.Data, enc, s, &atlas);
+      renderSeconds = Seconds(t0);
     }
-    const double renderSeconds = Seconds(t0);
     WritePng(img, output);
     std::cout << "method: " << (reference ? "cpu-reference" : method) << "\n"
               << "dataset: " << d.Spec << " (" << d.Format << "), array " << d.Data.ArrayName
@@ -606,8 +663,20 @@ int RunImageCommand(int argc, char** argv, bool reference)
               << "scalars: " << d.Data.ArrayName << " in [" << range.x << ", " << range.y
               << "], transfer function '" << a.Get("tf", "default") << "'\n"
               << "image: " << output << " (" << s.Width << "x" << s.Height << ")\n"
+              << gpuReport.str()
               << "times (s): load " << d.LoadSeconds << ", preprocess " << preprocess
               << ", render " << renderSeconds << "\n";
+    if (!reference && a.Has("compare"))
+    {
+      const Image ref = RenderReference(d.Data, s);
+      std::cout << "rmse (0-255) vs cpu-reference: " << Rmse(img, ref);
+      if (method != "cpu-kdtree")
+      {
+        const Image kd = RenderKdTree(d.Data, EncodeKdTree(d.Data, BuildKdTree(d.Data)), s);
+        std::cout << ", vs cpu-kdtree: " << Rmse(img, kd);
+      }
+      std::cout << "\n";
+    }
     double covered = 0.0;
     for (const glm::vec4& p : img.Pixels)
     {
@@ -648,8 +717,10 @@ int RunBench(int argc, char** argv)
     "usage: amrsp bench [DATASET] [--size WxH] [--frames N] [--methods LIST] [--json FILE]\n"
     "Renders an orbit of N frames per method in one process and reports ms/frame, fps,\n"
     "preprocessing seconds and the RMSE/PSNR of frame 0 against the CPU reference.\n"
-    "Methods in this build: cpu-kdtree. GPU methods (packing, bindless, multipass,\n"
-    "vtk-amr-resample, uniform-gpu) are listed with an error until the mapper implements them.\n";
+    "Methods in this build: cpu-kdtree, packing (vtkSinglePassAMRVolumeMapper, offscreen;\n"
+    "its first frame, which builds, uploads and compiles, is reported apart and not timed with\n"
+    "the orbit). Other GPU methods (bindless, multipass, vtk-amr-resample, uniform-gpu) are\n"
+    "listed with an error until they are implemented.\n";
   try
   {
     const Arguments a = ParseArguments(
@@ -687,12 +758,68 @@ int RunBench(int argc, char** argv)
     j["image"] = { s.Width, s.Height };
     j["frames"] = frames;
     j["methods"] = Json::object();
+    Image kdFrame0; // the CPU kD-tree image of frame 0, for the GPU methods' comparison
+    auto summary = [frames](const std::vector<double>& ms, Json& out) {
+      std::vector<double> sorted = ms;
+      std::sort(sorted.begin(), sorted.end());
+      double mean = 0.0;
+      for (double v : ms)
+      {
+        mean += v / frames;
+      }
+      out["fps"] = 1000.0 / mean;
+      out["ms_mean"] = mean;
+      out["ms_median"] = sorted[sorted.size() / 2];
+    };
+    auto psnr = [](double rmse) { return rmse > 0.0 ? 20.0 * std::log10(255.0 / rmse) : 99.0; };
     for (const std::string& m : methods)
     {
+      if (m == "packing")
+      {
+        try
+        {
+          PackingRenderer gpu(d.Data, s, ViewOf(a));
+          double firstMs = 0.0;
+          gpu.Render(0.0, firstMs);
+          std::vector<double> ms;
+          Image first;
+          for (int f = 0; f < frames; ++f)
+          {
+            double frameMs = 0.0;
+            Image img = gpu.Render(360.0 * f / frames, frameMs);
+            ms.push_back(frameMs);
+            if (f == 0)
+            {
+              first = std::move(img);
+            }
+          }
+          if (kdFrame0.Pixels.empty())
+          {
+            kdFrame0 = RenderKdTree(d.Data, EncodeKdTree(d.Data, BuildKdTree(d.Data)), s);
+          }
+          Json r;
+          summary(ms, r);
+          const double rmse = Rmse(first, reference);
+          r["rmse"] = rmse;
+          r["psnr"] = psnr(rmse);
+          r["rmse_vs_cpu_kdtree"] = Rmse(first, kdFrame0);
+          r["gpu_bytes"] = gpu.TextureBytes();
+          r["atlas"] = gpu.AtlasDimensions();
+          r["first_frame_ms"] = firstMs;
+          r["builds"] = gpu.NumberOfBuilds();
+          r["device"] = gpu.Device();
+          r["preprocess_s"] = { { "build", gpu.BuildSeconds() }, { "upload", gpu.UploadSeconds() } };
+          j["methods"][m] = r;
+        }
+        catch (const GpuError& e)
+        {
+          j["methods"][m] = { { "error", e.what() } };
+        }
+        continue;
+      }
       if (m != "cpu-kdtree")
       {
-        j["methods"][m] = { { "error", "not available in this build (the GPU mapper is not "
-                                       "implemented yet)" } };
+        j["methods"][m] = { { "error", "not available in this build (not implemented yet)" } };
         continue;
       }
       auto t0 = Clock::now();
@@ -710,26 +837,21 @@ int RunBench(int argc, char** argv)
         fs.View = start;
         fs.View.Azimuth(360.0 * f / frames);
         t0 = Clock::now();
-        const Image img = RenderKdTree(d.Data, enc, fs);
+        Image img = RenderKdTree(d.Data, enc, fs);
         ms.push_back(1000.0 * Seconds(t0));
         if (f == 0)
         {
           rmse = Rmse(img, reference);
+          kdFrame0 = std::move(img);
         }
       }
-      std::vector<double> sorted = ms;
-      std::sort(sorted.begin(), sorted.end());
-      double mean = 0.0;
-      for (double v : ms)
-      {
-        mean += v / frames;
-      }
-      const double median = sorted[sorted.size() / 2];
-      j["methods"][m] = { { "fps", 1000.0 / mean }, { "ms_mean", mean }, { "ms_median", median },
-        { "rmse", rmse },
-        { "psnr", rmse > 0.0 ? 20.0 * std::log10(255.0 / rmse) : 99.0 },
-        { "gpu_bytes", enc.Tree.Bytes() + enc.DataNodes.Bytes() },
-        { "preprocess_s", { { "kdtree", kd }, { "encode", encode } } } };
+      Json r;
+      summary(ms, r);
+      r["rmse"] = rmse;
+      r["psnr"] = psnr(rmse);
+      r["gpu_bytes"] = enc.Tree.Bytes() + enc.DataNodes.Bytes();
+      r["preprocess_s"] = { { "kdtree", kd }, { "encode", encode } };
+      j["methods"][m] = r;
     }
     if (a.Has("json"))
     {

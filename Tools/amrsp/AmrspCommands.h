@@ -4,6 +4,12 @@
 /// The subcommands of the amrsp tool. Each returns the process exit code; errors are printed as
 /// one line "amrsp: error: ..." on stderr.
 
+#include "AmrspPacking.h"
+#include "amrsp/Hierarchy.h"
+#include "amrsp/Render.h"
+
+#include <glm/glm.hpp>
+
 #include <iosfwd>
 #include <map>
 #include <string>
@@ -40,6 +46,18 @@ int RunInspect(int argc, char** argv);
 int RunReference(int argc, char** argv);
 int RunRender(int argc, char** argv);
 int RunBench(int argc, char** argv);
+
+/// The render settings of the view and transfer-function options (README, "Rendering
+/// conventions"). Maps the scalars of `h` as --scale asks (log10 in place) and returns their
+/// display range in `range`. Throws UsageError for bad options.
+RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range = nullptr);
+
+/// The VTK camera operations the view options ask for (--azimuth, --elevation, --zoom).
+ViewAngles ViewOf(const Arguments& a);
+
+/// Largest difference between two cameras relative to the camera distance (positions, focal
+/// points), of the unit view-up vectors, and of the view angles in degrees / 180.
+double CameraDifference(const Camera& a, const Camera& b);
 
 /// The dataset used when none is given: small enough to render in a second on two CPU cores.
 extern const char* const DefaultDataset;

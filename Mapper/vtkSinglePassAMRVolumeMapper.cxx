@@ -1,0 +1,1123 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkSinglePassAMRVolumeMapper.h"
+
+#include "vtkAMRCoreConversion.h"
+
+#include "amrsp/Hierarchy.h"
+#include "amrsp/KdTree.h"
+#include "amrsp/KdTreeEncoding.h"
+
+#include "vtkColorTransferFunction.h"
+#include "vtkDataObject.h"
+#include "vtkInformation.h"
+#include "vtkMath.h"
+#include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLBufferObject.h"
+#include "vtkOpenGLCamera.h"
+#include "vtkOpenGLError.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkOpenGLVertexArrayObject.h"
+#include "vtkOverlappingAMR.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
+#include "vtkSmartPointer.h"
+#include "vtkTextureObject.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+#include "vtk_glew.h"
+
+// GLSL embedded at build time (vtk_encode_string)
+#include "amrsp_KdTreeLayout_glsl.h"
+#include "amrsp_SinglePassAMR_frag_glsl.h"
+#include "amrsp_SinglePassAMR_vert_glsl.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+
+/// Where the bricks of one hierarchy go in the packed atlas.
+struct AtlasLayout
+{
+  glm::ivec3 Dims{ 0 };
+  std::vector<glm::ivec3> Origins; ///< per brick: atlas texel of its first cell
+};
+
+/**
+ * TEMPORARY stand-in for amrsp::PackBricks (Mapper/Core/include/amrsp/BrickPacking.h, being
+ * written on main): next-fit decreasing height (paper, section 5.1) with a few square base sizes,
+ * keeping the smallest atlas within `maxDims`. Bricks are sorted by decreasing z, y, x extent and
+ * laid along x in rows, rows along y in layers, layers along z. Packing quality is not a goal
+ * here; replace the body by PackBricks when it lands. Throws std::runtime_error when nothing fits.
+ */
+AtlasLayout PackBricksTemporary(const std::vector<glm::ivec3>& extents, const glm::ivec3& maxDims)
+{
+  AtlasLayout best;
+  const std::size_t n = extents.size();
+  if (n == 0)
+  {
+    best.Dims = glm::ivec3(1);
+    return best;
+  }
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    order[i] = i;
+  }
+  std::stable_sort(order.begin(),
+    order.end(),
+    [&](std::size_t a, std::size_t b)
+    {
+      const glm::ivec3 &ea = extents[a], &eb = extents[b];
+      if (ea.z != eb.z)
+      {
+        return ea.z > eb.z;
+      }
+      if (ea.y != eb.y)
+      {
+        return ea.y > eb.y;
+      }
+      return ea.x > eb.x;
+    });
+  int largest = 1;
+  double texels = 0.0;
+  for (const glm::ivec3& e : extents)
+  {
+    largest = std::max(largest, std::max(e.x, e.y));
+    texels += static_cast<double>(e.x) * e.y * e.z;
+  }
+  double bestVolume = std::numeric_limits<double>::max();
+  const int start = std::max(largest, static_cast<int>(std::cbrt(texels) * 0.75));
+  for (double base = start; base <= 2.0 * std::max(maxDims.x, maxDims.y); base *= 1.2)
+  {
+    const int w = std::min(static_cast<int>(base), maxDims.x);
+    const int h = std::min(static_cast<int>(base), maxDims.y);
+    if (w < largest || h < largest)
+    {
+      continue;
+    }
+    std::vector<glm::ivec3> origins(n);
+    int x = 0, y = 0, z = 0, rowHeight = 0, layerDepth = 0;
+    glm::ivec3 used(0);
+    for (std::size_t i : order)
+    {
+      const glm::ivec3& e = extents[i];
+      if (x + e.x > w)
+      {
+        x = 0;
+        y += rowHeight;
+        rowHeight = 0;
+      }
+      if (y + e.y > h)
+      {
+        x = 0;
+        y = 0;
+        z += layerDepth;
+        layerDepth = 0;
+        rowHeight = 0;
+      }
+      origins[i] = glm::ivec3(x, y, z);
+      x += e.x;
+      rowHeight = std::max(rowHeight, e.y);
+      layerDepth = std::max(layerDepth, e.z);
+      used = glm::max(used, glm::ivec3(x, y + e.y, z + e.z));
+    }
+    const double volume = static_cast<double>(used.x) * used.y * used.z;
+    if (used.z <= maxDims.z && volume < bestVolume)
+    {
+      bestVolume = volume;
+      best.Dims = used;
+      best.Origins = std::move(origins);
+    }
+    if (w == maxDims.x && h == maxDims.y)
+    {
+      break;
+    }
+  }
+  if (best.Origins.empty())
+  {
+    std::ostringstream msg;
+    msg << "the " << n << " bricks (" << static_cast<long long>(texels)
+        << " texels) do not fit into a packed atlas of at most " << maxDims.x << " x " << maxDims.y
+        << " x " << maxDims.z << " texels";
+    throw std::runtime_error(msg.str());
+  }
+  return best;
+}
+
+double MinEdge(const glm::dvec3& v)
+{
+  return std::min(v.x, std::min(v.y, v.z));
+}
+
+/// Column-major float copy of a row-major vtkMatrix4x4, as glUniformMatrix4fv expects.
+void ToColumnMajor(vtkMatrix4x4* m, float out[16])
+{
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      out[c * 4 + r] = static_cast<float>(m->GetElement(r, c));
+    }
+  }
+}
+
+constexpr int TransferTableSize = 4096;
+
+} // namespace
+
+//------------------------------------------------------------------------------
+class vtkSinglePassAMRVolumeMapper::vtkInternals
+{
+public:
+  // ---- what the textures were built from
+  vtkOverlappingAMR* BuiltInput = nullptr; // identity only, never dereferenced
+  vtkMTimeType BuiltInputMTime = 0;
+  std::string BuiltArray;
+  int BuiltComponent = -1;
+  bool Built = false;     // a build was attempted for the key above
+  bool DataValid = false; // ... and succeeded
+  std::string BuildError; // ... or failed with this message
+  vtkTimeStamp BuildTime;
+  int NumberOfBuilds = 0;
+  double BuildSeconds = 0.0;
+  double UploadSeconds = 0.0;
+
+  // ---- CPU results of the build (what the shader needs as uniforms)
+  glm::dvec3 Origin{ 0.0 };
+  glm::dvec3 Spacing0{ 1.0 };
+  glm::vec3 RootLo{ 0.0f };
+  glm::vec3 RootHi{ 0.0f };
+  int RootLoFinest[3] = { 0, 0, 0 };
+  int RootHiFinest[3] = { 0, 0, 0 };
+  std::vector<glm::vec3> LevelCellSize;
+  std::vector<int> LevelToFinest;   // 3 per level
+  std::vector<double> LevelMinEdge; // smallest model-space edge of a cell of each level
+  double Bounds[6] = { 0, -1, 0, -1, 0, -1 };
+  double ScalarRange[2] = { 0.0, 1.0 };
+  long long KdNodes = 0;
+  long long DataNodes = 0;
+  long long TextureBytes = 0;
+  glm::ivec3 AtlasDims{ 0 };
+
+  // ---- CPU texture data waiting for upload (freed once uploaded)
+  bool PendingUpload = false;
+  amrsp::UIntTexture3D TreeTexels;
+  amrsp::UIntTexture3D DataNodeTexels;
+  std::vector<float> AtlasTexels;
+
+  // ---- OpenGL resources
+  vtkSmartPointer<vtkTextureObject> Tree;
+  vtkSmartPointer<vtkTextureObject> DataNodesTexture;
+  vtkSmartPointer<vtkTextureObject> Atlas;
+  vtkSmartPointer<vtkTextureObject> Transfer;
+  vtkSmartPointer<vtkTextureObject> Depth;
+  vtkNew<vtkOpenGLBufferObject> BoxBuffer;
+  vtkNew<vtkOpenGLVertexArrayObject> BoxArray;
+  vtkShaderProgram* BoxArrayProgram = nullptr;
+  vtkTimeStamp BoxBufferTime;
+  vtkTimeStamp UploadTime;
+  vtkOpenGLRenderWindow* Context = nullptr;
+  int UploadLimit = 0; // MaximumAtlasSize of the last upload attempt
+
+  // transfer function table
+  vtkVolumeProperty* TransferProperty = nullptr;
+  vtkMTimeType TransferPropertyMTime = 0;
+  vtkTimeStamp TransferTime;
+  double TransferRange[2] = { 0.0, 1.0 };
+
+  // shader
+  std::string FailedFragmentSource; // do not retry a program that failed to compile
+  std::string LastError;
+
+  void FreePendingData()
+  {
+    this->TreeTexels = amrsp::UIntTexture3D();
+    this->DataNodeTexels = amrsp::UIntTexture3D();
+    std::vector<float>().swap(this->AtlasTexels);
+    this->PendingUpload = false;
+  }
+
+  /// CPU side: convert, build the tree, pack, encode, fill the atlas. Returns false with
+  /// BuildError set on failure.
+  bool Build(vtkOverlappingAMR* amr, const std::string& array, int component);
+
+  /// Builds when the input object, its modification time or the array selection differ from
+  /// what the current textures were built from. Returns whether valid data is available.
+  bool EnsureBuilt(vtkOverlappingAMR* amr, const std::string& array, int component)
+  {
+    if (!this->Built || this->BuiltInput != amr || this->BuiltInputMTime != amr->GetMTime() ||
+      this->BuiltArray != array || this->BuiltComponent != component)
+    {
+      this->BuiltInput = amr;
+      this->BuiltInputMTime = amr->GetMTime();
+      this->BuiltArray = array;
+      this->BuiltComponent = component;
+      this->Build(amr, array, component);
+    }
+    return this->DataValid;
+  }
+
+  bool Upload(vtkOpenGLRenderWindow* renWin, int atlasLimit, std::string& error);
+  bool UpdateTransferFunction(vtkOpenGLRenderWindow* renWin, vtkVolumeProperty* property);
+  void ReleaseGraphicsResources(vtkWindow* window);
+};
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
+  const std::string& array,
+  int component)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  this->Built = true;
+  this->DataValid = false;
+  this->BuildError.clear();
+  this->FreePendingData();
+  ++this->NumberOfBuilds;
+  try
+  {
+    vtkAMRCoreConversion::ArraySelection selection;
+    selection.Name = array;
+    selection.Component = component;
+    amrsp::Hierarchy h;
+    std::string error;
+    if (!vtkAMRCoreConversion::FromOverlappingAMR(amr, selection, h, error))
+    {
+      this->BuildError = error;
+      return false;
+    }
+    if (h.VertexCentred)
+    {
+      this->BuildError = "vertex-centred AMR data is not supported yet (cell data only)";
+      return false;
+    }
+    const amrsp::KdTree tree = amrsp::BuildKdTree(h);
+
+    std::vector<glm::ivec3> extents;
+    extents.reserve(h.Grids.size());
+    for (const amrsp::Grid& g : h.Grids)
+    {
+      extents.push_back(glm::ivec3(g.Cells.Extent()));
+    }
+    // the data-nodes texels address atlas offsets up to 2047 x 2047 x 1023
+    const AtlasLayout layout = PackBricksTemporary(extents, glm::ivec3(2048, 2048, 1024));
+    const amrsp::EncodedKdTree enc = amrsp::EncodeKdTree(h, tree, &layout.Origins);
+
+    // exact integer bookkeeping of node boxes in finest-level cells (see the shader)
+    const glm::i64vec3 finest = h.CumulativeRatio(tree.FinestLevel);
+    const amrsp::Box& root = tree.Root().Region;
+    const int64_t limit = int64_t(1) << 30;
+    for (int a = 0; a < 3; ++a)
+    {
+      if (root.Lo[a] < -limit || root.Hi[a] > limit)
+      {
+        this->BuildError = "the root box spans more than 2^30 cells of the finest level; the "
+                           "shader's integer node boxes cannot hold it";
+        return false;
+      }
+      this->RootLoFinest[a] = static_cast<int>(root.Lo[a]);
+      this->RootHiFinest[a] = static_cast<int>(root.Hi[a]);
+    }
+    this->LevelToFinest.clear();
+    this->LevelMinEdge.clear();
+    for (int l = 0; l < h.NumberOfLevels(); ++l)
+    {
+      const glm::i64vec3 r = finest / h.CumulativeRatio(l);
+      this->LevelToFinest.push_back(static_cast<int>(r.x));
+      this->LevelToFinest.push_back(static_cast<int>(r.y));
+      this->LevelToFinest.push_back(static_cast<int>(r.z));
+      this->LevelMinEdge.push_back(MinEdge(h.Spacing0 * h.CellSize(l)));
+    }
+    this->LevelCellSize = enc.LevelCellSize;
+    this->RootLo = enc.RootLo;
+    this->RootHi = enc.RootHi;
+    this->Origin = h.Origin;
+    this->Spacing0 = h.Spacing0;
+    const glm::dvec3 lo = h.Origin + glm::dvec3(enc.RootLo) * h.Spacing0;
+    const glm::dvec3 hi = h.Origin + glm::dvec3(enc.RootHi) * h.Spacing0;
+    this->Bounds[0] = lo.x;
+    this->Bounds[1] = hi.x;
+    this->Bounds[2] = lo.y;
+    this->Bounds[3] = hi.y;
+    this->Bounds[4] = lo.z;
+    this->Bounds[5] = hi.z;
+    this->KdNodes = enc.NodeCount;
+    this->DataNodes = enc.DataNodeCount;
+
+    // the atlas: one brick per grid, x fastest
+    this->AtlasDims = layout.Dims;
+    const std::size_t dx = static_cast<std::size_t>(layout.Dims.x);
+    const std::size_t dy = static_cast<std::size_t>(layout.Dims.y);
+    this->AtlasTexels.assign(dx * dy * static_cast<std::size_t>(layout.Dims.z), 0.0f);
+    double vmin = std::numeric_limits<double>::max();
+    double vmax = -std::numeric_limits<double>::max();
+    for (std::size_t g = 0; g < h.Grids.size(); ++g)
+    {
+      const glm::ivec3 e = extents[g];
+      const glm::ivec3 o = layout.Origins[g];
+      const std::vector<float>& values = h.Values[g];
+      for (int k = 0; k < e.z; ++k)
+      {
+        for (int j = 0; j < e.y; ++j)
+        {
+          const float* src = values.data() + (static_cast<std::size_t>(k) * e.y + j) * e.x;
+          float* dst = this->AtlasTexels.data() +
+            (static_cast<std::size_t>(o.z + k) * dy + static_cast<std::size_t>(o.y + j)) * dx +
+            static_cast<std::size_t>(o.x);
+          std::copy(src, src + e.x, dst);
+          for (int i = 0; i < e.x; ++i)
+          {
+            if (std::isfinite(src[i]))
+            {
+              vmin = std::min(vmin, static_cast<double>(src[i]));
+              vmax = std::max(vmax, static_cast<double>(src[i]));
+            }
+          }
+        }
+      }
+    }
+    this->ScalarRange[0] = vmin <= vmax ? vmin : 0.0;
+    this->ScalarRange[1] = vmin <= vmax ? vmax : 1.0;
+    this->TreeTexels = enc.Tree;
+    this->DataNodeTexels = enc.DataNodes;
+    this->TextureBytes = static_cast<long long>(
+      this->AtlasTexels.size() * sizeof(float) + enc.Tree.Bytes() + enc.DataNodes.Bytes());
+    this->PendingUpload = true;
+    this->DataValid = true;
+  }
+  catch (const std::exception& e)
+  {
+    this->BuildError = e.what();
+    this->FreePendingData();
+    return false;
+  }
+  this->BuildTime.Modified();
+  this->BuildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRVolumeMapper::vtkInternals::Upload(vtkOpenGLRenderWindow* renWin,
+  int atlasLimit,
+  std::string& error)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  const int max3D = vtkTextureObject::GetMaximumTextureSize3D(renWin);
+  const int limit = atlasLimit > 0 ? std::min(atlasLimit, max3D) : max3D;
+  const glm::ivec3 d = this->AtlasDims;
+  if (d.x > limit || d.y > limit || d.z > limit)
+  {
+    std::ostringstream msg;
+    msg << "the packed atlas (" << d.x << " x " << d.y << " x " << d.z << " texels) exceeds ";
+    if (limit < max3D)
+    {
+      msg << "MaximumAtlasSize = " << limit << " (GL_MAX_3D_TEXTURE_SIZE is " << max3D << ")";
+    }
+    else
+    {
+      msg << "GL_MAX_3D_TEXTURE_SIZE = " << max3D << " of this OpenGL context";
+    }
+    error = msg.str();
+    return false;
+  }
+  for (const amrsp::UIntTexture3D* t : { &this->TreeTexels, &this->DataNodeTexels })
+  {
+    if (t->Dims.x > max3D || t->Dims.y > max3D || t->Dims.z > max3D)
+    {
+      error = "the kD-tree textures exceed GL_MAX_3D_TEXTURE_SIZE of this OpenGL context";
+      return false;
+    }
+  }
+  while (glGetError() != GL_NO_ERROR)
+  {
+  }
+
+  auto makeInteger = [&](vtkSmartPointer<vtkTextureObject>& tex, amrsp::UIntTexture3D& texels)
+  {
+    tex = vtkSmartPointer<vtkTextureObject>::New();
+    tex->SetContext(renWin);
+    tex->SetInternalFormat(GL_RG32UI);
+    tex->SetFormat(GL_RG_INTEGER);
+    tex->SetDataType(GL_UNSIGNED_INT);
+    tex->SetMinificationFilter(vtkTextureObject::Nearest);
+    tex->SetMagnificationFilter(vtkTextureObject::Nearest);
+    tex->SetWrapS(vtkTextureObject::ClampToEdge);
+    tex->SetWrapT(vtkTextureObject::ClampToEdge);
+    tex->SetWrapR(vtkTextureObject::ClampToEdge);
+    return tex->Create3DFromRaw(static_cast<unsigned int>(texels.Dims.x),
+      static_cast<unsigned int>(texels.Dims.y),
+      static_cast<unsigned int>(texels.Dims.z),
+      2,
+      VTK_UNSIGNED_INT,
+      texels.Texels.data());
+  };
+  bool ok = makeInteger(this->Tree, this->TreeTexels);
+  ok = ok && makeInteger(this->DataNodesTexture, this->DataNodeTexels);
+  if (ok)
+  {
+    this->Atlas = vtkSmartPointer<vtkTextureObject>::New();
+    this->Atlas->SetContext(renWin);
+    this->Atlas->SetInternalFormat(GL_R32F);
+    this->Atlas->SetFormat(GL_RED);
+    this->Atlas->SetDataType(GL_FLOAT);
+    this->Atlas->SetMinificationFilter(vtkTextureObject::Nearest);
+    this->Atlas->SetMagnificationFilter(vtkTextureObject::Nearest);
+    this->Atlas->SetWrapS(vtkTextureObject::ClampToEdge);
+    this->Atlas->SetWrapT(vtkTextureObject::ClampToEdge);
+    this->Atlas->SetWrapR(vtkTextureObject::ClampToEdge);
+    ok = this->Atlas->Create3DFromRaw(static_cast<unsigned int>(d.x),
+      static_cast<unsigned int>(d.y),
+      static_cast<unsigned int>(d.z),
+      1,
+      VTK_FLOAT,
+      this->AtlasTexels.data());
+  }
+  const GLenum glError = glGetError();
+  if (!ok || glError != GL_NO_ERROR)
+  {
+    std::ostringstream msg;
+    msg << "uploading the kD-tree and atlas textures (" << this->TextureBytes / (1024.0 * 1024.0)
+        << " MiB) failed" << (glError == GL_OUT_OF_MEMORY ? ": out of GPU memory" : "")
+        << (glError != GL_NO_ERROR ? " (OpenGL error " + std::to_string(glError) + ")" : "");
+    error = msg.str();
+    this->Tree = nullptr;
+    this->DataNodesTexture = nullptr;
+    this->Atlas = nullptr;
+    return false;
+  }
+  this->FreePendingData();
+  this->Context = renWin;
+  this->UploadTime.Modified();
+  this->UploadSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRVolumeMapper::vtkInternals::UpdateTransferFunction(
+  vtkOpenGLRenderWindow* renWin,
+  vtkVolumeProperty* property)
+{
+  if (this->Transfer && this->TransferProperty == property &&
+    this->TransferPropertyMTime == property->GetMTime() && this->TransferTime > this->BuildTime)
+  {
+    return true;
+  }
+  const bool grey = property->GetColorChannels(0) == 1;
+  vtkColorTransferFunction* colour = grey ? nullptr : property->GetRGBTransferFunction(0);
+  vtkPiecewiseFunction* greyFunction = grey ? property->GetGrayTransferFunction(0) : nullptr;
+  vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
+
+  // tabulate over the union of the functions' ranges; beyond it both clamp to their end points
+  double range[2] = { std::numeric_limits<double>::max(), -std::numeric_limits<double>::max() };
+  auto extend = [&range](const double* r, int points)
+  {
+    if (points > 0)
+    {
+      range[0] = std::min(range[0], r[0]);
+      range[1] = std::max(range[1], r[1]);
+    }
+  };
+  if (colour)
+  {
+    extend(colour->GetRange(), colour->GetSize());
+  }
+  if (greyFunction)
+  {
+    extend(greyFunction->GetRange(), greyFunction->GetSize());
+  }
+  extend(opacity->GetRange(), opacity->GetSize());
+  if (!(range[1] > range[0]))
+  {
+    range[0] = std::min(range[0], this->ScalarRange[0]);
+    range[1] = std::max(range[1], this->ScalarRange[1]);
+    if (!(range[1] > range[0]))
+    {
+      range[1] = range[0] + 1.0;
+    }
+  }
+
+  const int n = TransferTableSize;
+  std::vector<float> rgb(static_cast<std::size_t>(3 * n)), alpha(static_cast<std::size_t>(n));
+  std::vector<float> rgba(static_cast<std::size_t>(4 * n));
+  if (colour)
+  {
+    colour->GetTable(range[0], range[1], n, rgb.data());
+  }
+  else
+  {
+    greyFunction->GetTable(range[0], range[1], n, rgb.data(), 3);
+    for (int i = 0; i < n; ++i)
+    {
+      rgb[3 * i + 1] = rgb[3 * i + 2] = rgb[3 * i];
+    }
+  }
+  opacity->GetTable(range[0], range[1], n, alpha.data());
+  for (int i = 0; i < n; ++i)
+  {
+    rgba[4 * i + 0] = rgb[3 * i + 0];
+    rgba[4 * i + 1] = rgb[3 * i + 1];
+    rgba[4 * i + 2] = rgb[3 * i + 2];
+    rgba[4 * i + 3] = alpha[i];
+  }
+  if (!this->Transfer || this->Transfer->GetContext() != renWin)
+  {
+    this->Transfer = vtkSmartPointer<vtkTextureObject>::New();
+    this->Transfer->SetContext(renWin);
+    this->Transfer->SetInternalFormat(GL_RGBA32F);
+    this->Transfer->SetFormat(GL_RGBA);
+    this->Transfer->SetDataType(GL_FLOAT);
+    this->Transfer->SetMinificationFilter(vtkTextureObject::Linear);
+    this->Transfer->SetMagnificationFilter(vtkTextureObject::Linear);
+    this->Transfer->SetWrapS(vtkTextureObject::ClampToEdge);
+    this->Transfer->SetWrapT(vtkTextureObject::ClampToEdge);
+  }
+  if (!this->Transfer->Create2DFromRaw(static_cast<unsigned int>(n), 1, 4, VTK_FLOAT, rgba.data()))
+  {
+    return false;
+  }
+  this->TransferRange[0] = range[0];
+  this->TransferRange[1] = range[1];
+  this->TransferProperty = property;
+  this->TransferPropertyMTime = property->GetMTime();
+  this->TransferTime.Modified();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWindow* window)
+{
+  for (vtkSmartPointer<vtkTextureObject>* t :
+    { &this->Tree, &this->DataNodesTexture, &this->Atlas, &this->Transfer, &this->Depth })
+  {
+    if (*t)
+    {
+      (*t)->ReleaseGraphicsResources(window);
+      *t = nullptr;
+    }
+  }
+  this->BoxBuffer->ReleaseGraphicsResources();
+  this->BoxArray->ReleaseGraphicsResources();
+  this->BoxArrayProgram = nullptr;
+  this->Context = nullptr;
+  if (!this->PendingUpload)
+  {
+    // the CPU copies were freed after the upload: rebuild from the input next time
+    this->Built = false;
+    this->DataValid = false;
+  }
+}
+
+//------------------------------------------------------------------------------
+vtkStandardNewMacro(vtkSinglePassAMRVolumeMapper);
+
+//------------------------------------------------------------------------------
+vtkSinglePassAMRVolumeMapper::vtkSinglePassAMRVolumeMapper()
+  : Internals(new vtkInternals)
+{
+}
+
+//------------------------------------------------------------------------------
+vtkSinglePassAMRVolumeMapper::~vtkSinglePassAMRVolumeMapper()
+{
+  delete this->Internals;
+}
+
+//------------------------------------------------------------------------------
+int vtkSinglePassAMRVolumeMapper::FillInputPortInformation(int vtkNotUsed(port),
+  vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkOverlappingAMR");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeMapper::SetInputData(vtkOverlappingAMR* input)
+{
+  this->SetInputDataInternal(0, input);
+}
+
+void vtkSinglePassAMRVolumeMapper::SetInputData(vtkImageData*)
+{
+  vtkErrorMacro("vtkSinglePassAMRVolumeMapper renders vtkOverlappingAMR only");
+}
+
+void vtkSinglePassAMRVolumeMapper::SetInputData(vtkDataSet*)
+{
+  vtkErrorMacro("vtkSinglePassAMRVolumeMapper renders vtkOverlappingAMR only");
+}
+
+void vtkSinglePassAMRVolumeMapper::SetInputData(vtkRectilinearGrid*)
+{
+  vtkErrorMacro("vtkSinglePassAMRVolumeMapper renders vtkOverlappingAMR only");
+}
+
+//------------------------------------------------------------------------------
+vtkOverlappingAMR* vtkSinglePassAMRVolumeMapper::GetAMRInput()
+{
+  if (this->GetNumberOfInputConnections(0) < 1)
+  {
+    return nullptr;
+  }
+  return vtkOverlappingAMR::SafeDownCast(this->GetInputDataObject(0, 0));
+}
+
+//------------------------------------------------------------------------------
+namespace
+{
+/// The array the mapper's selection asks for: a name, an index into the cell arrays, or "" for
+/// the first cell array.
+std::string RequestedArray(vtkOverlappingAMR* amr, int accessMode, const char* name, int id)
+{
+  if (accessMode == VTK_GET_ARRAY_BY_NAME && name && *name)
+  {
+    return name;
+  }
+  if (accessMode == VTK_GET_ARRAY_BY_ID && id >= 0)
+  {
+    const std::vector<std::string> names = vtkAMRCoreConversion::CellArrayNames(amr);
+    if (static_cast<std::size_t>(id) < names.size())
+    {
+      return names[static_cast<std::size_t>(id)];
+    }
+  }
+  return std::string();
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+double* vtkSinglePassAMRVolumeMapper::GetBounds()
+{
+  vtkMath::UninitializeBounds(this->Bounds);
+  if (this->GetNumberOfInputConnections(0) < 1)
+  {
+    return this->Bounds;
+  }
+  this->Update();
+  vtkOverlappingAMR* amr = this->GetAMRInput();
+  if (!amr)
+  {
+    return this->Bounds;
+  }
+  vtkInternals& in = *this->Internals;
+  const std::string array =
+    RequestedArray(amr, this->ArrayAccessMode, this->ArrayName, this->ArrayId);
+  if (in.EnsureBuilt(amr, array, this->ArrayComponent))
+  {
+    std::copy(in.Bounds, in.Bounds + 6, this->Bounds);
+    return this->Bounds;
+  }
+  // the conversion failed (Render reports why): the AMR's own overall bounds
+  amr->GetBounds(this->Bounds);
+  return this->Bounds;
+}
+
+void vtkSinglePassAMRVolumeMapper::GetBounds(double bounds[6])
+{
+  const double* b = this->GetBounds();
+  std::copy(b, b + 6, bounds);
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRVolumeMapper::IsRenderSupported(vtkRenderWindow* window, std::string* why)
+{
+  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
+  auto fail = [why](const std::string& reason)
+  {
+    if (why)
+    {
+      *why = reason;
+    }
+    return false;
+  };
+  if (!renWin)
+  {
+    return fail("the render window is not an OpenGL render window");
+  }
+  if (!renWin->SupportsOpenGL())
+  {
+    return fail("the OpenGL context cannot be created or is older than VTK's minimum (3.2 core)");
+  }
+  renWin->Initialize(); // creates the context if the window has none yet
+  renWin->MakeCurrent();
+  int major = 0, minor = 0;
+  renWin->GetOpenGLVersion(major, minor);
+  if (major < 3 || (major == 3 && minor < 2))
+  {
+    return fail("OpenGL " + std::to_string(major) + "." + std::to_string(minor) +
+      " lacks GLSL 1.50 integer textures (3.2 core needed)");
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
+{
+  vtkInternals& in = *this->Internals;
+  // the same error is reported once, not on every frame
+  const std::string previousError = in.LastError;
+  in.LastError.clear();
+  auto fail = [&](const std::string& message)
+  {
+    if (message != previousError)
+    {
+      vtkErrorMacro(<< message);
+    }
+    in.LastError = message;
+  };
+
+  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  if (!renWin)
+  {
+    fail("vtkSinglePassAMRVolumeMapper needs an OpenGL render window");
+    return;
+  }
+  if (this->GetNumberOfInputConnections(0) < 1)
+  {
+    fail("no input: set a vtkOverlappingAMR with SetInputData or SetInputConnection");
+    return;
+  }
+  this->Update();
+  vtkOverlappingAMR* amr = this->GetAMRInput();
+  if (!amr)
+  {
+    fail("the input is not a vtkOverlappingAMR");
+    return;
+  }
+
+  // ---- data: rebuilt only when the input or the array selection changed
+  const std::string array =
+    RequestedArray(amr, this->ArrayAccessMode, this->ArrayName, this->ArrayId);
+  if (!in.EnsureBuilt(amr, array, this->ArrayComponent))
+  {
+    fail(in.BuildError);
+    return;
+  }
+  if (in.PendingUpload || !in.Atlas || in.Context != renWin ||
+    in.UploadLimit != this->MaximumAtlasSize)
+  {
+    in.UploadLimit = this->MaximumAtlasSize;
+    if (!in.PendingUpload)
+    {
+      // the CPU copies were dropped after an upload to another context: rebuild them
+      in.Build(amr, array, this->ArrayComponent);
+      if (!in.DataValid)
+      {
+        fail(in.BuildError);
+        return;
+      }
+    }
+    std::string error;
+    if (!in.Upload(renWin, this->MaximumAtlasSize, error))
+    {
+      // keep the CPU data: a later context (or a smaller input) may succeed
+      fail(error);
+      return;
+    }
+  }
+
+  vtkVolumeProperty* property = vol->GetProperty();
+  if (!property)
+  {
+    fail("the volume has no vtkVolumeProperty");
+    return;
+  }
+  if (!in.UpdateTransferFunction(renWin, property))
+  {
+    fail("uploading the transfer-function table failed");
+    return;
+  }
+
+  // ---- shader (one variant per level count and depth use; cached by VTK's shader cache)
+  const int levels = static_cast<int>(in.LevelCellSize.size());
+  const bool useDepth = this->UseDepthBuffer;
+  std::string defines = "#define AMRSP_LEVEL_COUNT " + std::to_string(levels) +
+    "\n#define AMRSP_PACKING 1\n#define AMRSP_CELL_CENTRED 1\n";
+  if (useDepth)
+  {
+    defines += "#define AMRSP_USE_DEPTH 1\n";
+  }
+  std::string fragment = amrsp_SinglePassAMR_frag_glsl;
+  vtkShaderProgram::Substitute(fragment, "//AMRSP::Defines", defines);
+  vtkShaderProgram::Substitute(fragment, "//AMRSP::KdTreeLayout", amrsp_KdTreeLayout_glsl);
+  if (fragment == in.FailedFragmentSource)
+  {
+    fail("the single-pass AMR shader failed to compile or link (see the earlier error)");
+    return;
+  }
+  vtkShaderProgram* program = renWin->GetShaderCache()->ReadyShaderProgram(
+    amrsp_SinglePassAMR_vert_glsl, fragment.c_str(), "");
+  if (!program)
+  {
+    in.FailedFragmentSource = fragment;
+    fail("the single-pass AMR shader failed to compile or link (see the error above)");
+    return;
+  }
+
+  // ---- matrices: model -> normalized device coordinates and back
+  int width = 0, height = 0, x0 = 0, y0 = 0;
+  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  vtkOpenGLCamera* camera = vtkOpenGLCamera::SafeDownCast(ren->GetActiveCamera());
+  if (!camera || width < 1 || height < 1)
+  {
+    fail("the renderer has no OpenGL camera or an empty viewport");
+    return;
+  }
+  vtkMatrix4x4* wcvc = nullptr;
+  vtkMatrix3x3* normal = nullptr;
+  vtkMatrix4x4* vcdc = nullptr;
+  vtkMatrix4x4* wcdcGL = nullptr;
+  camera->GetKeyMatrices(ren, wcvc, normal, vcdc, wcdcGL);
+  vtkNew<vtkMatrix4x4> wcdc; // GetKeyMatrices returns OpenGL (transposed) order
+  vtkMatrix4x4::Transpose(wcdcGL, wcdc);
+  vtkNew<vtkMatrix4x4> mcdc;
+  vtkMatrix4x4::Multiply4x4(wcdc, vol->GetMatrix(), mcdc);
+  vtkNew<vtkMatrix4x4> dcmc;
+  vtkMatrix4x4::Invert(mcdc, dcmc);
+  // perspective rays start at the eye (README: a pinhole at the camera position), parallel ones
+  // on the near plane
+  const bool parallel = camera->GetParallelProjection() != 0;
+  double eyeWC[4] = { 0.0, 0.0, 0.0, 1.0 };
+  camera->GetPosition(eyeWC);
+  vtkNew<vtkMatrix4x4> wcmc;
+  vtkMatrix4x4::Invert(vol->GetMatrix(), wcmc);
+  double eyeMC[4];
+  wcmc->MultiplyPoint(eyeWC, eyeMC);
+  const float eye[4] = { static_cast<float>(eyeMC[0] / eyeMC[3]),
+    static_cast<float>(eyeMC[1] / eyeMC[3]),
+    static_cast<float>(eyeMC[2] / eyeMC[3]),
+    parallel ? 0.0f : 1.0f };
+  float mcdcGL[16], dcmcGL[16];
+  ToColumnMajor(mcdc, mcdcGL);
+  ToColumnMajor(dcmc, dcmcGL);
+
+  // ---- proxy geometry: the root box's faces, wound counter-clockwise seen from outside
+  if (in.BoxBufferTime < in.BuildTime || in.BoxBuffer->GetHandle() == 0)
+  {
+    const double* b = in.Bounds;
+    std::vector<float> vertices;
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      for (int side = 0; side < 2; ++side)
+      {
+        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+        double quad[4][3];
+        const int corners[4][2] = { { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 } };
+        for (int c = 0; c < 4; ++c)
+        {
+          quad[c][axis] = b[2 * axis + side];
+          quad[c][u] = b[2 * u + corners[c][0]];
+          quad[c][v] = b[2 * v + corners[c][1]];
+        }
+        // (u, v, axis) is right-handed: u x v points along +axis, so this order faces +axis
+        const int order[2][6] = { { 0, 2, 1, 0, 3, 2 }, { 0, 1, 2, 0, 2, 3 } };
+        for (int k : order[side])
+        {
+          vertices.push_back(static_cast<float>(quad[k][0]));
+          vertices.push_back(static_cast<float>(quad[k][1]));
+          vertices.push_back(static_cast<float>(quad[k][2]));
+        }
+      }
+    }
+    in.BoxBuffer->Upload(vertices, vtkOpenGLBufferObject::ArrayBuffer);
+    in.BoxBufferTime.Modified();
+    in.BoxArrayProgram = nullptr;
+  }
+  in.BoxArray->Bind();
+  if (in.BoxArrayProgram != program)
+  {
+    in.BoxArray->ReleaseGraphicsResources();
+    in.BoxArray->Bind();
+    if (!in.BoxArray->AddAttributeArray(
+          program, in.BoxBuffer, "vertexMC", 0, 3 * sizeof(float), VTK_FLOAT, 3, false))
+    {
+      in.BoxArray->Release();
+      fail("cannot bind the proxy box's vertices to the shader");
+      return;
+    }
+    in.BoxArrayProgram = program;
+  }
+
+  vtkOpenGLState* state = renWin->GetState();
+
+  // ---- depth of the opaque geometry drawn so far
+  if (useDepth)
+  {
+    if (!in.Depth || in.Depth->GetContext() != renWin ||
+      in.Depth->GetWidth() != static_cast<unsigned int>(width) ||
+      in.Depth->GetHeight() != static_cast<unsigned int>(height))
+    {
+      in.Depth = vtkSmartPointer<vtkTextureObject>::New();
+      in.Depth->SetContext(renWin);
+      in.Depth->SetMinificationFilter(vtkTextureObject::Nearest);
+      in.Depth->SetMagnificationFilter(vtkTextureObject::Nearest);
+      in.Depth->SetWrapS(vtkTextureObject::ClampToEdge);
+      in.Depth->SetWrapT(vtkTextureObject::ClampToEdge);
+      in.Depth->AllocateDepth(static_cast<unsigned int>(width),
+        static_cast<unsigned int>(height),
+        vtkTextureObject::Float32);
+    }
+    in.Depth->Activate();
+    in.Depth->CopyFromFrameBuffer(x0, y0, 0, 0, width, height);
+  }
+
+  // ---- uniforms
+  const std::vector<glm::vec3>& cells = in.LevelCellSize;
+  std::vector<float> steps;
+  for (double edge : in.LevelMinEdge)
+  {
+    steps.push_back(static_cast<float>(this->SampleDistanceFactor * edge));
+  }
+  const float origin[3] = { static_cast<float>(in.Origin.x),
+    static_cast<float>(in.Origin.y),
+    static_cast<float>(in.Origin.z) };
+  const float spacing[3] = { static_cast<float>(in.Spacing0.x),
+    static_cast<float>(in.Spacing0.y),
+    static_cast<float>(in.Spacing0.z) };
+  const float viewport[4] = { static_cast<float>(x0),
+    static_cast<float>(y0),
+    static_cast<float>(width),
+    static_cast<float>(height) };
+  const float transferRange[2] = { static_cast<float>(in.TransferRange[0]),
+    static_cast<float>(1.0 / (in.TransferRange[1] - in.TransferRange[0])) };
+
+  in.Tree->Activate();
+  in.DataNodesTexture->Activate();
+  in.Atlas->Activate();
+  in.Transfer->Activate();
+  program->SetUniformi("amrspTree", in.Tree->GetTextureUnit());
+  program->SetUniformi("amrspDataNodes", in.DataNodesTexture->GetTextureUnit());
+  program->SetUniformi("amrspAtlas", in.Atlas->GetTextureUnit());
+  program->SetUniformi("amrspTransfer", in.Transfer->GetTextureUnit());
+  if (useDepth)
+  {
+    program->SetUniformi("amrspDepth", in.Depth->GetTextureUnit());
+  }
+  program->SetUniformMatrix4x4("amrspMCDCMatrix", mcdcGL);
+  program->SetUniformMatrix4x4("amrspDCMCMatrix", dcmcGL);
+  program->SetUniform4f("amrspViewport", viewport);
+  program->SetUniform4f("amrspEyeMC", eye);
+  program->SetUniform3f("amrspOrigin", origin);
+  program->SetUniform3f("amrspSpacing0", spacing);
+  program->SetUniform3f("amrspRootLo", &in.RootLo.x);
+  program->SetUniform3f("amrspRootHi", &in.RootHi.x);
+  program->SetUniform1iv("amrspRootLoFinest", 3, in.RootLoFinest);
+  program->SetUniform1iv("amrspRootHiFinest", 3, in.RootHiFinest);
+  program->SetUniform3fv("amrspLevelCellSize", levels, &cells[0].x);
+  program->SetUniform1iv("amrspLevelToFinest", 3 * levels, in.LevelToFinest.data());
+  program->SetUniform1fv("amrspLevelStep", levels, steps.data());
+  const long long guard = 4 * in.KdNodes + 16;
+  program->SetUniformi("amrspMaxSegments", static_cast<int>(std::min<long long>(guard, 1 << 30)));
+  program->SetUniform2f("amrspTransferRange", transferRange);
+  program->SetUniformf("amrspTransferSize", static_cast<float>(TransferTableSize));
+  program->SetUniformf("amrspUnitDistance",
+    static_cast<float>(std::max(property->GetScalarOpacityUnitDistance(0), 1e-12)));
+
+  // ---- draw the back faces once per pixel, blending premultiplied colour front to back
+  {
+    vtkOpenGLState::ScopedglEnableDisable cullSaved(state, GL_CULL_FACE);
+    vtkOpenGLState::ScopedglEnableDisable depthSaved(state, GL_DEPTH_TEST);
+    vtkOpenGLState::ScopedglEnableDisable blendSaved(state, GL_BLEND);
+    vtkOpenGLState::ScopedglDepthMask depthMaskSaved(state);
+    vtkOpenGLState::ScopedglBlendFuncSeparate blendFuncSaved(state);
+    state->vtkglEnable(GL_CULL_FACE);
+    // a mirroring volume transform flips the winding
+    state->vtkglCullFace(vol->GetMatrix()->Determinant() < 0.0 ? GL_BACK : GL_FRONT);
+    state->vtkglDisable(GL_DEPTH_TEST);
+    state->vtkglDepthMask(GL_FALSE);
+    state->vtkglEnable(GL_BLEND);
+    state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    glDrawArrays(GL_TRIANGLES, 0, 36);
+    state->vtkglCullFace(GL_BACK);
+  }
+  in.BoxArray->Release();
+
+  in.Tree->Deactivate();
+  in.DataNodesTexture->Deactivate();
+  in.Atlas->Deactivate();
+  in.Transfer->Deactivate();
+  if (useDepth)
+  {
+    in.Depth->Deactivate();
+  }
+  vtkOpenGLCheckErrorMacro("failed after vtkSinglePassAMRVolumeMapper::Render");
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Internals->ReleaseGraphicsResources(window);
+  this->Superclass::ReleaseGraphicsResources(window);
+}
+
+//------------------------------------------------------------------------------
+const char* vtkSinglePassAMRVolumeMapper::GetLastError()
+{
+  return this->Internals->LastError.c_str();
+}
+
+double vtkSinglePassAMRVolumeMapper::GetLastBuildSeconds()
+{
+  return this->Internals->BuildSeconds;
+}
+
+double vtkSinglePassAMRVolumeMapper::GetLastUploadSeconds()
+{
+  return this->Internals->UploadSeconds;
+}
+
+int vtkSinglePassAMRVolumeMapper::GetNumberOfBuilds()
+{
+  return this->Internals->NumberOfBuilds;
+}
+
+void vtkSinglePassAMRVolumeMapper::GetAtlasDimensions(int dims[3])
+{
+  dims[0] = this->Internals->AtlasDims.x;
+  dims[1] = this->Internals->AtlasDims.y;
+  dims[2] = this->Internals->AtlasDims.z;
+}
+
+long long vtkSinglePassAMRVolumeMapper::GetTextureBytes()
+{
+  return this->Internals->TextureBytes;
+}
+
+long long vtkSinglePassAMRVolumeMapper::GetNumberOfKdNodes()
+{
+  return this->Internals->KdNodes;
+}
+
+long long vtkSinglePassAMRVolumeMapper::GetNumberOfDataNodes()
+{
+  return this->Internals->DataNodes;
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  const vtkInternals& in = *this->Internals;
+  os << indent << "ArrayComponent: " << this->ArrayComponent << "\n";
+  os << indent << "SampleDistanceFactor: " << this->SampleDistanceFactor << "\n";
+  os << indent << "MaximumAtlasSize: " << this->MaximumAtlasSize << "\n";
+  os << indent << "UseDepthBuffer: " << (this->UseDepthBuffer ? "on" : "off") << "\n";
+  os << indent << "NumberOfBuilds: " << in.NumberOfBuilds << "\n";
+  os << indent << "KdNodes: " << in.KdNodes << ", DataNodes: " << in.DataNodes << "\n";
+  os << indent << "AtlasDimensions: " << in.AtlasDims.x << " x " << in.AtlasDims.y << " x "
+     << in.AtlasDims.z << "\n";
+  os << indent << "LastError: " << (in.LastError.empty() ? "(none)" : in.LastError) << "\n";
+}

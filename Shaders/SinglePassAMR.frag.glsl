@@ -1,0 +1,268 @@
+//VTK::System::Dec
+// SPDX-License-Identifier: BSD-3-Clause
+//
+// Single-pass raycaster of structured AMR data (Kaehler & Abel 2013, section 4.3).
+//
+// Per fragment: rebuild the ray from gl_FragCoord, walk the encoded kD-tree with kd-restart (each
+// restart descends from the root to the node that contains the ray's current point and ends at the
+// nearest split plane crossed or the node's exit), sample every data segment at its level's rate,
+// and composite front to back. The traversal mirrors Mapper/Core/src/KdTraversal.cxx step by step
+// (same float arithmetic, plane and tie rules) and the sampling mirrors amrsp::RenderKdTree
+// (README, "Sampling rule"); keep the three in sync.
+//
+// Variants are selected by the mapper with #defines inserted at the marker below:
+//   AMRSP_LEVEL_COUNT   number of levels of the hierarchy (sizes the per-level uniform arrays)
+//   AMRSP_PACKING       data in one packed R32F atlas (the only storage implemented so far)
+//   AMRSP_CELL_CENTRED  nearest-cell sampling (the only data centring implemented so far)
+//   AMRSP_USE_DEPTH     clip rays at the depth of the opaque geometry already drawn
+//AMRSP::Defines
+
+#ifndef AMRSP_LEVEL_COUNT
+#error "AMRSP_LEVEL_COUNT must be defined"
+#endif
+#ifndef AMRSP_PACKING
+#error "only the packing storage (AMRSP_PACKING) is implemented"
+#endif
+#ifndef AMRSP_CELL_CENTRED
+#error "only cell-centred data (AMRSP_CELL_CENTRED) is implemented"
+#endif
+
+// The tree layout, shared verbatim with the C++ encoder (Shaders/KdTreeLayout.glsl).
+#define AMRSP_FN
+//AMRSP::KdTreeLayout
+
+// Accumulated opacity at which a ray stops (the CPU integrators never stop early; the difference
+// is below 0.26 of 255 per channel).
+#define AMRSP_OPAQUE_ALPHA 0.999
+#define AMRSP_INF 3.0e38
+
+//VTK::Output::Dec
+
+uniform usampler3D amrspTree;      // RG32UI, one texel per kD node
+uniform usampler3D amrspDataNodes; // RG32UI, one texel per data node (texel 0 unused)
+uniform sampler3D amrspAtlas;      // R32F, one brick per grid (nearest filtering)
+uniform sampler2D amrspTransfer;   // RGBA32F, 1 row: colour and unit-distance opacity
+#ifdef AMRSP_USE_DEPTH
+uniform sampler2D amrspDepth;      // depth of the opaque geometry, viewport-sized
+#endif
+
+uniform mat4 amrspDCMCMatrix; // normalized device -> model coordinates (column-major)
+uniform vec4 amrspViewport;   // lower-left corner and size of the viewport, window pixels
+uniform vec4 amrspEyeMC;      // camera position in model coordinates; w = 0: parallel projection
+
+uniform vec3 amrspOrigin;   // model position of level-0 index (0, 0, 0)
+uniform vec3 amrspSpacing0; // model size of a level-0 cell
+uniform vec3 amrspRootLo;   // root box, level-0 index units
+uniform vec3 amrspRootHi;
+uniform int amrspRootLoFinest[3]; // root box in cells of the finest level (exact integers)
+uniform int amrspRootHiFinest[3];
+uniform vec3 amrspLevelCellSize[AMRSP_LEVEL_COUNT];      // cell size, level-0 index units
+uniform int amrspLevelToFinest[3 * AMRSP_LEVEL_COUNT];   // finest cells per cell of a level
+uniform float amrspLevelStep[AMRSP_LEVEL_COUNT];         // sampling distance D, model units
+uniform int amrspMaxSegments;                             // guard against corrupt textures
+
+uniform vec2 amrspTransferRange; // scalar at the first table entry, 1 / (last - first)
+uniform float amrspTransferSize; // number of table entries
+uniform float amrspUnitDistance; // vtkVolumeProperty::ScalarOpacityUnitDistance
+
+uvec2 amrspFetchNode(uint index)
+{
+  return texelFetch(amrspTree, amrspTexelOf(index), 0).rg;
+}
+
+uvec2 amrspFetchDataNode(uint index)
+{
+  return texelFetch(amrspDataNodes, amrspTexelOf(index), 0).rg;
+}
+
+// Slab test, as amrsp::IntersectBox.
+bool amrspIntersectBox(vec3 lo, vec3 hi, vec3 o, vec3 d, out float tEnter, out float tExit)
+{
+  tEnter = -AMRSP_INF;
+  tExit = AMRSP_INF;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (d[a] == 0.0)
+    {
+      if (o[a] < lo[a] || o[a] > hi[a])
+      {
+        return false;
+      }
+      continue;
+    }
+    float t0 = (lo[a] - o[a]) / d[a];
+    float t1 = (hi[a] - o[a]) / d[a];
+    if (t0 > t1)
+    {
+      float s = t0;
+      t0 = t1;
+      t1 = s;
+    }
+    tEnter = max(tEnter, t0);
+    tExit = min(tExit, t1);
+  }
+  return tEnter < tExit;
+}
+
+// Integer division rounding towards minus infinity (b > 0), and its ceiling counterpart.
+int amrspFloorDiv(int a, int b)
+{
+  int q = a / b;
+  return (q * b > a) ? q - 1 : q;
+}
+
+int amrspCeilDiv(int a, int b)
+{
+  return -amrspFloorDiv(-a, b);
+}
+
+vec4 amrspTransferFunction(float scalar)
+{
+  float u = clamp((scalar - amrspTransferRange.x) * amrspTransferRange.y, 0.0, 1.0);
+  float x = (u * (amrspTransferSize - 1.0) + 0.5) / amrspTransferSize;
+  return texture(amrspTransfer, vec2(x, 0.5));
+}
+
+void main()
+{
+  // The ray through this pixel's centre, in model coordinates: from the eye (perspective, as
+  // the CPU integrators' pinhole camera) or from the near plane (parallel projection).
+  vec2 ndc = 2.0 * (gl_FragCoord.xy - amrspViewport.xy) / amrspViewport.zw - 1.0;
+  vec4 nearMC = amrspDCMCMatrix * vec4(ndc, -1.0, 1.0);
+  vec4 farMC = amrspDCMCMatrix * vec4(ndc, 1.0, 1.0);
+  vec3 nearPoint = nearMC.xyz / nearMC.w;
+  vec3 dirMC = normalize(farMC.xyz / farMC.w - nearPoint);
+  vec3 entry = amrspEyeMC.w != 0.0 ? amrspEyeMC.xyz : nearPoint;
+
+  float tMax = AMRSP_INF;
+#ifdef AMRSP_USE_DEPTH
+  float depth = texelFetch(amrspDepth, ivec2(gl_FragCoord.xy - amrspViewport.xy), 0).r;
+  if (depth < 1.0)
+  {
+    vec4 hitMC = amrspDCMCMatrix * vec4(ndc, 2.0 * depth - 1.0, 1.0);
+    tMax = dot(hitMC.xyz / hitMC.w - entry, dirMC);
+  }
+#endif
+
+  // Level-0 index units; t stays the model-space distance along the ray.
+  vec3 ro = (entry - amrspOrigin) / amrspSpacing0;
+  vec3 rd = dirMC / amrspSpacing0;
+
+  float tEnter, tExit;
+  if (!amrspIntersectBox(amrspRootLo, amrspRootHi, ro, rd, tEnter, tExit))
+  {
+    discard;
+  }
+  float t = max(tEnter, 0.0);
+  float tEnd = min(tExit, tMax);
+  ivec3 rootLoF = ivec3(amrspRootLoFinest[0], amrspRootLoFinest[1], amrspRootLoFinest[2]);
+  ivec3 rootHiF = ivec3(amrspRootHiFinest[0], amrspRootHiFinest[1], amrspRootHiFinest[2]);
+
+  vec3 colour = vec3(0.0);
+  float alpha = 0.0;
+  for (int iteration = 0; t < tEnd && iteration < amrspMaxSegments; ++iteration)
+  {
+    // kd-restart: descend from the root to the node containing the ray at t.
+    uint node = 0u;
+    vec3 lo = amrspRootLo;
+    vec3 hi = amrspRootHi;
+    ivec3 loF = rootLoF; // the same box in exact finest-level cells
+    ivec3 hiF = rootHiF;
+    float tLeave = tEnd;
+    uvec2 texel = amrspFetchNode(0u);
+    for (;;)
+    {
+      uint child = amrspNodeFirstChild(texel);
+      if (child == 0u)
+      {
+        break;
+      }
+      int axis = int(amrspNodeAxis(texel));
+      uint level = amrspNodeLevel(texel);
+      uint split = amrspNodeSplit(texel);
+      float plane = lo[axis] + float(split) * amrspLevelCellSize[level][axis];
+      int planeF = loF[axis] + int(split) * amrspLevelToFinest[3 * int(level) + axis];
+      float o = ro[axis];
+      float d = rd[axis];
+      bool originBelow = o < plane || (o == plane && d > 0.0);
+      float tSplit = d != 0.0 ? (plane - o) / d : AMRSP_INF;
+      bool lower;
+      if (tSplit >= tLeave || tSplit < 0.0)
+      {
+        lower = originBelow; // the whole rest of the interval is on the origin's side
+      }
+      else if (tSplit <= t)
+      {
+        lower = !originBelow; // already past the plane
+      }
+      else
+      {
+        lower = originBelow;
+        tLeave = tSplit;
+      }
+      if (lower)
+      {
+        hi[axis] = plane;
+        hiF[axis] = planeF;
+        node = child;
+      }
+      else
+      {
+        lo[axis] = plane;
+        loF[axis] = planeF;
+        node = child + 1u;
+      }
+      texel = amrspFetchNode(node);
+    }
+
+    uint data = amrspNodeData(texel);
+    if (data != 0u)
+    {
+      uvec2 dataNode = amrspFetchDataNode(data);
+      int level = int(amrspDataLevel(dataNode));
+      ivec3 offset = amrspDataOffset(dataNode); // atlas texel of the node's lower-corner cell
+      ivec3 toData = ivec3(amrspLevelToFinest[3 * level], amrspLevelToFinest[3 * level + 1],
+        amrspLevelToFinest[3 * level + 2]);
+      ivec3 firstCell = ivec3(amrspFloorDiv(loF.x, toData.x), amrspFloorDiv(loF.y, toData.y),
+        amrspFloorDiv(loF.z, toData.z));
+      ivec3 lastCell = ivec3(amrspCeilDiv(hiF.x, toData.x), amrspCeilDiv(hiF.y, toData.y),
+                         amrspCeilDiv(hiF.z, toData.z)) - 1;
+      vec3 cellSize = amrspLevelCellSize[level];
+      // Sampling rule: n = max(1, ceil(length / D)) equal steps, samples at their midpoints.
+      float segmentLength = tLeave - t;
+      int n = max(1, int(ceil(segmentLength / amrspLevelStep[level])));
+      float dt = segmentLength / float(n);
+      float exponent = dt / amrspUnitDistance;
+      for (int k = 0; k < n; ++k)
+      {
+        float ts = t + (float(k) + 0.5) * dt;
+        vec3 p = ro + ts * rd;
+        ivec3 cell = clamp(ivec3(floor(p / cellSize)), firstCell, lastCell);
+        float scalar = texelFetch(amrspAtlas, offset + (cell - firstCell), 0).r;
+        vec4 tf = amrspTransferFunction(scalar);
+        if (tf.a > 0.0)
+        {
+          float a = 1.0 - pow(1.0 - min(tf.a, 1.0), exponent);
+          colour += (1.0 - alpha) * a * tf.rgb;
+          alpha += (1.0 - alpha) * a;
+          if (alpha >= AMRSP_OPAQUE_ALPHA)
+          {
+            break;
+          }
+        }
+      }
+      if (alpha >= AMRSP_OPAQUE_ALPHA)
+      {
+        break;
+      }
+    }
+    t = tLeave;
+  }
+
+  if (alpha <= 0.0)
+  {
+    discard;
+  }
+  // premultiplied colour; the mapper blends with (ONE, ONE_MINUS_SRC_ALPHA)
+  gl_FragData[0] = vec4(colour, alpha);
+}
