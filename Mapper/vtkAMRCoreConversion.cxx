@@ -312,7 +312,14 @@ void vtkAMRCoreConversion::ToOverlappingAMR(const amrsp::Hierarchy& h, vtkOverla
       values->SetName(h.ArrayName.empty() ? "values" : h.ArrayName.c_str());
       values->SetNumberOfTuples(static_cast<vtkIdType>(h.Values[gi].size()));
       std::copy(h.Values[gi].begin(), h.Values[gi].end(), values->GetPointer(0));
-      grid->GetCellData()->AddArray(values);
+      if (h.VertexCentred)
+      {
+        grid->GetPointData()->AddArray(values);
+      }
+      else
+      {
+        grid->GetCellData()->AddArray(values);
+      }
     }
     out->SetDataSet(g.Level, index, grid);
   }

@@ -38,7 +38,8 @@ public:
   static bool FromOverlappingAMR(vtkOverlappingAMR* amr, const ArraySelection& selection,
     amrsp::Hierarchy& out, std::string& error);
 
-  /// Writes `h` (cell-centred values) into `out` as vtkUniformGrid blocks with blanking.
+  /// Writes `h` into `out` as vtkUniformGrid blocks with blanking: cell-centred values as a
+  /// cell array, vertex-centred values as a point array.
   static void ToOverlappingAMR(const amrsp::Hierarchy& h, vtkOverlappingAMR* out);
 
   /// Names of the cell arrays of the first non-empty block.

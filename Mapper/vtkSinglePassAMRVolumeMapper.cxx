@@ -4,12 +4,14 @@
 #include "vtkAMRCoreConversion.h"
 
 #include "amrsp/Hierarchy.h"
+#include "amrsp/BrickAtlas.h"
 #include "amrsp/KdTree.h"
 #include "amrsp/KdTreeEncoding.h"
 
 #include "vtkColorTransferFunction.h"
 #include "vtkDataObject.h"
 #include "vtkInformation.h"
+#include "vtkCamera.h"
 #include "vtkMath.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
@@ -49,114 +51,6 @@
 namespace
 {
 
-/// Where the bricks of one hierarchy go in the packed atlas.
-struct AtlasLayout
-{
-  glm::ivec3 Dims{ 0 };
-  std::vector<glm::ivec3> Origins; ///< per brick: atlas texel of its first cell
-};
-
-/**
- * TEMPORARY stand-in for amrsp::PackBricks (Mapper/Core/include/amrsp/BrickPacking.h, being
- * written on main): next-fit decreasing height (paper, section 5.1) with a few square base sizes,
- * keeping the smallest atlas within `maxDims`. Bricks are sorted by decreasing z, y, x extent and
- * laid along x in rows, rows along y in layers, layers along z. Packing quality is not a goal
- * here; replace the body by PackBricks when it lands. Throws std::runtime_error when nothing fits.
- */
-AtlasLayout PackBricksTemporary(const std::vector<glm::ivec3>& extents, const glm::ivec3& maxDims)
-{
-  AtlasLayout best;
-  const std::size_t n = extents.size();
-  if (n == 0)
-  {
-    best.Dims = glm::ivec3(1);
-    return best;
-  }
-  std::vector<std::size_t> order(n);
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    order[i] = i;
-  }
-  std::stable_sort(order.begin(),
-    order.end(),
-    [&](std::size_t a, std::size_t b)
-    {
-      const glm::ivec3 &ea = extents[a], &eb = extents[b];
-      if (ea.z != eb.z)
-      {
-        return ea.z > eb.z;
-      }
-      if (ea.y != eb.y)
-      {
-        return ea.y > eb.y;
-      }
-      return ea.x > eb.x;
-    });
-  int largest = 1;
-  double texels = 0.0;
-  for (const glm::ivec3& e : extents)
-  {
-    largest = std::max(largest, std::max(e.x, e.y));
-    texels += static_cast<double>(e.x) * e.y * e.z;
-  }
-  double bestVolume = std::numeric_limits<double>::max();
-  const int start = std::max(largest, static_cast<int>(std::cbrt(texels) * 0.75));
-  for (double base = start; base <= 2.0 * std::max(maxDims.x, maxDims.y); base *= 1.2)
-  {
-    const int w = std::min(static_cast<int>(base), maxDims.x);
-    const int h = std::min(static_cast<int>(base), maxDims.y);
-    if (w < largest || h < largest)
-    {
-      continue;
-    }
-    std::vector<glm::ivec3> origins(n);
-    int x = 0, y = 0, z = 0, rowHeight = 0, layerDepth = 0;
-    glm::ivec3 used(0);
-    for (std::size_t i : order)
-    {
-      const glm::ivec3& e = extents[i];
-      if (x + e.x > w)
-      {
-        x = 0;
-        y += rowHeight;
-        rowHeight = 0;
-      }
-      if (y + e.y > h)
-      {
-        x = 0;
-        y = 0;
-        z += layerDepth;
-        layerDepth = 0;
-        rowHeight = 0;
-      }
-      origins[i] = glm::ivec3(x, y, z);
-      x += e.x;
-      rowHeight = std::max(rowHeight, e.y);
-      layerDepth = std::max(layerDepth, e.z);
-      used = glm::max(used, glm::ivec3(x, y + e.y, z + e.z));
-    }
-    const double volume = static_cast<double>(used.x) * used.y * used.z;
-    if (used.z <= maxDims.z && volume < bestVolume)
-    {
-      bestVolume = volume;
-      best.Dims = used;
-      best.Origins = std::move(origins);
-    }
-    if (w == maxDims.x && h == maxDims.y)
-    {
-      break;
-    }
-  }
-  if (best.Origins.empty())
-  {
-    std::ostringstream msg;
-    msg << "the " << n << " bricks (" << static_cast<long long>(texels)
-        << " texels) do not fit into a packed atlas of at most " << maxDims.x << " x " << maxDims.y
-        << " x " << maxDims.z << " texels";
-    throw std::runtime_error(msg.str());
-  }
-  return best;
-}
 
 double MinEdge(const glm::dvec3& v)
 {
@@ -212,6 +106,8 @@ public:
   long long DataNodes = 0;
   long long TextureBytes = 0;
   glm::ivec3 AtlasDims{ 0 };
+  bool VertexCentred = false; // vertex bricks, trilinear sampling; else cells, nearest
+  int PackLimit = 0;          // MaximumAtlasSize the atlas was packed for (0 = none)
 
   // ---- CPU texture data waiting for upload (freed once uploaded)
   bool PendingUpload = false;
@@ -232,6 +128,7 @@ public:
   vtkTimeStamp UploadTime;
   vtkOpenGLRenderWindow* Context = nullptr;
   int UploadLimit = 0; // MaximumAtlasSize of the last upload attempt
+  int BuiltPackLimit = -1;
 
   // transfer function table
   vtkVolumeProperty* TransferProperty = nullptr;
@@ -260,8 +157,10 @@ public:
   bool EnsureBuilt(vtkOverlappingAMR* amr, const std::string& array, int component)
   {
     if (!this->Built || this->BuiltInput != amr || this->BuiltInputMTime != amr->GetMTime() ||
-      this->BuiltArray != array || this->BuiltComponent != component)
+      this->BuiltArray != array || this->BuiltComponent != component ||
+      this->BuiltPackLimit != this->PackLimit)
     {
+      this->BuiltPackLimit = this->PackLimit;
       this->BuiltInput = amr;
       this->BuiltInputMTime = amr->GetMTime();
       this->BuiltArray = array;
@@ -299,21 +198,13 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
       this->BuildError = error;
       return false;
     }
-    if (h.VertexCentred)
-    {
-      this->BuildError = "vertex-centred AMR data is not supported yet (cell data only)";
-      return false;
-    }
     const amrsp::KdTree tree = amrsp::BuildKdTree(h);
-
-    std::vector<glm::ivec3> extents;
-    extents.reserve(h.Grids.size());
-    for (const amrsp::Grid& g : h.Grids)
-    {
-      extents.push_back(glm::ivec3(g.Cells.Extent()));
-    }
-    // the data-nodes texels address atlas offsets up to 2047 x 2047 x 1023
-    const AtlasLayout layout = PackBricksTemporary(extents, glm::ivec3(2048, 2048, 1024));
+    // one brick per grid (cells, or vertices one texel larger), packed within the per-axis
+    // limit the data-node offsets can address and MaximumAtlasSize when set
+    amrsp::BrickAtlas atlas = amrsp::BuildBrickAtlas(h, amrsp::Packer::Best,
+      amrsp::AtlasLimits(this->PackLimit > 0 ? std::min(this->PackLimit, 2048) : 2048));
+    const amrsp::AtlasLayout& layout = atlas.Layout;
+    this->VertexCentred = h.VertexCentred;
     const amrsp::EncodedKdTree enc = amrsp::EncodeKdTree(h, tree, &layout.Origins);
 
     // exact integer bookkeeping of node boxes in finest-level cells (see the shader)
@@ -357,35 +248,18 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
     this->KdNodes = enc.NodeCount;
     this->DataNodes = enc.DataNodeCount;
 
-    // the atlas: one brick per grid, x fastest
     this->AtlasDims = layout.Dims;
-    const std::size_t dx = static_cast<std::size_t>(layout.Dims.x);
-    const std::size_t dy = static_cast<std::size_t>(layout.Dims.y);
-    this->AtlasTexels.assign(dx * dy * static_cast<std::size_t>(layout.Dims.z), 0.0f);
+    this->AtlasTexels = std::move(atlas.Texels);
     double vmin = std::numeric_limits<double>::max();
     double vmax = -std::numeric_limits<double>::max();
-    for (std::size_t g = 0; g < h.Grids.size(); ++g)
+    for (const amrsp::GridValues& values : h.Values)
     {
-      const glm::ivec3 e = extents[g];
-      const glm::ivec3 o = layout.Origins[g];
-      const std::vector<float>& values = h.Values[g];
-      for (int k = 0; k < e.z; ++k)
+      for (float v : values)
       {
-        for (int j = 0; j < e.y; ++j)
+        if (std::isfinite(v))
         {
-          const float* src = values.data() + (static_cast<std::size_t>(k) * e.y + j) * e.x;
-          float* dst = this->AtlasTexels.data() +
-            (static_cast<std::size_t>(o.z + k) * dy + static_cast<std::size_t>(o.y + j)) * dx +
-            static_cast<std::size_t>(o.x);
-          std::copy(src, src + e.x, dst);
-          for (int i = 0; i < e.x; ++i)
-          {
-            if (std::isfinite(src[i]))
-            {
-              vmin = std::min(vmin, static_cast<double>(src[i]));
-              vmax = std::max(vmax, static_cast<double>(src[i]));
-            }
-          }
+          vmin = std::min(vmin, static_cast<double>(v));
+          vmax = std::max(vmax, static_cast<double>(v));
         }
       }
     }
@@ -473,8 +347,10 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Upload(vtkOpenGLRenderWindow* r
     this->Atlas->SetInternalFormat(GL_R32F);
     this->Atlas->SetFormat(GL_RED);
     this->Atlas->SetDataType(GL_FLOAT);
-    this->Atlas->SetMinificationFilter(vtkTextureObject::Nearest);
-    this->Atlas->SetMagnificationFilter(vtkTextureObject::Nearest);
+    // vertex bricks: hardware trilinear interpolation (the shader never leaves a brick)
+    const int filter = this->VertexCentred ? vtkTextureObject::Linear : vtkTextureObject::Nearest;
+    this->Atlas->SetMinificationFilter(filter);
+    this->Atlas->SetMagnificationFilter(filter);
     this->Atlas->SetWrapS(vtkTextureObject::ClampToEdge);
     this->Atlas->SetWrapT(vtkTextureObject::ClampToEdge);
     this->Atlas->SetWrapR(vtkTextureObject::ClampToEdge);
@@ -715,6 +591,7 @@ double* vtkSinglePassAMRVolumeMapper::GetBounds()
   vtkInternals& in = *this->Internals;
   const std::string array =
     RequestedArray(amr, this->ArrayAccessMode, this->ArrayName, this->ArrayId);
+  in.PackLimit = this->MaximumAtlasSize;
   if (in.EnsureBuilt(amr, array, this->ArrayComponent))
   {
     std::copy(in.Bounds, in.Bounds + 6, this->Bounds);
@@ -801,6 +678,7 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   // ---- data: rebuilt only when the input or the array selection changed
   const std::string array =
     RequestedArray(amr, this->ArrayAccessMode, this->ArrayName, this->ArrayId);
+  in.PackLimit = this->MaximumAtlasSize;
   if (!in.EnsureBuilt(amr, array, this->ArrayComponent))
   {
     fail(in.BuildError);
@@ -845,7 +723,8 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   const int levels = static_cast<int>(in.LevelCellSize.size());
   const bool useDepth = this->UseDepthBuffer;
   std::string defines = "#define AMRSP_LEVEL_COUNT " + std::to_string(levels) +
-    "\n#define AMRSP_PACKING 1\n#define AMRSP_CELL_CENTRED 1\n";
+    "\n#define AMRSP_PACKING 1\n" +
+    (in.VertexCentred ? "#define AMRSP_VERTEX_CENTRED 1\n" : "#define AMRSP_CELL_CENTRED 1\n");
   if (useDepth)
   {
     defines += "#define AMRSP_USE_DEPTH 1\n";
@@ -1023,6 +902,19 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   program->SetUniformi("amrspMaxSegments", static_cast<int>(std::min<long long>(guard, 1 << 30)));
   program->SetUniform2f("amrspTransferRange", transferRange);
   program->SetUniformf("amrspTransferSize", static_cast<float>(TransferTableSize));
+  const float atlasSize[3] = { static_cast<float>(in.AtlasDims.x),
+    static_cast<float>(in.AtlasDims.y), static_cast<float>(in.AtlasDims.z) };
+  program->SetUniform3f("amrspAtlasSize", atlasSize);
+  // level of detail: world size of a pixel at distance 1 (perspective) or everywhere (parallel),
+  // as amrsp::LevelOfDetail
+  const float pixelPerDistance = parallel ? 0.0f
+    : static_cast<float>(2.0 * std::tan(vtkMath::RadiansFromDegrees(camera->GetViewAngle()) * 0.5) /
+        height);
+  const float parallelPixel =
+    parallel ? static_cast<float>(2.0 * camera->GetParallelScale() / height) : 0.0f;
+  program->SetUniformf("amrspLodThreshold", static_cast<float>(this->LODThreshold));
+  program->SetUniformf("amrspPixelSizePerDistance", pixelPerDistance);
+  program->SetUniformf("amrspParallelPixelSize", parallelPixel);
   program->SetUniformf("amrspUnitDistance",
     static_cast<float>(std::max(property->GetScalarOpacityUnitDistance(0), 1e-12)));
 
@@ -1114,6 +1006,7 @@ void vtkSinglePassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ArrayComponent: " << this->ArrayComponent << "\n";
   os << indent << "SampleDistanceFactor: " << this->SampleDistanceFactor << "\n";
   os << indent << "MaximumAtlasSize: " << this->MaximumAtlasSize << "\n";
+  os << indent << "LODThreshold: " << this->LODThreshold << "\n";
   os << indent << "UseDepthBuffer: " << (this->UseDepthBuffer ? "on" : "off") << "\n";
   os << indent << "NumberOfBuilds: " << in.NumberOfBuilds << "\n";
   os << indent << "KdNodes: " << in.KdNodes << ", DataNodes: " << in.DataNodes << "\n";

@@ -125,6 +125,17 @@ public:
   long long GetNumberOfDataNodes();
   ///@}
 
+  ///@{
+  /**
+   * Level of detail at the kD-tree's type (a) nodes: the traversal stops descending when one cell
+   * of the node's data level projects to fewer than this many pixels where the ray enters the
+   * node, and renders the node at that coarser level. 0 (the default) always renders the finest
+   * level. Changing it never rebuilds the textures.
+   */
+  vtkSetClampMacro(LODThreshold, double, 0.0, 1e6);
+  vtkGetMacro(LODThreshold, double);
+  ///@}
+
 protected:
   vtkSinglePassAMRVolumeMapper();
   ~vtkSinglePassAMRVolumeMapper() override;
@@ -135,6 +146,7 @@ protected:
   double SampleDistanceFactor = 1.0;
   bool UseDepthBuffer = true;
   int MaximumAtlasSize = 0;
+  double LODThreshold = 0.0;
 
 private:
   vtkSinglePassAMRVolumeMapper(const vtkSinglePassAMRVolumeMapper&) = delete;

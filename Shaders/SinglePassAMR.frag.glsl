@@ -13,7 +13,8 @@
 // Variants are selected by the mapper with #defines inserted at the marker below:
 //   AMRSP_LEVEL_COUNT   number of levels of the hierarchy (sizes the per-level uniform arrays)
 //   AMRSP_PACKING       data in one packed R32F atlas (the only storage implemented so far)
-//   AMRSP_CELL_CENTRED  nearest-cell sampling (the only data centring implemented so far)
+//   AMRSP_CELL_CENTRED  nearest-cell sampling of cell bricks
+//   AMRSP_VERTEX_CENTRED trilinear sampling of vertex bricks (one texel larger per axis)
 //   AMRSP_USE_DEPTH     clip rays at the depth of the opaque geometry already drawn
 //AMRSP::Defines
 
@@ -23,8 +24,8 @@
 #ifndef AMRSP_PACKING
 #error "only the packing storage (AMRSP_PACKING) is implemented"
 #endif
-#ifndef AMRSP_CELL_CENTRED
-#error "only cell-centred data (AMRSP_CELL_CENTRED) is implemented"
+#if !defined(AMRSP_CELL_CENTRED) && !defined(AMRSP_VERTEX_CENTRED)
+#error "AMRSP_CELL_CENTRED or AMRSP_VERTEX_CENTRED must be defined"
 #endif
 
 // The tree layout, shared verbatim with the C++ encoder (Shaders/KdTreeLayout.glsl).
@@ -64,6 +65,13 @@ uniform int amrspMaxSegments;                             // guard against corru
 uniform vec2 amrspTransferRange; // scalar at the first table entry, 1 / (last - first)
 uniform float amrspTransferSize; // number of table entries
 uniform float amrspUnitDistance; // vtkVolumeProperty::ScalarOpacityUnitDistance
+uniform vec3 amrspAtlasSize;     // atlas dimensions, texels
+
+// Level of detail at type (a) nodes, as amrsp::LevelOfDetail: stop descending when one cell of
+// the node's data level is smaller than amrspLodThreshold pixels at the ray's entry.
+uniform float amrspLodThreshold;         // pixels; 0 = always the finest level
+uniform float amrspPixelSizePerDistance; // perspective: model size of a pixel at distance 1
+uniform float amrspParallelPixelSize;    // parallel projection: model size of a pixel (> 0)
 
 uvec2 amrspFetchNode(uint index)
 {
@@ -177,6 +185,19 @@ void main()
       {
         break;
       }
+      uint lodData = amrspNodeData(texel);
+      if (lodData != 0u && amrspLodThreshold > 0.0)
+      {
+        uint dataLevel = amrspDataLevel(amrspFetchDataNode(lodData));
+        vec3 cell = amrspLevelCellSize[dataLevel] * amrspSpacing0;
+        float cellWorld = max(cell.x, max(cell.y, cell.z));
+        float pixel = amrspParallelPixelSize > 0.0 ? amrspParallelPixelSize
+                                                   : t * amrspPixelSizePerDistance;
+        if (cellWorld < amrspLodThreshold * pixel)
+        {
+          break;
+        }
+      }
       int axis = int(amrspNodeAxis(texel));
       uint level = amrspNodeLevel(texel);
       uint split = amrspNodeSplit(texel);
@@ -237,8 +258,18 @@ void main()
       {
         float ts = t + (float(k) + 0.5) * dt;
         vec3 p = ro + ts * rd;
+#ifdef AMRSP_VERTEX_CENTRED
+        // vertex (i,j,k) of the node's first cell is texel offset + (i,j,k); texel centres at +0.5
+        vec3 u = clamp(p / cellSize - vec3(firstCell), vec3(0.0), vec3(lastCell - firstCell + 1));
+        float scalar = texture(amrspAtlas, (vec3(offset) + u + 0.5) / amrspAtlasSize).r;
+#else
         ivec3 cell = clamp(ivec3(floor(p / cellSize)), firstCell, lastCell);
         float scalar = texelFetch(amrspAtlas, offset + (cell - firstCell), 0).r;
+#endif
+        if (isnan(scalar))
+        {
+          continue; // missing data is transparent
+        }
         vec4 tf = amrspTransferFunction(scalar);
         if (tf.a > 0.0)
         {

@@ -145,6 +145,7 @@ PackingRenderer::PackingRenderer(const Hierarchy& h,
   I->Mapper->SetInputData(I->Amr);
   I->Mapper->SelectScalarArray(h.ArrayName.empty() ? "values" : h.ArrayName.c_str());
   I->Mapper->SetSampleDistanceFactor(s.SampleDistanceFactor);
+  I->Mapper->SetLODThreshold(s.LodThresholdPixels);
   I->Volume->SetMapper(I->Mapper);
   I->Volume->SetProperty(I->Property);
 
