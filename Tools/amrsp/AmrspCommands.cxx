@@ -10,6 +10,7 @@
 #include "amrsp/KdTree.h"
 #include "amrsp/KdTreeEncoding.h"
 #include "amrsp/Render.h"
+#include "amrsp/VertexData.h"
 
 #include "vtkImageData.h"
 #include "vtkNew.h"
@@ -280,6 +281,10 @@ void PrepareScalars(Hierarchy& h, const std::string& scale, double& lo, double& 
   h.ArrayName = "log10(" + h.ArrayName + ")";
   lo = std::log10(minPositive);
   hi = std::log10(hi);
+  if (h.VertexCentred)
+  {
+    MakeVertexDataContinuous(h); // continuous in the displayed (logarithmic) scalar
+  }
 }
 
 void Bounds(const Hierarchy& h, glm::dvec3& lo, glm::dvec3& hi)

@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/// @file
+/// The scene of every baseline-image test: a dataset rendered by vtkSinglePassAMRVolumeMapper
+/// with the amrsp tool's conventions, compared with VTK's baseline image AND with the CPU
+/// reference image of the same view.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+class vtkRenderer;
+
+namespace amrsp
+{
+namespace test
+{
+
+struct BaselineCase
+{
+  /// A dataset argument of the amrsp tool; a path relative to AMRSP_DATA_DIR starts with "data:".
+  std::string Dataset;
+  /// amrsp options (--array, --centering, --size, --azimuth, --lod, ...).
+  std::vector<std::string> Options;
+  /// Largest RMSE (0-255 units) allowed between the GPU image and the CPU reference.
+  double ReferenceBound = 2.0;
+  /// Optional change of the scene before rendering (camera moves); the CPU reference uses the
+  /// resulting VTK camera.
+  std::function<void(vtkRenderer*)> Adjust;
+};
+
+/// Runs the test; returns the test driver's exit code (0 pass, 1 fail, 125 skipped).
+int RunBaselineTest(int argc, char* argv[], const BaselineCase& c);
+
+} // namespace test
+} // namespace amrsp
