@@ -719,6 +719,28 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     return;
   }
 
+  // ---- blend mode: composite, maximum, minimum and average intensity
+  int blend = 0;
+  switch (this->GetBlendMode())
+  {
+    case vtkVolumeMapper::COMPOSITE_BLEND:
+      blend = 0;
+      break;
+    case vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND:
+      blend = 1;
+      break;
+    case vtkVolumeMapper::MINIMUM_INTENSITY_BLEND:
+      blend = 2;
+      break;
+    case vtkVolumeMapper::AVERAGE_INTENSITY_BLEND:
+      blend = 3;
+      break;
+    default:
+      fail("blend mode " + std::to_string(this->GetBlendMode()) +
+        " is not supported (composite, maximum, minimum and average intensity are)");
+      return;
+  }
+
   // ---- shader (one variant per level count and depth use; cached by VTK's shader cache)
   const int levels = static_cast<int>(in.LevelCellSize.size());
   const bool useDepth = this->UseDepthBuffer;
@@ -729,6 +751,7 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     defines += "#define AMRSP_USE_DEPTH 1\n";
   }
+  defines += "#define AMRSP_BLEND_MODE " + std::to_string(blend) + "\n";
   std::string fragment = amrsp_SinglePassAMR_frag_glsl;
   vtkShaderProgram::Substitute(fragment, "//AMRSP::Defines", defines);
   vtkShaderProgram::Substitute(fragment, "//AMRSP::KdTreeLayout", amrsp_KdTreeLayout_glsl);

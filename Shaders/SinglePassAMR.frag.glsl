@@ -16,6 +16,7 @@
 //   AMRSP_CELL_CENTRED  nearest-cell sampling of cell bricks
 //   AMRSP_VERTEX_CENTRED trilinear sampling of vertex bricks (one texel larger per axis)
 //   AMRSP_USE_DEPTH     clip rays at the depth of the opaque geometry already drawn
+//   AMRSP_BLEND_MODE    0 composite, 1 maximum, 2 minimum, 3 average intensity (amrsp::BlendMode)
 //AMRSP::Defines
 
 #ifndef AMRSP_LEVEL_COUNT
@@ -23,6 +24,9 @@
 #endif
 #ifndef AMRSP_PACKING
 #error "only the packing storage (AMRSP_PACKING) is implemented"
+#endif
+#ifndef AMRSP_BLEND_MODE
+#define AMRSP_BLEND_MODE 0
 #endif
 #if !defined(AMRSP_CELL_CENTRED) && !defined(AMRSP_VERTEX_CENTRED)
 #error "AMRSP_CELL_CENTRED or AMRSP_VERTEX_CENTRED must be defined"
@@ -168,6 +172,11 @@ void main()
 
   vec3 colour = vec3(0.0);
   float alpha = 0.0;
+  // maximum/minimum/average intensity: the scalar kept, or the length-weighted sum and length
+  float kept = 0.0;
+  bool anySample = false;
+  float weightedSum = 0.0;
+  float sampledLength = 0.0;
   for (int iteration = 0; t < tEnd && iteration < amrspMaxSegments; ++iteration)
   {
     // kd-restart: descend from the root to the node containing the ray at t.
@@ -270,6 +279,17 @@ void main()
         {
           continue; // missing data is transparent
         }
+#if AMRSP_BLEND_MODE == 1
+        kept = anySample ? max(kept, scalar) : scalar;
+        anySample = true;
+#elif AMRSP_BLEND_MODE == 2
+        kept = anySample ? min(kept, scalar) : scalar;
+        anySample = true;
+#elif AMRSP_BLEND_MODE == 3
+        weightedSum += scalar * dt;
+        sampledLength += dt;
+        anySample = true;
+#else
         vec4 tf = amrspTransferFunction(scalar);
         if (tf.a > 0.0)
         {
@@ -281,6 +301,7 @@ void main()
             break;
           }
         }
+#endif
       }
       if (alpha >= AMRSP_OPAQUE_ALPHA)
       {
@@ -290,6 +311,19 @@ void main()
     t = tLeave;
   }
 
+#if AMRSP_BLEND_MODE != 0
+  // the kept scalar through the transfer function, without opacity correction
+  if (!anySample)
+  {
+    discard;
+  }
+#if AMRSP_BLEND_MODE == 3
+  kept = weightedSum / sampledLength;
+#endif
+  vec4 keptTF = amrspTransferFunction(kept);
+  alpha = min(keptTF.a, 1.0);
+  colour = keptTF.rgb * alpha;
+#endif
   if (alpha <= 0.0)
   {
     discard;

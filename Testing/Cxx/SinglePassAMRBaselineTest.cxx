@@ -58,7 +58,7 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
   {
     const Arguments a = ParseArguments(static_cast<int>(args.size()), args.data(), 1,
       { "array", "centering", "size", "azimuth", "elevation", "zoom", "tf", "scale",
-        "unit-distance", "sample-factor", "reference-sample-factor", "lod" },
+        "unit-distance", "sample-factor", "reference-sample-factor", "lod", "blend" },
       {});
     DatasetRequest request;
     request.Spec = spec;
@@ -97,9 +97,9 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
               << mirror << " (bound 1)\n";
 
     vtkRenderWindow* window = gpu.GetRenderer()->GetRenderWindow();
-    // VTK 9.1/9.2 sum the threshold over pixels; llvmpipe and GPUs differ by a few levels in
-    // some pixels, so the bound is that of VTK's own volume tests
-    const int baseline = vtkRegressionTestImageThreshold(window, 15.0);
+    // vtkImageDifference ignores per-pixel differences below its own threshold and averages
+    // the rest; 0.15 is under one badly wrong pixel (a wrong transfer function scores > 1)
+    const int baseline = vtkRegressionTestImageThreshold(window, 0.15);
     return (agrees && baseline == vtkTesting::PASSED) ? 0 : 1;
   }
   catch (const std::exception& e)

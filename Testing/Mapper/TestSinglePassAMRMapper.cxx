@@ -173,6 +173,36 @@ void TestDataset(const std::string& spec)
         Fixed(BoundVsKdTree));
   }
 
+  // the other blend modes against the CPU kD-tree integrator (no rebuild either)
+  for (BlendMode mode : { BlendMode::Maximum, BlendMode::Minimum, BlendMode::Average })
+  {
+    vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
+    mapper->SetBlendMode(mode == BlendMode::Maximum ? vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND
+        : mode == BlendMode::Minimum              ? vtkVolumeMapper::MINIMUM_INTENSITY_BLEND
+                                                  : vtkVolumeMapper::AVERAGE_INTENSITY_BLEND);
+    RenderSettings bs = s;
+    bs.Blend = mode;
+    const double e = Rmse(gpu.Render(0.0, ms), RenderKdTree(h, enc, bs));
+    Check(e < BoundVsKdTree,
+      "blend mode " + std::to_string(static_cast<int>(mode)) + ": GPU vs CPU kD-tree RMSE " +
+        Fixed(e) + " < " + Fixed(BoundVsKdTree));
+    mapper->SetBlendModeToComposite();
+  }
+  gpu.GetMapper()->SetBlendMode(vtkVolumeMapper::ADDITIVE_BLEND);
+  {
+    bool threw = false;
+    try
+    {
+      gpu.Render(0.0, ms);
+    }
+    catch (const GpuError& e)
+    {
+      threw = std::string(e.what()).find("not supported") != std::string::npos;
+    }
+    Check(threw, "an unsupported blend mode (additive) is a clear error");
+  }
+  gpu.GetMapper()->SetBlendModeToComposite();
+
   // a transfer-function change is visible and rebuilds nothing
   vtkVolume* volume = vtkVolume::SafeDownCast(gpu.GetRenderer()->GetVolumes()->GetItemAsObject(0));
   vtkPiecewiseFunction* opacity = volume->GetProperty()->GetScalarOpacity();

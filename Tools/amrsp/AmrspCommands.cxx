@@ -128,7 +128,7 @@ int Fail(const std::string& message)
 const std::vector<std::string> DatasetOptions = { "array", "component", "centering" };
 const std::vector<std::string> AtlasOptions = { "packer", "max-3d-texture-size", "atlas-budget-mb" };
 const std::vector<std::string> ViewOptions = { "size", "azimuth", "elevation", "zoom", "tf",
-  "scale", "unit-distance", "sample-factor", "reference-sample-factor", "lod", "threads" };
+  "scale", "unit-distance", "sample-factor", "reference-sample-factor", "lod", "threads", "blend" };
 
 std::vector<std::string> Concat(std::initializer_list<std::vector<std::string>> lists)
 {
@@ -206,13 +206,14 @@ const char* const ViewHelp =
   "  --size WxH                  image size (default 512x512)\n"
   "  --azimuth A --elevation E   degrees, applied after ResetCamera (default 30, 20)\n"
   "  --zoom Z                    vtkCamera::Zoom factor (default 1)\n"
-  "  --tf PRESET                 transfer function: default, grey, hot\n"
+  "  --tf PRESET                 transfer function: default, grey, hot, grey-opaque\n"
   "  --scale auto|linear|log     scalar mapping; auto = log10 when the data is positive and\n"
   "                              spans more than 3 decades (default auto)\n"
   "  --unit-distance D           ScalarOpacityUnitDistance in world units (default: diagonal/100)\n"
   "  --sample-factor F           samples per cell of each segment's level = 1/F (default 1)\n"
   "  --reference-sample-factor F step of the reference in finest-cell edges (default 0.5)\n"
   "  --lod PIXELS                level-of-detail threshold in pixels (default 0 = off)\n"
+  "  --blend MODE                composite (default), maximum, minimum or average intensity\n"
   "  --threads N                 CPU threads (default: all cores)\n";
 
 LoadedDataset Load(const Arguments& a, bool needValues, bool needVTK)
@@ -350,6 +351,27 @@ RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range)
     throw UsageError{ "sample factors must be positive" };
   }
   s.LodThresholdPixels = static_cast<float>(a.GetNumber("lod", 0.0));
+  const std::string blend = a.Get("blend", "composite");
+  if (blend == "composite")
+  {
+    s.Blend = BlendMode::Composite;
+  }
+  else if (blend == "maximum")
+  {
+    s.Blend = BlendMode::Maximum;
+  }
+  else if (blend == "minimum")
+  {
+    s.Blend = BlendMode::Minimum;
+  }
+  else if (blend == "average")
+  {
+    s.Blend = BlendMode::Average;
+  }
+  else
+  {
+    throw UsageError{ "--blend must be composite, maximum, minimum or average" };
+  }
   s.Threads = static_cast<int>(a.GetNumber("threads", 0.0));
   return s;
 }

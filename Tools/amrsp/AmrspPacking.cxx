@@ -146,6 +146,21 @@ PackingRenderer::PackingRenderer(const Hierarchy& h,
   I->Mapper->SelectScalarArray(h.ArrayName.empty() ? "values" : h.ArrayName.c_str());
   I->Mapper->SetSampleDistanceFactor(s.SampleDistanceFactor);
   I->Mapper->SetLODThreshold(s.LodThresholdPixels);
+  switch (s.Blend)
+  {
+    case BlendMode::Composite:
+      I->Mapper->SetBlendModeToComposite();
+      break;
+    case BlendMode::Maximum:
+      I->Mapper->SetBlendModeToMaximumIntensity();
+      break;
+    case BlendMode::Minimum:
+      I->Mapper->SetBlendModeToMinimumIntensity();
+      break;
+    case BlendMode::Average:
+      I->Mapper->SetBlendModeToAverageIntensity();
+      break;
+  }
   I->Volume->SetMapper(I->Mapper);
   I->Volume->SetProperty(I->Property);
 

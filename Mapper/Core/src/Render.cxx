@@ -131,7 +131,7 @@ double TransferFunction::EvaluateOpacity(double s) const
 
 std::vector<std::string> TransferFunction::PresetNames()
 {
-  return { "default", "grey", "hot" };
+  return { "default", "grey", "hot", "grey-opaque" };
 }
 
 TransferFunction TransferFunction::Preset(const std::string& name, double lo, double hi,
@@ -162,10 +162,16 @@ TransferFunction TransferFunction::Preset(const std::string& name, double lo, do
       { at(0.8), { 1.0, 0.9, 0.0 } }, { at(1.0), { 1.0, 1.0, 1.0 } } };
     tf.Opacity = { { at(0.0), 0.0 }, { at(0.3), 0.05 }, { at(1.0), 0.8 } };
   }
+  else if (name == "grey-opaque")
+  {
+    // for maximum/minimum/average intensity: the kept scalar as a grey level
+    tf.Color = { { at(0.0), { 0.0, 0.0, 0.0 } }, { at(1.0), { 1.0, 1.0, 1.0 } } };
+    tf.Opacity = { { at(0.0), 1.0 }, { at(1.0), 1.0 } };
+  }
   else
   {
     throw std::invalid_argument("unknown transfer-function preset '" + name +
-      "' (known: default, grey, hot)");
+      "' (known: default, grey, hot, grey-opaque)");
   }
   return tf;
 }
@@ -322,14 +328,39 @@ void ForEachRow(int height, int threads, const std::function<void(int)>& row)
 template <typename T>
 struct Accumulator
 {
+  explicit Accumulator(BlendMode mode)
+    : Mode(mode)
+  {
+  }
+
+  BlendMode Mode;
   glm::tvec3<T, glm::defaultp> Color{ 0 };
   T Alpha = 0;
+  // maximum/minimum/average intensity: the scalar kept, or the length-weighted sum and length
+  double Extremum = std::numeric_limits<double>::quiet_NaN();
+  double Sum = 0.0;
+  double Length = 0.0;
 
   void Add(const TransferFunction& tf, double scalar, double dt)
   {
     if (std::isnan(scalar))
     {
       return; // missing data is transparent
+    }
+    switch (Mode)
+    {
+      case BlendMode::Maximum:
+        Extremum = std::isnan(Extremum) ? scalar : std::max(Extremum, scalar);
+        return;
+      case BlendMode::Minimum:
+        Extremum = std::isnan(Extremum) ? scalar : std::min(Extremum, scalar);
+        return;
+      case BlendMode::Average:
+        Sum += scalar * dt;
+        Length += dt;
+        return;
+      case BlendMode::Composite:
+        break;
     }
     const T opacity = static_cast<T>(tf.EvaluateOpacity(scalar));
     if (opacity <= T(0))
@@ -343,8 +374,18 @@ struct Accumulator
     Alpha += (T(1) - Alpha) * a;
   }
 
-  glm::vec4 Pixel(const glm::dvec3& background) const
+  glm::vec4 Pixel(const TransferFunction& tf, const glm::dvec3& background)
   {
+    if (Mode != BlendMode::Composite)
+    {
+      // the kept scalar through the transfer function, without opacity correction
+      const double s = Mode == BlendMode::Average ? (Length > 0.0 ? Sum / Length : NAN) : Extremum;
+      if (!std::isnan(s))
+      {
+        Alpha = static_cast<T>(std::min(1.0, tf.EvaluateOpacity(s)));
+        Color = glm::tvec3<T, glm::defaultp>(tf.EvaluateColor(s)) * Alpha;
+      }
+    }
     const glm::dvec3 rgb = glm::dvec3(Color) + (1.0 - static_cast<double>(Alpha)) * background;
     return glm::vec4(glm::vec3(rgb), static_cast<float>(Alpha));
   }
@@ -467,7 +508,7 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
       const glm::vec3 d = glm::vec3(wd) / spacing;
       segments.clear();
       TraverseKdTree(tree, o, d, 0.0f, std::numeric_limits<float>::infinity(), lod, segments);
-      Accumulator<float> acc;
+      Accumulator<float> acc(s.Blend);
       for (const RaySegment& seg : segments)
       {
         if (seg.Data == 0)
@@ -513,7 +554,7 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
           acc.Add(s.Transfer, v, dt);
         }
       }
-      img.Pixels[static_cast<std::size_t>(j) * s.Width + i] = acc.Pixel(s.Background);
+      img.Pixels[static_cast<std::size_t>(j) * s.Width + i] = acc.Pixel(s.Transfer, s.Background);
     }
   });
   return img;
@@ -562,7 +603,7 @@ Image RenderReference(const Hierarchy& h, const RenderSettings& s)
         tEnter = std::max(tEnter, t0);
         tExit = std::min(tExit, t1);
       }
-      Accumulator<double> acc;
+      Accumulator<double> acc(s.Blend);
       double t = std::max(0.0, tEnter);
       while (hit && t < tExit)
       {
@@ -588,7 +629,7 @@ Image RenderReference(const Hierarchy& h, const RenderSettings& s)
         }
         t += dt;
       }
-      img.Pixels[static_cast<std::size_t>(j) * s.Width + i] = acc.Pixel(s.Background);
+      img.Pixels[static_cast<std::size_t>(j) * s.Width + i] = acc.Pixel(s.Transfer, s.Background);
     }
   });
   return img;

@@ -79,10 +79,22 @@ struct TransferFunction
   double EvaluateOpacity(double s) const;
 
   /// A named preset spanning [lo, hi]: "default" (blue-white-red, opacity ramp), "grey",
-  /// "hot". Throws std::invalid_argument for an unknown name.
+  /// "hot", "grey-opaque" (grey levels at opacity 1, for the intensity projections). Throws
+  /// std::invalid_argument for an unknown name.
   static TransferFunction Preset(const std::string& name, double lo, double hi,
     double unitDistance);
   static std::vector<std::string> PresetNames();
+};
+
+/// vtkVolumeMapper's blend modes. Maximum/Minimum keep the extreme scalar along the ray,
+/// Average its length-weighted mean; the pixel is then the transfer function's colour and
+/// (uncorrected) opacity of that scalar over the background.
+enum class BlendMode
+{
+  Composite,
+  Maximum,
+  Minimum,
+  Average
 };
 
 struct RenderSettings
@@ -95,6 +107,7 @@ struct RenderSettings
   double SampleDistanceFactor = 1.0;
   double ReferenceSampleFactor = 0.5;
   float LodThresholdPixels = 0.0f; ///< kD-tree integrator only; 0 = always the finest level
+  BlendMode Blend = BlendMode::Composite;
   int Threads = 0;                 ///< 0 = hardware concurrency
 };
 
