@@ -9,12 +9,17 @@
 #include "amrsp/KdTreeEncoding.h"
 #include "amrsp/Render.h"
 
+#include "vtkActor.h"
+#include "vtkPlaneSource.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
 #include "vtkRegressionTestImage.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
 #include "vtkTesting.h"
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
@@ -22,6 +27,64 @@ namespace amrsp
 {
 namespace test
 {
+
+namespace
+{
+/// The square's corner and its two unit edge directions.
+void Frame(const BaselineCase::Square& q, glm::dvec3& corner, glm::dvec3& right, glm::dvec3& up)
+{
+  const glm::dvec3 n = glm::normalize(q.Normal);
+  up = glm::normalize(q.Up - glm::dot(q.Up, n) * n);
+  right = glm::cross(up, n);
+  corner = q.Centre - q.Half * right - q.Half * up;
+}
+
+void AddSquare(vtkRenderer* renderer, const BaselineCase::Square& q)
+{
+  glm::dvec3 o, r, u;
+  Frame(q, o, r, u);
+  const glm::dvec3 p1 = o + 2.0 * q.Half * r, p2 = o + 2.0 * q.Half * u;
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(o.x, o.y, o.z);
+  plane->SetPoint1(p1.x, p1.y, p1.z);
+  plane->SetPoint2(p2.x, p2.y, p2.z);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(plane->GetOutputPort());
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(q.Grey, q.Grey, q.Grey);
+  actor->GetProperty()->LightingOff();
+  renderer->AddActor(actor);
+}
+
+/// Nearest hit of a world ray with the squares, for the CPU images.
+bool HitSquares(const std::vector<BaselineCase::Square>& squares, const glm::dvec3& origin,
+  const glm::dvec3& direction, double& distance, glm::dvec3& colour)
+{
+  bool any = false;
+  for (const BaselineCase::Square& q : squares)
+  {
+    glm::dvec3 o, r, u;
+    Frame(q, o, r, u);
+    const glm::dvec3 n = glm::normalize(q.Normal);
+    const double denominator = glm::dot(direction, n);
+    if (denominator == 0.0)
+    {
+      continue;
+    }
+    const double t = glm::dot(q.Centre - origin, n) / denominator;
+    const glm::dvec3 local = origin + t * direction - q.Centre;
+    if (t > 0.0 && std::abs(glm::dot(local, r)) <= q.Half && std::abs(glm::dot(local, u)) <= q.Half &&
+      (!any || t < distance))
+    {
+      any = true;
+      distance = t;
+      colour = glm::dvec3(q.Grey);
+    }
+  }
+  return any;
+}
+} // namespace
 
 int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
 {
@@ -73,6 +136,16 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
     view.Zoom = a.GetNumber("zoom", 1.0);
 
     PackingRenderer gpu(d.Data, s, view);
+    for (const BaselineCase::Square& q : c.Squares)
+    {
+      AddSquare(gpu.GetRenderer(), q);
+    }
+    if (!c.Squares.empty())
+    {
+      s.Opaque = [&c](const glm::dvec3& o, const glm::dvec3& dir, double& t, glm::dvec3& colour) {
+        return HitSquares(c.Squares, o, dir, t, colour);
+      };
+    }
     double ms = 0.0;
     gpu.Render(0.0, ms);
     if (c.Adjust)

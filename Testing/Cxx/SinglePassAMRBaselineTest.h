@@ -5,6 +5,8 @@
 /// with the amrsp tool's conventions, compared with VTK's baseline image AND with the CPU
 /// reference image of the same view.
 
+#include <glm/glm.hpp>
+
 #include <functional>
 #include <string>
 #include <vector>
@@ -27,6 +29,19 @@ struct BaselineCase
   /// Optional change of the scene before rendering (camera moves); the CPU reference uses the
   /// resulting VTK camera.
   std::function<void(vtkRenderer*)> Adjust;
+
+  /// Opaque, unlit squares added to the scene (as vtkPlaneSource actors for the GPU, and as
+  /// analytic surfaces that end the rays of the CPU images): centre, normal, up direction, half
+  /// edge length and grey level, in world units.
+  struct Square
+  {
+    glm::dvec3 Centre;
+    glm::dvec3 Normal;
+    glm::dvec3 Up;
+    double Half;
+    double Grey;
+  };
+  std::vector<Square> Squares;
 };
 
 /// Runs the test; returns the test driver's exit code (0 pass, 1 fail, 125 skipped).

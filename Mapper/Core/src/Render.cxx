@@ -507,7 +507,15 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
       const glm::vec3 o = (glm::vec3(wo) - worldOrigin) / spacing;
       const glm::vec3 d = glm::vec3(wd) / spacing;
       segments.clear();
-      TraverseKdTree(tree, o, d, 0.0f, std::numeric_limits<float>::infinity(), lod, segments);
+      float tMax = std::numeric_limits<float>::infinity();
+      glm::dvec3 background = s.Background, hitColour;
+      double hit = 0.0;
+      if (s.Opaque && s.Opaque(wo, wd, hit, hitColour))
+      {
+        tMax = static_cast<float>(hit);
+        background = hitColour;
+      }
+      TraverseKdTree(tree, o, d, 0.0f, tMax, lod, segments);
       Accumulator<float> acc(s.Blend);
       for (const RaySegment& seg : segments)
       {
@@ -554,7 +562,7 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
           acc.Add(s.Transfer, v, dt);
         }
       }
-      img.Pixels[static_cast<std::size_t>(j) * s.Width + i] = acc.Pixel(s.Transfer, s.Background);
+      img.Pixels[static_cast<std::size_t>(j) * s.Width + i] = acc.Pixel(s.Transfer, background);
     }
   });
   return img;
@@ -604,6 +612,13 @@ Image RenderReference(const Hierarchy& h, const RenderSettings& s)
         tExit = std::min(tExit, t1);
       }
       Accumulator<double> acc(s.Blend);
+      glm::dvec3 background = s.Background, opaqueColour;
+      double opaqueDistance = 0.0;
+      if (s.Opaque && s.Opaque(wo, wd, opaqueDistance, opaqueColour))
+      {
+        tExit = std::min(tExit, opaqueDistance);
+        background = opaqueColour;
+      }
       double t = std::max(0.0, tEnter);
       while (hit && t < tExit)
       {
@@ -629,7 +644,7 @@ Image RenderReference(const Hierarchy& h, const RenderSettings& s)
         }
         t += dt;
       }
-      img.Pixels[static_cast<std::size_t>(j) * s.Width + i] = acc.Pixel(s.Transfer, s.Background);
+      img.Pixels[static_cast<std::size_t>(j) * s.Width + i] = acc.Pixel(s.Transfer, background);
     }
   });
   return img;

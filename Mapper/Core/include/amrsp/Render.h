@@ -27,6 +27,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -108,6 +109,12 @@ struct RenderSettings
   double ReferenceSampleFactor = 0.5;
   float LodThresholdPixels = 0.0f; ///< kD-tree integrator only; 0 = always the finest level
   BlendMode Blend = BlendMode::Composite;
+  /// Optional opaque geometry in the scene (as the depth buffer the GPU mapper reads): for a
+  /// world ray (origin, unit direction) it returns true with the distance and the colour of the
+  /// nearest opaque hit; the ray then ends there and that colour replaces the background.
+  std::function<bool(const glm::dvec3& origin, const glm::dvec3& direction, double& distance,
+    glm::dvec3& colour)>
+    Opaque;
   int Threads = 0;                 ///< 0 = hardware concurrency
 };
 
