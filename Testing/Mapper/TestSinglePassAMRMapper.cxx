@@ -30,6 +30,11 @@
 #include "vtkSinglePassAMRVolumeMapper.h"
 
 #include "vtkActor.h"
+#include "vtkImageData.h"
+#include "vtkPointData.h"
+#include "vtkRenderWindow.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkWindowToImageFilter.h"
 #include "vtkCamera.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
@@ -45,6 +50,7 @@
 #include <cstdio>
 #include <limits>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -435,6 +441,113 @@ void TestLevelOfDetailAndNaN()
   Check(gpu.NumberOfBuilds() == 1, "changing the LOD threshold rebuilds nothing");
 }
 
+/// Reads the window back as an amrsp::Image of the pixels [x0, x0 + w) x [0, h).
+Image Grab(vtkRenderWindow* window, int x0, int w, int h)
+{
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->SetInputBufferTypeToRGB();
+  grab->ReadFrontBufferOff();
+  grab->ShouldRerenderOff();
+  grab->Update();
+  vtkUnsignedCharArray* rgb =
+    vtkUnsignedCharArray::SafeDownCast(grab->GetOutput()->GetPointData()->GetScalars());
+  int dims[3];
+  grab->GetOutput()->GetDimensions(dims);
+  Image img;
+  img.Width = w;
+  img.Height = h;
+  for (int j = 0; j < h; ++j)
+  {
+    for (int i = 0; i < w; ++i)
+    {
+      const unsigned char* p = rgb->GetPointer(3 * (static_cast<vtkIdType>(j) * dims[0] + x0 + i));
+      img.Pixels.push_back(glm::vec4(p[0] / 255.0f, p[1] / 255.0f, p[2] / 255.0f, 1.0f));
+    }
+  }
+  return img;
+}
+
+/// Two volumes in two renderers of one window render as they do alone; the input can change
+/// again and again (each change rebuilds once), and the graphics resources can be released and
+/// rebuilt.
+void TestTwoRenderersAndDataChanges()
+{
+  std::cout << "two renderers in one window; repeated data changes\n";
+  std::vector<std::unique_ptr<PackingRenderer>> alone;
+  std::vector<Hierarchy> data;
+  std::vector<Image> images;
+  for (const char* spec : { "synthetic:cosmo:grids=40,levels=3,cells=100k,seed=3",
+         "synthetic:cosmo:grids=40,levels=3,cells=100k,seed=8" })
+  {
+    DatasetRequest request;
+    request.Spec = spec;
+    request.NeedVTK = false;
+    data.push_back(LoadDataset(request).Data);
+    const RenderSettings s = Settings(data.back(), { "--size", "96x96" });
+    alone.emplace_back(new PackingRenderer(data.back(), s, ViewAngles()));
+    double ms = 0.0;
+    images.push_back(alone.back()->Render(0.0, ms));
+  }
+
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetMultiSamples(0);
+  window->SetSize(192, 96);
+  std::vector<vtkSmartPointer<vtkSinglePassAMRVolumeMapper>> mappers;
+  for (int k = 0; k < 2; ++k)
+  {
+    vtkVolume* original =
+      vtkVolume::SafeDownCast(alone[k]->GetRenderer()->GetVolumes()->GetItemAsObject(0));
+    auto mapper = vtkSmartPointer<vtkSinglePassAMRVolumeMapper>::New();
+    mapper->SetInputData(alone[k]->GetMapper()->GetAMRInput());
+    mapper->SelectScalarArray(data[k].ArrayName.c_str());
+    vtkNew<vtkVolume> volume;
+    volume->SetMapper(mapper);
+    volume->SetProperty(original->GetProperty());
+    vtkNew<vtkRenderer> renderer;
+    renderer->SetViewport(0.5 * k, 0.0, 0.5 * (k + 1), 1.0);
+    renderer->AddVolume(volume);
+    renderer->GetActiveCamera()->DeepCopy(alone[k]->GetRenderer()->GetActiveCamera());
+    window->AddRenderer(renderer);
+    mappers.push_back(mapper);
+  }
+  window->Render();
+  for (int k = 0; k < 2; ++k)
+  {
+    const double e = Rmse(Grab(window, 96 * k, 96, 96), images[k]);
+    Check(e < 0.5, "volume " + std::to_string(k) + " in a shared window matches its own image: RMSE " +
+        Fixed(e));
+  }
+
+  // repeated data changes: one rebuild each, and the image follows the data (the second
+  // dataset is shown with the first one's transfer function here, so its first image is kept)
+  vtkSinglePassAMRVolumeMapper* mapper = mappers[0];
+  const int builds = mapper->GetNumberOfBuilds();
+  Image second;
+  for (int change = 1; change <= 4; ++change)
+  {
+    mapper->SetInputData(alone[change % 2]->GetMapper()->GetAMRInput());
+    window->Render();
+    const Image img = Grab(window, 0, 96, 96);
+    if (change == 1)
+    {
+      second = img;
+    }
+    const double changed = Rmse(img, images[0]);
+    const double e = change % 2 ? Rmse(img, second) : changed;
+    Check(std::string(mapper->GetLastError()).empty() && e < 0.5 &&
+        (change % 2 == 0 || changed > 1.0) && mapper->GetNumberOfBuilds() == builds + change,
+      "data change " + std::to_string(change) + ": rebuilt once, the image follows the data");
+  }
+  mapper->ReleaseGraphicsResources(window);
+  window->Render();
+  Check(std::string(mapper->GetLastError()).empty() &&
+      Rmse(Grab(window, 0, 96, 96), images[0]) < 0.5,
+    "after ReleaseGraphicsResources the textures are uploaded again and the image is unchanged");
+  window->Finalize();
+}
+
 int main()
 {
   std::string why;
@@ -447,6 +560,7 @@ int main()
   {
     TestDataset("synthetic:cosmo:grids=60,levels=3,cells=200k,seed=3");
     TestLevelOfDetailAndNaN();
+    TestTwoRenderersAndDataChanges();
     TestVertexCentred("synthetic:cosmo:grids=40,levels=3,cells=100k,seed=5");
     const std::string enzo =
       std::string(AMRSP_DATA_DIR) + "/enzo_moving7/DD0010/moving7_0010.hierarchy";
