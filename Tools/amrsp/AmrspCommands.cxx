@@ -597,7 +597,8 @@ int RunImageCommand(int argc, char** argv, bool reference)
           "packed atlas through the data nodes' offsets, as the packing shader does), packing\n"
           "(vtkSinglePassAMRVolumeMapper on the GPU: one packed R32F atlas, offscreen\n"
           "vtkRenderWindow; needs an X display here).\n"
-          "  --method M                  cpu-kdtree (default), cpu-packing or packing\n"
+          "  --method M                  auto (default: packing where an OpenGL context can be\n"
+          "                              had, else cpu-packing), packing, cpu-packing, cpu-kdtree\n"
           "  --compare                   also render the CPU reference and the CPU kD-tree\n"
           "                              image and print the RMSE (0-255) against them\n");
   try
@@ -621,11 +622,23 @@ int RunImageCommand(int argc, char** argv, bool reference)
     {
       throw UsageError{ "unexpected argument '" + a.Positional[2] + "'" };
     }
-    const std::string method = a.Get("method", "cpu-kdtree");
-    if (!reference && method != "cpu-kdtree" && method != "cpu-packing" && method != "packing")
+    std::string method = a.Get("method", "auto");
+    if (!reference && method != "auto" && method != "cpu-kdtree" && method != "cpu-packing" &&
+      method != "packing")
     {
       throw UsageError{ "unknown --method '" + method +
-        "' (available in this build: cpu-kdtree, cpu-packing, packing)" };
+        "' (available in this build: auto, cpu-kdtree, cpu-packing, packing)" };
+    }
+    if (!reference && method == "auto")
+    {
+      // the GPU mapper where an OpenGL context can be had, else its CPU mirror (said once)
+      std::string why;
+      method = PackingRenderer::Available(why) ? "packing" : "cpu-packing";
+      if (method != "packing")
+      {
+        std::cerr << "amrsp: note: no OpenGL context for the GPU mapper (" << why
+                  << "); rendering with cpu-packing\n";
+      }
     }
     const AtlasRequest atlasRequest = ParseAtlasRequest(a);
     const std::string output = a.Get("output", name + ".png");
