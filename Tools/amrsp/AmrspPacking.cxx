@@ -56,15 +56,7 @@ namespace
 /// Level-0 bounding box in world coordinates, as the tool's CPU paths use it.
 void Level0Bounds(const Hierarchy& h, double bounds[6])
 {
-  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-  for (const Grid& g : h.Grids)
-  {
-    if (g.Level == 0)
-    {
-      lo = glm::min(lo, h.WorldLo(g.Cells, 0));
-      hi = glm::max(hi, h.WorldHi(g.Cells, 0));
-    }
-  }
+  const glm::dvec3 lo = h.WorldLo(h.RootCells(), 0), hi = h.WorldHi(h.RootCells(), 0);
   for (int a = 0; a < 3; ++a)
   {
     bounds[2 * a] = lo[a];
