@@ -7,6 +7,7 @@
 #include "amrsp/KdTreeEncoding.h"
 #include "amrsp/KdTreeLayout.h"
 #include "amrsp/Render.h"
+#include "amrsp/Resample.h"
 #include "amrsp/VertexData.h"
 #include "TestHierarchies.h"
 
@@ -175,6 +176,26 @@ TEST(VertexData, AtlasPathMatchesDirectTrilinearSampling)
   const Image direct = RenderKdTree(h, plain, s);
   EXPECT_LT(Rmse(direct, RenderKdTree(h, packed, s, &atlas)), 0.05);
   EXPECT_LT(Rmse(direct, RenderReference(h, s)), 2.0);
+}
+
+TEST(Resample, VoxelsHoldTheFinestCellAndLimitsAreErrors)
+{
+  const Hierarchy h = PaperExample();
+  const UniformGrid u = ResampleToLevel(h, 2, 1 << 24, 2048);
+  EXPECT_EQ(u.Dims, glm::ivec3(64, 64, 16));
+  const FinestCellLocator locator(h);
+  std::mt19937_64 rng(4);
+  for (int probe = 0; probe < 2000; ++probe)
+  {
+    const glm::ivec3 v(rng() % 64, rng() % 64, rng() % 16);
+    const glm::dvec3 p = (glm::dvec3(v) + 0.5) * h.CellSize(2);
+    glm::i64vec3 c;
+    const int32_t g = locator.Find(p, c);
+    const float value = u.Values[(static_cast<std::size_t>(v.z) * 64 + v.y) * 64 + v.x];
+    ASSERT_EQ(value, CellValue(h, g, c));
+  }
+  EXPECT_THROW(ResampleToLevel(h, 2, 1000, 2048), ResampleError);
+  EXPECT_THROW(ResampleToLevel(h, 2, 1 << 24, 32), ResampleError);
 }
 
 } // namespace
