@@ -2,6 +2,7 @@
 #include "AmrspCommands.h"
 
 #include "AmrspDataset.h"
+#include "AmrspMultipass.h"
 #include "AmrspPacking.h"
 
 #include "amrsp/BrickAtlas.h"
@@ -26,6 +27,7 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <memory>
 #include <sstream>
 
 namespace amrsp
@@ -591,14 +593,17 @@ int RunImageCommand(int argc, char** argv, bool reference)
     (reference
         ? "Renders the independent CPU reference image: no kD-tree; each sample finds the finest\n"
           "cell containing it directly from the hierarchy's boxes.\n"
-        : "Renders the dataset with the single-pass kD-tree raycaster and prints which method\n"
+        : "Renders the dataset with one of the kD-tree raycasters and prints which method\n"
           "rendered. Methods: cpu-kdtree (the CPU traversal of the encoded tree textures that\n"
           "mirrors the GLSL shader, sampling the grids), cpu-packing (the same, sampling the\n"
           "packed atlas through the data nodes' offsets, as the packing shader does), packing\n"
           "(vtkSinglePassAMRVolumeMapper on the GPU: one packed R32F atlas, offscreen\n"
-          "vtkRenderWindow; needs an X display here).\n"
+          "vtkRenderWindow; needs an X display here), multipass (vtkMultiPassAMRVolumeMapper,\n"
+          "the paper's multi-pass baseline: the kD-tree ordered on the CPU, one draw per data\n"
+          "node blended front to back; same atlas, same display needs).\n"
           "  --method M                  auto (default: packing where an OpenGL context can be\n"
-          "                              had, else cpu-packing), packing, cpu-packing, cpu-kdtree\n"
+          "                              had, else cpu-packing), packing, cpu-packing, cpu-kdtree,\n"
+          "                              multipass\n"
           "  --compare                   also render the CPU reference and the CPU kD-tree\n"
           "                              image and print the RMSE (0-255) against them\n");
   try
@@ -624,10 +629,10 @@ int RunImageCommand(int argc, char** argv, bool reference)
     }
     std::string method = a.Get("method", "auto");
     if (!reference && method != "auto" && method != "cpu-kdtree" && method != "cpu-packing" &&
-      method != "packing")
+      method != "packing" && method != "multipass")
     {
       throw UsageError{ "unknown --method '" + method +
-        "' (available in this build: auto, cpu-kdtree, cpu-packing, packing)" };
+        "' (available in this build: auto, cpu-kdtree, cpu-packing, packing, multipass)" };
     }
     if (!reference && method == "auto")
     {
@@ -656,23 +661,40 @@ int RunImageCommand(int argc, char** argv, bool reference)
       img = RenderReference(d.Data, s);
       renderSeconds = Seconds(t0);
     }
-    else if (method == "packing")
+    else if (method == "packing" || method == "multipass")
     {
-      PackingRenderer gpu(d.Data, s, ViewOf(a));
+      std::unique_ptr<GpuRenderer> gpu;
+      MultipassRenderer* multipass = nullptr;
+      if (method == "multipass")
+      {
+        multipass = new MultipassRenderer(d.Data, s, ViewOf(a));
+        gpu.reset(multipass);
+      }
+      else
+      {
+        gpu.reset(new PackingRenderer(d.Data, s, ViewOf(a)));
+      }
+      GpuRenderer& r = *gpu;
       double firstMs = 0.0, ms = 0.0;
-      gpu.Render(0.0, firstMs); // converts, builds, packs, uploads and compiles
-      img = gpu.Render(0.0, ms);
-      preprocess = gpu.BuildSeconds() + gpu.UploadSeconds();
+      r.Render(0.0, firstMs); // converts, builds, packs, uploads and compiles
+      img = r.Render(0.0, ms);
+      preprocess = r.BuildSeconds() + r.UploadSeconds();
       renderSeconds = ms / 1000.0;
-      const double cameraDifference = CameraDifference(gpu.LastCamera(), s.View);
-      gpuReport << "device: " << gpu.Device() << "\n"
-                << "atlas: " << gpu.AtlasDimensions() << " texels, textures "
-                << gpu.TextureBytes() / (1024.0 * 1024.0) << " MiB\n"
-                << "mapper (s): build " << gpu.BuildSeconds()
-                << " (conversion, kD-tree, packing, encoding; done in GetBounds), upload "
-                << gpu.UploadSeconds() << "; first frame " << firstMs / 1000.0
-                << " (upload, shader compile, render)\n"
-                << "camera: VTK's camera and the tool's conventions "
+      const double cameraDifference = CameraDifference(r.LastCamera(), s.View);
+      gpuReport << "device: " << r.Device() << "\n"
+                << "atlas: " << r.AtlasDimensions() << " texels, textures "
+                << r.TextureBytes() / (1024.0 * 1024.0) << " MiB\n"
+                << "mapper (s): build " << r.BuildSeconds() << " (conversion, kD-tree, packing"
+                << (multipass ? "" : ", encoding") << "; done in GetBounds), upload "
+                << r.UploadSeconds() << "; first frame " << firstMs / 1000.0
+                << " (upload, shader compile, render)\n";
+      if (multipass)
+      {
+        gpuReport << "passes: " << multipass->Passes()
+                  << " draws (data nodes, front to back), ordering on the CPU "
+                  << multipass->OrderSeconds() * 1000.0 << " ms\n";
+      }
+      gpuReport << "camera: VTK's camera and the tool's conventions "
                 << (cameraDifference < 1e-6 ? "agree" : "DIFFER") << " (relative difference "
                 << cameraDifference << ")\n";
     }
@@ -714,6 +736,13 @@ int RunImageCommand(int argc, char** argv, bool reference)
       {
         const Image kd = RenderKdTree(d.Data, EncodeKdTree(d.Data, BuildKdTree(d.Data)), s);
         std::cout << ", vs cpu-kdtree: " << Rmse(img, kd);
+      }
+      if (method == "multipass")
+      {
+        // the single-pass mapper samples the same segments: the images should agree closely
+        PackingRenderer packing(d.Data, s, ViewOf(a));
+        double ms = 0.0;
+        std::cout << ", vs packing: " << Rmse(img, packing.Render(0.0, ms));
       }
       std::cout << "\n";
     }
@@ -757,10 +786,13 @@ int RunBench(int argc, char** argv)
     "usage: amrsp bench [DATASET] [--size WxH] [--frames N] [--methods LIST] [--json FILE]\n"
     "Renders an orbit of N frames per method in one process and reports ms/frame, fps,\n"
     "preprocessing seconds and the RMSE/PSNR of frame 0 against the CPU reference.\n"
-    "Methods in this build: cpu-kdtree, packing (vtkSinglePassAMRVolumeMapper, offscreen;\n"
-    "its first frame, which builds, uploads and compiles, is reported apart and not timed with\n"
-    "the orbit). Other GPU methods (bindless, multipass, vtk-amr-resample, uniform-gpu) are\n"
-    "listed with an error until they are implemented.\n";
+    "Methods in this build: cpu-kdtree, packing (vtkSinglePassAMRVolumeMapper, offscreen),\n"
+    "multipass (vtkMultiPassAMRVolumeMapper: one draw per kD-tree data node, blended front to\n"
+    "back). A GPU method's first frame, which builds, uploads and compiles, is reported apart\n"
+    "and not timed with the orbit; its frame 0 is also compared with the CPU kD-tree image\n"
+    "(rmse_vs_cpu_kdtree) and, for multipass, with the packing image (rmse_vs_packing). Other\n"
+    "GPU methods (bindless, vtk-amr-resample, uniform-gpu) are listed with an error until they\n"
+    "are implemented.\n";
   try
   {
     const Arguments a = ParseArguments(
@@ -799,6 +831,7 @@ int RunBench(int argc, char** argv)
     j["frames"] = frames;
     j["methods"] = Json::object();
     Image kdFrame0; // the CPU kD-tree image of frame 0, for the GPU methods' comparison
+    Image packingFrame0; // the packing image of frame 0, for the multipass comparison
     auto summary = [frames](const std::vector<double>& ms, Json& out) {
       std::vector<double> sorted = ms;
       std::sort(sorted.begin(), sorted.end());
@@ -814,11 +847,22 @@ int RunBench(int argc, char** argv)
     auto psnr = [](double rmse) { return rmse > 0.0 ? 20.0 * std::log10(255.0 / rmse) : 99.0; };
     for (const std::string& m : methods)
     {
-      if (m == "packing")
+      if (m == "packing" || m == "multipass")
       {
         try
         {
-          PackingRenderer gpu(d.Data, s, ViewOf(a));
+          std::unique_ptr<GpuRenderer> owner;
+          MultipassRenderer* multipass = nullptr;
+          if (m == "multipass")
+          {
+            multipass = new MultipassRenderer(d.Data, s, ViewOf(a));
+            owner.reset(multipass);
+          }
+          else
+          {
+            owner.reset(new PackingRenderer(d.Data, s, ViewOf(a)));
+          }
+          GpuRenderer& gpu = *owner;
           double firstMs = 0.0;
           gpu.Render(0.0, firstMs);
           std::vector<double> ms;
@@ -843,12 +887,26 @@ int RunBench(int argc, char** argv)
           r["rmse"] = rmse;
           r["psnr"] = psnr(rmse);
           r["rmse_vs_cpu_kdtree"] = Rmse(first, kdFrame0);
+          if (multipass && !packingFrame0.Pixels.empty())
+          {
+            r["rmse_vs_packing"] = Rmse(first, packingFrame0);
+          }
           r["gpu_bytes"] = gpu.TextureBytes();
           r["atlas"] = gpu.AtlasDimensions();
           r["first_frame_ms"] = firstMs;
           r["builds"] = gpu.NumberOfBuilds();
           r["device"] = gpu.Device();
           r["preprocess_s"] = { { "build", gpu.BuildSeconds() }, { "upload", gpu.UploadSeconds() } };
+          if (multipass)
+          {
+            r["passes"] = multipass->Passes();
+            r["order_ms"] = 1000.0 * multipass->OrderSeconds();
+            r["accumulation_bytes"] = multipass->AccumulationBytes();
+          }
+          else
+          {
+            packingFrame0 = first;
+          }
           j["methods"][m] = r;
         }
         catch (const GpuError& e)

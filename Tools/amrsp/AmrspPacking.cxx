@@ -1,304 +1,70 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "AmrspPacking.h"
 
-#include "vtkAMRCoreConversion.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
-
-#include "vtkCamera.h"
-#include "vtkColorTransferFunction.h"
-#include "vtkImageData.h"
-#include "vtkNew.h"
-#include "vtkOverlappingAMR.h"
-#include "vtkPiecewiseFunction.h"
-#include "vtkPointData.h"
-#include "vtkRenderWindow.h"
-#include "vtkRenderer.h"
-#include "vtkRenderingOpenGLConfigure.h"
-#include "vtkUnsignedCharArray.h"
-#include "vtkVolume.h"
-#include "vtkVolumeProperty.h"
-#include "vtkWindowToImageFilter.h"
-
-#if defined(VTK_USE_X) && !defined(VTK_OPENGL_HAS_EGL) && !defined(VTK_OPENGL_HAS_OSMESA)
-#define AMRSP_GLX_ONLY 1
-#include <X11/Xlib.h>
-#endif
-
-#include <chrono>
-#include <cstdlib>
-#include <limits>
-#include <sstream>
-#include <thread>
+#include "vtkSmartPointer.h"
 
 namespace amrsp
 {
 namespace tool
 {
 
-struct PackingRenderer::Internals
-{
-  vtkNew<vtkOverlappingAMR> Amr;
-  vtkNew<vtkSinglePassAMRVolumeMapper> Mapper;
-  vtkNew<vtkVolumeProperty> Property;
-  vtkNew<vtkColorTransferFunction> Colour;
-  vtkNew<vtkPiecewiseFunction> Opacity;
-  vtkNew<vtkVolume> Volume;
-  vtkNew<vtkRenderer> Renderer;
-  vtkNew<vtkRenderWindow> Window;
-  vtkNew<vtkCamera> Start; // the camera after the view set-up, before any orbit
-  int Width = 0;
-  int Height = 0;
-  std::string Device;
-};
-
 namespace
 {
-/// Level-0 bounding box in world coordinates, as the tool's CPU paths use it.
-void Level0Bounds(const Hierarchy& h, double bounds[6])
+vtkSmartPointer<vtkSinglePassAMRVolumeMapper> NewMapper()
 {
-  const glm::dvec3 lo = h.WorldLo(h.RootCells(), 0), hi = h.WorldHi(h.RootCells(), 0);
-  for (int a = 0; a < 3; ++a)
-  {
-    bounds[2 * a] = lo[a];
-    bounds[2 * a + 1] = hi[a];
-  }
+  return vtkSmartPointer<vtkSinglePassAMRVolumeMapper>::New();
 }
 } // namespace
 
-bool PackingRenderer::Available(std::string& why)
+PackingRenderer::PackingRenderer(
+  const Hierarchy& h, const RenderSettings& s, const ViewAngles& view)
+  : PackingRenderer(NewMapper(), h, s, view)
 {
-#ifdef AMRSP_GLX_ONLY
-  // VTK's GLX window aborts the process when it cannot open the display: probe first
-  const char* display = std::getenv("DISPLAY");
-  if (!display || !*display)
-  {
-    why = "no X display (DISPLAY is not set; this VTK renders through GLX only: start Xvfb, e.g. "
-          "'. scripts/start-xvfb.sh')";
-    return false;
-  }
-  // The connection stays open for the life of the process: an X server started without
-  // -noreset (Xvfb's default) resets whenever its last client disconnects, and a window VTK opens
-  // during that reset fails ("bad X server connection", then abort()). Closing the probe right
-  // before VTK connects made every other run abort.
-  static Display* keepAlive = nullptr;
-  // (the previous client's exit may have started such a reset: retry for a second)
-  for (int attempt = 0; !keepAlive && attempt < 10; ++attempt)
-  {
-    keepAlive = XOpenDisplay(nullptr);
-    if (!keepAlive)
-    {
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    }
-  }
-  if (!keepAlive)
-  {
-    why = std::string("cannot open the X display ") + display;
-    return false;
-  }
-#endif
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetSize(8, 8);
-  return vtkSinglePassAMRVolumeMapper::IsRenderSupported(window, &why);
 }
 
-PackingRenderer::PackingRenderer(const Hierarchy& h,
-  const RenderSettings& s,
-  const ViewAngles& view)
-  : I(new Internals)
+PackingRenderer::PackingRenderer(vtkSinglePassAMRVolumeMapper* mapper, const Hierarchy& h,
+  const RenderSettings& s, const ViewAngles& view)
+  : GpuRenderer("packing", mapper, h, s, view)
+  , Mapper(mapper)
 {
-  std::string why;
-  if (!Available(why))
-  {
-    throw GpuError("the packing method cannot render here: " + why);
-  }
-  I->Width = s.Width;
-  I->Height = s.Height;
-  vtkAMRCoreConversion::ToOverlappingAMR(h, I->Amr);
-
-  // the same piecewise-linear functions as amrsp::TransferFunction (clamped beyond the ends)
-  for (const TransferFunction::ColorPoint& p : s.Transfer.Color)
-  {
-    I->Colour->AddRGBPoint(p.X, p.Rgb.r, p.Rgb.g, p.Rgb.b);
-  }
-  for (const TransferFunction::OpacityPoint& p : s.Transfer.Opacity)
-  {
-    I->Opacity->AddPoint(p.X, p.Opacity);
-  }
-  I->Colour->SetColorSpaceToRGB();
-  I->Colour->ClampingOn();
-  I->Opacity->ClampingOn();
-  I->Property->SetColor(I->Colour);
-  I->Property->SetScalarOpacity(I->Opacity);
-  I->Property->SetScalarOpacityUnitDistance(s.Transfer.UnitDistance);
-  I->Property->ShadeOff();
-  I->Property->SetInterpolationTypeToNearest();
-
-  I->Mapper->SetInputData(I->Amr);
-  I->Mapper->SelectScalarArray(h.ArrayName.empty() ? "values" : h.ArrayName.c_str());
-  I->Mapper->SetSampleDistanceFactor(s.SampleDistanceFactor);
-  I->Mapper->SetLODThreshold(s.LodThresholdPixels);
-  switch (s.Blend)
-  {
-    case BlendMode::Composite:
-      I->Mapper->SetBlendModeToComposite();
-      break;
-    case BlendMode::Maximum:
-      I->Mapper->SetBlendModeToMaximumIntensity();
-      break;
-    case BlendMode::Minimum:
-      I->Mapper->SetBlendModeToMinimumIntensity();
-      break;
-    case BlendMode::Average:
-      I->Mapper->SetBlendModeToAverageIntensity();
-      break;
-  }
-  I->Volume->SetMapper(I->Mapper);
-  I->Volume->SetProperty(I->Property);
-
-  I->Renderer->SetBackground(s.Background.r, s.Background.g, s.Background.b);
-  I->Renderer->AddVolume(I->Volume);
-  I->Window->SetOffScreenRendering(1);
-  I->Window->SetMultiSamples(0);
-  I->Window->SetSize(s.Width, s.Height);
-  I->Window->AddRenderer(I->Renderer);
-
-  // README camera: ResetCamera on the level-0 bounds, Azimuth, Elevation, OrthogonalizeViewUp, Zoom
-  double bounds[6];
-  Level0Bounds(h, bounds);
-  I->Renderer->ResetCamera(bounds);
-  vtkCamera* camera = I->Renderer->GetActiveCamera();
-  camera->Azimuth(view.Azimuth);
-  camera->Elevation(view.Elevation);
-  camera->OrthogonalizeViewUp();
-  camera->Zoom(view.Zoom);
-  I->Start->DeepCopy(camera);
+  this->Mapper->SetSampleDistanceFactor(s.SampleDistanceFactor);
+  this->Mapper->SetLODThreshold(s.LodThresholdPixels);
 }
 
-PackingRenderer::~PackingRenderer()
+vtkSinglePassAMRVolumeMapper* PackingRenderer::GetMapper() const
 {
-  if (I)
-  {
-    I->Window->Finalize();
-  }
-}
-
-Image PackingRenderer::Render(double orbitDegrees, double& milliseconds)
-{
-  vtkCamera* camera = I->Renderer->GetActiveCamera();
-  camera->DeepCopy(I->Start);
-  camera->Azimuth(orbitDegrees);
-  I->Renderer->ResetCameraClippingRange();
-  return this->RenderAsIs(milliseconds);
-}
-
-vtkRenderer* PackingRenderer::GetRenderer()
-{
-  return I->Renderer;
-}
-
-vtkSinglePassAMRVolumeMapper* PackingRenderer::GetMapper()
-{
-  return I->Mapper;
-}
-
-Image PackingRenderer::RenderAsIs(double& milliseconds)
-{
-  const auto t0 = std::chrono::steady_clock::now();
-  I->Window->Render();
-  I->Window->WaitForCompletion();
-  milliseconds =
-    1000.0 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const std::string error = I->Mapper->GetLastError();
-  if (!error.empty())
-  {
-    throw GpuError("vtkSinglePassAMRVolumeMapper: " + error);
-  }
-  if (I->Device.empty())
-  {
-    std::istringstream caps(I->Window->ReportCapabilities());
-    for (std::string line; std::getline(caps, line);)
-    {
-      const std::string key = "OpenGL renderer string:";
-      if (line.compare(0, key.size(), key) == 0)
-      {
-        I->Device = line.substr(line.find_first_not_of(' ', key.size()));
-      }
-    }
-  }
-
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(I->Window);
-  grab->SetInputBufferTypeToRGB();
-  grab->ReadFrontBufferOff();
-  grab->ShouldRerenderOff();
-  grab->Update();
-  vtkImageData* data = grab->GetOutput();
-  int dims[3];
-  data->GetDimensions(dims);
-  vtkUnsignedCharArray* rgb =
-    vtkUnsignedCharArray::SafeDownCast(data->GetPointData()->GetScalars());
-  if (!rgb || dims[0] != I->Width || dims[1] != I->Height || rgb->GetNumberOfComponents() != 3)
-  {
-    throw GpuError("reading the rendered image back failed");
-  }
-  Image img;
-  img.Width = I->Width;
-  img.Height = I->Height;
-  img.Pixels.resize(static_cast<std::size_t>(img.Width) * img.Height);
-  const unsigned char* p = rgb->GetPointer(0);
-  for (std::size_t i = 0; i < img.Pixels.size(); ++i)
-  {
-    // 8-bit framebuffer; alpha is not read back (1 where anything was drawn, for coverage)
-    const glm::vec3 c(p[3 * i] / 255.0f, p[3 * i + 1] / 255.0f, p[3 * i + 2] / 255.0f);
-    img.Pixels[i] = glm::vec4(c, (c.r + c.g + c.b) > 0.0f ? 1.0f : 0.0f);
-  }
-  return img;
-}
-
-Camera PackingRenderer::LastCamera() const
-{
-  vtkCamera* c = I->Renderer->GetActiveCamera();
-  Camera out;
-  c->GetPosition(&out.Position.x);
-  c->GetFocalPoint(&out.FocalPoint.x);
-  c->GetViewUp(&out.ViewUp.x);
-  out.ViewAngle = c->GetViewAngle();
-  out.Parallel = c->GetParallelProjection() != 0;
-  out.ParallelScale = c->GetParallelScale();
-  return out;
+  return this->Mapper;
 }
 
 double PackingRenderer::BuildSeconds() const
 {
-  return I->Mapper->GetLastBuildSeconds();
+  return this->Mapper->GetLastBuildSeconds();
 }
 
 double PackingRenderer::UploadSeconds() const
 {
-  return I->Mapper->GetLastUploadSeconds();
+  return this->Mapper->GetLastUploadSeconds();
 }
 
 int PackingRenderer::NumberOfBuilds() const
 {
-  return I->Mapper->GetNumberOfBuilds();
+  return this->Mapper->GetNumberOfBuilds();
 }
 
 long long PackingRenderer::TextureBytes() const
 {
-  return I->Mapper->GetTextureBytes();
+  return this->Mapper->GetTextureBytes();
 }
 
-std::string PackingRenderer::AtlasDimensions() const
+std::string PackingRenderer::LastError() const
 {
-  int d[3];
-  I->Mapper->GetAtlasDimensions(d);
-  return std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" + std::to_string(d[2]);
+  return this->Mapper->GetLastError();
 }
 
-std::string PackingRenderer::Device() const
+void PackingRenderer::GetAtlasDimensions(int dims[3]) const
 {
-  return I->Device;
+  this->Mapper->GetAtlasDimensions(dims);
 }
 
 } // namespace tool

@@ -1,0 +1,388 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkAMRRenderingUtilities.h"
+
+#include "vtkAMRCoreConversion.h"
+
+#include "amrsp/BrickPacking.h"
+
+#include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkOpenGLCamera.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOverlappingAMR.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkRenderer.h"
+#include "vtkTextureObject.h"
+#include "vtkVolume.h"
+#include "vtkVolumeMapper.h"
+#include "vtkVolumeProperty.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <sstream>
+
+namespace vtkAMRRenderingUtilities
+{
+
+//------------------------------------------------------------------------------
+std::string RequestedArray(vtkOverlappingAMR* amr, int accessMode, const char* name, int id)
+{
+  if (accessMode == VTK_GET_ARRAY_BY_NAME && name && *name)
+  {
+    return name;
+  }
+  if (accessMode == VTK_GET_ARRAY_BY_ID && id >= 0)
+  {
+    const std::vector<std::string> names = vtkAMRCoreConversion::CellArrayNames(amr);
+    if (static_cast<std::size_t>(id) < names.size())
+    {
+      return names[static_cast<std::size_t>(id)];
+    }
+  }
+  return std::string();
+}
+
+//------------------------------------------------------------------------------
+void ToColumnMajor(vtkMatrix4x4* m, float out[16])
+{
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      out[c * 4 + r] = static_cast<float>(m->GetElement(r, c));
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+bool BuildPackedHierarchy(vtkOverlappingAMR* amr, const std::string& array, int component,
+  int packLimit, PackedHierarchy& out, std::string& error)
+{
+  out = PackedHierarchy();
+  try
+  {
+    vtkAMRCoreConversion::ArraySelection selection;
+    selection.Name = array;
+    selection.Component = component;
+    amrsp::Hierarchy& h = out.Structure;
+    if (!vtkAMRCoreConversion::FromOverlappingAMR(amr, selection, h, error))
+    {
+      return false;
+    }
+    out.Tree = amrsp::BuildKdTree(h);
+    // one brick per grid (cells, or vertices one texel larger), packed within the per-axis limit
+    // the data-node offsets can address and MaximumAtlasSize when set
+    out.Atlas = amrsp::BuildBrickAtlas(
+      h, amrsp::Packer::Best, amrsp::AtlasLimits(packLimit > 0 ? std::min(packLimit, 2048) : 2048));
+    out.VertexCentred = h.VertexCentred;
+
+    for (int l = 0; l < h.NumberOfLevels(); ++l)
+    {
+      const glm::dvec3 edge = h.Spacing0 * h.CellSize(l);
+      out.LevelMinEdge.push_back(std::min(edge.x, std::min(edge.y, edge.z)));
+    }
+    // through float, as the root box the shaders use (amrsp::EncodedKdTree::RootLo/RootHi)
+    const glm::dvec3 lo = h.Origin +
+      glm::dvec3(glm::vec3(amrsp::RegionLoIndex(h, out.Tree, out.Tree.Root().Region))) * h.Spacing0;
+    const glm::dvec3 hi = h.Origin +
+      glm::dvec3(glm::vec3(amrsp::RegionHiIndex(h, out.Tree, out.Tree.Root().Region))) * h.Spacing0;
+    for (int a = 0; a < 3; ++a)
+    {
+      out.Bounds[2 * a] = lo[a];
+      out.Bounds[2 * a + 1] = hi[a];
+    }
+
+    double vmin = std::numeric_limits<double>::max();
+    double vmax = -std::numeric_limits<double>::max();
+    for (const amrsp::GridValues& values : h.Values)
+    {
+      for (float v : values)
+      {
+        if (std::isfinite(v))
+        {
+          vmin = std::min(vmin, static_cast<double>(v));
+          vmax = std::max(vmax, static_cast<double>(v));
+        }
+      }
+    }
+    out.ScalarRange[0] = vmin <= vmax ? vmin : 0.0;
+    out.ScalarRange[1] = vmin <= vmax ? vmax : 1.0;
+    // the atlas holds the values now
+    std::vector<amrsp::GridValues>().swap(h.Values);
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+    out = PackedHierarchy();
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool UploadAtlas(vtkOpenGLRenderWindow* renWin, const amrsp::BrickAtlas& atlas, bool vertexCentred,
+  int atlasLimit, vtkSmartPointer<vtkTextureObject>& texture, std::string& error)
+{
+  texture = nullptr;
+  const int max3D = vtkTextureObject::GetMaximumTextureSize3D(renWin);
+  const int limit = atlasLimit > 0 ? std::min(atlasLimit, max3D) : max3D;
+  const glm::ivec3 d = atlas.Layout.Dims;
+  if (d.x > limit || d.y > limit || d.z > limit)
+  {
+    std::ostringstream msg;
+    msg << "the packed atlas (" << d.x << " x " << d.y << " x " << d.z << " texels) exceeds ";
+    if (limit < max3D)
+    {
+      msg << "MaximumAtlasSize = " << limit << " (GL_MAX_3D_TEXTURE_SIZE is " << max3D << ")";
+    }
+    else
+    {
+      msg << "GL_MAX_3D_TEXTURE_SIZE = " << max3D << " of this OpenGL context";
+    }
+    error = msg.str();
+    return false;
+  }
+  while (glGetError() != GL_NO_ERROR)
+  {
+  }
+  texture = vtkSmartPointer<vtkTextureObject>::New();
+  texture->SetContext(renWin);
+  texture->SetInternalFormat(GL_R32F);
+  texture->SetFormat(GL_RED);
+  texture->SetDataType(GL_FLOAT);
+  // vertex bricks: hardware trilinear interpolation (the shaders never leave a brick)
+  const int filter = vertexCentred ? vtkTextureObject::Linear : vtkTextureObject::Nearest;
+  texture->SetMinificationFilter(filter);
+  texture->SetMagnificationFilter(filter);
+  texture->SetWrapS(vtkTextureObject::ClampToEdge);
+  texture->SetWrapT(vtkTextureObject::ClampToEdge);
+  texture->SetWrapR(vtkTextureObject::ClampToEdge);
+  const bool ok =
+    texture->Create3DFromRaw(static_cast<unsigned int>(d.x), static_cast<unsigned int>(d.y),
+      static_cast<unsigned int>(d.z), 1, VTK_FLOAT, const_cast<float*>(atlas.Texels.data()));
+  const GLenum glError = glGetError();
+  if (!ok || glError != GL_NO_ERROR)
+  {
+    std::ostringstream msg;
+    msg << "uploading the atlas texture (" << atlas.Bytes() / (1024.0 * 1024.0) << " MiB) failed"
+        << (glError == GL_OUT_OF_MEMORY ? ": out of GPU memory" : "")
+        << (glError != GL_NO_ERROR ? " (OpenGL error " + std::to_string(glError) + ")" : "");
+    error = msg.str();
+    texture = nullptr;
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool TransferFunctionTable::Update(vtkOpenGLRenderWindow* renWin, vtkVolumeProperty* property,
+  const double scalarRange[2], const vtkTimeStamp& dataTime)
+{
+  if (this->Texture && this->Texture->GetContext() == renWin && this->Property == property &&
+    this->PropertyMTime == property->GetMTime() && this->Time > dataTime)
+  {
+    return true;
+  }
+  const bool grey = property->GetColorChannels(0) == 1;
+  vtkColorTransferFunction* colour = grey ? nullptr : property->GetRGBTransferFunction(0);
+  vtkPiecewiseFunction* greyFunction = grey ? property->GetGrayTransferFunction(0) : nullptr;
+  vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
+
+  // tabulate over the union of the functions' ranges; beyond it both clamp to their end points
+  double range[2] = { std::numeric_limits<double>::max(), -std::numeric_limits<double>::max() };
+  auto extend = [&range](const double* r, int points)
+  {
+    if (points > 0)
+    {
+      range[0] = std::min(range[0], r[0]);
+      range[1] = std::max(range[1], r[1]);
+    }
+  };
+  if (colour)
+  {
+    extend(colour->GetRange(), colour->GetSize());
+  }
+  if (greyFunction)
+  {
+    extend(greyFunction->GetRange(), greyFunction->GetSize());
+  }
+  extend(opacity->GetRange(), opacity->GetSize());
+  if (!(range[1] > range[0]))
+  {
+    range[0] = std::min(range[0], scalarRange[0]);
+    range[1] = std::max(range[1], scalarRange[1]);
+    if (!(range[1] > range[0]))
+    {
+      range[1] = range[0] + 1.0;
+    }
+  }
+
+  const int n = TransferTableSize;
+  std::vector<float> rgb(static_cast<std::size_t>(3 * n)), alpha(static_cast<std::size_t>(n));
+  std::vector<float> rgba(static_cast<std::size_t>(4 * n));
+  if (colour)
+  {
+    colour->GetTable(range[0], range[1], n, rgb.data());
+  }
+  else
+  {
+    greyFunction->GetTable(range[0], range[1], n, rgb.data(), 3);
+    for (int i = 0; i < n; ++i)
+    {
+      rgb[3 * i + 1] = rgb[3 * i + 2] = rgb[3 * i];
+    }
+  }
+  opacity->GetTable(range[0], range[1], n, alpha.data());
+  for (int i = 0; i < n; ++i)
+  {
+    rgba[4 * i + 0] = rgb[3 * i + 0];
+    rgba[4 * i + 1] = rgb[3 * i + 1];
+    rgba[4 * i + 2] = rgb[3 * i + 2];
+    rgba[4 * i + 3] = alpha[i];
+  }
+  if (!this->Texture || this->Texture->GetContext() != renWin)
+  {
+    this->Texture = vtkSmartPointer<vtkTextureObject>::New();
+    this->Texture->SetContext(renWin);
+    this->Texture->SetInternalFormat(GL_RGBA32F);
+    this->Texture->SetFormat(GL_RGBA);
+    this->Texture->SetDataType(GL_FLOAT);
+    this->Texture->SetMinificationFilter(vtkTextureObject::Linear);
+    this->Texture->SetMagnificationFilter(vtkTextureObject::Linear);
+    this->Texture->SetWrapS(vtkTextureObject::ClampToEdge);
+    this->Texture->SetWrapT(vtkTextureObject::ClampToEdge);
+  }
+  if (!this->Texture->Create2DFromRaw(static_cast<unsigned int>(n), 1, 4, VTK_FLOAT, rgba.data()))
+  {
+    return false;
+  }
+  this->Range[0] = range[0];
+  this->Range[1] = range[1];
+  this->Property = property;
+  this->PropertyMTime = property->GetMTime();
+  this->Time.Modified();
+  return true;
+}
+
+void TransferFunctionTable::GetShaderRange(float range[2]) const
+{
+  range[0] = static_cast<float>(this->Range[0]);
+  range[1] = static_cast<float>(1.0 / (this->Range[1] - this->Range[0]));
+}
+
+void TransferFunctionTable::ReleaseGraphicsResources(vtkWindow* window)
+{
+  if (this->Texture)
+  {
+    this->Texture->ReleaseGraphicsResources(window);
+    this->Texture = nullptr;
+  }
+  this->Property = nullptr;
+}
+
+//------------------------------------------------------------------------------
+bool ComputeViewGeometry(vtkRenderer* ren, vtkVolume* vol, ViewGeometry& view, std::string& error)
+{
+  ren->GetTiledSizeAndOrigin(&view.Width, &view.Height, &view.X0, &view.Y0);
+  vtkOpenGLCamera* camera = vtkOpenGLCamera::SafeDownCast(ren->GetActiveCamera());
+  if (!camera || view.Width < 1 || view.Height < 1)
+  {
+    error = "the renderer has no OpenGL camera or an empty viewport";
+    return false;
+  }
+  vtkMatrix4x4* wcvc = nullptr;
+  vtkMatrix3x3* normal = nullptr;
+  vtkMatrix4x4* vcdc = nullptr;
+  vtkMatrix4x4* wcdcGL = nullptr;
+  camera->GetKeyMatrices(ren, wcvc, normal, vcdc, wcdcGL);
+  vtkNew<vtkMatrix4x4> wcdc; // GetKeyMatrices returns OpenGL (transposed) order
+  vtkMatrix4x4::Transpose(wcdcGL, wcdc);
+  vtkNew<vtkMatrix4x4> mcdc;
+  vtkMatrix4x4::Multiply4x4(wcdc, vol->GetMatrix(), mcdc);
+  vtkNew<vtkMatrix4x4> dcmc;
+  vtkMatrix4x4::Invert(mcdc, dcmc);
+  ToColumnMajor(mcdc, view.MCDC);
+  ToColumnMajor(dcmc, view.DCMC);
+
+  view.Parallel = camera->GetParallelProjection() != 0;
+  vtkNew<vtkMatrix4x4> wcmc;
+  vtkMatrix4x4::Invert(vol->GetMatrix(), wcmc);
+  double eyeWC[4] = { 0.0, 0.0, 0.0, 1.0 };
+  camera->GetPosition(eyeWC);
+  double eyeMC[4];
+  wcmc->MultiplyPoint(eyeWC, eyeMC);
+  double focalWC[4] = { 0.0, 0.0, 0.0, 1.0 };
+  camera->GetFocalPoint(focalWC);
+  double focalMC[4];
+  wcmc->MultiplyPoint(focalWC, focalMC);
+  for (int a = 0; a < 3; ++a)
+  {
+    view.Eye[a] = eyeMC[a] / eyeMC[3];
+    view.Direction[a] = focalMC[a] / focalMC[3] - view.Eye[a];
+    view.EyeMC[a] = static_cast<float>(view.Eye[a]);
+  }
+  view.EyeMC[3] = view.Parallel ? 0.0f : 1.0f;
+  view.Mirrored = vol->GetMatrix()->Determinant() < 0.0;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void CopyDepthBuffer(
+  vtkOpenGLRenderWindow* renWin, const ViewGeometry& view, vtkSmartPointer<vtkTextureObject>& depth)
+{
+  if (!depth || depth->GetContext() != renWin ||
+    depth->GetWidth() != static_cast<unsigned int>(view.Width) ||
+    depth->GetHeight() != static_cast<unsigned int>(view.Height))
+  {
+    depth = vtkSmartPointer<vtkTextureObject>::New();
+    depth->SetContext(renWin);
+    depth->SetMinificationFilter(vtkTextureObject::Nearest);
+    depth->SetMagnificationFilter(vtkTextureObject::Nearest);
+    depth->SetWrapS(vtkTextureObject::ClampToEdge);
+    depth->SetWrapT(vtkTextureObject::ClampToEdge);
+    depth->AllocateDepth(static_cast<unsigned int>(view.Width),
+      static_cast<unsigned int>(view.Height), vtkTextureObject::Float32);
+  }
+  depth->Activate();
+  depth->CopyFromFrameBuffer(view.X0, view.Y0, 0, 0, view.Width, view.Height);
+}
+
+//------------------------------------------------------------------------------
+bool IsRenderSupported(vtkRenderWindow* window, std::string* why)
+{
+  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
+  auto fail = [why](const std::string& reason)
+  {
+    if (why)
+    {
+      *why = reason;
+    }
+    return false;
+  };
+  if (!renWin)
+  {
+    return fail("the render window is not an OpenGL render window");
+  }
+  if (!renWin->SupportsOpenGL())
+  {
+    return fail("the OpenGL context cannot be created or is older than VTK's minimum (3.2 core)");
+  }
+  renWin->Initialize(); // creates the context if the window has none yet
+  renWin->MakeCurrent();
+  int major = 0, minor = 0;
+  renWin->GetOpenGLVersion(major, minor);
+  if (major < 3 || (major == 3 && minor < 2))
+  {
+    return fail("OpenGL " + std::to_string(major) + "." + std::to_string(minor) +
+      " lacks GLSL 1.50 integer textures (3.2 core needed)");
+  }
+  return true;
+}
+
+} // namespace vtkAMRRenderingUtilities

@@ -1,0 +1,155 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file    vtkAMRRenderingUtilities.h
+ * @brief   pieces shared by the AMR volume mappers (private to the module)
+ *
+ * What the single-pass and the multi-pass mapper have in common and must keep identical so that
+ * their images agree: the array selection, the CPU build of the packed data (conversion, kD-tree,
+ * brick atlas, scalar range, per-level sampling distances), the atlas upload and its size checks,
+ * the transfer-function table, the matrices and ray origin derived from VTK's camera, and the
+ * copy of the opaque geometry's depth buffer. The header exposes core (amrsp) types and is not
+ * installed.
+ *
+ * Units: "index units" are level-0 cell indices (world = Origin + index * Spacing0); "model"
+ * coordinates are the volume's own (before its vtkProp3D matrix); "finest cells" are cells of the
+ * hierarchy's finest level, in which kD-tree regions are exact integers.
+ */
+#ifndef vtkAMRRenderingUtilities_h
+#define vtkAMRRenderingUtilities_h
+
+#include "amrsp/BrickAtlas.h"
+#include "amrsp/Hierarchy.h"
+#include "amrsp/KdTree.h"
+
+#include "vtkSmartPointer.h"
+#include "vtkTimeStamp.h"
+#include "vtkType.h"
+
+#include <string>
+#include <vector>
+
+class vtkOpenGLRenderWindow;
+class vtkMatrix4x4;
+class vtkOverlappingAMR;
+class vtkRenderWindow;
+class vtkRenderer;
+class vtkTextureObject;
+class vtkVolume;
+class vtkVolumeProperty;
+class vtkWindow;
+
+namespace vtkAMRRenderingUtilities
+{
+
+/// Entries of the RGBA transfer-function table (linear filtering between entries).
+constexpr int TransferTableSize = 4096;
+
+/// The array a vtkAbstractVolumeMapper selection asks for: a name, an index into the cell arrays,
+/// or "" (the first cell array, or the first point array if there is none).
+std::string RequestedArray(vtkOverlappingAMR* amr, int accessMode, const char* name, int id);
+
+/// Column-major float copy of a row-major vtkMatrix4x4, as glUniformMatrix4fv expects.
+void ToColumnMajor(vtkMatrix4x4* m, float out[16]);
+
+/**
+ * The CPU side of the packing storage (paper, sections 4.1 and 5.1): the hierarchy's structure,
+ * its kD-tree, one brick per grid packed into one float atlas, and what the shaders need about
+ * the levels.
+ */
+struct PackedHierarchy
+{
+  /// Grids, ratios, origin and spacing; Values are dropped once the atlas holds them.
+  amrsp::Hierarchy Structure;
+  amrsp::KdTree Tree;
+  /// The atlas layout and its texels (Texels may be freed by the caller after the upload).
+  amrsp::BrickAtlas Atlas;
+  bool VertexCentred = false; ///< vertex bricks (trilinear) instead of cell bricks (nearest)
+  /// Smallest model-space edge of a cell of each level (the sampling rule's D for factor 1).
+  std::vector<double> LevelMinEdge;
+  /// Finite value range of the selected scalars ([0, 1] when there is none).
+  double ScalarRange[2] = { 0.0, 1.0 };
+  /// Model-space bounds of the root box [xmin, xmax, ymin, ymax, zmin, zmax].
+  double Bounds[6] = { 0.0, -1.0, 0.0, -1.0, 0.0, -1.0 };
+};
+
+/**
+ * Converts `amr` (array `array`, component `component`), builds the kD-tree and packs the bricks
+ * with the better packer within `packLimit` texels per axis (0: the 2048 the data-node offsets
+ * address; a positive value lowers it). Returns false with a one-line `error` (conversion,
+ * tree or packing failure).
+ */
+bool BuildPackedHierarchy(vtkOverlappingAMR* amr, const std::string& array, int component,
+  int packLimit, PackedHierarchy& out, std::string& error);
+
+/**
+ * Uploads the atlas as an R32F 3D texture (nearest filtering for cell bricks, linear for vertex
+ * bricks, clamped). Fails with a one-line `error` when an edge exceeds GL_MAX_3D_TEXTURE_SIZE or
+ * `atlasLimit` (> 0), or when OpenGL reports an error (e.g. out of memory); `texture` is then
+ * null.
+ */
+bool UploadAtlas(vtkOpenGLRenderWindow* renWin, const amrsp::BrickAtlas& atlas, bool vertexCentred,
+  int atlasLimit, vtkSmartPointer<vtkTextureObject>& texture, std::string& error);
+
+/**
+ * The transfer function of component 0 of a vtkVolumeProperty as an RGBA32F table of
+ * TransferTableSize entries (colour or grey, and the scalar opacity per unit distance). The table
+ * spans the union of the functions' ranges (both clamp beyond their end points); when the
+ * functions have no range, the data's scalar range.
+ */
+class TransferFunctionTable
+{
+public:
+  /// Re-tabulates when the property, its MTime or `dataTime` (the data's build time) changed.
+  /// Returns false when the texture cannot be created.
+  bool Update(vtkOpenGLRenderWindow* renWin, vtkVolumeProperty* property,
+    const double scalarRange[2], const vtkTimeStamp& dataTime);
+  vtkTextureObject* GetTexture() const { return this->Texture; }
+  /// Scalar at the first entry and 1 / (last - first): the shader's amrspTransferRange.
+  void GetShaderRange(float range[2]) const;
+  void ReleaseGraphicsResources(vtkWindow* window);
+
+private:
+  vtkSmartPointer<vtkTextureObject> Texture;
+  vtkVolumeProperty* Property = nullptr; // identity only
+  vtkMTimeType PropertyMTime = 0;
+  vtkTimeStamp Time;
+  double Range[2] = { 0.0, 1.0 };
+};
+
+/**
+ * The renderer's view as the raycasting shaders use it: viewport, model -> normalized device
+ * matrices and the rays' origin. Perspective rays start at the eye (the README's pinhole camera),
+ * parallel rays on the near plane.
+ */
+struct ViewGeometry
+{
+  int X0 = 0, Y0 = 0, Width = 0, Height = 0; ///< the viewport in window pixels
+  float MCDC[16];                            ///< model -> normalized device, column-major
+  float DCMC[16];                            ///< its inverse, column-major
+  /// Eye in model coordinates; w = 1 for perspective, 0 for parallel projection.
+  float EyeMC[4] = { 0.0f, 0.0f, 0.0f, 1.0f };
+  bool Parallel = false;
+  /// Eye (perspective) in model coordinates, and the viewing direction (model units, not
+  /// normalized; parallel projection), in double for the CPU's visibility ordering.
+  double Eye[3] = { 0.0, 0.0, 0.0 };
+  double Direction[3] = { 0.0, 0.0, -1.0 };
+  /// The volume's matrix mirrors (negative determinant): faces wind the other way.
+  bool Mirrored = false;
+};
+
+/// Fills `view` from the renderer's active camera and the volume's matrix. Returns false with
+/// `error` for a renderer without an OpenGL camera or with an empty viewport.
+bool ComputeViewGeometry(vtkRenderer* ren, vtkVolume* vol, ViewGeometry& view, std::string& error);
+
+/// Copies the depth buffer of the viewport (opaque geometry drawn so far) into `depth`, which is
+/// (re)created when missing, of another context or of another size. Leaves `depth` active.
+void CopyDepthBuffer(vtkOpenGLRenderWindow* renWin, const ViewGeometry& view,
+  vtkSmartPointer<vtkTextureObject>& depth);
+
+/// Whether `window` offers an OpenGL 3.2 core context (integer and float textures, GLSL 1.50,
+/// float colour attachments, depth clamping). When it does not, `why` says what is missing.
+bool IsRenderSupported(vtkRenderWindow* window, std::string* why);
+
+} // namespace vtkAMRRenderingUtilities
+
+#endif

@@ -1,0 +1,886 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkMultiPassAMRVolumeMapper.h"
+
+#include "vtkAMRRenderingUtilities.h"
+
+#include "amrsp/Hierarchy.h"
+#include "amrsp/KdTree.h"
+
+#include "vtkInformation.h"
+#include "vtkMath.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLBufferObject.h"
+#include "vtkOpenGLError.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkOpenGLVertexArrayObject.h"
+#include "vtkOverlappingAMR.h"
+#include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
+#include "vtkSmartPointer.h"
+#include "vtkTextureObject.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+#include "vtk_glew.h"
+
+// GLSL embedded at build time (vtk_encode_string)
+#include "amrsp_MultiPassAMRComposite_frag_glsl.h"
+#include "amrsp_MultiPassAMR_frag_glsl.h"
+#include "amrsp_MultiPassAMR_vert_glsl.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace utilities = vtkAMRRenderingUtilities;
+
+namespace
+{
+
+int64_t FloorDiv(int64_t a, int64_t b)
+{
+  const int64_t q = a / b;
+  return (q * b > a) ? q - 1 : q;
+}
+
+int64_t CeilDiv(int64_t a, int64_t b)
+{
+  return -FloorDiv(-a, b);
+}
+
+/// Everything one draw needs about its data node (the per-node uniforms).
+struct NodeDraw
+{
+  /// The node's box in level-0 index units, computed from the root down in float exactly as the
+  /// single-pass shader computes it during its traversal (plane = lo + split * cell size).
+  float Lo[3];
+  float Hi[3];
+  /// Size of a cell of the node's data level, level-0 index units (float, as the shaders').
+  float CellSize[3];
+  int Level = 0;
+  /// First and last cell of the node in its level's index space (exact: floor and ceiling of the
+  /// node's finest-cell box), and the atlas texel holding FirstCell.
+  int FirstCell[3];
+  int LastCell[3];
+  int AtlasOffset[3];
+};
+
+/// The unit cube's 12 triangles, counter-clockwise seen from outside (corners 0 or 1 per axis).
+std::vector<float> UnitCube()
+{
+  std::vector<float> vertices;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    for (int side = 0; side < 2; ++side)
+    {
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      float quad[4][3];
+      const int corners[4][2] = { { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 } };
+      for (int c = 0; c < 4; ++c)
+      {
+        quad[c][axis] = static_cast<float>(side);
+        quad[c][u] = static_cast<float>(corners[c][0]);
+        quad[c][v] = static_cast<float>(corners[c][1]);
+      }
+      // (u, v, axis) is right-handed: u x v points along +axis, so this order faces +axis
+      const int order[2][6] = { { 0, 2, 1, 0, 3, 2 }, { 0, 1, 2, 0, 2, 3 } };
+      for (int k : order[side])
+      {
+        vertices.insert(vertices.end(), quad[k], quad[k] + 3);
+      }
+    }
+  }
+  return vertices;
+}
+
+} // namespace
+
+//------------------------------------------------------------------------------
+class vtkMultiPassAMRVolumeMapper::vtkInternals
+{
+public:
+  // ---- what the data were built from
+  vtkOverlappingAMR* BuiltInput = nullptr; // identity only, never dereferenced
+  vtkMTimeType BuiltInputMTime = 0;
+  std::string BuiltArray;
+  int BuiltComponent = -1;
+  int BuiltPackLimit = -1;
+  bool Built = false;     // a build was attempted for the key above
+  bool DataValid = false; // ... and succeeded
+  std::string BuildError; // ... or failed with this message
+  vtkTimeStamp BuildTime;
+  int NumberOfBuilds = 0;
+  double BuildSeconds = 0.0;
+  double UploadSeconds = 0.0;
+  int PackLimit = 0; // MaximumAtlasSize to pack for (0 = none)
+
+  // ---- CPU results of the build
+  utilities::PackedHierarchy Data; // Data.Atlas.Texels is freed once uploaded
+  std::vector<NodeDraw> Draws;     // one per leaf with data
+  std::vector<int32_t> DrawOfNode; // kD node index -> index into Draws, -1 for none
+  long long DataNodes = 0;         // types (a) and (b)
+  long long TextureBytes = 0;
+
+  // ---- per frame
+  std::vector<int32_t> Order; // indices into Draws, front to back
+  double OrderSeconds = 0.0;
+  long long Passes = 0;
+
+  // ---- OpenGL resources
+  vtkOpenGLRenderWindow* Context = nullptr;
+  int UploadLimit = 0; // MaximumAtlasSize of the last upload attempt
+  vtkTimeStamp UploadTime;
+  vtkSmartPointer<vtkTextureObject> Atlas;
+  vtkSmartPointer<vtkTextureObject> Depth;
+  vtkSmartPointer<vtkTextureObject> Accumulation; // RGBA32F, viewport-sized
+  vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffer;
+  utilities::TransferFunctionTable Transfer;
+  vtkNew<vtkOpenGLBufferObject> CubeBuffer;
+  vtkNew<vtkOpenGLVertexArrayObject> CubeArray;
+  vtkShaderProgram* CubeArrayProgram = nullptr;
+  std::unique_ptr<vtkOpenGLQuadHelper> Composite;
+
+  std::string FailedFragmentSource; // do not retry a program that failed to compile
+  std::string LastError;
+
+  /// CPU side: convert, build the tree, pack, and list the nodes' draws. Returns false with
+  /// BuildError set on failure.
+  bool Build(vtkOverlappingAMR* amr, const std::string& array, int component);
+
+  /// Builds when the input object, its modification time, the array selection or the packing
+  /// limit differ from what the current data were built from. Returns whether data are valid.
+  bool EnsureBuilt(vtkOverlappingAMR* amr, const std::string& array, int component)
+  {
+    if (!this->Built || this->BuiltInput != amr || this->BuiltInputMTime != amr->GetMTime() ||
+      this->BuiltArray != array || this->BuiltComponent != component ||
+      this->BuiltPackLimit != this->PackLimit)
+    {
+      this->BuiltPackLimit = this->PackLimit;
+      this->BuiltInput = amr;
+      this->BuiltInputMTime = amr->GetMTime();
+      this->BuiltArray = array;
+      this->BuiltComponent = component;
+      this->Build(amr, array, component);
+    }
+    return this->DataValid;
+  }
+
+  /// Fills Order with the data leaves front to back for rays from `view` (see the class comment).
+  void OrderNodes(const utilities::ViewGeometry& view);
+
+  /// (Re)creates the accumulation texture and its framebuffer for a viewport of w x h pixels.
+  bool EnsureAccumulation(vtkOpenGLRenderWindow* renWin, int w, int h, std::string& error);
+
+  void ReleaseGraphicsResources(vtkWindow* window);
+};
+
+//------------------------------------------------------------------------------
+bool vtkMultiPassAMRVolumeMapper::vtkInternals::Build(
+  vtkOverlappingAMR* amr, const std::string& array, int component)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  this->Built = true;
+  this->DataValid = false;
+  this->BuildError.clear();
+  this->Draws.clear();
+  this->DrawOfNode.clear();
+  ++this->NumberOfBuilds;
+  if (!utilities::BuildPackedHierarchy(
+        amr, array, component, this->PackLimit, this->Data, this->BuildError))
+  {
+    return false;
+  }
+  const amrsp::Hierarchy& h = this->Data.Structure;
+  const amrsp::KdTree& tree = this->Data.Tree;
+  const glm::i64vec3 finest = h.CumulativeRatio(tree.FinestLevel);
+  std::vector<glm::vec3> levelCellSize;
+  for (int l = 0; l < h.NumberOfLevels(); ++l)
+  {
+    levelCellSize.push_back(glm::vec3(h.CellSize(l)));
+  }
+
+  // Walk the tree from the root with the float boxes the single-pass traversal computes, and
+  // record every leaf with data.
+  struct Pending
+  {
+    int32_t Node;
+    glm::vec3 Lo;
+    glm::vec3 Hi;
+  };
+  std::vector<Pending> stack;
+  stack.push_back(Pending{ 0, glm::vec3(amrsp::RegionLoIndex(h, tree, tree.Root().Region)),
+    glm::vec3(amrsp::RegionHiIndex(h, tree, tree.Root().Region)) });
+  this->DrawOfNode.assign(tree.Nodes.size(), -1);
+  this->DataNodes = 0;
+  while (!stack.empty())
+  {
+    const Pending p = stack.back();
+    stack.pop_back();
+    const amrsp::KdNode& node = tree.Nodes[static_cast<std::size_t>(p.Node)];
+    this->DataNodes += node.HasData() ? 1 : 0;
+    if (!node.IsLeaf())
+    {
+      const int a = node.Axis;
+      const float plane = p.Lo[a] +
+        static_cast<float>(node.Split) * levelCellSize[static_cast<std::size_t>(node.Level)][a];
+      Pending lower{ node.FirstChild, p.Lo, p.Hi };
+      Pending upper{ node.FirstChild + 1, p.Lo, p.Hi };
+      lower.Hi[a] = plane;
+      upper.Lo[a] = plane;
+      stack.push_back(upper);
+      stack.push_back(lower);
+      continue;
+    }
+    if (!node.HasData())
+    {
+      continue; // empty space: nothing to draw
+    }
+    const amrsp::Grid& grid = h.Grids[static_cast<std::size_t>(node.Grid)];
+    const glm::i64vec3 toData = finest / h.CumulativeRatio(grid.Level);
+    const glm::ivec3 origin = this->Data.Atlas.Layout.Origins[static_cast<std::size_t>(node.Grid)];
+    NodeDraw d;
+    d.Level = grid.Level;
+    for (int a = 0; a < 3; ++a)
+    {
+      d.Lo[a] = p.Lo[a];
+      d.Hi[a] = p.Hi[a];
+      d.CellSize[a] = levelCellSize[static_cast<std::size_t>(grid.Level)][a];
+      const int64_t first = FloorDiv(node.Region.Lo[a], toData[a]);
+      const int64_t last = CeilDiv(node.Region.Hi[a], toData[a]) - 1;
+      d.FirstCell[a] = static_cast<int>(first);
+      d.LastCell[a] = static_cast<int>(last);
+      d.AtlasOffset[a] = origin[a] + static_cast<int>(first - grid.Cells.Lo[a]);
+    }
+    this->DrawOfNode[static_cast<std::size_t>(p.Node)] = static_cast<int32_t>(this->Draws.size());
+    this->Draws.push_back(d);
+  }
+  this->TextureBytes = static_cast<long long>(this->Data.Atlas.Bytes());
+  this->DataValid = true;
+  this->BuildTime.Modified();
+  this->BuildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkMultiPassAMRVolumeMapper::vtkInternals::OrderNodes(const utilities::ViewGeometry& view)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  const amrsp::Hierarchy& h = this->Data.Structure;
+  const amrsp::KdTree& tree = this->Data.Tree;
+  // the eye in finest cells (the unit of the nodes' exact regions), and the viewing direction in
+  // index space (only its signs matter)
+  const glm::dvec3 finest(h.CumulativeRatio(tree.FinestLevel));
+  const glm::dvec3 eye =
+    (glm::dvec3(view.Eye[0], view.Eye[1], view.Eye[2]) - h.Origin) / h.Spacing0 * finest;
+  const glm::dvec3 direction =
+    glm::dvec3(view.Direction[0], view.Direction[1], view.Direction[2]) / h.Spacing0;
+
+  this->Order.clear();
+  std::vector<int32_t> stack{ 0 };
+  while (!stack.empty())
+  {
+    const int32_t n = stack.back();
+    stack.pop_back();
+    const amrsp::KdNode& node = tree.Nodes[static_cast<std::size_t>(n)];
+    if (node.IsLeaf())
+    {
+      const int32_t draw = this->DrawOfNode[static_cast<std::size_t>(n)];
+      if (draw >= 0)
+      {
+        this->Order.push_back(draw);
+      }
+      continue;
+    }
+    // Any ray from the eye that crosses the split plane goes from the eye's side to the other
+    // (parallel rays: from the side they come from), so visiting the eye's side first orders
+    // every ray's segments front to back.
+    const int a = node.Axis;
+    const double plane =
+      static_cast<double>(tree.Nodes[static_cast<std::size_t>(node.FirstChild)].Region.Hi[a]);
+    const bool lowerFirst = view.Parallel ? direction[a] >= 0.0 : eye[a] < plane;
+    stack.push_back(lowerFirst ? node.FirstChild + 1 : node.FirstChild); // visited second
+    stack.push_back(lowerFirst ? node.FirstChild : node.FirstChild + 1);
+  }
+  this->OrderSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+//------------------------------------------------------------------------------
+bool vtkMultiPassAMRVolumeMapper::vtkInternals::EnsureAccumulation(
+  vtkOpenGLRenderWindow* renWin, int w, int h, std::string& error)
+{
+  if (this->Accumulation && this->Framebuffer && this->Accumulation->GetContext() == renWin &&
+    this->Accumulation->GetWidth() == static_cast<unsigned int>(w) &&
+    this->Accumulation->GetHeight() == static_cast<unsigned int>(h))
+  {
+    return true;
+  }
+  if (this->Framebuffer)
+  {
+    this->Framebuffer->ReleaseGraphicsResources(renWin);
+  }
+  this->Accumulation = vtkSmartPointer<vtkTextureObject>::New();
+  this->Accumulation->SetContext(renWin);
+  this->Accumulation->SetInternalFormat(GL_RGBA32F);
+  this->Accumulation->SetFormat(GL_RGBA);
+  this->Accumulation->SetDataType(GL_FLOAT);
+  this->Accumulation->SetMinificationFilter(vtkTextureObject::Nearest);
+  this->Accumulation->SetMagnificationFilter(vtkTextureObject::Nearest);
+  this->Accumulation->SetWrapS(vtkTextureObject::ClampToEdge);
+  this->Accumulation->SetWrapT(vtkTextureObject::ClampToEdge);
+  bool ok = this->Accumulation->Allocate2D(
+    static_cast<unsigned int>(w), static_cast<unsigned int>(h), 4, VTK_FLOAT);
+  if (ok)
+  {
+    this->Framebuffer = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
+    this->Framebuffer->SetContext(renWin);
+    this->Framebuffer->SaveCurrentBindingsAndBuffers();
+    this->Framebuffer->Bind();
+    this->Framebuffer->AddColorAttachment(0, this->Accumulation);
+    this->Framebuffer->ActivateDrawBuffer(0);
+    const char* description = nullptr;
+    ok = vtkOpenGLFramebufferObject::GetFrameBufferStatus(GL_FRAMEBUFFER, description);
+    this->Framebuffer->RestorePreviousBindingsAndBuffers();
+    if (!ok)
+    {
+      error = std::string("the RGBA32F accumulation framebuffer is incomplete: ") +
+        (description ? description : "unknown reason");
+    }
+  }
+  else
+  {
+    error = "cannot allocate the RGBA32F accumulation texture of " + std::to_string(w) + " x " +
+      std::to_string(h) + " pixels";
+  }
+  if (!ok)
+  {
+    this->Accumulation = nullptr;
+    this->Framebuffer = nullptr;
+  }
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+void vtkMultiPassAMRVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWindow* window)
+{
+  for (vtkSmartPointer<vtkTextureObject>* t : { &this->Atlas, &this->Depth, &this->Accumulation })
+  {
+    if (*t)
+    {
+      (*t)->ReleaseGraphicsResources(window);
+      *t = nullptr;
+    }
+  }
+  if (this->Framebuffer)
+  {
+    this->Framebuffer->ReleaseGraphicsResources(window);
+    this->Framebuffer = nullptr;
+  }
+  this->Transfer.ReleaseGraphicsResources(window);
+  this->CubeBuffer->ReleaseGraphicsResources();
+  this->CubeArray->ReleaseGraphicsResources();
+  this->CubeArrayProgram = nullptr;
+  if (this->Composite)
+  {
+    this->Composite->ReleaseGraphicsResources(window);
+    this->Composite.reset();
+  }
+  this->Context = nullptr;
+  if (this->Data.Atlas.Texels.empty())
+  {
+    // the CPU copy of the atlas was freed after the upload: rebuild from the input next time
+    this->Built = false;
+    this->DataValid = false;
+  }
+}
+
+//------------------------------------------------------------------------------
+vtkStandardNewMacro(vtkMultiPassAMRVolumeMapper);
+
+//------------------------------------------------------------------------------
+vtkMultiPassAMRVolumeMapper::vtkMultiPassAMRVolumeMapper()
+  : Internals(new vtkInternals)
+{
+}
+
+//------------------------------------------------------------------------------
+vtkMultiPassAMRVolumeMapper::~vtkMultiPassAMRVolumeMapper()
+{
+  delete this->Internals;
+}
+
+//------------------------------------------------------------------------------
+int vtkMultiPassAMRVolumeMapper::FillInputPortInformation(
+  int vtkNotUsed(port), vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkOverlappingAMR");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkMultiPassAMRVolumeMapper::SetInputData(vtkOverlappingAMR* input)
+{
+  this->SetInputDataInternal(0, input);
+}
+
+void vtkMultiPassAMRVolumeMapper::SetInputData(vtkImageData*)
+{
+  vtkErrorMacro("vtkMultiPassAMRVolumeMapper renders vtkOverlappingAMR only");
+}
+
+void vtkMultiPassAMRVolumeMapper::SetInputData(vtkDataSet*)
+{
+  vtkErrorMacro("vtkMultiPassAMRVolumeMapper renders vtkOverlappingAMR only");
+}
+
+void vtkMultiPassAMRVolumeMapper::SetInputData(vtkRectilinearGrid*)
+{
+  vtkErrorMacro("vtkMultiPassAMRVolumeMapper renders vtkOverlappingAMR only");
+}
+
+//------------------------------------------------------------------------------
+vtkOverlappingAMR* vtkMultiPassAMRVolumeMapper::GetAMRInput()
+{
+  if (this->GetNumberOfInputConnections(0) < 1)
+  {
+    return nullptr;
+  }
+  return vtkOverlappingAMR::SafeDownCast(this->GetInputDataObject(0, 0));
+}
+
+//------------------------------------------------------------------------------
+double* vtkMultiPassAMRVolumeMapper::GetBounds()
+{
+  vtkMath::UninitializeBounds(this->Bounds);
+  if (this->GetNumberOfInputConnections(0) < 1)
+  {
+    return this->Bounds;
+  }
+  this->Update();
+  vtkOverlappingAMR* amr = this->GetAMRInput();
+  if (!amr)
+  {
+    return this->Bounds;
+  }
+  vtkInternals& in = *this->Internals;
+  const std::string array =
+    utilities::RequestedArray(amr, this->ArrayAccessMode, this->ArrayName, this->ArrayId);
+  in.PackLimit = this->MaximumAtlasSize;
+  if (in.EnsureBuilt(amr, array, this->ArrayComponent))
+  {
+    std::copy(in.Data.Bounds, in.Data.Bounds + 6, this->Bounds);
+    return this->Bounds;
+  }
+  // the conversion failed (Render reports why): the AMR's own overall bounds
+  amr->GetBounds(this->Bounds);
+  return this->Bounds;
+}
+
+void vtkMultiPassAMRVolumeMapper::GetBounds(double bounds[6])
+{
+  const double* b = this->GetBounds();
+  std::copy(b, b + 6, bounds);
+}
+
+//------------------------------------------------------------------------------
+bool vtkMultiPassAMRVolumeMapper::IsRenderSupported(vtkRenderWindow* window, std::string* why)
+{
+  return utilities::IsRenderSupported(window, why);
+}
+
+//------------------------------------------------------------------------------
+void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
+{
+  vtkInternals& in = *this->Internals;
+  // the same error is reported once, not on every frame
+  const std::string previousError = in.LastError;
+  in.LastError.clear();
+  in.Passes = 0;
+  auto fail = [&](const std::string& message)
+  {
+    if (message != previousError)
+    {
+      vtkErrorMacro(<< message);
+    }
+    in.LastError = message;
+  };
+
+  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  if (!renWin)
+  {
+    fail("vtkMultiPassAMRVolumeMapper needs an OpenGL render window");
+    return;
+  }
+  if (this->GetNumberOfInputConnections(0) < 1)
+  {
+    fail("no input: set a vtkOverlappingAMR with SetInputData or SetInputConnection");
+    return;
+  }
+  this->Update();
+  vtkOverlappingAMR* amr = this->GetAMRInput();
+  if (!amr)
+  {
+    fail("the input is not a vtkOverlappingAMR");
+    return;
+  }
+
+  if (this->GetBlendMode() != vtkVolumeMapper::COMPOSITE_BLEND)
+  {
+    fail("the multi-pass method implements composite blending only (blend mode " +
+      std::to_string(this->GetBlendMode()) + " requested)");
+    return;
+  }
+
+  // ---- data: rebuilt only when the input, the array selection or the packing limit changed
+  const std::string array =
+    utilities::RequestedArray(amr, this->ArrayAccessMode, this->ArrayName, this->ArrayId);
+  in.PackLimit = this->MaximumAtlasSize;
+  if (!in.EnsureBuilt(amr, array, this->ArrayComponent))
+  {
+    fail(in.BuildError);
+    return;
+  }
+  if (!in.Atlas || in.Context != renWin || in.UploadLimit != this->MaximumAtlasSize ||
+    in.UploadTime < in.BuildTime)
+  {
+    in.UploadLimit = this->MaximumAtlasSize;
+    if (in.Data.Atlas.Texels.empty())
+    {
+      // the CPU copy was dropped after an upload to another context: rebuild it
+      in.Build(amr, array, this->ArrayComponent);
+      if (!in.DataValid)
+      {
+        fail(in.BuildError);
+        return;
+      }
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    std::string error;
+    if (!utilities::UploadAtlas(
+          renWin, in.Data.Atlas, in.Data.VertexCentred, this->MaximumAtlasSize, in.Atlas, error))
+    {
+      // keep the CPU data: a later context (or a smaller input) may succeed
+      fail(error);
+      return;
+    }
+    std::vector<float>().swap(in.Data.Atlas.Texels);
+    in.Context = renWin;
+    in.UploadTime.Modified();
+    in.UploadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+
+  vtkVolumeProperty* property = vol->GetProperty();
+  if (!property)
+  {
+    fail("the volume has no vtkVolumeProperty");
+    return;
+  }
+  if (!in.Transfer.Update(renWin, property, in.Data.ScalarRange, in.BuildTime))
+  {
+    fail("uploading the transfer-function table failed");
+    return;
+  }
+
+  // ---- shaders: the node raycaster (one variant per centring and depth use; cached by VTK's
+  // shader cache) and the final composite
+  const bool useDepth = this->UseDepthBuffer;
+  std::string defines =
+    in.Data.VertexCentred ? "#define AMRSP_VERTEX_CENTRED 1\n" : "#define AMRSP_CELL_CENTRED 1\n";
+  if (useDepth)
+  {
+    defines += "#define AMRSP_USE_DEPTH 1\n";
+  }
+  std::string fragment = amrsp_MultiPassAMR_frag_glsl;
+  vtkShaderProgram::Substitute(fragment, "//AMRSP::Defines", defines);
+  if (fragment == in.FailedFragmentSource)
+  {
+    fail("the multi-pass AMR shader failed to compile or link (see the earlier error)");
+    return;
+  }
+  if (!in.Composite)
+  {
+    in.Composite.reset(
+      new vtkOpenGLQuadHelper(renWin, nullptr, amrsp_MultiPassAMRComposite_frag_glsl, ""));
+  }
+  if (!in.Composite->Program)
+  {
+    in.Composite.reset();
+    fail("the multi-pass AMR composite shader failed to compile or link (see the error above)");
+    return;
+  }
+  vtkShaderProgram* program = renWin->GetShaderCache()->ReadyShaderProgram(
+    amrsp_MultiPassAMR_vert_glsl, fragment.c_str(), "");
+  if (!program)
+  {
+    in.FailedFragmentSource = fragment;
+    fail("the multi-pass AMR shader failed to compile or link (see the error above)");
+    return;
+  }
+
+  utilities::ViewGeometry view;
+  std::string error;
+  if (!utilities::ComputeViewGeometry(ren, vol, view, error))
+  {
+    fail(error);
+    return;
+  }
+  if (!in.EnsureAccumulation(renWin, view.Width, view.Height, error))
+  {
+    fail(error);
+    return;
+  }
+
+  // ---- proxy geometry: the unit cube, placed per node by the vertex shader
+  if (in.CubeBuffer->GetHandle() == 0)
+  {
+    in.CubeBuffer->Upload(UnitCube(), vtkOpenGLBufferObject::ArrayBuffer);
+    in.CubeArrayProgram = nullptr;
+  }
+  in.CubeArray->Bind();
+  if (in.CubeArrayProgram != program)
+  {
+    in.CubeArray->ReleaseGraphicsResources();
+    in.CubeArray->Bind();
+    if (!in.CubeArray->AddAttributeArray(
+          program, in.CubeBuffer, "amrspCorner", 0, 3 * sizeof(float), VTK_FLOAT, 3, false))
+    {
+      in.CubeArray->Release();
+      fail("cannot bind the node box's vertices to the shader");
+      return;
+    }
+    in.CubeArrayProgram = program;
+  }
+
+  vtkOpenGLState* state = renWin->GetState();
+
+  // ---- depth of the opaque geometry drawn so far (read before the accumulation target is bound)
+  if (useDepth)
+  {
+    utilities::CopyDepthBuffer(renWin, view, in.Depth);
+  }
+
+  // ---- CPU: the data nodes front to back for this camera
+  in.OrderNodes(view);
+
+  // ---- per-frame uniforms
+  const amrsp::Hierarchy& h = in.Data.Structure;
+  std::vector<float> steps;
+  for (double edge : in.Data.LevelMinEdge)
+  {
+    steps.push_back(static_cast<float>(this->SampleDistanceFactor * edge));
+  }
+  const float origin[3] = { static_cast<float>(h.Origin.x), static_cast<float>(h.Origin.y),
+    static_cast<float>(h.Origin.z) };
+  const float spacing[3] = { static_cast<float>(h.Spacing0.x), static_cast<float>(h.Spacing0.y),
+    static_cast<float>(h.Spacing0.z) };
+  // the accumulation target holds the viewport only: its pixel (0, 0) is the viewport's corner
+  const float viewport[4] = { 0.0f, 0.0f, static_cast<float>(view.Width),
+    static_cast<float>(view.Height) };
+  float transferRange[2];
+  in.Transfer.GetShaderRange(transferRange);
+  const glm::ivec3 atlasDims = in.Data.Atlas.Layout.Dims;
+  const float atlasSize[3] = { static_cast<float>(atlasDims.x), static_cast<float>(atlasDims.y),
+    static_cast<float>(atlasDims.z) };
+
+  in.Atlas->Activate();
+  in.Transfer.GetTexture()->Activate();
+  program->SetUniformi("amrspAtlas", in.Atlas->GetTextureUnit());
+  program->SetUniformi("amrspTransfer", in.Transfer.GetTexture()->GetTextureUnit());
+  if (useDepth)
+  {
+    program->SetUniformi("amrspDepth", in.Depth->GetTextureUnit());
+  }
+  program->SetUniformMatrix4x4("amrspMCDCMatrix", view.MCDC);
+  program->SetUniformMatrix4x4("amrspDCMCMatrix", view.DCMC);
+  program->SetUniform4f("amrspViewport", viewport);
+  program->SetUniform4f("amrspEyeMC", view.EyeMC);
+  program->SetUniform3f("amrspOrigin", origin);
+  program->SetUniform3f("amrspSpacing0", spacing);
+  program->SetUniform2f("amrspTransferRange", transferRange);
+  program->SetUniformf("amrspTransferSize", static_cast<float>(utilities::TransferTableSize));
+  program->SetUniformf("amrspUnitDistance",
+    static_cast<float>(std::max(property->GetScalarOpacityUnitDistance(0), 1e-12)));
+  program->SetUniform3f("amrspAtlasSize", atlasSize);
+  // per-node uniforms are set directly through their locations (thousands per frame)
+  const GLint nodeLo = program->FindUniform("amrspNodeLo");
+  const GLint nodeHi = program->FindUniform("amrspNodeHi");
+  const GLint cellSize = program->FindUniform("amrspCellSize");
+  const GLint step = program->FindUniform("amrspStep");
+  const GLint firstCell = program->FindUniform("amrspFirstCell");
+  const GLint lastCell = program->FindUniform("amrspLastCell");
+  const GLint atlasOffset = program->FindUniform("amrspAtlasOffset");
+
+  // ---- one draw per data node, blended front to back ("under") into the cleared target
+  {
+    vtkOpenGLState::ScopedglViewport viewportSaved(state);
+    vtkOpenGLState::ScopedglClearColor clearColorSaved(state);
+    vtkOpenGLState::ScopedglEnableDisable scissorSaved(state, GL_SCISSOR_TEST);
+    vtkOpenGLState::ScopedglEnableDisable cullSaved(state, GL_CULL_FACE);
+    vtkOpenGLState::ScopedglEnableDisable depthSaved(state, GL_DEPTH_TEST);
+    vtkOpenGLState::ScopedglEnableDisable blendSaved(state, GL_BLEND);
+    vtkOpenGLState::ScopedglDepthMask depthMaskSaved(state);
+    vtkOpenGLState::ScopedglBlendFuncSeparate blendFuncSaved(state);
+
+    in.Framebuffer->SaveCurrentBindingsAndBuffers(GL_DRAW_FRAMEBUFFER);
+    in.Framebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+    in.Framebuffer->ActivateDrawBuffer(0);
+    state->vtkglViewport(0, 0, view.Width, view.Height);
+    state->vtkglDisable(GL_SCISSOR_TEST);
+    state->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    state->vtkglClear(GL_COLOR_BUFFER_BIT);
+
+    state->vtkglEnable(GL_CULL_FACE);
+    // back faces: one fragment per covered pixel, also with the eye inside the box; a mirroring
+    // volume transform flips the winding
+    state->vtkglCullFace(view.Mirrored ? GL_BACK : GL_FRONT);
+    state->vtkglDisable(GL_DEPTH_TEST);
+    state->vtkglDepthMask(GL_FALSE);
+    state->vtkglEnable(GL_BLEND);
+    // front to back: dst += (1 - dst.a) * src for colour and opacity (src premultiplied)
+    state->vtkglBlendFuncSeparate(GL_ONE_MINUS_DST_ALPHA, GL_ONE, GL_ONE_MINUS_DST_ALPHA, GL_ONE);
+    // no near/far clipping: the back faces of a node between the eye and the near plane still
+    // reach the shader, which starts the rays at the eye as the single-pass shader does
+    // (primitives behind the eye are still clipped, w > 0)
+    const bool depthClampWas = glIsEnabled(GL_DEPTH_CLAMP) == GL_TRUE;
+    glEnable(GL_DEPTH_CLAMP);
+
+    for (const int32_t d : in.Order)
+    {
+      const NodeDraw& node = in.Draws[static_cast<std::size_t>(d)];
+      glUniform3fv(nodeLo, 1, node.Lo);
+      glUniform3fv(nodeHi, 1, node.Hi);
+      glUniform3fv(cellSize, 1, node.CellSize);
+      glUniform1f(step, steps[static_cast<std::size_t>(node.Level)]);
+      glUniform3iv(firstCell, 1, node.FirstCell);
+      glUniform3iv(lastCell, 1, node.LastCell);
+      glUniform3iv(atlasOffset, 1, node.AtlasOffset);
+      glDrawArrays(GL_TRIANGLES, 0, 36);
+    }
+    in.Passes = static_cast<long long>(in.Order.size());
+
+    if (!depthClampWas)
+    {
+      glDisable(GL_DEPTH_CLAMP);
+    }
+    state->vtkglCullFace(GL_BACK);
+    in.CubeArray->Release();
+    in.Framebuffer->RestorePreviousBindingsAndBuffers(GL_DRAW_FRAMEBUFFER);
+  }
+  in.Atlas->Deactivate();
+  in.Transfer.GetTexture()->Deactivate();
+  if (useDepth)
+  {
+    in.Depth->Deactivate();
+  }
+
+  // ---- composite the accumulated image over the renderer's framebuffer (premultiplied "over")
+  {
+    vtkOpenGLState::ScopedglEnableDisable cullSaved(state, GL_CULL_FACE);
+    vtkOpenGLState::ScopedglEnableDisable depthSaved(state, GL_DEPTH_TEST);
+    vtkOpenGLState::ScopedglEnableDisable blendSaved(state, GL_BLEND);
+    vtkOpenGLState::ScopedglDepthMask depthMaskSaved(state);
+    vtkOpenGLState::ScopedglBlendFuncSeparate blendFuncSaved(state);
+    state->vtkglDisable(GL_CULL_FACE);
+    state->vtkglDisable(GL_DEPTH_TEST);
+    state->vtkglDepthMask(GL_FALSE);
+    state->vtkglEnable(GL_BLEND);
+    state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    renWin->GetShaderCache()->ReadyShaderProgram(in.Composite->Program);
+    in.Accumulation->Activate();
+    in.Composite->Program->SetUniformi("amrspAccumulated", in.Accumulation->GetTextureUnit());
+    in.Composite->Render();
+    in.Accumulation->Deactivate();
+  }
+  vtkOpenGLCheckErrorMacro("failed after vtkMultiPassAMRVolumeMapper::Render");
+}
+
+//------------------------------------------------------------------------------
+void vtkMultiPassAMRVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Internals->ReleaseGraphicsResources(window);
+  this->Superclass::ReleaseGraphicsResources(window);
+}
+
+//------------------------------------------------------------------------------
+const char* vtkMultiPassAMRVolumeMapper::GetLastError()
+{
+  return this->Internals->LastError.c_str();
+}
+
+double vtkMultiPassAMRVolumeMapper::GetLastBuildSeconds()
+{
+  return this->Internals->BuildSeconds;
+}
+
+double vtkMultiPassAMRVolumeMapper::GetLastUploadSeconds()
+{
+  return this->Internals->UploadSeconds;
+}
+
+int vtkMultiPassAMRVolumeMapper::GetNumberOfBuilds()
+{
+  return this->Internals->NumberOfBuilds;
+}
+
+void vtkMultiPassAMRVolumeMapper::GetAtlasDimensions(int dims[3])
+{
+  const glm::ivec3 d = this->Internals->Data.Atlas.Layout.Dims;
+  dims[0] = d.x;
+  dims[1] = d.y;
+  dims[2] = d.z;
+}
+
+long long vtkMultiPassAMRVolumeMapper::GetTextureBytes()
+{
+  return this->Internals->TextureBytes;
+}
+
+long long vtkMultiPassAMRVolumeMapper::GetAccumulationBytes()
+{
+  vtkTextureObject* t = this->Internals->Accumulation;
+  return t ? 16LL * t->GetWidth() * t->GetHeight() : 0LL;
+}
+
+long long vtkMultiPassAMRVolumeMapper::GetNumberOfKdNodes()
+{
+  return static_cast<long long>(this->Internals->Data.Tree.Nodes.size());
+}
+
+long long vtkMultiPassAMRVolumeMapper::GetNumberOfDataNodes()
+{
+  return this->Internals->DataNodes;
+}
+
+long long vtkMultiPassAMRVolumeMapper::GetLastNumberOfPasses()
+{
+  return this->Internals->Passes;
+}
+
+double vtkMultiPassAMRVolumeMapper::GetLastOrderSeconds()
+{
+  return this->Internals->OrderSeconds;
+}
+
+//------------------------------------------------------------------------------
+void vtkMultiPassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  const vtkInternals& in = *this->Internals;
+  os << indent << "ArrayComponent: " << this->ArrayComponent << "\n";
+  os << indent << "SampleDistanceFactor: " << this->SampleDistanceFactor << "\n";
+  os << indent << "MaximumAtlasSize: " << this->MaximumAtlasSize << "\n";
+  os << indent << "UseDepthBuffer: " << (this->UseDepthBuffer ? "on" : "off") << "\n";
+  os << indent << "NumberOfBuilds: " << in.NumberOfBuilds << "\n";
+  os << indent << "KdNodes: " << in.Data.Tree.Nodes.size() << ", DataNodes: " << in.DataNodes
+     << ", drawn leaves: " << in.Draws.size() << "\n";
+  const glm::ivec3 d = in.Data.Atlas.Layout.Dims;
+  os << indent << "AtlasDimensions: " << d.x << " x " << d.y << " x " << d.z << "\n";
+  os << indent << "LastNumberOfPasses: " << in.Passes << "\n";
+  os << indent << "LastError: " << (in.LastError.empty() ? "(none)" : in.LastError) << "\n";
+}

@@ -1,0 +1,168 @@
+//VTK::System::Dec
+// SPDX-License-Identifier: BSD-3-Clause
+//
+// Multi-pass raycaster of structured AMR data: the baseline Kaehler & Abel 2013 compare with
+// (their reference vg06-kaehler, section 6). The CPU orders the kD-tree's data nodes front to
+// back and draws each node's box once; this shader integrates the ray segment inside that ONE
+// node and outputs its premultiplied colour and opacity. The mapper blends the draws front to
+// back into a cleared RGBA32F target with (ONE_MINUS_DST_ALPHA, ONE).
+//
+// The segment is [max(tEnter, 0), min(tExit, depth)] of the node box, which the CPU computes in
+// the same float arithmetic as the single-pass traversal (SinglePassAMR.frag.glsl, amrsp::
+// TraverseKdTree), and it is sampled by the same rule as amrsp::RenderKdTree (README, "Sampling
+// rule"); keep them in sync.
+//
+// Variants are selected by the mapper with #defines inserted at the marker below:
+//   AMRSP_CELL_CENTRED   nearest-cell sampling of cell bricks
+//   AMRSP_VERTEX_CENTRED trilinear sampling of vertex bricks (one texel larger per axis)
+//   AMRSP_USE_DEPTH      clip rays at the depth of the opaque geometry already drawn
+//AMRSP::Defines
+
+#if !defined(AMRSP_CELL_CENTRED) && !defined(AMRSP_VERTEX_CENTRED)
+#error "AMRSP_CELL_CENTRED or AMRSP_VERTEX_CENTRED must be defined"
+#endif
+
+#define AMRSP_INF 3.0e38
+
+//VTK::Output::Dec
+
+uniform sampler3D amrspAtlas;    // R32F, one brick per grid
+uniform sampler2D amrspTransfer; // RGBA32F, 1 row: colour and unit-distance opacity
+#ifdef AMRSP_USE_DEPTH
+uniform sampler2D amrspDepth; // depth of the opaque geometry, viewport-sized
+#endif
+
+// ---- per frame
+uniform mat4 amrspDCMCMatrix; // normalized device -> model coordinates (column-major)
+uniform vec4 amrspViewport;   // lower-left corner and size of the viewport in the target, pixels
+uniform vec4 amrspEyeMC;      // camera position in model coordinates; w = 0: parallel projection
+uniform vec3 amrspOrigin;     // model position of level-0 index (0, 0, 0)
+uniform vec3 amrspSpacing0;   // model size of a level-0 cell
+uniform vec2 amrspTransferRange; // scalar at the first table entry, 1 / (last - first)
+uniform float amrspTransferSize; // number of table entries
+uniform float amrspUnitDistance; // vtkVolumeProperty::ScalarOpacityUnitDistance
+uniform vec3 amrspAtlasSize;     // atlas dimensions, texels
+
+// ---- per node (one draw)
+uniform vec3 amrspNodeLo;       // the node's box, level-0 index units
+uniform vec3 amrspNodeHi;
+uniform vec3 amrspCellSize;     // a cell of the node's data level, level-0 index units
+uniform float amrspStep;        // sampling distance D of that level, model units
+uniform ivec3 amrspFirstCell;   // the node's first and last cell, in its level's index space
+uniform ivec3 amrspLastCell;
+uniform ivec3 amrspAtlasOffset; // atlas texel of amrspFirstCell
+
+// Slab test, as amrsp::IntersectBox.
+bool amrspIntersectBox(vec3 lo, vec3 hi, vec3 o, vec3 d, out float tEnter, out float tExit)
+{
+  tEnter = -AMRSP_INF;
+  tExit = AMRSP_INF;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (d[a] == 0.0)
+    {
+      if (o[a] < lo[a] || o[a] > hi[a])
+      {
+        return false;
+      }
+      continue;
+    }
+    float t0 = (lo[a] - o[a]) / d[a];
+    float t1 = (hi[a] - o[a]) / d[a];
+    if (t0 > t1)
+    {
+      float s = t0;
+      t0 = t1;
+      t1 = s;
+    }
+    tEnter = max(tEnter, t0);
+    tExit = min(tExit, t1);
+  }
+  return tEnter < tExit;
+}
+
+vec4 amrspTransferFunction(float scalar)
+{
+  float u = clamp((scalar - amrspTransferRange.x) * amrspTransferRange.y, 0.0, 1.0);
+  float x = (u * (amrspTransferSize - 1.0) + 0.5) / amrspTransferSize;
+  return texture(amrspTransfer, vec2(x, 0.5));
+}
+
+void main()
+{
+  // The ray through this pixel's centre, in model coordinates: from the eye (perspective) or
+  // from the near plane (parallel projection), as the single-pass shader builds it.
+  vec2 ndc = 2.0 * (gl_FragCoord.xy - amrspViewport.xy) / amrspViewport.zw - 1.0;
+  vec4 nearMC = amrspDCMCMatrix * vec4(ndc, -1.0, 1.0);
+  vec4 farMC = amrspDCMCMatrix * vec4(ndc, 1.0, 1.0);
+  vec3 nearPoint = nearMC.xyz / nearMC.w;
+  vec3 dirMC = normalize(farMC.xyz / farMC.w - nearPoint);
+  vec3 entry = amrspEyeMC.w != 0.0 ? amrspEyeMC.xyz : nearPoint;
+
+  float tMax = AMRSP_INF;
+#ifdef AMRSP_USE_DEPTH
+  float depth = texelFetch(amrspDepth, ivec2(gl_FragCoord.xy - amrspViewport.xy), 0).r;
+  if (depth < 1.0)
+  {
+    vec4 hitMC = amrspDCMCMatrix * vec4(ndc, 2.0 * depth - 1.0, 1.0);
+    tMax = dot(hitMC.xyz / hitMC.w - entry, dirMC);
+  }
+#endif
+
+  // Level-0 index units; t stays the model-space distance along the ray.
+  vec3 ro = (entry - amrspOrigin) / amrspSpacing0;
+  vec3 rd = dirMC / amrspSpacing0;
+
+  float tEnter, tExit;
+  if (!amrspIntersectBox(amrspNodeLo, amrspNodeHi, ro, rd, tEnter, tExit))
+  {
+    discard;
+  }
+  float t = max(tEnter, 0.0);
+  float tEnd = min(tExit, tMax);
+  if (!(t < tEnd))
+  {
+    discard; // the node lies behind the eye or behind opaque geometry on this ray
+  }
+
+  // Sampling rule: n = max(1, ceil(length / D)) equal steps, samples at their midpoints.
+  float segmentLength = tEnd - t;
+  int n = max(1, int(ceil(segmentLength / amrspStep)));
+  float dt = segmentLength / float(n);
+  float exponent = dt / amrspUnitDistance;
+  vec3 colour = vec3(0.0);
+  float alpha = 0.0;
+  for (int k = 0; k < n; ++k)
+  {
+    float ts = t + (float(k) + 0.5) * dt;
+    vec3 p = ro + ts * rd;
+#ifdef AMRSP_VERTEX_CENTRED
+    // vertex (i,j,k) of the node's first cell is texel offset + (i,j,k); texel centres at +0.5
+    vec3 u = clamp(p / amrspCellSize - vec3(amrspFirstCell), vec3(0.0),
+      vec3(amrspLastCell - amrspFirstCell + 1));
+    float scalar = texture(amrspAtlas, (vec3(amrspAtlasOffset) + u + 0.5) / amrspAtlasSize).r;
+#else
+    // nearest cell, clamped into the node so float error never reaches a neighbouring brick
+    ivec3 cell = clamp(ivec3(floor(p / amrspCellSize)), amrspFirstCell, amrspLastCell);
+    float scalar = texelFetch(amrspAtlas, amrspAtlasOffset + (cell - amrspFirstCell), 0).r;
+#endif
+    if (isnan(scalar))
+    {
+      continue; // missing data is transparent
+    }
+    vec4 tf = amrspTransferFunction(scalar);
+    if (tf.a > 0.0)
+    {
+      float a = 1.0 - pow(1.0 - min(tf.a, 1.0), exponent);
+      colour += (1.0 - alpha) * a * tf.rgb;
+      alpha += (1.0 - alpha) * a;
+    }
+  }
+
+  if (alpha <= 0.0)
+  {
+    discard;
+  }
+  // premultiplied colour and opacity of this segment only; the blending composites the segments
+  gl_FragData[0] = vec4(colour, alpha);
+}

@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "AmrspMultipass.h"
+
+#include "vtkMultiPassAMRVolumeMapper.h"
+#include "vtkSmartPointer.h"
+
+namespace amrsp
+{
+namespace tool
+{
+
+namespace
+{
+vtkSmartPointer<vtkMultiPassAMRVolumeMapper> NewMapper(const RenderSettings& s)
+{
+  if (s.LodThresholdPixels > 0.0f)
+  {
+    throw GpuError("the multipass method renders the finest level only (no --lod)");
+  }
+  return vtkSmartPointer<vtkMultiPassAMRVolumeMapper>::New();
+}
+} // namespace
+
+MultipassRenderer::MultipassRenderer(
+  const Hierarchy& h, const RenderSettings& s, const ViewAngles& view)
+  : MultipassRenderer(NewMapper(s), h, s, view)
+{
+}
+
+MultipassRenderer::MultipassRenderer(vtkMultiPassAMRVolumeMapper* mapper, const Hierarchy& h,
+  const RenderSettings& s, const ViewAngles& view)
+  : GpuRenderer("multipass", mapper, h, s, view)
+  , Mapper(mapper)
+{
+  this->Mapper->SetSampleDistanceFactor(s.SampleDistanceFactor);
+}
+
+vtkMultiPassAMRVolumeMapper* MultipassRenderer::GetMapper() const
+{
+  return this->Mapper;
+}
+
+double MultipassRenderer::BuildSeconds() const
+{
+  return this->Mapper->GetLastBuildSeconds();
+}
+
+double MultipassRenderer::UploadSeconds() const
+{
+  return this->Mapper->GetLastUploadSeconds();
+}
+
+int MultipassRenderer::NumberOfBuilds() const
+{
+  return this->Mapper->GetNumberOfBuilds();
+}
+
+long long MultipassRenderer::TextureBytes() const
+{
+  return this->Mapper->GetTextureBytes();
+}
+
+long long MultipassRenderer::AccumulationBytes() const
+{
+  return this->Mapper->GetAccumulationBytes();
+}
+
+long long MultipassRenderer::Passes() const
+{
+  return this->Mapper->GetLastNumberOfPasses();
+}
+
+double MultipassRenderer::OrderSeconds() const
+{
+  return this->Mapper->GetLastOrderSeconds();
+}
+
+std::string MultipassRenderer::LastError() const
+{
+  return this->Mapper->GetLastError();
+}
+
+void MultipassRenderer::GetAtlasDimensions(int dims[3]) const
+{
+  this->Mapper->GetAtlasDimensions(dims);
+}
+
+} // namespace tool
+} // namespace amrsp

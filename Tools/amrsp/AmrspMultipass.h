@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/// @file
+/// The `multipass` method of the amrsp tool: vtkMultiPassAMRVolumeMapper (the paper's multi-pass
+/// baseline: the kD-tree ordered on the CPU, one draw per data node, blended front to back) in an
+/// offscreen vtkRenderWindow with the tool's conventions (the set-up is GpuRenderer's).
+
+#include "AmrspGpuRenderer.h"
+
+class vtkMultiPassAMRVolumeMapper;
+
+namespace amrsp
+{
+namespace tool
+{
+
+class MultipassRenderer : public GpuRenderer
+{
+public:
+  /// As PackingRenderer. The multi-pass method renders the finest level only: a level-of-detail
+  /// threshold in `s` (--lod) is a GpuError.
+  MultipassRenderer(const Hierarchy& h, const RenderSettings& s, const ViewAngles& view);
+
+  vtkMultiPassAMRVolumeMapper* GetMapper() const;
+
+  double BuildSeconds() const override;
+  double UploadSeconds() const override;
+  int NumberOfBuilds() const override;
+  /// The atlas (the method has no tree textures); the accumulation target is not counted.
+  long long TextureBytes() const override;
+  /// Bytes of the RGBA32F accumulation target of the last frame.
+  long long AccumulationBytes() const;
+  /// Draws (data nodes) of the last frame, and the CPU seconds of their front-to-back ordering.
+  long long Passes() const;
+  double OrderSeconds() const;
+
+protected:
+  std::string LastError() const override;
+  void GetAtlasDimensions(int dims[3]) const override;
+
+private:
+  MultipassRenderer(vtkMultiPassAMRVolumeMapper* mapper, const Hierarchy& h,
+    const RenderSettings& s, const ViewAngles& view);
+  vtkMultiPassAMRVolumeMapper* Mapper; // held by the base (its volume's mapper)
+};
+
+} // namespace tool
+} // namespace amrsp
