@@ -18,8 +18,8 @@
 // the volume (nodes around and behind the eye, faces between the eye and the near plane);
 // parallel projection; a translated volume; a viewport that does not start at the window's
 // corner; opaque geometry in front of and through the volume (depth buffer); vertex-centred
-// data; a missing array and an atlas over the size limit are errors and draw nothing; --lod is
-// refused.
+// data; a missing array, an atlas over the size limit and a blend mode other than composite are
+// errors and draw nothing; --lod is refused.
 //
 // Exit code 125 (CTest SKIP) with "SKIPPED: ..." when no suitable OpenGL context can be created
 // (no X display for this GLX-only VTK, or an OpenGL older than 3.2 core).
@@ -431,6 +431,11 @@ void TestDataset(const std::string& spec)
       "an atlas over the size limit is an error");
     mapper->SetMaximumAtlasSize(0);
     Check(Rmse(gpu.Render(0.0, ms), before) < 0.01, "with the limit lifted it renders again");
+    mapper->SetBlendModeToMaximumIntensity();
+    CheckError([&] { gpu.Render(0.0, ms); }, { "composite blending only" },
+      "a blend mode other than composite is an error");
+    mapper->SetBlendModeToComposite();
+    Check(Rmse(gpu.Render(0.0, ms), before) < 0.01, "composite blending renders again");
   }
 }
 
