@@ -175,6 +175,16 @@ public:
   /// Fills Order with the data leaves front to back for rays from `view` (see the class comment).
   void OrderNodes(const utilities::ViewGeometry& view);
 
+  /// Clears the accumulation target and draws the ordered nodes into it, front to back. The
+  /// program, its per-frame uniforms, the textures and the cube's vertex array are ready;
+  /// `steps` is the sampling distance D of each level in model units.
+  void DrawNodes(vtkOpenGLState* state, vtkShaderProgram* program,
+    const utilities::ViewGeometry& view, const std::vector<float>& steps);
+
+  /// Composites the accumulation target over the current framebuffer's viewport with one
+  /// full-screen quad (premultiplied "over": ONE, ONE_MINUS_SRC_ALPHA).
+  void CompositeOver(vtkOpenGLRenderWindow* renWin);
+
   /// (Re)creates the accumulation texture and its framebuffer for a viewport of w x h pixels.
   bool EnsureAccumulation(vtkOpenGLRenderWindow* renWin, int w, int h, std::string& error);
 
@@ -364,6 +374,96 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::EnsureAccumulation(
     this->Framebuffer = nullptr;
   }
   return ok;
+}
+
+//------------------------------------------------------------------------------
+void vtkMultiPassAMRVolumeMapper::vtkInternals::DrawNodes(vtkOpenGLState* state,
+  vtkShaderProgram* program, const utilities::ViewGeometry& view, const std::vector<float>& steps)
+{
+  // per-node uniforms are set directly through their locations (thousands per frame)
+  const GLint nodeLo = program->FindUniform("amrspNodeLo");
+  const GLint nodeHi = program->FindUniform("amrspNodeHi");
+  const GLint cellSize = program->FindUniform("amrspCellSize");
+  const GLint step = program->FindUniform("amrspStep");
+  const GLint firstCell = program->FindUniform("amrspFirstCell");
+  const GLint lastCell = program->FindUniform("amrspLastCell");
+  const GLint atlasOffset = program->FindUniform("amrspAtlasOffset");
+
+  // one draw per data node, blended front to back ("under") into the cleared target
+  vtkOpenGLState::ScopedglViewport viewportSaved(state);
+  vtkOpenGLState::ScopedglClearColor clearColorSaved(state);
+  vtkOpenGLState::ScopedglEnableDisable scissorSaved(state, GL_SCISSOR_TEST);
+  vtkOpenGLState::ScopedglEnableDisable cullSaved(state, GL_CULL_FACE);
+  vtkOpenGLState::ScopedglEnableDisable depthSaved(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable blendSaved(state, GL_BLEND);
+  vtkOpenGLState::ScopedglDepthMask depthMaskSaved(state);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFuncSaved(state);
+
+  this->Framebuffer->SaveCurrentBindingsAndBuffers(GL_DRAW_FRAMEBUFFER);
+  this->Framebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+  this->Framebuffer->ActivateDrawBuffer(0);
+  state->vtkglViewport(0, 0, view.Width, view.Height);
+  state->vtkglDisable(GL_SCISSOR_TEST);
+  state->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  state->vtkglClear(GL_COLOR_BUFFER_BIT);
+
+  state->vtkglEnable(GL_CULL_FACE);
+  // back faces: one fragment per covered pixel, also with the eye inside the box; a mirroring
+  // volume transform flips the winding
+  state->vtkglCullFace(view.Mirrored ? GL_BACK : GL_FRONT);
+  state->vtkglDisable(GL_DEPTH_TEST);
+  state->vtkglDepthMask(GL_FALSE);
+  state->vtkglEnable(GL_BLEND);
+  // front to back: dst += (1 - dst.a) * src for colour and opacity (src premultiplied)
+  state->vtkglBlendFuncSeparate(GL_ONE_MINUS_DST_ALPHA, GL_ONE, GL_ONE_MINUS_DST_ALPHA, GL_ONE);
+  // no near/far clipping: the back faces of a node between the eye and the near plane still
+  // reach the shader, which starts the rays at the eye as the single-pass shader does
+  // (primitives behind the eye are still clipped, w > 0)
+  const bool depthClampWas = glIsEnabled(GL_DEPTH_CLAMP) == GL_TRUE;
+  glEnable(GL_DEPTH_CLAMP);
+
+  for (const int32_t d : this->Order)
+  {
+    const NodeDraw& node = this->Draws[static_cast<std::size_t>(d)];
+    glUniform3fv(nodeLo, 1, node.Lo);
+    glUniform3fv(nodeHi, 1, node.Hi);
+    glUniform3fv(cellSize, 1, node.CellSize);
+    glUniform1f(step, steps[static_cast<std::size_t>(node.Level)]);
+    glUniform3iv(firstCell, 1, node.FirstCell);
+    glUniform3iv(lastCell, 1, node.LastCell);
+    glUniform3iv(atlasOffset, 1, node.AtlasOffset);
+    glDrawArrays(GL_TRIANGLES, 0, 36);
+  }
+  this->Passes = static_cast<long long>(this->Order.size());
+
+  if (!depthClampWas)
+  {
+    glDisable(GL_DEPTH_CLAMP);
+  }
+  state->vtkglCullFace(GL_BACK);
+  this->CubeArray->Release();
+  this->Framebuffer->RestorePreviousBindingsAndBuffers(GL_DRAW_FRAMEBUFFER);
+}
+
+//------------------------------------------------------------------------------
+void vtkMultiPassAMRVolumeMapper::vtkInternals::CompositeOver(vtkOpenGLRenderWindow* renWin)
+{
+  vtkOpenGLState* state = renWin->GetState();
+  vtkOpenGLState::ScopedglEnableDisable cullSaved(state, GL_CULL_FACE);
+  vtkOpenGLState::ScopedglEnableDisable depthSaved(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable blendSaved(state, GL_BLEND);
+  vtkOpenGLState::ScopedglDepthMask depthMaskSaved(state);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFuncSaved(state);
+  state->vtkglDisable(GL_CULL_FACE);
+  state->vtkglDisable(GL_DEPTH_TEST);
+  state->vtkglDepthMask(GL_FALSE);
+  state->vtkglEnable(GL_BLEND);
+  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  renWin->GetShaderCache()->ReadyShaderProgram(this->Composite->Program);
+  this->Accumulation->Activate();
+  this->Composite->Program->SetUniformi("amrspAccumulated", this->Accumulation->GetTextureUnit());
+  this->Composite->Render();
+  this->Accumulation->Deactivate();
 }
 
 //------------------------------------------------------------------------------
@@ -707,71 +807,9 @@ void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   program->SetUniformf("amrspUnitDistance",
     static_cast<float>(std::max(property->GetScalarOpacityUnitDistance(0), 1e-12)));
   program->SetUniform3f("amrspAtlasSize", atlasSize);
-  // per-node uniforms are set directly through their locations (thousands per frame)
-  const GLint nodeLo = program->FindUniform("amrspNodeLo");
-  const GLint nodeHi = program->FindUniform("amrspNodeHi");
-  const GLint cellSize = program->FindUniform("amrspCellSize");
-  const GLint step = program->FindUniform("amrspStep");
-  const GLint firstCell = program->FindUniform("amrspFirstCell");
-  const GLint lastCell = program->FindUniform("amrspLastCell");
-  const GLint atlasOffset = program->FindUniform("amrspAtlasOffset");
 
-  // ---- one draw per data node, blended front to back ("under") into the cleared target
-  {
-    vtkOpenGLState::ScopedglViewport viewportSaved(state);
-    vtkOpenGLState::ScopedglClearColor clearColorSaved(state);
-    vtkOpenGLState::ScopedglEnableDisable scissorSaved(state, GL_SCISSOR_TEST);
-    vtkOpenGLState::ScopedglEnableDisable cullSaved(state, GL_CULL_FACE);
-    vtkOpenGLState::ScopedglEnableDisable depthSaved(state, GL_DEPTH_TEST);
-    vtkOpenGLState::ScopedglEnableDisable blendSaved(state, GL_BLEND);
-    vtkOpenGLState::ScopedglDepthMask depthMaskSaved(state);
-    vtkOpenGLState::ScopedglBlendFuncSeparate blendFuncSaved(state);
-
-    in.Framebuffer->SaveCurrentBindingsAndBuffers(GL_DRAW_FRAMEBUFFER);
-    in.Framebuffer->Bind(GL_DRAW_FRAMEBUFFER);
-    in.Framebuffer->ActivateDrawBuffer(0);
-    state->vtkglViewport(0, 0, view.Width, view.Height);
-    state->vtkglDisable(GL_SCISSOR_TEST);
-    state->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-    state->vtkglClear(GL_COLOR_BUFFER_BIT);
-
-    state->vtkglEnable(GL_CULL_FACE);
-    // back faces: one fragment per covered pixel, also with the eye inside the box; a mirroring
-    // volume transform flips the winding
-    state->vtkglCullFace(view.Mirrored ? GL_BACK : GL_FRONT);
-    state->vtkglDisable(GL_DEPTH_TEST);
-    state->vtkglDepthMask(GL_FALSE);
-    state->vtkglEnable(GL_BLEND);
-    // front to back: dst += (1 - dst.a) * src for colour and opacity (src premultiplied)
-    state->vtkglBlendFuncSeparate(GL_ONE_MINUS_DST_ALPHA, GL_ONE, GL_ONE_MINUS_DST_ALPHA, GL_ONE);
-    // no near/far clipping: the back faces of a node between the eye and the near plane still
-    // reach the shader, which starts the rays at the eye as the single-pass shader does
-    // (primitives behind the eye are still clipped, w > 0)
-    const bool depthClampWas = glIsEnabled(GL_DEPTH_CLAMP) == GL_TRUE;
-    glEnable(GL_DEPTH_CLAMP);
-
-    for (const int32_t d : in.Order)
-    {
-      const NodeDraw& node = in.Draws[static_cast<std::size_t>(d)];
-      glUniform3fv(nodeLo, 1, node.Lo);
-      glUniform3fv(nodeHi, 1, node.Hi);
-      glUniform3fv(cellSize, 1, node.CellSize);
-      glUniform1f(step, steps[static_cast<std::size_t>(node.Level)]);
-      glUniform3iv(firstCell, 1, node.FirstCell);
-      glUniform3iv(lastCell, 1, node.LastCell);
-      glUniform3iv(atlasOffset, 1, node.AtlasOffset);
-      glDrawArrays(GL_TRIANGLES, 0, 36);
-    }
-    in.Passes = static_cast<long long>(in.Order.size());
-
-    if (!depthClampWas)
-    {
-      glDisable(GL_DEPTH_CLAMP);
-    }
-    state->vtkglCullFace(GL_BACK);
-    in.CubeArray->Release();
-    in.Framebuffer->RestorePreviousBindingsAndBuffers(GL_DRAW_FRAMEBUFFER);
-  }
+  // ---- one draw per data node, front to back, into the accumulation target
+  in.DrawNodes(state, program, view, steps);
   in.Atlas->Deactivate();
   in.Transfer.GetTexture()->Deactivate();
   if (useDepth)
@@ -780,23 +818,7 @@ void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
 
   // ---- composite the accumulated image over the renderer's framebuffer (premultiplied "over")
-  {
-    vtkOpenGLState::ScopedglEnableDisable cullSaved(state, GL_CULL_FACE);
-    vtkOpenGLState::ScopedglEnableDisable depthSaved(state, GL_DEPTH_TEST);
-    vtkOpenGLState::ScopedglEnableDisable blendSaved(state, GL_BLEND);
-    vtkOpenGLState::ScopedglDepthMask depthMaskSaved(state);
-    vtkOpenGLState::ScopedglBlendFuncSeparate blendFuncSaved(state);
-    state->vtkglDisable(GL_CULL_FACE);
-    state->vtkglDisable(GL_DEPTH_TEST);
-    state->vtkglDepthMask(GL_FALSE);
-    state->vtkglEnable(GL_BLEND);
-    state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-    renWin->GetShaderCache()->ReadyShaderProgram(in.Composite->Program);
-    in.Accumulation->Activate();
-    in.Composite->Program->SetUniformi("amrspAccumulated", in.Accumulation->GetTextureUnit());
-    in.Composite->Render();
-    in.Accumulation->Deactivate();
-  }
+  in.CompositeOver(renWin);
   vtkOpenGLCheckErrorMacro("failed after vtkMultiPassAMRVolumeMapper::Render");
 }
 
