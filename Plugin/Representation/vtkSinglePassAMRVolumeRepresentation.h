@@ -17,17 +17,23 @@
  * array renders the component the colour map selects, or its magnitude. Without a coloured array
  * nothing is drawn (as ParaView's Volume representation).
  *
- * Data movement (first version): RequestData shallow-copies the input; REQUEST_UPDATE hands that
- * copy to the view with vtkPVView::SetPiece, and REQUEST_RENDER connects the mapper to the piece
- * the view delivered (vtkPVRenderView::GetPieceProducer). In the builtin session (pvpython,
- * pvbatch on one rank, the GUI without a server) the delivered piece is the copy itself, so
- * nothing is moved or duplicated. Not handled yet: ordered compositing of the pieces of several
- * MPI ranks (each rank would render only its own blocks, and the composited image is not
- * depth-sorted), streaming of blocks, and LOD geometry while interacting.
+ * Data movement: RequestData shallow-copies the input; REQUEST_UPDATE hands that copy to the view
+ * with vtkPVView::SetPiece, and REQUEST_RENDER connects the mapper to the piece the view delivered
+ * (vtkPVRenderView::GetPieceProducer). In a builtin session (pvpython, the GUI without a server,
+ * pvbatch on one rank) the delivered piece is the copy itself: nothing is moved or duplicated.
+ * With one pvserver, ParaView's delivery does the rest: below the remote-render threshold the
+ * whole vtkOverlappingAMR is sent to the client, which renders it; above it the server renders
+ * and sends the image (both tested). Not handled: several MPI ranks. Each rank holds only some
+ * blocks, and the mapper needs the whole hierarchy: it reports "block ... has no data loaded" and
+ * draws nothing (no gathering of the blocks, no ordered compositing of per-rank images).
+ * Not handled either: block streaming, and LOD geometry while interacting (the mapper's own
+ * LODThreshold is the level of detail).
  *
- * Invariants: the mapper's input is always the delivered piece of the last REQUEST_UPDATE; the
- * representation re-executes (and the mapper rebuilds its textures) only when the input data
- * changes, never for colour-map, opacity, camera, blend-mode, sampling or LOD changes.
+ * Invariants: when the mapper renders, its input is the piece the view delivered for the last
+ * REQUEST_UPDATE (the view may ask the prop for its bounds before it delivers, while its producer
+ * holds an empty placeholder: the mapper then reports no bounds and keeps its textures). The
+ * representation re-executes, and the mapper rebuilds its textures, only when the input data
+ * changes; never for colour-map, opacity, camera, blend-mode, sampling, LOD or visibility changes.
  */
 #ifndef vtkSinglePassAMRVolumeRepresentation_h
 #define vtkSinglePassAMRVolumeRepresentation_h
