@@ -584,7 +584,10 @@ double* vtkSinglePassAMRVolumeMapper::GetBounds()
   }
   this->Update();
   vtkOverlappingAMR* amr = this->GetAMRInput();
-  if (!amr)
+  // An AMR without metadata or blocks (e.g. the empty placeholder a ParaView view's producer
+  // holds until it delivers data) has no bounds; it is not built, so the textures of the last
+  // real input stay valid and no build is counted.
+  if (!amr || !amr->GetAMRInfo() || amr->GetTotalNumberOfBlocks() == 0)
   {
     return this->Bounds;
   }

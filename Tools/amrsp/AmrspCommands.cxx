@@ -131,7 +131,8 @@ int Fail(const std::string& message)
 const std::vector<std::string> DatasetOptions = { "array", "component", "centering" };
 const std::vector<std::string> AtlasOptions = { "packer", "max-3d-texture-size", "atlas-budget-mb" };
 const std::vector<std::string> ViewOptions = { "size", "azimuth", "elevation", "zoom", "tf",
-  "scale", "unit-distance", "sample-factor", "reference-sample-factor", "lod", "threads", "blend" };
+  "scale", "unit-distance", "sample-factor", "reference-sample-factor", "lod", "threads", "blend",
+  "view-json" };
 
 std::vector<std::string> Concat(std::initializer_list<std::vector<std::string>> lists)
 {
@@ -217,7 +218,10 @@ const char* const ViewHelp =
   "  --reference-sample-factor F step of the reference in finest-cell edges (default 0.5)\n"
   "  --lod PIXELS                level-of-detail threshold in pixels (default 0 = off)\n"
   "  --blend MODE                composite (default), maximum, minimum or average intensity\n"
-  "  --threads N                 CPU threads (default: all cores)\n";
+  "  --threads N                 CPU threads (default: all cores)\n"
+  "  --view-json FILE            camera, transfer function and background from a JSON file\n"
+  "                              (e.g. written from ParaView; see README) instead of the\n"
+  "                              conventions above; its transfer function implies --scale linear\n";
 
 LoadedDataset Load(const Arguments& a, bool needValues, bool needVTK)
 {
@@ -297,10 +301,139 @@ void Bounds(const Hierarchy& h, glm::dvec3& lo, glm::dvec3& hi)
   hi = h.WorldHi(h.RootCells(), 0);
 }
 
+/// A view described explicitly (--view-json). Absent parts keep the conventions.
+struct ExplicitView
+{
+  bool HasCamera = false;
+  Camera View;
+  bool HasTransfer = false;
+  TransferFunction Transfer;
+  bool HasBackground = false;
+  glm::dvec3 Background{ 0.0 };
+};
+
+glm::dvec3 JsonVector3(const Json& j, const std::string& what)
+{
+  if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() || !j[2].is_number())
+  {
+    throw UsageError{ "--view-json: '" + what + "' must be an array of 3 numbers" };
+  }
+  return glm::dvec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
+}
+
+/// Reads --view-json FILE:
+///   { "camera": { "position": [x,y,z], "focal_point": [x,y,z], "view_up": [x,y,z],
+///                 "view_angle": degrees, "parallel_projection": false, "parallel_scale": s },
+///     "transfer_function": { "rgb_points": [[x,r,g,b], ...], "opacity_points": [[x,a], ...],
+///                            "unit_distance": u },
+///     "background": [r,g,b] }
+/// Every part is optional. Points are sorted by x; the functions are piecewise linear in the
+/// scalar and clamp beyond their end points (vtkColorTransferFunction in RGB space,
+/// vtkPiecewiseFunction with midpoint 0.5 and sharpness 0).
+ExplicitView ReadViewJson(const std::string& path)
+{
+  std::ifstream in(path);
+  if (!in)
+  {
+    throw UsageError{ "--view-json: cannot open '" + path + "'" };
+  }
+  Json j;
+  try
+  {
+    j = Json::parse(in);
+  }
+  catch (const std::exception& e)
+  {
+    throw UsageError{ "--view-json: '" + path + "' is not valid JSON: " + e.what() };
+  }
+  if (!j.is_object())
+  {
+    throw UsageError{ "--view-json: '" + path + "' must hold a JSON object" };
+  }
+  ExplicitView v;
+  try
+  {
+    if (j.contains("camera"))
+    {
+      const Json& c = j.at("camera");
+      v.HasCamera = true;
+      v.View.Position = JsonVector3(c.at("position"), "camera.position");
+      v.View.FocalPoint = JsonVector3(c.at("focal_point"), "camera.focal_point");
+      v.View.ViewUp = JsonVector3(c.at("view_up"), "camera.view_up");
+      v.View.ViewAngle = c.value("view_angle", 30.0);
+      v.View.Parallel = c.value("parallel_projection", false);
+      v.View.ParallelScale = c.value("parallel_scale", 1.0);
+      if (!(glm::length(v.View.Position - v.View.FocalPoint) > 0.0) ||
+        !(glm::length(v.View.ViewUp) > 0.0) || !(v.View.ViewAngle > 0.0) ||
+        !(v.View.ViewAngle < 180.0) || !(v.View.ParallelScale > 0.0))
+      {
+        throw UsageError{ "--view-json: the camera is degenerate (position at the focal point, "
+                          "zero view-up, or a view angle or parallel scale out of range)" };
+      }
+    }
+    if (j.contains("transfer_function"))
+    {
+      const Json& t = j.at("transfer_function");
+      v.HasTransfer = true;
+      for (const Json& p : t.at("rgb_points"))
+      {
+        if (!p.is_array() || p.size() != 4)
+        {
+          throw UsageError{ "--view-json: every rgb_points entry must be [x, r, g, b]" };
+        }
+        v.Transfer.Color.push_back(
+          { p[0].get<double>(), { p[1].get<double>(), p[2].get<double>(), p[3].get<double>() } });
+      }
+      for (const Json& p : t.at("opacity_points"))
+      {
+        if (!p.is_array() || p.size() != 2)
+        {
+          throw UsageError{ "--view-json: every opacity_points entry must be [x, a]" };
+        }
+        v.Transfer.Opacity.push_back({ p[0].get<double>(), p[1].get<double>() });
+      }
+      if (v.Transfer.Color.empty() || v.Transfer.Opacity.empty())
+      {
+        throw UsageError{ "--view-json: rgb_points and opacity_points must not be empty" };
+      }
+      std::stable_sort(v.Transfer.Color.begin(), v.Transfer.Color.end(),
+        [](const TransferFunction::ColorPoint& a, const TransferFunction::ColorPoint& b)
+        { return a.X < b.X; });
+      std::stable_sort(v.Transfer.Opacity.begin(), v.Transfer.Opacity.end(),
+        [](const TransferFunction::OpacityPoint& a, const TransferFunction::OpacityPoint& b)
+        { return a.X < b.X; });
+      v.Transfer.UnitDistance = t.value("unit_distance", 0.0); // 0: the usual default
+    }
+    if (j.contains("background"))
+    {
+      v.HasBackground = true;
+      v.Background = JsonVector3(j.at("background"), "background");
+    }
+  }
+  catch (const Json::exception& e)
+  {
+    throw UsageError{ "--view-json: '" + path + "': " + e.what() };
+  }
+  return v;
+}
+
 } // namespace
 
 RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range)
 {
+  ExplicitView explicitView;
+  if (a.Has("view-json"))
+  {
+    explicitView = ReadViewJson(a.Get("view-json", ""));
+    if (explicitView.HasCamera && (a.Has("azimuth") || a.Has("elevation") || a.Has("zoom")))
+    {
+      throw UsageError{ "--azimuth, --elevation and --zoom cannot change a --view-json camera" };
+    }
+    if (explicitView.HasTransfer && a.Has("tf"))
+    {
+      throw UsageError{ "--tf cannot be combined with a --view-json transfer function" };
+    }
+  }
   RenderSettings s;
   const std::string size = a.Get("size", "512x512");
   const std::size_t x = size.find('x');
@@ -323,29 +456,51 @@ RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range)
   }
   glm::dvec3 lo, hi;
   Bounds(h, lo, hi);
-  s.View = Camera::ResetTo(lo, hi);
-  s.View.Azimuth(a.GetNumber("azimuth", 30.0));
-  s.View.Elevation(a.GetNumber("elevation", 20.0));
-  s.View.OrthogonalizeViewUp();
-  s.View.Zoom(a.GetNumber("zoom", 1.0));
+  if (explicitView.HasCamera)
+  {
+    s.View = explicitView.View;
+  }
+  else
+  {
+    s.View = Camera::ResetTo(lo, hi);
+    s.View.Azimuth(a.GetNumber("azimuth", 30.0));
+    s.View.Elevation(a.GetNumber("elevation", 20.0));
+    s.View.OrthogonalizeViewUp();
+    s.View.Zoom(a.GetNumber("zoom", 1.0));
+  }
+  if (explicitView.HasBackground)
+  {
+    s.Background = explicitView.Background;
+  }
   double vlo, vhi;
-  PrepareScalars(h, a.Get("scale", "auto"), vlo, vhi);
+  // an explicit transfer function is written in the data's own values
+  PrepareScalars(h, a.Get("scale", explicitView.HasTransfer ? "linear" : "auto"), vlo, vhi);
   if (range)
   {
     *range = glm::dvec2(vlo, vhi);
   }
-  const double unit = a.GetNumber("unit-distance", glm::length(hi - lo) / 100.0);
+  const double fileUnit = explicitView.HasTransfer ? explicitView.Transfer.UnitDistance : 0.0;
+  const double unit =
+    a.GetNumber("unit-distance", fileUnit > 0.0 ? fileUnit : glm::length(hi - lo) / 100.0);
   if (!(unit > 0.0))
   {
     throw UsageError{ "--unit-distance must be positive" };
   }
-  try
+  if (explicitView.HasTransfer)
   {
-    s.Transfer = TransferFunction::Preset(a.Get("tf", "default"), vlo, vhi, unit);
+    s.Transfer = explicitView.Transfer;
+    s.Transfer.UnitDistance = unit;
   }
-  catch (const std::invalid_argument& e)
+  else
   {
-    throw UsageError{ e.what() };
+    try
+    {
+      s.Transfer = TransferFunction::Preset(a.Get("tf", "default"), vlo, vhi, unit);
+    }
+    catch (const std::invalid_argument& e)
+    {
+      throw UsageError{ e.what() };
+    }
   }
   s.SampleDistanceFactor = a.GetNumber("sample-factor", 1.0);
   s.ReferenceSampleFactor = a.GetNumber("reference-sample-factor", 0.5);
@@ -425,6 +580,8 @@ ViewAngles ViewOf(const Arguments& a)
   v.Azimuth = a.GetNumber("azimuth", 30.0);
   v.Elevation = a.GetNumber("elevation", 20.0);
   v.Zoom = a.GetNumber("zoom", 1.0);
+  // a --view-json camera is used as it is (MakeSettings checked that no angle changes it)
+  v.UseSettingsCamera = a.Has("view-json");
   return v;
 }
 
@@ -724,7 +881,9 @@ int RunImageCommand(int argc, char** argv, bool reference)
               << ", " << d.Data.Grids.size() << " grids, " << d.Data.NumberOfLevels()
               << " levels\n"
               << "scalars: " << d.Data.ArrayName << " in [" << range.x << ", " << range.y
-              << "], transfer function '" << a.Get("tf", "default") << "'\n"
+              << "], transfer function '"
+              << (a.Has("view-json") && !a.Has("tf") ? "view-json" : a.Get("tf", "default"))
+              << "'\n"
               << "image: " << output << " (" << s.Width << "x" << s.Height << ")\n"
               << gpuReport.str()
               << "times (s): load " << d.LoadSeconds << ", preprocess " << preprocess

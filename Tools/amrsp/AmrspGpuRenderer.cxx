@@ -171,10 +171,22 @@ GpuRenderer::GpuRenderer(const std::string& method, vtkVolumeMapper* mapper, con
   Level0Bounds(h, bounds);
   I->Renderer->ResetCamera(bounds);
   vtkCamera* camera = I->Renderer->GetActiveCamera();
-  camera->Azimuth(view.Azimuth);
-  camera->Elevation(view.Elevation);
-  camera->OrthogonalizeViewUp();
-  camera->Zoom(view.Zoom);
+  if (view.UseSettingsCamera)
+  {
+    camera->SetPosition(s.View.Position.x, s.View.Position.y, s.View.Position.z);
+    camera->SetFocalPoint(s.View.FocalPoint.x, s.View.FocalPoint.y, s.View.FocalPoint.z);
+    camera->SetViewUp(s.View.ViewUp.x, s.View.ViewUp.y, s.View.ViewUp.z);
+    camera->SetViewAngle(s.View.ViewAngle);
+    camera->SetParallelProjection(s.View.Parallel ? 1 : 0);
+    camera->SetParallelScale(s.View.ParallelScale);
+  }
+  else
+  {
+    camera->Azimuth(view.Azimuth);
+    camera->Elevation(view.Elevation);
+    camera->OrthogonalizeViewUp();
+    camera->Zoom(view.Zoom);
+  }
   I->Start->DeepCopy(camera);
 }
 

@@ -35,6 +35,9 @@ struct ViewAngles
   double Azimuth = 30.0;
   double Elevation = 20.0;
   double Zoom = 1.0;
+  /// Take the camera of the RenderSettings as it is (a --view-json camera) instead of the
+  /// conventions' ResetCamera + angles.
+  bool UseSettingsCamera = false;
 };
 
 class GpuRenderer

@@ -1,0 +1,267 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkSinglePassAMRVolumeRepresentation.h"
+
+#include "vtkAlgorithmOutput.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkDataObject.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkLODProp3D.h"
+#include "vtkMath.h"
+#include "vtkObjectFactory.h"
+#include "vtkOverlappingAMR.h"
+#include "vtkPVLODVolume.h"
+#include "vtkPVRenderView.h"
+#include "vtkRenderer.h"
+#include "vtkScalarsToColors.h"
+#include "vtkSinglePassAMRVolumeMapper.h"
+#include "vtkVolumeProperty.h"
+
+namespace
+{
+/**
+ * vtkPVLODVolume refuses to render (its non-virtual CanRender) when a vtkVolumeMapper's
+ * vtkDataSet input has no scalars, a guard for mappers that crash without them. An AMR input is
+ * not a vtkDataSet, so that guard would always refuse: this prop renders without it.
+ * vtkSinglePassAMRVolumeMapper checks its input and array itself (and reports what is missing
+ * through GetLastError), and the representation hides the prop when no array is coloured.
+ */
+class vtkSinglePassAMRLODVolume : public vtkPVLODVolume
+{
+public:
+  static vtkSinglePassAMRLODVolume* New();
+  vtkTypeMacro(vtkSinglePassAMRLODVolume, vtkPVLODVolume);
+
+  int RenderOpaqueGeometry(vtkViewport* viewport) override
+  {
+    const int rendered = this->LODProp->RenderOpaqueGeometry(viewport);
+    this->EstimatedRenderTime = this->LODProp->GetEstimatedRenderTime();
+    return rendered;
+  }
+  int RenderTranslucentPolygonalGeometry(vtkViewport* viewport) override
+  {
+    const int rendered = this->LODProp->RenderTranslucentPolygonalGeometry(viewport);
+    this->EstimatedRenderTime = this->LODProp->GetEstimatedRenderTime();
+    return rendered;
+  }
+  int RenderVolumetricGeometry(vtkViewport* viewport) override
+  {
+    const int rendered = this->LODProp->RenderVolumetricGeometry(viewport);
+    this->EstimatedRenderTime = this->LODProp->GetEstimatedRenderTime();
+    return rendered;
+  }
+
+protected:
+  vtkSinglePassAMRLODVolume() = default;
+  ~vtkSinglePassAMRLODVolume() override = default;
+
+private:
+  vtkSinglePassAMRLODVolume(const vtkSinglePassAMRLODVolume&) = delete;
+  void operator=(const vtkSinglePassAMRLODVolume&) = delete;
+};
+vtkStandardNewMacro(vtkSinglePassAMRLODVolume);
+} // namespace
+
+vtkStandardNewMacro(vtkSinglePassAMRVolumeRepresentation);
+
+//------------------------------------------------------------------------------
+vtkSinglePassAMRVolumeRepresentation::vtkSinglePassAMRVolumeRepresentation()
+  : VolumeMapper(vtkSmartPointer<vtkSinglePassAMRVolumeMapper>::New())
+{
+  // replaces vtkVolumeRepresentation's prop (before anything else refers to it)
+  this->Actor = vtkSmartPointer<vtkSinglePassAMRLODVolume>::New();
+  this->Actor->SetProperty(this->Property);
+  this->Actor->SetMapper(this->VolumeMapper);
+  // No LOD mapper: while interacting the full mapper renders (its cost does not depend on the
+  // data size the view's LOD threshold looks at, and SetLODThreshold is the mapper's own LOD).
+  this->Actor->SetEnableLOD(0);
+}
+
+//------------------------------------------------------------------------------
+vtkSinglePassAMRVolumeRepresentation::~vtkSinglePassAMRVolumeRepresentation() = default;
+
+//------------------------------------------------------------------------------
+int vtkSinglePassAMRVolumeRepresentation::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkOverlappingAMR");
+  // optional: on processes without the data (client, render server) there is no input
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkSinglePassAMRVolumeRepresentation::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkMath::UninitializeBounds(this->DataBounds);
+  this->DataSize = 0;
+
+  vtkOverlappingAMR* input = inputVector[0]->GetNumberOfInformationObjects() == 1
+    ? vtkOverlappingAMR::GetData(inputVector[0], 0)
+    : nullptr;
+  if (input)
+  {
+    // A shallow copy: the pipeline may replace its output later, the copy stays what was
+    // delivered. The mapper keys its texture rebuilds on this object and its MTime.
+    vtkNew<vtkOverlappingAMR> cache;
+    cache->ShallowCopy(input);
+    this->Cache = cache;
+    if (cache->GetNumberOfDataSets(0) > 0)
+    {
+      cache->GetBounds(this->DataBounds);
+    }
+    this->DataSize = cache->GetActualMemorySize();
+  }
+  else
+  {
+    // A process without the input still needs a data object of the right type for the view's
+    // delivery; an AMR with one empty level (an AMR with no level at all is not valid).
+    vtkNew<vtkOverlappingAMR> empty;
+    int blocks = 0;
+    empty->Initialize(1, &blocks);
+    this->Cache = empty;
+  }
+  return this->Superclass::RequestData(request, inputVector, outputVector);
+}
+
+//------------------------------------------------------------------------------
+int vtkSinglePassAMRVolumeRepresentation::ProcessViewRequest(
+  vtkInformationRequestKey* request_type, vtkInformation* inInfo, vtkInformation* outInfo)
+{
+  if (!this->Superclass::ProcessViewRequest(request_type, inInfo, outInfo))
+  {
+    // invisible: no pass concerns us
+    return 0;
+  }
+  if (request_type == vtkPVView::REQUEST_UPDATE())
+  {
+    // DataSize (kibibytes) drives the view's remote-rendering and LOD decisions
+    vtkPVView::SetPiece(inInfo, this, this->Cache, this->DataSize);
+    vtkPVRenderView::SetGeometryBounds(inInfo, this, this->DataBounds, this->Actor->GetMatrix());
+  }
+  else if (request_type == vtkPVView::REQUEST_RENDER())
+  {
+    vtkAlgorithmOutput* producer = vtkPVRenderView::GetPieceProducer(inInfo, this);
+    if (this->VolumeMapper->GetNumberOfInputConnections(0) < 1 ||
+      this->VolumeMapper->GetInputConnection(0, 0) != producer)
+    {
+      this->VolumeMapper->SetInputConnection(producer);
+    }
+    this->UpdateMapperParameters();
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeRepresentation::UpdateMapperParameters()
+{
+  const char* arrayName = nullptr;
+  vtkInformation* info = this->GetInputArrayInformation(0);
+  if (info && info->Has(vtkDataObject::FIELD_NAME()))
+  {
+    arrayName = info->Get(vtkDataObject::FIELD_NAME());
+  }
+  const bool haveArray = arrayName != nullptr && arrayName[0] != '\0';
+  if (haveArray)
+  {
+    // The mapper looks the name up among the cell arrays, then the point arrays (point data is
+    // rendered vertex-centred); ParaView's array list offers only arrays that exist.
+    this->VolumeMapper->SelectScalarArray(arrayName);
+  }
+
+  // The component follows the colour map: a colour map in COMPONENT mode renders that
+  // component, in MAGNITUDE mode the vector's magnitude (-1).
+  int component = -1;
+  if (vtkColorTransferFunction* ctf = this->Property->GetRGBTransferFunction(0))
+  {
+    if (ctf->GetVectorMode() == vtkScalarsToColors::COMPONENT)
+    {
+      component = ctf->GetVectorComponent();
+    }
+  }
+  this->VolumeMapper->SetArrayComponent(component);
+
+  // Solid colouring has nothing to volume-render (as ParaView's Volume representation).
+  this->Actor->SetVisibility(this->GetVisibility() && haveArray ? 1 : 0);
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRVolumeRepresentation::AddToView(vtkView* view)
+{
+  vtkPVRenderView* renderView = vtkPVRenderView::SafeDownCast(view);
+  if (!renderView)
+  {
+    return false;
+  }
+  renderView->GetRenderer()->AddActor(this->Actor);
+  return this->Superclass::AddToView(view);
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRVolumeRepresentation::RemoveFromView(vtkView* view)
+{
+  vtkPVRenderView* renderView = vtkPVRenderView::SafeDownCast(view);
+  if (!renderView)
+  {
+    return false;
+  }
+  renderView->GetRenderer()->RemoveActor(this->Actor);
+  return this->Superclass::RemoveFromView(view);
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeRepresentation::SetSampleDistanceFactor(double factor)
+{
+  this->VolumeMapper->SetSampleDistanceFactor(factor);
+}
+
+double vtkSinglePassAMRVolumeRepresentation::GetSampleDistanceFactor()
+{
+  return this->VolumeMapper->GetSampleDistanceFactor();
+}
+
+void vtkSinglePassAMRVolumeRepresentation::SetLODThreshold(double pixels)
+{
+  this->VolumeMapper->SetLODThreshold(pixels);
+}
+
+double vtkSinglePassAMRVolumeRepresentation::GetLODThreshold()
+{
+  return this->VolumeMapper->GetLODThreshold();
+}
+
+void vtkSinglePassAMRVolumeRepresentation::SetBlendMode(int mode)
+{
+  this->VolumeMapper->SetBlendMode(mode);
+}
+
+int vtkSinglePassAMRVolumeRepresentation::GetBlendMode()
+{
+  return this->VolumeMapper->GetBlendMode();
+}
+
+//------------------------------------------------------------------------------
+vtkSinglePassAMRVolumeMapper* vtkSinglePassAMRVolumeRepresentation::GetVolumeMapper()
+{
+  return this->VolumeMapper;
+}
+
+const char* vtkSinglePassAMRVolumeRepresentation::GetLastRenderError()
+{
+  return this->VolumeMapper->GetLastError();
+}
+
+int vtkSinglePassAMRVolumeRepresentation::GetNumberOfTextureBuilds()
+{
+  return this->VolumeMapper->GetNumberOfBuilds();
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "SampleDistanceFactor: " << this->GetSampleDistanceFactor() << "\n";
+  os << indent << "LODThreshold: " << this->GetLODThreshold() << "\n";
+  os << indent << "BlendMode: " << this->GetBlendMode() << "\n";
+  os << indent << "Cache: " << static_cast<void*>(this->Cache.Get()) << "\n";
+}

@@ -1,0 +1,114 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkSinglePassAMRVolumeRepresentation
+ * @brief   ParaView representation that volume-renders vtkOverlappingAMR at native resolution
+ *
+ * Renders its vtkOverlappingAMR input with vtkSinglePassAMRVolumeMapper (Kaehler & Abel 2013
+ * single-pass raycasting of the hierarchy's kD-tree), instead of resampling the hierarchy onto
+ * one uniform grid as ParaView's AMR "Volume" representation (vtkAMRStreamingVolumeRepresentation)
+ * does. It is added to ParaView's `AMRRepresentation` as the representation type
+ * "AMR Single-Pass Volume" by the plugin's server-manager XML.
+ *
+ * Appearance: the vtkVolumeProperty of vtkVolumeRepresentation. ParaView's colour map
+ * (LookupTable, forwarded with SetColor) and the scalar-opacity function of the coloured array
+ * (ScalarOpacityFunction, SetScalarOpacity), and ScalarOpacityUnitDistance, are shared with
+ * ParaView's own volume representation, so the colour-map editor drives both. The coloured array
+ * (ColorArrayName, i.e. SetInputArrayToProcess(0, ...)) is the array the mapper renders; a vector
+ * array renders the component the colour map selects, or its magnitude. Without a coloured array
+ * nothing is drawn (as ParaView's Volume representation).
+ *
+ * Data movement: RequestData shallow-copies the input; REQUEST_UPDATE hands that copy to the view
+ * with vtkPVView::SetPiece, and REQUEST_RENDER connects the mapper to the piece the view delivered
+ * (vtkPVRenderView::GetPieceProducer). In a builtin session (pvpython, the GUI without a server,
+ * pvbatch on one rank) the delivered piece is the copy itself: nothing is moved or duplicated.
+ * With one pvserver, ParaView's delivery does the rest: below the remote-render threshold the
+ * whole vtkOverlappingAMR is sent to the client, which renders it; above it the server renders
+ * and sends the image (both tested). Not handled: several MPI ranks. Each rank holds only some
+ * blocks, and the mapper needs the whole hierarchy: it reports "block ... has no data loaded" and
+ * draws nothing (no gathering of the blocks, no ordered compositing of per-rank images).
+ * Not handled either: block streaming, and LOD geometry while interacting (the mapper's own
+ * LODThreshold is the level of detail).
+ *
+ * Invariants: when the mapper renders, its input is the piece the view delivered for the last
+ * REQUEST_UPDATE (the view may ask the prop for its bounds before it delivers, while its producer
+ * holds an empty placeholder: the mapper then reports no bounds and keeps its textures). The
+ * representation re-executes, and the mapper rebuilds its textures, only when the input data
+ * changes; never for colour-map, opacity, camera, blend-mode, sampling, LOD or visibility changes.
+ */
+#ifndef vtkSinglePassAMRVolumeRepresentation_h
+#define vtkSinglePassAMRVolumeRepresentation_h
+
+#include "vtkSinglePassAMRParaViewModule.h" // for export macro
+#include "vtkSmartPointer.h"                // for ivar
+#include "vtkVolumeRepresentation.h"
+
+class vtkOverlappingAMR;
+class vtkSinglePassAMRVolumeMapper;
+
+class VTKSINGLEPASSAMRPARAVIEW_EXPORT vtkSinglePassAMRVolumeRepresentation
+  : public vtkVolumeRepresentation
+{
+public:
+  static vtkSinglePassAMRVolumeRepresentation* New();
+  vtkTypeMacro(vtkSinglePassAMRVolumeRepresentation, vtkVolumeRepresentation);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /**
+   * Handles the view's passes: REQUEST_UPDATE gives the view the data and its bounds,
+   * REQUEST_RENDER connects the mapper to the delivered data and passes the array selection.
+   */
+  int ProcessViewRequest(vtkInformationRequestKey* request_type, vtkInformation* inInfo,
+    vtkInformation* outInfo) override;
+
+  ///@{
+  /**
+   * Forwarded to vtkSinglePassAMRVolumeMapper: sampling distance in cells of each ray segment's
+   * level (1 = about one sample per cell), level-of-detail threshold in pixels (0 = always the
+   * finest level), and blend mode (vtkVolumeMapper::BlendModes: composite, maximum, minimum or
+   * average intensity; the mapper reports an error for the others).
+   */
+  void SetSampleDistanceFactor(double factor);
+  double GetSampleDistanceFactor();
+  void SetLODThreshold(double pixels);
+  double GetLODThreshold();
+  void SetBlendMode(int mode);
+  int GetBlendMode();
+  ///@}
+
+  /// The mapper (for tests and diagnostics).
+  vtkSinglePassAMRVolumeMapper* GetVolumeMapper();
+
+  ///@{
+  /**
+   * Diagnostics, also offered as information-only proxy properties (SinglePassRenderError,
+   * SinglePassTextureBuilds) so that clients see them in every session type:
+   * the mapper's last error (empty after a successful render), and how many times it has built
+   * its data textures (camera, colour-map, opacity, blend-mode, sampling and LOD changes must
+   * not increase it).
+   */
+  const char* GetLastRenderError();
+  int GetNumberOfTextureBuilds();
+  ///@}
+
+protected:
+  vtkSinglePassAMRVolumeRepresentation();
+  ~vtkSinglePassAMRVolumeRepresentation() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  bool AddToView(vtkView* view) override;
+  bool RemoveFromView(vtkView* view) override;
+
+  /// Array selection, component and visibility, from the coloured array and the colour map.
+  void UpdateMapperParameters();
+
+  vtkSmartPointer<vtkSinglePassAMRVolumeMapper> VolumeMapper;
+  /// Shallow copy of the input made by the last RequestData; what the view delivers.
+  vtkSmartPointer<vtkOverlappingAMR> Cache;
+
+private:
+  vtkSinglePassAMRVolumeRepresentation(const vtkSinglePassAMRVolumeRepresentation&) = delete;
+  void operator=(const vtkSinglePassAMRVolumeRepresentation&) = delete;
+};
+
+#endif
