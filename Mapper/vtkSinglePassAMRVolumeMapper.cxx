@@ -2,6 +2,7 @@
 #include "vtkSinglePassAMRVolumeMapper.h"
 
 #include "vtkAMRCoreConversion.h"
+#include "vtkAMRRenderingUtilities.h"
 
 #include "amrsp/Hierarchy.h"
 #include "amrsp/BrickAtlas.h"
@@ -69,7 +70,7 @@ void ToColumnMajor(vtkMatrix4x4* m, float out[16])
   }
 }
 
-constexpr int TransferTableSize = 4096;
+using vtkAMRRenderingUtilities::TransferTableSize;
 
 } // namespace
 
@@ -119,7 +120,6 @@ public:
   vtkSmartPointer<vtkTextureObject> Tree;
   vtkSmartPointer<vtkTextureObject> DataNodesTexture;
   vtkSmartPointer<vtkTextureObject> Atlas;
-  vtkSmartPointer<vtkTextureObject> Transfer;
   vtkSmartPointer<vtkTextureObject> Depth;
   vtkNew<vtkOpenGLBufferObject> BoxBuffer;
   vtkNew<vtkOpenGLVertexArrayObject> BoxArray;
@@ -131,10 +131,7 @@ public:
   int BuiltPackLimit = -1;
 
   // transfer function table
-  vtkVolumeProperty* TransferProperty = nullptr;
-  vtkMTimeType TransferPropertyMTime = 0;
-  vtkTimeStamp TransferTime;
-  double TransferRange[2] = { 0.0, 1.0 };
+  vtkAMRRenderingUtilities::TransferFunctionTable Transfer;
 
   // shader
   std::string FailedFragmentSource; // do not retry a program that failed to compile
@@ -171,7 +168,6 @@ public:
   }
 
   bool Upload(vtkOpenGLRenderWindow* renWin, int atlasLimit, std::string& error);
-  bool UpdateTransferFunction(vtkOpenGLRenderWindow* renWin, vtkVolumeProperty* property);
   void ReleaseGraphicsResources(vtkWindow* window);
 };
 
@@ -383,101 +379,10 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Upload(vtkOpenGLRenderWindow* r
 }
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMRVolumeMapper::vtkInternals::UpdateTransferFunction(
-  vtkOpenGLRenderWindow* renWin,
-  vtkVolumeProperty* property)
-{
-  if (this->Transfer && this->TransferProperty == property &&
-    this->TransferPropertyMTime == property->GetMTime() && this->TransferTime > this->BuildTime)
-  {
-    return true;
-  }
-  const bool grey = property->GetColorChannels(0) == 1;
-  vtkColorTransferFunction* colour = grey ? nullptr : property->GetRGBTransferFunction(0);
-  vtkPiecewiseFunction* greyFunction = grey ? property->GetGrayTransferFunction(0) : nullptr;
-  vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
-
-  // tabulate over the union of the functions' ranges; beyond it both clamp to their end points
-  double range[2] = { std::numeric_limits<double>::max(), -std::numeric_limits<double>::max() };
-  auto extend = [&range](const double* r, int points)
-  {
-    if (points > 0)
-    {
-      range[0] = std::min(range[0], r[0]);
-      range[1] = std::max(range[1], r[1]);
-    }
-  };
-  if (colour)
-  {
-    extend(colour->GetRange(), colour->GetSize());
-  }
-  if (greyFunction)
-  {
-    extend(greyFunction->GetRange(), greyFunction->GetSize());
-  }
-  extend(opacity->GetRange(), opacity->GetSize());
-  if (!(range[1] > range[0]))
-  {
-    range[0] = std::min(range[0], this->ScalarRange[0]);
-    range[1] = std::max(range[1], this->ScalarRange[1]);
-    if (!(range[1] > range[0]))
-    {
-      range[1] = range[0] + 1.0;
-    }
-  }
-
-  const int n = TransferTableSize;
-  std::vector<float> rgb(static_cast<std::size_t>(3 * n)), alpha(static_cast<std::size_t>(n));
-  std::vector<float> rgba(static_cast<std::size_t>(4 * n));
-  if (colour)
-  {
-    colour->GetTable(range[0], range[1], n, rgb.data());
-  }
-  else
-  {
-    greyFunction->GetTable(range[0], range[1], n, rgb.data(), 3);
-    for (int i = 0; i < n; ++i)
-    {
-      rgb[3 * i + 1] = rgb[3 * i + 2] = rgb[3 * i];
-    }
-  }
-  opacity->GetTable(range[0], range[1], n, alpha.data());
-  for (int i = 0; i < n; ++i)
-  {
-    rgba[4 * i + 0] = rgb[3 * i + 0];
-    rgba[4 * i + 1] = rgb[3 * i + 1];
-    rgba[4 * i + 2] = rgb[3 * i + 2];
-    rgba[4 * i + 3] = alpha[i];
-  }
-  if (!this->Transfer || this->Transfer->GetContext() != renWin)
-  {
-    this->Transfer = vtkSmartPointer<vtkTextureObject>::New();
-    this->Transfer->SetContext(renWin);
-    this->Transfer->SetInternalFormat(GL_RGBA32F);
-    this->Transfer->SetFormat(GL_RGBA);
-    this->Transfer->SetDataType(GL_FLOAT);
-    this->Transfer->SetMinificationFilter(vtkTextureObject::Linear);
-    this->Transfer->SetMagnificationFilter(vtkTextureObject::Linear);
-    this->Transfer->SetWrapS(vtkTextureObject::ClampToEdge);
-    this->Transfer->SetWrapT(vtkTextureObject::ClampToEdge);
-  }
-  if (!this->Transfer->Create2DFromRaw(static_cast<unsigned int>(n), 1, 4, VTK_FLOAT, rgba.data()))
-  {
-    return false;
-  }
-  this->TransferRange[0] = range[0];
-  this->TransferRange[1] = range[1];
-  this->TransferProperty = property;
-  this->TransferPropertyMTime = property->GetMTime();
-  this->TransferTime.Modified();
-  return true;
-}
-
-//------------------------------------------------------------------------------
 void vtkSinglePassAMRVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWindow* window)
 {
   for (vtkSmartPointer<vtkTextureObject>* t :
-    { &this->Tree, &this->DataNodesTexture, &this->Atlas, &this->Transfer, &this->Depth })
+    { &this->Tree, &this->DataNodesTexture, &this->Atlas, &this->Depth })
   {
     if (*t)
     {
@@ -485,6 +390,7 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWin
       *t = nullptr;
     }
   }
+  this->Transfer.ReleaseGraphicsResources(window);
   this->BoxBuffer->ReleaseGraphicsResources();
   this->BoxArray->ReleaseGraphicsResources();
   this->BoxArrayProgram = nullptr;
@@ -716,7 +622,7 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     fail("the volume has no vtkVolumeProperty");
     return;
   }
-  if (!in.UpdateTransferFunction(renWin, property))
+  if (!in.Transfer.Update(renWin, property, in.ScalarRange, in.BuildTime))
   {
     fail("uploading the transfer-function table failed");
     return;
@@ -896,17 +802,17 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     static_cast<float>(y0),
     static_cast<float>(width),
     static_cast<float>(height) };
-  const float transferRange[2] = { static_cast<float>(in.TransferRange[0]),
-    static_cast<float>(1.0 / (in.TransferRange[1] - in.TransferRange[0])) };
+  float transferRange[2];
+  in.Transfer.GetShaderRange(transferRange);
 
   in.Tree->Activate();
   in.DataNodesTexture->Activate();
   in.Atlas->Activate();
-  in.Transfer->Activate();
+  in.Transfer.GetTexture()->Activate();
   program->SetUniformi("amrspTree", in.Tree->GetTextureUnit());
   program->SetUniformi("amrspDataNodes", in.DataNodesTexture->GetTextureUnit());
   program->SetUniformi("amrspAtlas", in.Atlas->GetTextureUnit());
-  program->SetUniformi("amrspTransfer", in.Transfer->GetTextureUnit());
+  program->SetUniformi("amrspTransfer", in.Transfer.GetTexture()->GetTextureUnit());
   if (useDepth)
   {
     program->SetUniformi("amrspDepth", in.Depth->GetTextureUnit());
@@ -966,7 +872,7 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   in.Tree->Deactivate();
   in.DataNodesTexture->Deactivate();
   in.Atlas->Deactivate();
-  in.Transfer->Deactivate();
+  in.Transfer.GetTexture()->Deactivate();
   if (useDepth)
   {
     in.Depth->Deactivate();
