@@ -128,6 +128,22 @@ int amrspCeilDiv(int a, int b)
   return -amrspFloorDiv(-a, b);
 }
 
+// The scalar at point p (level-0 index units) inside the kD node whose data node is `dataNode`:
+// the node's block covers the cells firstCell..lastCell of the node's data level, whose cells
+// measure cellSize (level-0 index units). Only this function knows how the bricks are stored.
+float amrspSampleDataNode(uvec2 dataNode, vec3 p, vec3 cellSize, ivec3 firstCell, ivec3 lastCell)
+{
+  ivec3 offset = amrspDataOffset(dataNode); // atlas texel of the node's lower-corner cell
+#ifdef AMRSP_VERTEX_CENTRED
+  // vertex (i,j,k) of the node's first cell is texel offset + (i,j,k); texel centres at +0.5
+  vec3 u = clamp(p / cellSize - vec3(firstCell), vec3(0.0), vec3(lastCell - firstCell + 1));
+  return texture(amrspAtlas, (vec3(offset) + u + 0.5) / amrspAtlasSize).r;
+#else
+  ivec3 cell = clamp(ivec3(floor(p / cellSize)), firstCell, lastCell);
+  return texelFetch(amrspAtlas, offset + (cell - firstCell), 0).r;
+#endif
+}
+
 vec4 amrspTransferFunction(float scalar)
 {
   float u = clamp((scalar - amrspTransferRange.x) * amrspTransferRange.y, 0.0, 1.0);
@@ -250,7 +266,6 @@ void main()
     {
       uvec2 dataNode = amrspFetchDataNode(data);
       int level = int(amrspDataLevel(dataNode));
-      ivec3 offset = amrspDataOffset(dataNode); // atlas texel of the node's lower-corner cell
       ivec3 toData = ivec3(amrspLevelToFinest[3 * level], amrspLevelToFinest[3 * level + 1],
         amrspLevelToFinest[3 * level + 2]);
       ivec3 firstCell = ivec3(amrspFloorDiv(loF.x, toData.x), amrspFloorDiv(loF.y, toData.y),
@@ -267,14 +282,7 @@ void main()
       {
         float ts = t + (float(k) + 0.5) * dt;
         vec3 p = ro + ts * rd;
-#ifdef AMRSP_VERTEX_CENTRED
-        // vertex (i,j,k) of the node's first cell is texel offset + (i,j,k); texel centres at +0.5
-        vec3 u = clamp(p / cellSize - vec3(firstCell), vec3(0.0), vec3(lastCell - firstCell + 1));
-        float scalar = texture(amrspAtlas, (vec3(offset) + u + 0.5) / amrspAtlasSize).r;
-#else
-        ivec3 cell = clamp(ivec3(floor(p / cellSize)), firstCell, lastCell);
-        float scalar = texelFetch(amrspAtlas, offset + (cell - firstCell), 0).r;
-#endif
+        float scalar = amrspSampleDataNode(dataNode, p, cellSize, firstCell, lastCell);
         if (isnan(scalar))
         {
           continue; // missing data is transparent
