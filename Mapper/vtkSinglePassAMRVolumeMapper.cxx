@@ -6,6 +6,7 @@
 
 #include "amrsp/Hierarchy.h"
 #include "amrsp/BrickAtlas.h"
+#include "amrsp/BrickPacking.h"
 #include "amrsp/KdTree.h"
 #include "amrsp/KdTreeEncoding.h"
 
@@ -45,6 +46,7 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -106,20 +108,33 @@ public:
   long long KdNodes = 0;
   long long DataNodes = 0;
   long long TextureBytes = 0;
-  glm::ivec3 AtlasDims{ 0 };
-  bool VertexCentred = false; // vertex bricks, trilinear sampling; else cells, nearest
-  int PackLimit = 0;          // MaximumAtlasSize the atlas was packed for (0 = none)
+  glm::ivec3 AtlasDims{ 0 };   // (0,0,0) when the bricks could not be packed
+  double AtlasWaste = 0.0;     // unused fraction of the atlas's texels
+  std::string PackingError;    // why no atlas could be packed (empty when packed)
+  long long PackedBytes = 0;   // tree + data nodes + atlas (0 without an atlas)
+  long long BindlessBytes = 0; // tree + data nodes + separate bricks + handles
+  bool VertexCentred = false;  // vertex bricks, trilinear sampling; else cells, nearest
+  int PackLimit = 0;           // MaximumAtlasSize the atlas was packed for (0 = none)
 
-  // ---- CPU texture data waiting for upload (freed once uploaded)
+  // ---- CPU data waiting for upload (freed once uploaded): the converted hierarchy (its values
+  // are the bricks), the tree and the two data-node encodings (atlas offsets, in-brick offsets)
   bool PendingUpload = false;
+  amrsp::Hierarchy Data;
+  amrsp::AtlasLayout Layout;
   amrsp::UIntTexture3D TreeTexels;
-  amrsp::UIntTexture3D DataNodeTexels;
-  std::vector<float> AtlasTexels;
+  amrsp::UIntTexture3D PackedDataNodeTexels;
+  amrsp::UIntTexture3D BindlessDataNodeTexels;
 
-  // ---- OpenGL resources
+  // ---- OpenGL resources of the storage uploaded last (UploadedStorage)
+  int UploadedStorage = -1;
+  int LastStorage = -1; // what rendered the last frame
+  int LastAccess = -1;
   vtkSmartPointer<vtkTextureObject> Tree;
   vtkSmartPointer<vtkTextureObject> DataNodesTexture;
-  vtkSmartPointer<vtkTextureObject> Atlas;
+  vtkSmartPointer<vtkTextureObject> Atlas;         // packing
+  vtkSmartPointer<vtkTextureObject> HandlesTexture; // bindless: RG32UI, one handle per brick
+  std::vector<vtkSmartPointer<vtkTextureObject>> Bricks;
+  std::vector<GLuint64> ResidentHandles;
   vtkSmartPointer<vtkTextureObject> Depth;
   vtkNew<vtkOpenGLBufferObject> BoxBuffer;
   vtkNew<vtkOpenGLVertexArrayObject> BoxArray;
@@ -137,12 +152,79 @@ public:
   std::string FailedFragmentSource; // do not retry a program that failed to compile
   std::string LastError;
 
+  // extensions of the context last asked (cached per context)
+  vtkOpenGLRenderWindow* CapsContext = nullptr;
+  bool HasBindless = false;
+  bool HasNVShader5 = false;
+  bool HasBallot = false;
+  std::set<std::string> Warned; // fallback notes already given (each is said once)
+
   void FreePendingData()
   {
+    this->Data = amrsp::Hierarchy();
+    this->Layout = amrsp::AtlasLayout();
     this->TreeTexels = amrsp::UIntTexture3D();
-    this->DataNodeTexels = amrsp::UIntTexture3D();
-    std::vector<float>().swap(this->AtlasTexels);
+    this->PackedDataNodeTexels = amrsp::UIntTexture3D();
+    this->BindlessDataNodeTexels = amrsp::UIntTexture3D();
     this->PendingUpload = false;
+  }
+
+  void QueryCapabilities(vtkOpenGLRenderWindow* renWin)
+  {
+    if (this->CapsContext == renWin)
+    {
+      return;
+    }
+    renWin->MakeCurrent();
+    this->HasBindless = glewIsSupported("GL_ARB_bindless_texture") != 0;
+    this->HasNVShader5 = glewIsSupported("GL_NV_gpu_shader5") != 0;
+    this->HasBallot = glewIsSupported("GL_ARB_shader_ballot") != 0;
+    this->CapsContext = renWin;
+  }
+
+  /// The bindless access mode `requested` resolves to in the queried context, or -1 with `why`.
+  int ResolveAccess(int requested, std::string& why) const
+  {
+    if (!this->HasBindless)
+    {
+      why = "the OpenGL context lacks GL_ARB_bindless_texture";
+      return -1;
+    }
+    if (requested == vtkSinglePassAMRVolumeMapper::DIRECT_ACCESS ||
+      (requested == vtkSinglePassAMRVolumeMapper::AUTO_ACCESS && this->HasNVShader5))
+    {
+      return vtkSinglePassAMRVolumeMapper::DIRECT_ACCESS;
+    }
+    if (this->HasBallot)
+    {
+      return vtkSinglePassAMRVolumeMapper::WATERFALL_ACCESS;
+    }
+    why = requested == vtkSinglePassAMRVolumeMapper::WATERFALL_ACCESS
+      ? "the waterfall access needs GL_ARB_shader_ballot, which the OpenGL context lacks"
+      : "non-uniform bindless handles need GL_NV_gpu_shader5 or GL_ARB_shader_ballot, and the "
+        "OpenGL context has neither";
+    return -1;
+  }
+
+  /// Makes every brick handle non-resident and frees the bindless textures (the context of the
+  /// upload must be current).
+  void ReleaseBindless(vtkWindow* window)
+  {
+    for (GLuint64 handle : this->ResidentHandles)
+    {
+      glMakeTextureHandleNonResidentARB(handle);
+    }
+    this->ResidentHandles.clear();
+    for (vtkSmartPointer<vtkTextureObject>& brick : this->Bricks)
+    {
+      brick->ReleaseGraphicsResources(window);
+    }
+    this->Bricks.clear();
+    if (this->HandlesTexture)
+    {
+      this->HandlesTexture->ReleaseGraphicsResources(window);
+      this->HandlesTexture = nullptr;
+    }
   }
 
   /// CPU side: convert, build the tree, pack, encode, fill the atlas. Returns false with
@@ -167,7 +249,13 @@ public:
     return this->DataValid;
   }
 
-  bool Upload(vtkOpenGLRenderWindow* renWin, int atlasLimit, std::string& error);
+  /// Whether the packed atlas fits `renWin` within `atlasLimit` (0 = GL_MAX_3D_TEXTURE_SIZE);
+  /// when not, `why` says which limit it exceeds.
+  bool AtlasFits(vtkOpenGLRenderWindow* renWin, int atlasLimit, std::string& why) const;
+
+  /// Uploads the tree and the grid data in `storage` (PACKED_ATLAS or BINDLESS_TEXTURES).
+  bool Upload(vtkOpenGLRenderWindow* renWin, int storage, std::string& error);
+  bool UploadBindless(vtkOpenGLRenderWindow* renWin, std::string& error);
   void ReleaseGraphicsResources(vtkWindow* window);
 };
 
@@ -195,13 +283,29 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
       return false;
     }
     const amrsp::KdTree tree = amrsp::BuildKdTree(h);
-    // one brick per grid (cells, or vertices one texel larger), packed within the per-axis
-    // limit the data-node offsets can address and MaximumAtlasSize when set
-    amrsp::BrickAtlas atlas = amrsp::BuildBrickAtlas(h, amrsp::Packer::Best,
-      amrsp::AtlasLimits(this->PackLimit > 0 ? std::min(this->PackLimit, 2048) : 2048));
-    const amrsp::AtlasLayout& layout = atlas.Layout;
     this->VertexCentred = h.VertexCentred;
-    const amrsp::EncodedKdTree enc = amrsp::EncodeKdTree(h, tree, &layout.Origins);
+    // bindless: every data node stores the offset of its lower corner inside its own brick
+    const std::vector<glm::ivec3> brickStarts(h.Grids.size(), glm::ivec3(0));
+    amrsp::EncodedKdTree enc = amrsp::EncodeKdTree(h, tree, &brickStarts);
+    this->BindlessDataNodeTexels = std::move(enc.DataNodes);
+    // packing: one brick per grid (cells, or vertices one texel larger), packed within the
+    // per-axis limit the data-node offsets can address and MaximumAtlasSize when set; a
+    // hierarchy that cannot be packed can still be rendered bindless
+    this->PackingError.clear();
+    this->Layout = amrsp::AtlasLayout();
+    try
+    {
+      this->Layout = amrsp::PackBricks(amrsp::BrickExtents(h, h.VertexCentred), amrsp::Packer::Best,
+        amrsp::AtlasLimits(this->PackLimit > 0 ? std::min(this->PackLimit, 2048) : 2048));
+      this->PackedDataNodeTexels =
+        amrsp::EncodeKdTree(h, tree, &this->Layout.Origins).DataNodes;
+    }
+    catch (const std::exception& e)
+    {
+      this->PackingError = e.what();
+      this->Layout = amrsp::AtlasLayout();
+      this->PackedDataNodeTexels = amrsp::UIntTexture3D();
+    }
 
     // exact integer bookkeeping of node boxes in finest-level cells (see the shader)
     const glm::i64vec3 finest = h.CumulativeRatio(tree.FinestLevel);
@@ -213,6 +317,7 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
       {
         this->BuildError = "the root box spans more than 2^30 cells of the finest level; the "
                            "shader's integer node boxes cannot hold it";
+        this->FreePendingData();
         return false;
       }
       this->RootLoFinest[a] = static_cast<int>(root.Lo[a]);
@@ -244,8 +349,8 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
     this->KdNodes = enc.NodeCount;
     this->DataNodes = enc.DataNodeCount;
 
-    this->AtlasDims = layout.Dims;
-    this->AtlasTexels = std::move(atlas.Texels);
+    this->AtlasDims = this->Layout.Dims;
+    this->AtlasWaste = this->Layout.TotalTexels > 0 ? 1.0 - this->Layout.Efficiency : 0.0;
     double vmin = std::numeric_limits<double>::max();
     double vmax = -std::numeric_limits<double>::max();
     for (const amrsp::GridValues& values : h.Values)
@@ -261,10 +366,17 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
     }
     this->ScalarRange[0] = vmin <= vmax ? vmin : 0.0;
     this->ScalarRange[1] = vmin <= vmax ? vmax : 1.0;
-    this->TreeTexels = enc.Tree;
-    this->DataNodeTexels = enc.DataNodes;
-    this->TextureBytes = static_cast<long long>(
-      this->AtlasTexels.size() * sizeof(float) + enc.Tree.Bytes() + enc.DataNodes.Bytes());
+    const long long treeBytes =
+      static_cast<long long>(enc.Tree.Bytes() + this->BindlessDataNodeTexels.Bytes());
+    const glm::ivec3 handleDims = amrsp::TextureDimsFor(h.Grids.size());
+    this->BindlessBytes = treeBytes + static_cast<long long>(amrsp::SeparateBrickBytes(h)) +
+      static_cast<long long>(handleDims.x) * handleDims.y * handleDims.z * 8;
+    this->PackedBytes = this->PackingError.empty()
+      ? treeBytes + this->Layout.TotalTexels * static_cast<long long>(amrsp::AtlasTexelBytes)
+      : 0;
+    this->TextureBytes = 0;
+    this->TreeTexels = std::move(enc.Tree);
+    this->Data = std::move(h);
     this->PendingUpload = true;
     this->DataValid = true;
   }
@@ -280,30 +392,100 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
 }
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMRVolumeMapper::vtkInternals::Upload(vtkOpenGLRenderWindow* renWin,
+bool vtkSinglePassAMRVolumeMapper::vtkInternals::AtlasFits(vtkOpenGLRenderWindow* renWin,
   int atlasLimit,
-  std::string& error)
+  std::string& why) const
 {
-  const auto t0 = std::chrono::steady_clock::now();
+  if (!this->PackingError.empty())
+  {
+    why = this->PackingError;
+    return false;
+  }
   const int max3D = vtkTextureObject::GetMaximumTextureSize3D(renWin);
   const int limit = atlasLimit > 0 ? std::min(atlasLimit, max3D) : max3D;
   const glm::ivec3 d = this->AtlasDims;
-  if (d.x > limit || d.y > limit || d.z > limit)
+  if (d.x <= limit && d.y <= limit && d.z <= limit)
   {
-    std::ostringstream msg;
-    msg << "the packed atlas (" << d.x << " x " << d.y << " x " << d.z << " texels) exceeds ";
-    if (limit < max3D)
-    {
-      msg << "MaximumAtlasSize = " << limit << " (GL_MAX_3D_TEXTURE_SIZE is " << max3D << ")";
-    }
-    else
-    {
-      msg << "GL_MAX_3D_TEXTURE_SIZE = " << max3D << " of this OpenGL context";
-    }
-    error = msg.str();
-    return false;
+    return true;
   }
-  for (const amrsp::UIntTexture3D* t : { &this->TreeTexels, &this->DataNodeTexels })
+  std::ostringstream msg;
+  msg << "the packed atlas (" << d.x << " x " << d.y << " x " << d.z << " texels) exceeds ";
+  if (limit < max3D)
+  {
+    msg << "MaximumAtlasSize = " << limit << " (GL_MAX_3D_TEXTURE_SIZE is " << max3D << ")";
+  }
+  else
+  {
+    msg << "GL_MAX_3D_TEXTURE_SIZE = " << max3D << " of this OpenGL context";
+  }
+  why = msg.str();
+  return false;
+}
+
+//------------------------------------------------------------------------------
+namespace
+{
+/// An RG32UI texture of the kD-tree encoding (nearest, clamped).
+vtkSmartPointer<vtkTextureObject> MakeIntegerTexture(vtkOpenGLRenderWindow* renWin,
+  const amrsp::UIntTexture3D& texels)
+{
+  auto tex = vtkSmartPointer<vtkTextureObject>::New();
+  tex->SetContext(renWin);
+  tex->SetInternalFormat(GL_RG32UI);
+  tex->SetFormat(GL_RG_INTEGER);
+  tex->SetDataType(GL_UNSIGNED_INT);
+  tex->SetMinificationFilter(vtkTextureObject::Nearest);
+  tex->SetMagnificationFilter(vtkTextureObject::Nearest);
+  tex->SetWrapS(vtkTextureObject::ClampToEdge);
+  tex->SetWrapT(vtkTextureObject::ClampToEdge);
+  tex->SetWrapR(vtkTextureObject::ClampToEdge);
+  const bool ok = tex->Create3DFromRaw(static_cast<unsigned int>(texels.Dims.x),
+    static_cast<unsigned int>(texels.Dims.y),
+    static_cast<unsigned int>(texels.Dims.z),
+    2,
+    VTK_UNSIGNED_INT,
+    const_cast<glm::uvec2*>(texels.Texels.data()));
+  return ok ? tex : nullptr;
+}
+
+/// An R32F brick or atlas texture: nearest for cells, trilinear for vertices (the shader never
+/// samples outside a brick).
+vtkSmartPointer<vtkTextureObject> MakeScalarTexture(vtkOpenGLRenderWindow* renWin,
+  const glm::ivec3& dims,
+  const float* texels,
+  bool vertexCentred)
+{
+  auto tex = vtkSmartPointer<vtkTextureObject>::New();
+  tex->SetContext(renWin);
+  tex->SetInternalFormat(GL_R32F);
+  tex->SetFormat(GL_RED);
+  tex->SetDataType(GL_FLOAT);
+  const int filter = vertexCentred ? vtkTextureObject::Linear : vtkTextureObject::Nearest;
+  tex->SetMinificationFilter(filter);
+  tex->SetMagnificationFilter(filter);
+  tex->SetWrapS(vtkTextureObject::ClampToEdge);
+  tex->SetWrapT(vtkTextureObject::ClampToEdge);
+  tex->SetWrapR(vtkTextureObject::ClampToEdge);
+  const bool ok = tex->Create3DFromRaw(static_cast<unsigned int>(dims.x),
+    static_cast<unsigned int>(dims.y),
+    static_cast<unsigned int>(dims.z),
+    1,
+    VTK_FLOAT,
+    const_cast<float*>(texels));
+  return ok ? tex : nullptr;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRVolumeMapper::vtkInternals::Upload(vtkOpenGLRenderWindow* renWin,
+  int storage,
+  std::string& error)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  const bool bindless = storage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES;
+  const int max3D = vtkTextureObject::GetMaximumTextureSize3D(renWin);
+  for (const amrsp::UIntTexture3D* t : { &this->TreeTexels,
+         bindless ? &this->BindlessDataNodeTexels : &this->PackedDataNodeTexels })
   {
     if (t->Dims.x > max3D || t->Dims.y > max3D || t->Dims.z > max3D)
     {
@@ -311,66 +493,59 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Upload(vtkOpenGLRenderWindow* r
       return false;
     }
   }
+  // the previous storage's textures go first (their handles are made non-resident)
+  if (this->Context == renWin)
+  {
+    this->ReleaseBindless(renWin);
+  }
+  this->Bricks.clear();
+  this->ResidentHandles.clear();
+  this->HandlesTexture = nullptr;
+  this->Atlas = nullptr;
+  this->UploadedStorage = -1;
   while (glGetError() != GL_NO_ERROR)
   {
   }
 
-  auto makeInteger = [&](vtkSmartPointer<vtkTextureObject>& tex, amrsp::UIntTexture3D& texels)
+  this->Tree = MakeIntegerTexture(renWin, this->TreeTexels);
+  this->DataNodesTexture = MakeIntegerTexture(
+    renWin, bindless ? this->BindlessDataNodeTexels : this->PackedDataNodeTexels);
+  bool ok = this->Tree && this->DataNodesTexture;
+  long long bytes = 0;
+  if (ok && bindless)
   {
-    tex = vtkSmartPointer<vtkTextureObject>::New();
-    tex->SetContext(renWin);
-    tex->SetInternalFormat(GL_RG32UI);
-    tex->SetFormat(GL_RG_INTEGER);
-    tex->SetDataType(GL_UNSIGNED_INT);
-    tex->SetMinificationFilter(vtkTextureObject::Nearest);
-    tex->SetMagnificationFilter(vtkTextureObject::Nearest);
-    tex->SetWrapS(vtkTextureObject::ClampToEdge);
-    tex->SetWrapT(vtkTextureObject::ClampToEdge);
-    tex->SetWrapR(vtkTextureObject::ClampToEdge);
-    return tex->Create3DFromRaw(static_cast<unsigned int>(texels.Dims.x),
-      static_cast<unsigned int>(texels.Dims.y),
-      static_cast<unsigned int>(texels.Dims.z),
-      2,
-      VTK_UNSIGNED_INT,
-      texels.Texels.data());
-  };
-  bool ok = makeInteger(this->Tree, this->TreeTexels);
-  ok = ok && makeInteger(this->DataNodesTexture, this->DataNodeTexels);
-  if (ok)
+    ok = this->UploadBindless(renWin, error);
+    bytes = this->BindlessBytes;
+  }
+  else if (ok)
   {
-    this->Atlas = vtkSmartPointer<vtkTextureObject>::New();
-    this->Atlas->SetContext(renWin);
-    this->Atlas->SetInternalFormat(GL_R32F);
-    this->Atlas->SetFormat(GL_RED);
-    this->Atlas->SetDataType(GL_FLOAT);
-    // vertex bricks: hardware trilinear interpolation (the shader never leaves a brick)
-    const int filter = this->VertexCentred ? vtkTextureObject::Linear : vtkTextureObject::Nearest;
-    this->Atlas->SetMinificationFilter(filter);
-    this->Atlas->SetMagnificationFilter(filter);
-    this->Atlas->SetWrapS(vtkTextureObject::ClampToEdge);
-    this->Atlas->SetWrapT(vtkTextureObject::ClampToEdge);
-    this->Atlas->SetWrapR(vtkTextureObject::ClampToEdge);
-    ok = this->Atlas->Create3DFromRaw(static_cast<unsigned int>(d.x),
-      static_cast<unsigned int>(d.y),
-      static_cast<unsigned int>(d.z),
-      1,
-      VTK_FLOAT,
-      this->AtlasTexels.data());
+    const amrsp::BrickAtlas atlas = amrsp::FillBrickAtlas(this->Data, this->Layout);
+    this->Atlas = MakeScalarTexture(renWin, atlas.Layout.Dims, atlas.Texels.data(),
+      this->VertexCentred);
+    ok = this->Atlas != nullptr;
+    bytes = this->PackedBytes;
   }
   const GLenum glError = glGetError();
   if (!ok || glError != GL_NO_ERROR)
   {
-    std::ostringstream msg;
-    msg << "uploading the kD-tree and atlas textures (" << this->TextureBytes / (1024.0 * 1024.0)
-        << " MiB) failed" << (glError == GL_OUT_OF_MEMORY ? ": out of GPU memory" : "")
-        << (glError != GL_NO_ERROR ? " (OpenGL error " + std::to_string(glError) + ")" : "");
-    error = msg.str();
+    if (error.empty())
+    {
+      std::ostringstream msg;
+      msg << "uploading the kD-tree and " << (bindless ? "brick" : "atlas") << " textures ("
+          << bytes / (1024.0 * 1024.0) << " MiB) failed"
+          << (glError == GL_OUT_OF_MEMORY ? ": out of GPU memory" : "")
+          << (glError != GL_NO_ERROR ? " (OpenGL error " + std::to_string(glError) + ")" : "");
+      error = msg.str();
+    }
+    this->ReleaseBindless(renWin);
     this->Tree = nullptr;
     this->DataNodesTexture = nullptr;
     this->Atlas = nullptr;
     return false;
   }
   this->FreePendingData();
+  this->TextureBytes = bytes;
+  this->UploadedStorage = storage;
   this->Context = renWin;
   this->UploadTime.Modified();
   this->UploadSeconds =
@@ -379,10 +554,62 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Upload(vtkOpenGLRenderWindow* r
 }
 
 //------------------------------------------------------------------------------
+bool vtkSinglePassAMRVolumeMapper::vtkInternals::UploadBindless(vtkOpenGLRenderWindow* renWin,
+  std::string& error)
+{
+  const int max3D = vtkTextureObject::GetMaximumTextureSize3D(renWin);
+  const std::vector<glm::ivec3> extents = amrsp::BrickExtents(this->Data, this->VertexCentred);
+  amrsp::UIntTexture3D handles;
+  handles.Dims = amrsp::TextureDimsFor(extents.size());
+  handles.Texels.assign(
+    static_cast<std::size_t>(handles.Dims.x) * handles.Dims.y * handles.Dims.z, glm::uvec2(0u));
+  this->Bricks.reserve(extents.size());
+  this->ResidentHandles.reserve(extents.size());
+  for (std::size_t g = 0; g < extents.size(); ++g)
+  {
+    const glm::ivec3 e = extents[g];
+    if (e.x > max3D || e.y > max3D || e.z > max3D)
+    {
+      error = "grid " + std::to_string(g) + " (" + std::to_string(e.x) + " x " +
+        std::to_string(e.y) + " x " + std::to_string(e.z) +
+        " texels) exceeds GL_MAX_3D_TEXTURE_SIZE = " + std::to_string(max3D);
+      return false;
+    }
+    vtkSmartPointer<vtkTextureObject> brick =
+      MakeScalarTexture(renWin, e, this->Data.Values[g].data(), this->VertexCentred);
+    if (!brick)
+    {
+      return false;
+    }
+    // the handle freezes the texture's sampling state, set above by Create3DFromRaw
+    const GLuint64 handle = glGetTextureHandleARB(brick->GetHandle());
+    if (handle == 0)
+    {
+      error = "glGetTextureHandleARB returned no handle for grid " + std::to_string(g);
+      return false;
+    }
+    glMakeTextureHandleResidentARB(handle);
+    this->Bricks.push_back(brick);
+    this->ResidentHandles.push_back(handle);
+    handles.Texels[g] = glm::uvec2(static_cast<uint32_t>(handle & 0xffffffffu),
+      static_cast<uint32_t>(handle >> 32));
+  }
+  this->HandlesTexture = MakeIntegerTexture(renWin, handles);
+  return this->HandlesTexture != nullptr;
+}
+
+//------------------------------------------------------------------------------
 void vtkSinglePassAMRVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWindow* window)
 {
+  if (this->Context == window)
+  {
+    this->ReleaseBindless(window);
+  }
+  this->Bricks.clear();
+  this->ResidentHandles.clear();
+  this->UploadedStorage = -1;
   for (vtkSmartPointer<vtkTextureObject>* t :
-    { &this->Tree, &this->DataNodesTexture, &this->Atlas, &this->Depth })
+    { &this->Tree, &this->DataNodesTexture, &this->Atlas, &this->HandlesTexture, &this->Depth })
   {
     if (*t)
     {
@@ -395,6 +622,7 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWin
   this->BoxArray->ReleaseGraphicsResources();
   this->BoxArrayProgram = nullptr;
   this->Context = nullptr;
+  this->CapsContext = nullptr;
   if (!this->PendingUpload)
   {
     // the CPU copies were freed after the upload: rebuild from the input next time
@@ -556,6 +784,8 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   // the same error is reported once, not on every frame
   const std::string previousError = in.LastError;
   in.LastError.clear();
+  in.LastStorage = -1;
+  in.LastAccess = -1;
   auto fail = [&](const std::string& message)
   {
     if (message != previousError)
@@ -593,13 +823,53 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     fail(in.BuildError);
     return;
   }
-  if (in.PendingUpload || !in.Atlas || in.Context != renWin ||
+  // ---- storage: what was asked, what the context offers, what fits
+  in.QueryCapabilities(renWin);
+  auto warnOnce = [&](const std::string& message)
+  {
+    if (in.Warned.insert(message).second)
+    {
+      vtkWarningMacro(<< message);
+    }
+  };
+  std::string noBindless;
+  const int access = in.ResolveAccess(this->BindlessAccess, noBindless);
+  std::string noAtlas;
+  const bool atlasFits = in.AtlasFits(renWin, this->MaximumAtlasSize, noAtlas);
+  int storage = PACKED_ATLAS;
+  if (this->DataStorage == BINDLESS_TEXTURES)
+  {
+    if (access >= 0)
+    {
+      storage = BINDLESS_TEXTURES;
+    }
+    else
+    {
+      warnOnce("bindless textures requested, but " + noBindless +
+        ": rendering with the packed atlas instead");
+    }
+  }
+  else if (this->DataStorage == AUTO_STORAGE && access >= 0 &&
+    (!atlasFits || in.AtlasWaste > this->AutoBindlessWaste))
+  {
+    storage = BINDLESS_TEXTURES;
+  }
+  if (storage == PACKED_ATLAS && !atlasFits)
+  {
+    fail(noAtlas +
+      (this->DataStorage == PACKED_ATLAS ? std::string()
+                                         : "; bindless textures cannot be used: " + noBindless));
+    return;
+  }
+
+  if (in.PendingUpload || in.UploadedStorage != storage || in.Context != renWin ||
     in.UploadLimit != this->MaximumAtlasSize)
   {
     in.UploadLimit = this->MaximumAtlasSize;
     if (!in.PendingUpload)
     {
-      // the CPU copies were dropped after an upload to another context: rebuild them
+      // the CPU copies were dropped after an upload of another storage or to another context:
+      // rebuild them
       in.Build(amr, array, this->ArrayComponent);
       if (!in.DataValid)
       {
@@ -608,13 +878,14 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       }
     }
     std::string error;
-    if (!in.Upload(renWin, this->MaximumAtlasSize, error))
+    if (!in.Upload(renWin, storage, error))
     {
       // keep the CPU data: a later context (or a smaller input) may succeed
       fail(error);
       return;
     }
   }
+  const bool bindless = storage == BINDLESS_TEXTURES;
 
   vtkVolumeProperty* property = vol->GetProperty();
   if (!property)
@@ -653,9 +924,13 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   // ---- shader (one variant per level count and depth use; cached by VTK's shader cache)
   const int levels = static_cast<int>(in.LevelCellSize.size());
   const bool useDepth = this->UseDepthBuffer;
-  std::string defines = "#define AMRSP_LEVEL_COUNT " + std::to_string(levels) +
-    "\n#define AMRSP_PACKING 1\n" +
+  std::string defines = "#define AMRSP_LEVEL_COUNT " + std::to_string(levels) + "\n" +
+    (bindless ? "#define AMRSP_BINDLESS 1\n" : "#define AMRSP_PACKING 1\n") +
     (in.VertexCentred ? "#define AMRSP_VERTEX_CENTRED 1\n" : "#define AMRSP_CELL_CENTRED 1\n");
+  if (bindless && access == WATERFALL_ACCESS)
+  {
+    defines += "#define AMRSP_WATERFALL 1\n";
+  }
   if (useDepth)
   {
     defines += "#define AMRSP_USE_DEPTH 1\n";
@@ -805,13 +1080,14 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   float transferRange[2];
   in.Transfer.GetShaderRange(transferRange);
 
+  vtkTextureObject* gridData = bindless ? in.HandlesTexture.Get() : in.Atlas.Get();
   in.Tree->Activate();
   in.DataNodesTexture->Activate();
-  in.Atlas->Activate();
+  gridData->Activate();
   in.Transfer.GetTexture()->Activate();
   program->SetUniformi("amrspTree", in.Tree->GetTextureUnit());
   program->SetUniformi("amrspDataNodes", in.DataNodesTexture->GetTextureUnit());
-  program->SetUniformi("amrspAtlas", in.Atlas->GetTextureUnit());
+  program->SetUniformi(bindless ? "amrspHandles" : "amrspAtlas", gridData->GetTextureUnit());
   program->SetUniformi("amrspTransfer", in.Transfer.GetTexture()->GetTextureUnit());
   if (useDepth)
   {
@@ -836,7 +1112,10 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   program->SetUniformf("amrspTransferSize", static_cast<float>(TransferTableSize));
   const float atlasSize[3] = { static_cast<float>(in.AtlasDims.x),
     static_cast<float>(in.AtlasDims.y), static_cast<float>(in.AtlasDims.z) };
-  program->SetUniform3f("amrspAtlasSize", atlasSize);
+  if (!bindless)
+  {
+    program->SetUniform3f("amrspAtlasSize", atlasSize);
+  }
   // level of detail: world size of a pixel at distance 1 (perspective) or everywhere (parallel),
   // as amrsp::LevelOfDetail
   const float pixelPerDistance = parallel ? 0.0f
@@ -871,12 +1150,14 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 
   in.Tree->Deactivate();
   in.DataNodesTexture->Deactivate();
-  in.Atlas->Deactivate();
+  gridData->Deactivate();
   in.Transfer.GetTexture()->Deactivate();
   if (useDepth)
   {
     in.Depth->Deactivate();
   }
+  in.LastStorage = storage;
+  in.LastAccess = bindless ? access : -1;
   vtkOpenGLCheckErrorMacro("failed after vtkSinglePassAMRVolumeMapper::Render");
 }
 
@@ -920,6 +1201,87 @@ long long vtkSinglePassAMRVolumeMapper::GetTextureBytes()
   return this->Internals->TextureBytes;
 }
 
+long long vtkSinglePassAMRVolumeMapper::GetPackedTextureBytes()
+{
+  return this->Internals->PackedBytes;
+}
+
+long long vtkSinglePassAMRVolumeMapper::GetBindlessTextureBytes()
+{
+  return this->Internals->BindlessBytes;
+}
+
+double vtkSinglePassAMRVolumeMapper::GetAtlasWaste()
+{
+  return this->Internals->AtlasWaste;
+}
+
+int vtkSinglePassAMRVolumeMapper::GetLastDataStorage()
+{
+  return this->Internals->LastStorage;
+}
+
+int vtkSinglePassAMRVolumeMapper::GetLastBindlessAccess()
+{
+  return this->Internals->LastAccess;
+}
+
+const char* vtkSinglePassAMRVolumeMapper::GetDataStorageName(int storage)
+{
+  switch (storage)
+  {
+    case PACKED_ATLAS:
+      return "packing";
+    case BINDLESS_TEXTURES:
+      return "bindless";
+    case AUTO_STORAGE:
+      return "auto";
+    default:
+      return "none";
+  }
+}
+
+const char* vtkSinglePassAMRVolumeMapper::GetBindlessAccessName(int access)
+{
+  switch (access)
+  {
+    case DIRECT_ACCESS:
+      return "direct";
+    case WATERFALL_ACCESS:
+      return "waterfall";
+    case AUTO_ACCESS:
+      return "auto";
+    default:
+      return "none";
+  }
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRVolumeMapper::IsBindlessSupported(vtkRenderWindow* window, std::string* why)
+{
+  std::string reason;
+  if (!IsRenderSupported(window, &reason))
+  {
+    if (why)
+    {
+      *why = reason;
+    }
+    return false;
+  }
+  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
+  vtkInternals caps;
+  caps.QueryCapabilities(renWin);
+  if (caps.ResolveAccess(AUTO_ACCESS, reason) < 0)
+  {
+    if (why)
+    {
+      *why = reason;
+    }
+    return false;
+  }
+  return true;
+}
+
 long long vtkSinglePassAMRVolumeMapper::GetNumberOfKdNodes()
 {
   return this->Internals->KdNodes;
@@ -940,6 +1302,11 @@ void vtkSinglePassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumAtlasSize: " << this->MaximumAtlasSize << "\n";
   os << indent << "LODThreshold: " << this->LODThreshold << "\n";
   os << indent << "UseDepthBuffer: " << (this->UseDepthBuffer ? "on" : "off") << "\n";
+  os << indent << "DataStorage: " << GetDataStorageName(this->DataStorage) << "\n";
+  os << indent << "BindlessAccess: " << GetBindlessAccessName(this->BindlessAccess) << "\n";
+  os << indent << "AutoBindlessWaste: " << this->AutoBindlessWaste << "\n";
+  os << indent << "LastDataStorage: " << GetDataStorageName(in.LastStorage)
+     << ", LastBindlessAccess: " << GetBindlessAccessName(in.LastAccess) << "\n";
   os << indent << "NumberOfBuilds: " << in.NumberOfBuilds << "\n";
   os << indent << "KdNodes: " << in.KdNodes << ", DataNodes: " << in.DataNodes << "\n";
   os << indent << "AtlasDimensions: " << in.AtlasDims.x << " x " << in.AtlasDims.y << " x "

@@ -5,9 +5,24 @@
  *
  * Renders a structured AMR hierarchy at its native resolution in one fragment-shader pass:
  * the hierarchy is decomposed into a kD-tree of non-overlapping same-level blocks, the tree is
- * encoded into two RG32UI 3D textures, every grid's cells are copied as one brick into a packed
- * R32F atlas, and per pixel the shader walks the tree with kd-restart, samples each ray segment
- * nearest-cell at the rate of its level (about one sample per cell) and composites front to back.
+ * encoded into two RG32UI 3D textures, every grid's cells become one brick, and per pixel the
+ * shader walks the tree with kd-restart, samples each ray segment nearest-cell at the rate of its
+ * level (about one sample per cell) and composites front to back.
+ *
+ * Data storage (paper section 5), chosen with SetDataStorage:
+ * - PACKED_ATLAS: all bricks packed into one R32F 3D texture (the data nodes store the atlas
+ *   texel of their lower corner);
+ * - BINDLESS_TEXTURES: one R32F 3D texture per brick, reached through a 64-bit
+ *   GL_ARB_bindless_texture handle kept resident and stored in an RG32UI "handles" texture
+ *   indexed by the data node's brick index. A handle that differs between the invocations of one
+ *   subgroup is only valid with GL_NV_gpu_shader5 (DIRECT_ACCESS); elsewhere the shader serves
+ *   one distinct handle at a time with GL_ARB_shader_ballot (WATERFALL_ACCESS, a loop over
+ *   readFirstInvocationARB). SetBindlessAccess forces either.
+ * - AUTO_STORAGE (default): bindless where the extension exists and the atlas cannot be built or
+ *   would leave more than AutoBindlessWaste of its texels unused; packing otherwise.
+ * When bindless is requested and cannot run (extension missing, or neither access mode
+ * available), the mapper renders with the packed atlas and says so once with a VTK warning.
+ * GetLastDataStorage() tells what rendered the last frame.
  *
  * Input: vtkOverlappingAMR with cell data (one port). The scalars are the array selected with
  * SelectScalarArray(name) (vtkAbstractVolumeMapper's by-name selection); without a selection the
@@ -95,6 +110,44 @@ public:
   vtkGetMacro(MaximumAtlasSize, int);
   ///@}
 
+  /// How the grid data reaches the GPU (see the class description).
+  enum DataStorageMode
+  {
+    AUTO_STORAGE = 0,
+    PACKED_ATLAS = 1,
+    BINDLESS_TEXTURES = 2
+  };
+  /// How the bindless shader reads a brick whose handle may differ between invocations.
+  enum BindlessAccessMode
+  {
+    AUTO_ACCESS = 0,     ///< direct with GL_NV_gpu_shader5, else waterfall with ARB_shader_ballot
+    DIRECT_ACCESS = 1,   ///< sampler3D(handle) as is; wrong images where handles must be uniform
+    WATERFALL_ACCESS = 2 ///< one distinct handle per loop iteration (GL_ARB_shader_ballot)
+  };
+
+  ///@{
+  /// Storage of the grid data: AUTO_STORAGE (default), PACKED_ATLAS or BINDLESS_TEXTURES.
+  /// Changing it re-uploads the data textures (the kD-tree is not rebuilt).
+  vtkSetClampMacro(DataStorage, int, AUTO_STORAGE, BINDLESS_TEXTURES);
+  vtkGetMacro(DataStorage, int);
+  void SetDataStorageToAuto() { this->SetDataStorage(AUTO_STORAGE); }
+  void SetDataStorageToPackedAtlas() { this->SetDataStorage(PACKED_ATLAS); }
+  void SetDataStorageToBindlessTextures() { this->SetDataStorage(BINDLESS_TEXTURES); }
+  ///@}
+
+  ///@{
+  /// Access mode of the bindless shader: AUTO_ACCESS (default), DIRECT_ACCESS, WATERFALL_ACCESS.
+  vtkSetClampMacro(BindlessAccess, int, AUTO_ACCESS, WATERFALL_ACCESS);
+  vtkGetMacro(BindlessAccess, int);
+  ///@}
+
+  ///@{
+  /// AUTO_STORAGE picks bindless (where available) when more than this fraction of the packed
+  /// atlas's texels would be unused (default 0.25), or when the atlas cannot be built at all.
+  vtkSetClampMacro(AutoBindlessWaste, double, 0.0, 1.0);
+  vtkGetMacro(AutoBindlessWaste, double);
+  ///@}
+
   /// Renders the volume. Called by vtkVolume during the volumetric pass.
   void Render(vtkRenderer* ren, vtkVolume* vol) override;
 
@@ -105,7 +158,22 @@ public:
   /// Whether `window` offers what the mapper needs: an OpenGL 3.2 core context (integer
   /// textures, GLSL 1.50). When it does not, `why` says what is missing.
   static bool IsRenderSupported(vtkRenderWindow* window, std::string* why = nullptr);
+
+  /// Whether `window`'s context can render with BINDLESS_TEXTURES: GL_ARB_bindless_texture and
+  /// at least one access mode (GL_NV_gpu_shader5 for direct, GL_ARB_shader_ballot for waterfall).
+  /// When it cannot, `why` says what is missing.
+  static bool IsBindlessSupported(vtkRenderWindow* window, std::string* why = nullptr);
 #endif
+
+  ///@{
+  /// What rendered the last frame: PACKED_ATLAS or BINDLESS_TEXTURES (-1 before the first
+  /// successful Render), and for bindless DIRECT_ACCESS or WATERFALL_ACCESS (-1 for packing).
+  int GetLastDataStorage();
+  int GetLastBindlessAccess();
+  /// "packing", "bindless" or "none"; "direct", "waterfall" or "none".
+  static const char* GetDataStorageName(int storage);
+  static const char* GetBindlessAccessName(int access);
+  ///@}
 
   ///@{
   /// Diagnostics of the last build and render.
@@ -117,9 +185,16 @@ public:
   /// Number of times the data textures were (re)built; camera or transfer-function changes must
   /// not increase it.
   int GetNumberOfBuilds();
-  /// Atlas texture dimensions and the bytes of all data textures (atlas + tree + data nodes).
+  /// Atlas texture dimensions (0 when no atlas could be packed) and the bytes of all data
+  /// textures uploaded for the last frame (tree + data nodes + atlas, or + bricks + handles).
   void GetAtlasDimensions(int dims[3]);
   long long GetTextureBytes();
+  /// Bytes either storage needs for the current data, whichever rendered (the paper's Table 2
+  /// "GPU memory": tree textures + grid data). Packing is 0 when no atlas could be packed.
+  long long GetPackedTextureBytes();
+  long long GetBindlessTextureBytes();
+  /// Fraction of the packed atlas's texels that hold no brick (0 when no atlas).
+  double GetAtlasWaste();
   /// kD-tree nodes and data nodes of the current hierarchy.
   long long GetNumberOfKdNodes();
   long long GetNumberOfDataNodes();
@@ -147,6 +222,9 @@ protected:
   bool UseDepthBuffer = true;
   int MaximumAtlasSize = 0;
   double LODThreshold = 0.0;
+  int DataStorage = AUTO_STORAGE;
+  int BindlessAccess = AUTO_ACCESS;
+  double AutoBindlessWaste = 0.25;
 
 private:
   vtkSinglePassAMRVolumeMapper(const vtkSinglePassAMRVolumeMapper&) = delete;

@@ -12,7 +12,11 @@
 //
 // Variants are selected by the mapper with #defines inserted at the marker below:
 //   AMRSP_LEVEL_COUNT   number of levels of the hierarchy (sizes the per-level uniform arrays)
-//   AMRSP_PACKING       data in one packed R32F atlas (the only storage implemented so far)
+//   AMRSP_PACKING       data in one packed R32F atlas, or
+//   AMRSP_BINDLESS      one R32F texture per brick, reached through GL_ARB_bindless_texture
+//                       handles stored in the amrspHandles texture (index: the data node's brick)
+//   AMRSP_WATERFALL     (bindless) serve one distinct handle at a time with GL_ARB_shader_ballot,
+//                       for drivers that require dynamically uniform handles
 //   AMRSP_CELL_CENTRED  nearest-cell sampling of cell bricks
 //   AMRSP_VERTEX_CENTRED trilinear sampling of vertex bricks (one texel larger per axis)
 //   AMRSP_USE_DEPTH     clip rays at the depth of the opaque geometry already drawn
@@ -22,8 +26,13 @@
 #ifndef AMRSP_LEVEL_COUNT
 #error "AMRSP_LEVEL_COUNT must be defined"
 #endif
-#ifndef AMRSP_PACKING
-#error "only the packing storage (AMRSP_PACKING) is implemented"
+#if defined(AMRSP_BINDLESS)
+#extension GL_ARB_bindless_texture : require
+#if defined(AMRSP_WATERFALL)
+#extension GL_ARB_shader_ballot : require
+#endif
+#elif !defined(AMRSP_PACKING)
+#error "AMRSP_PACKING or AMRSP_BINDLESS must be defined"
 #endif
 #ifndef AMRSP_BLEND_MODE
 #define AMRSP_BLEND_MODE 0
@@ -45,7 +54,12 @@
 
 uniform usampler3D amrspTree;      // RG32UI, one texel per kD node
 uniform usampler3D amrspDataNodes; // RG32UI, one texel per data node (texel 0 unused)
+#ifdef AMRSP_PACKING
 uniform sampler3D amrspAtlas;      // R32F, one brick per grid (nearest filtering)
+uniform vec3 amrspAtlasSize;       // atlas dimensions, texels
+#else
+uniform usampler3D amrspHandles;   // RG32UI, one texel per brick: its 64-bit handle (low, high)
+#endif
 uniform sampler2D amrspTransfer;   // RGBA32F, 1 row: colour and unit-distance opacity
 #ifdef AMRSP_USE_DEPTH
 uniform sampler2D amrspDepth;      // depth of the opaque geometry, viewport-sized
@@ -69,7 +83,6 @@ uniform int amrspMaxSegments;                             // guard against corru
 uniform vec2 amrspTransferRange; // scalar at the first table entry, 1 / (last - first)
 uniform float amrspTransferSize; // number of table entries
 uniform float amrspUnitDistance; // vtkVolumeProperty::ScalarOpacityUnitDistance
-uniform vec3 amrspAtlasSize;     // atlas dimensions, texels
 
 // Level of detail at type (a) nodes, as amrsp::LevelOfDetail: stop descending when one cell of
 // the node's data level is smaller than amrspLodThreshold pixels at the ray's entry.
@@ -128,19 +141,74 @@ int amrspCeilDiv(int a, int b)
   return -amrspFloorDiv(-a, b);
 }
 
+#ifdef AMRSP_BINDLESS
+// Reads brick `handle` at texel `texel` (cells), or interpolates it trilinearly at the texel-space
+// position `where` (vertices: texel centres at integer + 0.5) from the texels texel and
+// texel + 1 per axis, which the caller keeps inside the brick.
+float amrspReadBrick(uvec2 handle, ivec3 texel, vec3 where)
+{
+  sampler3D brick = sampler3D(handle);
+#ifdef AMRSP_VERTEX_CENTRED
+  vec3 f = where - 0.5 - vec3(texel);
+  float c000 = texelFetch(brick, texel, 0).r;
+  float c100 = texelFetch(brick, texel + ivec3(1, 0, 0), 0).r;
+  float c010 = texelFetch(brick, texel + ivec3(0, 1, 0), 0).r;
+  float c110 = texelFetch(brick, texel + ivec3(1, 1, 0), 0).r;
+  float c001 = texelFetch(brick, texel + ivec3(0, 0, 1), 0).r;
+  float c101 = texelFetch(brick, texel + ivec3(1, 0, 1), 0).r;
+  float c011 = texelFetch(brick, texel + ivec3(0, 1, 1), 0).r;
+  float c111 = texelFetch(brick, texel + ivec3(1, 1, 1), 0).r;
+  return mix(mix(mix(c000, c100, f.x), mix(c010, c110, f.x), f.y),
+    mix(mix(c001, c101, f.x), mix(c011, c111, f.x), f.y), f.z);
+#else
+  return texelFetch(brick, texel, 0).r;
+#endif
+}
+#endif
+
 // The scalar at point p (level-0 index units) inside the kD node whose data node is `dataNode`:
 // the node's block covers the cells firstCell..lastCell of the node's data level, whose cells
 // measure cellSize (level-0 index units). Only this function knows how the bricks are stored.
 float amrspSampleDataNode(uvec2 dataNode, vec3 p, vec3 cellSize, ivec3 firstCell, ivec3 lastCell)
 {
-  ivec3 offset = amrspDataOffset(dataNode); // atlas texel of the node's lower-corner cell
+  // texel of the node's lower-corner cell, in the atlas (packing) or in its brick (bindless)
+  ivec3 offset = amrspDataOffset(dataNode);
 #ifdef AMRSP_VERTEX_CENTRED
   // vertex (i,j,k) of the node's first cell is texel offset + (i,j,k); texel centres at +0.5
   vec3 u = clamp(p / cellSize - vec3(firstCell), vec3(0.0), vec3(lastCell - firstCell + 1));
-  return texture(amrspAtlas, (vec3(offset) + u + 0.5) / amrspAtlasSize).r;
+  vec3 where = vec3(offset) + u + 0.5;
+  // lower texel of the trilinear stencil, kept one texel below the brick's upper end
+  ivec3 texel = offset + min(ivec3(floor(u)), lastCell - firstCell);
 #else
   ivec3 cell = clamp(ivec3(floor(p / cellSize)), firstCell, lastCell);
-  return texelFetch(amrspAtlas, offset + (cell - firstCell), 0).r;
+  ivec3 texel = offset + (cell - firstCell);
+  vec3 where = vec3(0.0);
+#endif
+#ifdef AMRSP_PACKING
+#ifdef AMRSP_VERTEX_CENTRED
+  return texture(amrspAtlas, where / amrspAtlasSize).r;
+#else
+  return texelFetch(amrspAtlas, texel, 0).r;
+#endif
+#else
+  uvec2 handle = texelFetch(amrspHandles, amrspTexelOf(amrspDataBrick(dataNode)), 0).rg;
+#ifdef AMRSP_WATERFALL
+  // Each pass serves the invocations holding the first active invocation's handle, which is
+  // dynamically uniform among them; the others loop again (at most one pass per distinct handle).
+  float value = 0.0;
+  for (;;)
+  {
+    uvec2 first = readFirstInvocationARB(handle);
+    if (first == handle)
+    {
+      value = amrspReadBrick(first, texel, where);
+      break;
+    }
+  }
+  return value;
+#else
+  return amrspReadBrick(handle, texel, where);
+#endif
 #endif
 }
 

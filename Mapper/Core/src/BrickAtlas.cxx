@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "amrsp/BrickAtlas.h"
 
+#include <algorithm>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace amrsp
 {
@@ -13,10 +16,25 @@ BrickAtlas BuildBrickAtlas(const Hierarchy& h, Packer packer, const glm::ivec3& 
   {
     throw std::invalid_argument("the packed atlas needs values for every grid");
   }
-  BrickAtlas atlas;
+  return FillBrickAtlas(h,
+    PackBricks(BrickExtents(h, h.VertexCentred), packer, maxDims,
+      static_cast<int64_t>(maxBytes / AtlasTexelBytes)));
+}
+
+BrickAtlas FillBrickAtlas(const Hierarchy& h, AtlasLayout layout)
+{
+  if (!h.HasValues())
+  {
+    throw std::invalid_argument("the packed atlas needs values for every grid");
+  }
   const std::vector<glm::ivec3> extents = BrickExtents(h, h.VertexCentred);
-  atlas.Layout =
-    PackBricks(extents, packer, maxDims, static_cast<int64_t>(maxBytes / AtlasTexelBytes));
+  if (layout.Origins.size() != extents.size())
+  {
+    throw std::invalid_argument("the atlas layout has " + std::to_string(layout.Origins.size()) +
+      " bricks for " + std::to_string(extents.size()) + " grids");
+  }
+  BrickAtlas atlas;
+  atlas.Layout = std::move(layout);
   const glm::ivec3 d = atlas.Layout.Dims;
   atlas.Texels.assign(static_cast<std::size_t>(d.x) * d.y * d.z, 0.0f);
   for (std::size_t g = 0; g < h.Grids.size(); ++g)
@@ -35,6 +53,16 @@ BrickAtlas BuildBrickAtlas(const Hierarchy& h, Packer packer, const glm::ivec3& 
     }
   }
   return atlas;
+}
+
+std::size_t SeparateBrickBytes(const Hierarchy& h)
+{
+  std::size_t texels = 0;
+  for (const glm::ivec3& e : BrickExtents(h, h.VertexCentred))
+  {
+    texels += static_cast<std::size_t>(e.x) * e.y * e.z;
+  }
+  return texels * AtlasTexelBytes;
 }
 
 } // namespace amrsp

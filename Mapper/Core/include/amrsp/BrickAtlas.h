@@ -39,4 +39,13 @@ constexpr std::size_t AtlasTexelBytes = sizeof(float);
 BrickAtlas BuildBrickAtlas(const Hierarchy& h, Packer packer, const glm::ivec3& maxDims,
   std::size_t maxBytes = 0);
 
+/// Copies the values of `h` into an atlas laid out by `layout` (PackBricks of BrickExtents(h,
+/// h.VertexCentred)), for callers that decide on the storage after packing.
+/// @throws std::invalid_argument when `h` has no values or the layout has another brick count.
+BrickAtlas FillBrickAtlas(const Hierarchy& h, AtlasLayout layout);
+
+/// Bytes of the grid data when every brick is its own texture (the bindless strategy): the sum
+/// of the brick volumes (cells, or vertices when h.VertexCentred) times AtlasTexelBytes.
+std::size_t SeparateBrickBytes(const Hierarchy& h);
+
 } // namespace amrsp
