@@ -368,9 +368,8 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
     this->ScalarRange[1] = vmin <= vmax ? vmax : 1.0;
     const long long treeBytes =
       static_cast<long long>(enc.Tree.Bytes() + this->BindlessDataNodeTexels.Bytes());
-    const glm::ivec3 handleDims = amrsp::TextureDimsFor(h.Grids.size());
-    this->BindlessBytes = treeBytes + static_cast<long long>(amrsp::SeparateBrickBytes(h)) +
-      static_cast<long long>(handleDims.x) * handleDims.y * handleDims.z * 8;
+    this->BindlessBytes = treeBytes +
+      static_cast<long long>(amrsp::SeparateBrickBytes(h) + amrsp::HandleTextureBytes(h.Grids.size()));
     this->PackedBytes = this->PackingError.empty()
       ? treeBytes + this->Layout.TotalTexels * static_cast<long long>(amrsp::AtlasTexelBytes)
       : 0;

@@ -210,7 +210,7 @@ void TestAutomaticChoice()
   std::cout << "automatic storage choice\n";
   Hierarchy h = Load("synthetic:cosmo:grids=30,levels=3,cells=60k,seed=5");
   const RenderSettings s = Settings(h, { "--size", "64x64" });
-  PackingRenderer gpu(h, s, ViewAngles());
+  PackingRenderer gpu(h, s, ViewAngles(), "auto");
   Mapper* m = gpu.GetMapper();
   double ms = 0.0;
   m->SetAutoBindlessWaste(1.0);

@@ -3,6 +3,7 @@
 
 #include "AmrspDataset.h"
 #include "AmrspMultipass.h"
+#include "AmrspDriver.h"
 #include "AmrspPacking.h"
 #include "AmrspUniform.h"
 
@@ -693,6 +694,27 @@ int RunInspect(int argc, char** argv)
     j["data_nodes_texture"] = TextureJson(enc.DataNodes);
     j["centering"] = vertexBricks ? "vertex" : "cell";
     j["atlas"] = atlas;
+    {
+      // the paper's Table 2 "GPU memory": tree textures + grid data, for either storage
+      const std::size_t treeBytes = enc.Tree.Bytes() + enc.DataNodes.Bytes();
+      std::size_t brickBytes = 0;
+      for (const glm::ivec3& e : extents)
+      {
+        brickBytes += static_cast<std::size_t>(e.x) * e.y * e.z * AtlasTexelBytes;
+      }
+      Json memory;
+      memory["tree"] = treeBytes;
+      if (atlas.contains("total_texels"))
+      {
+        memory["packing"] = treeBytes + atlas["total_texels"].get<std::size_t>() * AtlasTexelBytes;
+      }
+      else
+      {
+        memory["packing"] = nullptr;
+      }
+      memory["bindless"] = treeBytes + brickBytes + HandleTextureBytes(extents.size());
+      j["gpu_bytes"] = memory;
+    }
     if (a.Has("compare-packers"))
     {
       j["atlas_by_packer"] = byPacker;
@@ -721,6 +743,8 @@ int RunInspect(int argc, char** argv)
                 << "textures     tree " << j["tree_texture"].dump() << ", data nodes "
                 << j["data_nodes_texture"].dump() << "\n"
                 << "atlas        " << atlas.dump() << "\n"
+                << "GPU memory   " << j["gpu_bytes"].dump()
+                << " (bytes: tree textures + grid data, per storage)\n"
                 << "times (s)    load " << d.LoadSeconds << ", kD-tree " << kdSeconds
                 << ", encode " << encodeSeconds << ", pack " << packSeconds << "\n"
                 << "invariants   " << (inv.Ok ? "ok" : "FAILED") << "\n";
@@ -758,10 +782,13 @@ int RunImageCommand(int argc, char** argv, bool reference)
           "(vtkSinglePassAMRVolumeMapper on the GPU: one packed R32F atlas, offscreen\n"
           "vtkRenderWindow; needs an X display here), multipass (vtkMultiPassAMRVolumeMapper,\n"
           "the paper's multi-pass baseline: the kD-tree ordered on the CPU, one draw per data\n"
-          "node blended front to back; same atlas, same display needs).\n"
+          "node blended front to back; same atlas, same display needs), bindless (the same\n"
+          "mapper with one texture per brick through GL_ARB_bindless_texture handles; where the\n"
+          "context lacks the extension it renders with the atlas and says so).\n"
           "  --method M                  auto (default: packing where an OpenGL context can be\n"
-          "                              had, else cpu-packing), packing, cpu-packing, cpu-kdtree,\n"
-          "                              multipass\n"
+          "                              had, else cpu-packing), packing, bindless, cpu-packing,\n"
+          "                              cpu-kdtree, multipass\n"
+          "  --bindless-access A         auto (default), direct or waterfall (see README)\n"
           "  --compare                   also render the CPU reference and the CPU kD-tree\n"
           "                              image and print the RMSE (0-255) against them\n");
   try
@@ -771,6 +798,8 @@ int RunImageCommand(int argc, char** argv, bool reference)
     if (!reference)
     {
       valueOptions.push_back("method");
+      valueOptions.push_back("bindless-access");
+      valueOptions.push_back("driver");
     }
     const Arguments a = ParseArguments(argc, argv, 1, valueOptions,
       reference ? std::vector<std::string>{} : std::vector<std::string>{ "compare" });
@@ -778,7 +807,8 @@ int RunImageCommand(int argc, char** argv, bool reference)
     {
       std::cout << help << "  -o, --output FILE           PNG to write (default " << name
                 << ".png)\n"
-                << ViewHelp << (reference ? "" : AtlasHelp) << DatasetHelp;
+                << ViewHelp << (reference ? "" : AtlasHelp) << (reference ? "" : DriverHelp)
+                << DatasetHelp;
       return 0;
     }
     if (a.Positional.size() > 2)
@@ -787,10 +817,21 @@ int RunImageCommand(int argc, char** argv, bool reference)
     }
     std::string method = a.Get("method", "auto");
     if (!reference && method != "auto" && method != "cpu-kdtree" && method != "cpu-packing" &&
-      method != "packing" && method != "multipass")
+      method != "packing" && method != "bindless" && method != "multipass")
     {
       throw UsageError{ "unknown --method '" + method +
-        "' (available in this build: auto, cpu-kdtree, cpu-packing, packing, multipass)" };
+        "' (available in this build: auto, cpu-kdtree, cpu-packing, packing, bindless, "
+        "multipass)" };
+    }
+    const std::string bindlessAccess = a.Get("bindless-access", "auto");
+    if (bindlessAccess != "auto" && bindlessAccess != "direct" && bindlessAccess != "waterfall")
+    {
+      throw UsageError{ "unknown --bindless-access '" + bindlessAccess +
+        "' (auto, direct or waterfall)" };
+    }
+    if (!reference)
+    {
+      SelectDriver(a.Get("driver", "default"));
     }
     if (!reference && method == "auto")
     {
@@ -819,10 +860,11 @@ int RunImageCommand(int argc, char** argv, bool reference)
       img = RenderReference(d.Data, s);
       renderSeconds = Seconds(t0);
     }
-    else if (method == "packing" || method == "multipass")
+    else if (method == "packing" || method == "bindless" || method == "multipass")
     {
       std::unique_ptr<GpuRenderer> gpu;
       MultipassRenderer* multipass = nullptr;
+      PackingRenderer* singlePass = nullptr;
       if (method == "multipass")
       {
         multipass = new MultipassRenderer(d.Data, s, ViewOf(a));
@@ -830,7 +872,8 @@ int RunImageCommand(int argc, char** argv, bool reference)
       }
       else
       {
-        gpu.reset(new PackingRenderer(d.Data, s, ViewOf(a)));
+        singlePass = new PackingRenderer(d.Data, s, ViewOf(a), method, bindlessAccess);
+        gpu.reset(singlePass);
       }
       GpuRenderer& r = *gpu;
       double firstMs = 0.0, ms = 0.0;
@@ -839,9 +882,24 @@ int RunImageCommand(int argc, char** argv, bool reference)
       preprocess = r.BuildSeconds() + r.UploadSeconds();
       renderSeconds = ms / 1000.0;
       const double cameraDifference = CameraDifference(r.LastCamera(), s.View);
+      if (singlePass)
+      {
+        const std::string used = singlePass->StorageUsed();
+        if (method == "bindless" && used.rfind("bindless", 0) != 0)
+        {
+          std::cerr << "amrsp: note: bindless textures are not available in this OpenGL context "
+                       "(try --driver zink); rendered with the packed atlas\n";
+          method = "packing";
+        }
+        gpuReport << "storage: " << used << "; textures for packing "
+                  << singlePass->PackedBytes() / (1024.0 * 1024.0) << " MiB, for bindless "
+                  << singlePass->BindlessBytes() / (1024.0 * 1024.0) << " MiB\n";
+      }
       gpuReport << "device: " << r.Device() << "\n"
-                << "atlas: " << r.AtlasDimensions() << " texels, textures "
-                << r.TextureBytes() / (1024.0 * 1024.0) << " MiB\n"
+                << "atlas: "
+                << (singlePass && method == "bindless" ? "not used (bindless)"
+                                                       : r.AtlasDimensions() + " texels")
+                << ", textures " << r.TextureBytes() / (1024.0 * 1024.0) << " MiB\n"
                 << "mapper (s): build " << r.BuildSeconds() << " (conversion, kD-tree, packing"
                 << (multipass ? "" : ", encoding") << "; done in GetBounds), upload "
                 << r.UploadSeconds() << "; first frame " << firstMs / 1000.0

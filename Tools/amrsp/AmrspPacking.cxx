@@ -4,6 +4,9 @@
 #include "vtkSinglePassAMRVolumeMapper.h"
 #include "vtkSmartPointer.h"
 
+#include <stdexcept>
+#include <string>
+
 namespace amrsp
 {
 namespace tool
@@ -17,19 +20,60 @@ vtkSmartPointer<vtkSinglePassAMRVolumeMapper> NewMapper()
 }
 } // namespace
 
-PackingRenderer::PackingRenderer(
-  const Hierarchy& h, const RenderSettings& s, const ViewAngles& view)
-  : PackingRenderer(NewMapper(), h, s, view)
+PackingRenderer::PackingRenderer(const Hierarchy& h, const RenderSettings& s,
+  const ViewAngles& view, const std::string& storage, const std::string& bindlessAccess)
+  : PackingRenderer(NewMapper(), h, s, view, storage, bindlessAccess)
 {
 }
 
 PackingRenderer::PackingRenderer(vtkSinglePassAMRVolumeMapper* mapper, const Hierarchy& h,
-  const RenderSettings& s, const ViewAngles& view)
-  : GpuRenderer("packing", mapper, h, s, view)
+  const RenderSettings& s, const ViewAngles& view, const std::string& storage,
+  const std::string& bindlessAccess)
+  : GpuRenderer(storage, mapper, h, s, view)
   , Mapper(mapper)
 {
+  using M = vtkSinglePassAMRVolumeMapper;
+  if (storage != "packing" && storage != "bindless" && storage != "auto")
+  {
+    throw std::invalid_argument("unknown data storage '" + storage +
+      "' (packing, bindless or auto)");
+  }
+  if (bindlessAccess != "auto" && bindlessAccess != "direct" && bindlessAccess != "waterfall")
+  {
+    throw std::invalid_argument("unknown bindless access '" + bindlessAccess +
+      "' (auto, direct or waterfall)");
+  }
+  this->Mapper->SetDataStorage(storage == "packing" ? M::PACKED_ATLAS
+      : storage == "bindless"                       ? M::BINDLESS_TEXTURES
+                                                    : M::AUTO_STORAGE);
+  this->Mapper->SetBindlessAccess(bindlessAccess == "direct" ? M::DIRECT_ACCESS
+      : bindlessAccess == "waterfall"                        ? M::WATERFALL_ACCESS
+                                                             : M::AUTO_ACCESS);
   this->Mapper->SetSampleDistanceFactor(s.SampleDistanceFactor);
   this->Mapper->SetLODThreshold(s.LodThresholdPixels);
+}
+
+std::string PackingRenderer::StorageUsed() const
+{
+  const int storage = this->Mapper->GetLastDataStorage();
+  std::string name = vtkSinglePassAMRVolumeMapper::GetDataStorageName(storage);
+  if (storage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES)
+  {
+    name += std::string(" (") +
+      vtkSinglePassAMRVolumeMapper::GetBindlessAccessName(this->Mapper->GetLastBindlessAccess()) +
+      ")";
+  }
+  return name;
+}
+
+long long PackingRenderer::PackedBytes() const
+{
+  return this->Mapper->GetPackedTextureBytes();
+}
+
+long long PackingRenderer::BindlessBytes() const
+{
+  return this->Mapper->GetBindlessTextureBytes();
 }
 
 vtkSinglePassAMRVolumeMapper* PackingRenderer::GetMapper() const

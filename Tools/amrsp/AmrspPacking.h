@@ -7,6 +7,8 @@
 
 #include "AmrspGpuRenderer.h"
 
+#include <string>
+
 class vtkSinglePassAMRVolumeMapper;
 
 namespace amrsp
@@ -18,11 +20,21 @@ class PackingRenderer : public GpuRenderer
 {
 public:
   /// `h` holds the scalars as they are displayed (after --scale); `s` gives the image size, the
-  /// transfer function, its unit distance, the sample factor and the LOD threshold. Nothing is
-  /// rendered yet.
-  PackingRenderer(const Hierarchy& h, const RenderSettings& s, const ViewAngles& view);
+  /// transfer function, its unit distance, the sample factor and the LOD threshold. `storage` is
+  /// the tool's method name of the mapper's data storage: "packing" (the packed atlas, default),
+  /// "bindless" (one texture per brick; the mapper falls back to the atlas where it cannot) or
+  /// "auto"; `bindlessAccess` is "auto", "direct" or "waterfall". Nothing is rendered yet.
+  PackingRenderer(const Hierarchy& h, const RenderSettings& s, const ViewAngles& view,
+    const std::string& storage = "packing", const std::string& bindlessAccess = "auto");
 
   vtkSinglePassAMRVolumeMapper* GetMapper() const;
+
+  /// What rendered the last frame: "packing", "bindless (waterfall)", "bindless (direct)", or
+  /// "none" before the first successful frame.
+  std::string StorageUsed() const;
+  /// Bytes of the data textures each storage needs for the current data (tree included).
+  long long PackedBytes() const;
+  long long BindlessBytes() const;
 
   double BuildSeconds() const override;
   double UploadSeconds() const override;
@@ -35,7 +47,7 @@ protected:
 
 private:
   PackingRenderer(vtkSinglePassAMRVolumeMapper* mapper, const Hierarchy& h, const RenderSettings& s,
-    const ViewAngles& view);
+    const ViewAngles& view, const std::string& storage, const std::string& bindlessAccess);
   vtkSinglePassAMRVolumeMapper* Mapper; // held by the base (its volume's mapper)
 };
 

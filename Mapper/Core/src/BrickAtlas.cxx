@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "amrsp/BrickAtlas.h"
+#include "amrsp/KdTreeEncoding.h"
 
 #include <algorithm>
 #include <stdexcept>
@@ -63,6 +64,12 @@ std::size_t SeparateBrickBytes(const Hierarchy& h)
     texels += static_cast<std::size_t>(e.x) * e.y * e.z;
   }
   return texels * AtlasTexelBytes;
+}
+
+std::size_t HandleTextureBytes(std::size_t bricks)
+{
+  const glm::ivec3 d = TextureDimsFor(bricks);
+  return static_cast<std::size_t>(d.x) * d.y * d.z * 2 * sizeof(uint32_t);
 }
 
 } // namespace amrsp

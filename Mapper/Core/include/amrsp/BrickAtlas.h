@@ -48,4 +48,8 @@ BrickAtlas FillBrickAtlas(const Hierarchy& h, AtlasLayout layout);
 /// of the brick volumes (cells, or vertices when h.VertexCentred) times AtlasTexelBytes.
 std::size_t SeparateBrickBytes(const Hierarchy& h);
 
+/// Bytes of the bindless strategy's RG32UI "handles" texture: one 64-bit handle per brick, laid out
+/// like the kD-tree textures (TextureDimsFor, rows of AMRSP_TEXTURE_ROW texels).
+std::size_t HandleTextureBytes(std::size_t bricks);
+
 } // namespace amrsp
