@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "amrsp/Render.h"
 
+#include "amrsp/EmptySpace.h"
 #include "amrsp/KdTreeLayout.h"
 #include "amrsp/VertexData.h"
 
@@ -8,6 +9,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <mutex>
 #include <stdexcept>
 #include <thread>
 
@@ -131,7 +133,7 @@ double TransferFunction::EvaluateOpacity(double s) const
 
 std::vector<std::string> TransferFunction::PresetNames()
 {
-  return { "default", "grey", "hot", "grey-opaque" };
+  return { "default", "grey", "hot", "grey-opaque", "sparse" };
 }
 
 TransferFunction TransferFunction::Preset(const std::string& name, double lo, double hi,
@@ -168,10 +170,17 @@ TransferFunction TransferFunction::Preset(const std::string& name, double lo, do
     tf.Color = { { at(0.0), { 0.0, 0.0, 0.0 } }, { at(1.0), { 1.0, 1.0, 1.0 } } };
     tf.Opacity = { { at(0.0), 1.0 }, { at(1.0), 1.0 } };
   }
+  else if (name == "sparse")
+  {
+    // the "hot" colours, transparent below 60 % of the range: most of the data is empty space
+    tf.Color = { { at(0.0), { 0.0, 0.0, 0.0 } }, { at(0.6), { 0.9, 0.0, 0.0 } },
+      { at(0.85), { 1.0, 0.9, 0.0 } }, { at(1.0), { 1.0, 1.0, 1.0 } } };
+    tf.Opacity = { { at(0.0), 0.0 }, { at(0.6), 0.0 }, { at(0.7), 0.1 }, { at(1.0), 0.9 } };
+  }
   else
   {
     throw std::invalid_argument("unknown transfer-function preset '" + name +
-      "' (known: default, grey, hot, grey-opaque)");
+      "' (known: default, grey, hot, grey-opaque, sparse)");
   }
   return tf;
 }
@@ -341,6 +350,13 @@ struct Accumulator
   double Sum = 0.0;
   double Length = 0.0;
 
+  /// Early ray termination: composite rays stop once their opacity reaches `threshold` (< 1).
+  bool Done(double threshold) const
+  {
+    return Mode == BlendMode::Composite && threshold < 1.0 &&
+      static_cast<double>(Alpha) >= threshold;
+  }
+
   void Add(const TransferFunction& tf, double scalar, double dt)
   {
     if (std::isnan(scalar))
@@ -432,6 +448,28 @@ float AtlasTrilinear(const BrickAtlas& atlas, const glm::vec3& u, const glm::ive
   return sum;
 }
 
+/// Per-row counters added to RenderSettings::Stats under a lock.
+struct StatsSink
+{
+  RenderStats* Target = nullptr;
+  std::mutex Lock;
+
+  void Add(const RenderStats& r)
+  {
+    if (!Target)
+    {
+      return;
+    }
+    std::lock_guard<std::mutex> guard(Lock);
+    Target->Rays += r.Rays;
+    Target->Samples += r.Samples;
+    Target->DataSegments += r.DataSegments;
+    Target->SkippedSegments += r.SkippedSegments;
+    Target->SkippedSamples += r.SkippedSamples;
+    Target->TerminatedRays += r.TerminatedRays;
+  }
+};
+
 double MinEdge(const glm::dvec3& v)
 {
   return std::min(v.x, std::min(v.y, v.z));
@@ -497,9 +535,38 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
       static_cast<float>(s.SampleDistanceFactor * MinEdge(h.Spacing0 * h.CellSize(l))));
   }
   const glm::vec3 spacing(h.Spacing0), worldOrigin(h.Origin);
+  // empty-space skipping: per data node, whether its value range is transparent under this
+  // transfer function (the ranges depend on the data only)
+  const bool skip = s.SkipEmptySpace && s.Blend == BlendMode::Composite;
+  std::vector<char> transparent;
+  if (skip)
+  {
+    std::vector<glm::vec2> computed;
+    if (!s.DataNodeRanges)
+    {
+      computed = ComputeDataNodeRanges(h, tree);
+    }
+    const std::vector<glm::vec2>& ranges = s.DataNodeRanges ? *s.DataNodeRanges : computed;
+    if (ranges.size() != static_cast<std::size_t>(tree.DataNodeCount + 1))
+    {
+      throw std::invalid_argument("the data-node ranges do not belong to this tree");
+    }
+    transparent.resize(ranges.size());
+    for (std::size_t k = 0; k < ranges.size(); ++k)
+    {
+      transparent[k] = TransparentRange(s.Transfer, ranges[k].x, ranges[k].y) ? 1 : 0;
+    }
+  }
+  StatsSink sink;
+  sink.Target = s.Stats;
+  if (s.Stats)
+  {
+    *s.Stats = RenderStats();
+  }
 
   ForEachRow(s.Height, s.Threads, [&](int j) {
     std::vector<RaySegment> segments;
+    RenderStats rowStats;
     for (int i = 0; i < s.Width; ++i)
     {
       glm::dvec3 wo, wd;
@@ -516,12 +583,17 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
         background = hitColour;
       }
       TraverseKdTree(tree, o, d, 0.0f, tMax, lod, segments);
+      rowStats.Rays += segments.empty() ? 0 : 1;
       Accumulator<float> acc(s.Blend);
       for (const RaySegment& seg : segments)
       {
         if (seg.Data == 0)
         {
           continue;
+        }
+        if (acc.Done(s.OpacityThreshold))
+        {
+          break;
         }
         const uvec2 dn = tree.DataNodes.Texels[seg.Data];
         const int32_t g = static_cast<int32_t>(amrspDataBrick(dn));
@@ -530,6 +602,13 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
         const int n =
           std::max(1, static_cast<int>(std::ceil(length / stepOfLevel[seg.Level])));
         const float dt = length / static_cast<float>(n);
+        ++rowStats.DataSegments;
+        if (skip && transparent[seg.Data])
+        {
+          ++rowStats.SkippedSegments;
+          rowStats.SkippedSamples += n;
+          continue;
+        }
         // packing path: the node's first cell sits at the data node's atlas offset; cells of
         // the node are [first, last] (clamped so float error never reaches a neighbour brick)
         const glm::ivec3 first = glm::ivec3(glm::floor(seg.NodeLo / cellSize));
@@ -560,10 +639,17 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
             v = CellValue(h, g, glm::i64vec3(glm::floor(p / cellSize)));
           }
           acc.Add(s.Transfer, v, dt);
+          ++rowStats.Samples;
+          if (acc.Done(s.OpacityThreshold))
+          {
+            break;
+          }
         }
       }
+      rowStats.TerminatedRays += acc.Done(s.OpacityThreshold) ? 1 : 0;
       img.Pixels[static_cast<std::size_t>(j) * s.Width + i] = acc.Pixel(s.Transfer, background);
     }
+    sink.Add(rowStats);
   });
   return img;
 }
@@ -586,7 +672,15 @@ Image RenderReference(const Hierarchy& h, const RenderSettings& s)
     stepOfLevel.push_back(s.ReferenceSampleFactor * MinEdge(h.Spacing0 * h.CellSize(l)));
   }
 
+  StatsSink sink;
+  sink.Target = s.Stats;
+  if (s.Stats)
+  {
+    *s.Stats = RenderStats();
+  }
+
   ForEachRow(s.Height, s.Threads, [&](int j) {
+    RenderStats rowStats;
     for (int i = 0; i < s.Width; ++i)
     {
       glm::dvec3 wo, wd;
@@ -620,8 +714,13 @@ Image RenderReference(const Hierarchy& h, const RenderSettings& s)
         background = opaqueColour;
       }
       double t = std::max(0.0, tEnter);
+      rowStats.Rays += hit && t < tExit ? 1 : 0;
       while (hit && t < tExit)
       {
+        if (acc.Done(s.OpacityThreshold))
+        {
+          break;
+        }
         // shrink the step until the level found at its midpoint does not ask for a smaller one
         double dt = std::min(stepOfLevel[0], tExit - t);
         int32_t g = -1;
@@ -641,11 +740,14 @@ Image RenderReference(const Hierarchy& h, const RenderSettings& s)
           const double mid = t + 0.5 * dt;
           acc.Add(s.Transfer,
             SampleGrid(h, g, o + mid * d, glm::dvec3(h.CumulativeRatio(h.Grids[g].Level))), dt);
+          ++rowStats.Samples;
         }
         t += dt;
       }
+      rowStats.TerminatedRays += acc.Done(s.OpacityThreshold) ? 1 : 0;
       img.Pixels[static_cast<std::size_t>(j) * s.Width + i] = acc.Pixel(s.Transfer, background);
     }
+    sink.Add(rowStats);
   });
   return img;
 }

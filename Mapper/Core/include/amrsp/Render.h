@@ -80,7 +80,8 @@ struct TransferFunction
   double EvaluateOpacity(double s) const;
 
   /// A named preset spanning [lo, hi]: "default" (blue-white-red, opacity ramp), "grey",
-  /// "hot", "grey-opaque" (grey levels at opacity 1, for the intensity projections). Throws
+  /// "hot", "grey-opaque" (grey levels at opacity 1, for the intensity projections), "sparse"
+  /// ("hot" colours, zero opacity below 60 % of the range: for empty-space skipping). Throws
   /// std::invalid_argument for an unknown name.
   static TransferFunction Preset(const std::string& name, double lo, double hi,
     double unitDistance);
@@ -96,6 +97,17 @@ enum class BlendMode
   Maximum,
   Minimum,
   Average
+};
+
+/// Work counters of one render (summed over all rays), to show what the accelerations did.
+struct RenderStats
+{
+  long long Rays = 0;             ///< rays that entered the root box
+  long long Samples = 0;          ///< samples taken (transfer function evaluated or kept)
+  long long DataSegments = 0;     ///< segments through data nodes reached by a ray
+  long long SkippedSegments = 0;  ///< ... of which skipped as transparent (empty-space skipping)
+  long long SkippedSamples = 0;   ///< samples those skipped segments would have taken
+  long long TerminatedRays = 0;   ///< rays stopped early at the opacity threshold
 };
 
 struct RenderSettings
@@ -116,6 +128,19 @@ struct RenderSettings
     glm::dvec3& colour)>
     Opaque;
   int Threads = 0;                 ///< 0 = hardware concurrency
+  /// Early ray termination (composite blending): a ray stops once its accumulated opacity
+  /// reaches this value. 1 (the default here) never stops a ray early; the GPU mapper's default
+  /// is 0.999.
+  double OpacityThreshold = 1.0;
+  /// Empty-space skipping (kD-tree integrator, composite blending): a data segment whose node's
+  /// value range (ComputeDataNodeRanges) has zero opacity under the transfer function
+  /// (TransparentRange) is not sampled. The image is unchanged: every skipped sample would have
+  /// had zero opacity. The reference ignores it (it is what skipping is checked against).
+  bool SkipEmptySpace = false;
+  /// Precomputed ComputeDataNodeRanges of the tree being rendered; computed when null.
+  const std::vector<glm::vec2>* DataNodeRanges = nullptr;
+  /// When set, receives the work counters of the render.
+  RenderStats* Stats = nullptr;
 };
 
 /// RGBA float image, row 0 at the bottom. Alpha is the accumulated opacity.
