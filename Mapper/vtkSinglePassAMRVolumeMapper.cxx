@@ -6,6 +6,7 @@
 
 #include "amrsp/Hierarchy.h"
 #include "amrsp/BrickAtlas.h"
+#include "amrsp/EmptySpace.h"
 #include "amrsp/KdTree.h"
 #include "amrsp/KdTreeEncoding.h"
 
@@ -45,6 +46,7 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <cfloat>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -115,12 +117,18 @@ public:
   amrsp::UIntTexture3D TreeTexels;
   amrsp::UIntTexture3D DataNodeTexels;
   std::vector<float> AtlasTexels;
+  /// min, max scalar per data node (kept: 8 bytes per node, for the transparent-node count)
+  std::vector<glm::vec2> NodeRanges;
 
   // ---- OpenGL resources
   vtkSmartPointer<vtkTextureObject> Tree;
   vtkSmartPointer<vtkTextureObject> DataNodesTexture;
   vtkSmartPointer<vtkTextureObject> Atlas;
   vtkSmartPointer<vtkTextureObject> Depth;
+  vtkSmartPointer<vtkTextureObject> Ranges;        // RG32F, indexed like the data nodes
+  vtkSmartPointer<vtkTextureObject> OpacityPrefix; // R32F, TransferTableSize x 1
+  vtkMTimeType PrefixTableTime = 0;                // the transfer table it was counted from
+  long long TransparentDataNodes = 0;
   vtkNew<vtkOpenGLBufferObject> BoxBuffer;
   vtkNew<vtkOpenGLVertexArrayObject> BoxArray;
   vtkShaderProgram* BoxArrayProgram = nullptr;
@@ -263,8 +271,9 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
     this->ScalarRange[1] = vmin <= vmax ? vmax : 1.0;
     this->TreeTexels = enc.Tree;
     this->DataNodeTexels = enc.DataNodes;
-    this->TextureBytes = static_cast<long long>(
-      this->AtlasTexels.size() * sizeof(float) + enc.Tree.Bytes() + enc.DataNodes.Bytes());
+    this->NodeRanges = amrsp::ComputeDataNodeRanges(h, enc);
+    this->TextureBytes = static_cast<long long>(this->AtlasTexels.size() * sizeof(float) +
+      enc.Tree.Bytes() + enc.DataNodes.Bytes() + enc.DataNodes.Texels.size() * sizeof(glm::vec2));
     this->PendingUpload = true;
     this->DataValid = true;
   }
@@ -338,6 +347,24 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Upload(vtkOpenGLRenderWindow* r
   ok = ok && makeInteger(this->DataNodesTexture, this->DataNodeTexels);
   if (ok)
   {
+    // value ranges, texel i at the data node's own texel (unused texels: empty range)
+    std::vector<glm::vec2> ranges(
+      this->DataNodeTexels.Texels.size(), glm::vec2(FLT_MAX, -FLT_MAX));
+    std::copy(this->NodeRanges.begin(),
+      this->NodeRanges.begin() + std::min(this->NodeRanges.size(), ranges.size()), ranges.begin());
+    this->Ranges = vtkSmartPointer<vtkTextureObject>::New();
+    this->Ranges->SetContext(renWin);
+    this->Ranges->SetInternalFormat(GL_RG32F);
+    this->Ranges->SetFormat(GL_RG);
+    this->Ranges->SetDataType(GL_FLOAT);
+    this->Ranges->SetMinificationFilter(vtkTextureObject::Nearest);
+    this->Ranges->SetMagnificationFilter(vtkTextureObject::Nearest);
+    ok = this->Ranges->Create3DFromRaw(static_cast<unsigned int>(this->DataNodeTexels.Dims.x),
+      static_cast<unsigned int>(this->DataNodeTexels.Dims.y),
+      static_cast<unsigned int>(this->DataNodeTexels.Dims.z), 2, VTK_FLOAT, &ranges[0].x);
+  }
+  if (ok)
+  {
     this->Atlas = vtkSmartPointer<vtkTextureObject>::New();
     this->Atlas->SetContext(renWin);
     this->Atlas->SetInternalFormat(GL_R32F);
@@ -368,6 +395,7 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Upload(vtkOpenGLRenderWindow* r
     this->Tree = nullptr;
     this->DataNodesTexture = nullptr;
     this->Atlas = nullptr;
+    this->Ranges = nullptr;
     return false;
   }
   this->FreePendingData();
@@ -382,7 +410,8 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Upload(vtkOpenGLRenderWindow* r
 void vtkSinglePassAMRVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWindow* window)
 {
   for (vtkSmartPointer<vtkTextureObject>* t :
-    { &this->Tree, &this->DataNodesTexture, &this->Atlas, &this->Depth })
+    { &this->Tree, &this->DataNodesTexture, &this->Atlas, &this->Depth, &this->Ranges,
+      &this->OpacityPrefix })
   {
     if (*t)
     {
@@ -661,6 +690,11 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     defines += "#define AMRSP_USE_DEPTH 1\n";
   }
   defines += "#define AMRSP_BLEND_MODE " + std::to_string(blend) + "\n";
+  const bool skipEmpty = this->EmptySpaceSkipping && blend == 0;
+  if (skipEmpty)
+  {
+    defines += "#define AMRSP_SKIP_EMPTY 1\n";
+  }
   std::string fragment = amrsp_SinglePassAMR_frag_glsl;
   vtkShaderProgram::Substitute(fragment, "//AMRSP::Defines", defines);
   vtkShaderProgram::Substitute(fragment, "//AMRSP::KdTreeLayout", amrsp_KdTreeLayout_glsl);
@@ -785,6 +819,48 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     in.Depth->CopyFromFrameBuffer(x0, y0, 0, 0, width, height);
   }
 
+  // ---- empty-space skipping: prefix count of the table's non-zero opacities, recounted when
+  // the transfer table was re-tabulated (the node ranges never change with it)
+  if (!skipEmpty)
+  {
+    in.TransparentDataNodes = 0;
+  }
+  else
+  {
+    if (!in.OpacityPrefix || in.OpacityPrefix->GetContext() != renWin ||
+      in.PrefixTableTime != in.Transfer.GetTableTime())
+    {
+      const std::vector<float> prefix = amrsp::OpacityPrefixCounts(in.Transfer.GetOpacityTable());
+      if (!in.OpacityPrefix || in.OpacityPrefix->GetContext() != renWin)
+      {
+        in.OpacityPrefix = vtkSmartPointer<vtkTextureObject>::New();
+        in.OpacityPrefix->SetContext(renWin);
+        in.OpacityPrefix->SetInternalFormat(GL_R32F);
+        in.OpacityPrefix->SetFormat(GL_RED);
+        in.OpacityPrefix->SetDataType(GL_FLOAT);
+        in.OpacityPrefix->SetMinificationFilter(vtkTextureObject::Nearest);
+        in.OpacityPrefix->SetMagnificationFilter(vtkTextureObject::Nearest);
+      }
+      if (prefix.empty() ||
+        !in.OpacityPrefix->Create2DFromRaw(static_cast<unsigned int>(prefix.size()), 1, 1,
+          VTK_FLOAT, const_cast<float*>(prefix.data())))
+      {
+        fail("uploading the empty-space skipping table failed");
+        return;
+      }
+      in.PrefixTableTime = in.Transfer.GetTableTime();
+      // the diagnostic: the shader's own test on the CPU
+      float tableRange[2];
+      in.Transfer.GetShaderRange(tableRange);
+      in.TransparentDataNodes = 0;
+      for (std::size_t k = 1; k < in.NodeRanges.size(); ++k)
+      {
+        in.TransparentDataNodes += amrsp::TableRangeTransparent(
+          prefix, tableRange, in.NodeRanges[k].x, in.NodeRanges[k].y) ? 1 : 0;
+      }
+    }
+  }
+
   // ---- uniforms
   const std::vector<glm::vec3>& cells = in.LevelCellSize;
   std::vector<float> steps;
@@ -813,6 +889,14 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   program->SetUniformi("amrspDataNodes", in.DataNodesTexture->GetTextureUnit());
   program->SetUniformi("amrspAtlas", in.Atlas->GetTextureUnit());
   program->SetUniformi("amrspTransfer", in.Transfer.GetTexture()->GetTextureUnit());
+  program->SetUniformf("amrspOpacityThreshold", static_cast<float>(this->OpacityThreshold));
+  if (skipEmpty)
+  {
+    in.Ranges->Activate();
+    in.OpacityPrefix->Activate();
+    program->SetUniformi("amrspDataNodeRanges", in.Ranges->GetTextureUnit());
+    program->SetUniformi("amrspOpacityPrefix", in.OpacityPrefix->GetTextureUnit());
+  }
   if (useDepth)
   {
     program->SetUniformi("amrspDepth", in.Depth->GetTextureUnit());
@@ -873,6 +957,11 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   in.DataNodesTexture->Deactivate();
   in.Atlas->Deactivate();
   in.Transfer.GetTexture()->Deactivate();
+  if (skipEmpty)
+  {
+    in.Ranges->Deactivate();
+    in.OpacityPrefix->Deactivate();
+  }
   if (useDepth)
   {
     in.Depth->Deactivate();
@@ -930,6 +1019,11 @@ long long vtkSinglePassAMRVolumeMapper::GetNumberOfDataNodes()
   return this->Internals->DataNodes;
 }
 
+long long vtkSinglePassAMRVolumeMapper::GetNumberOfTransparentDataNodes()
+{
+  return this->Internals->TransparentDataNodes;
+}
+
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
@@ -940,6 +1034,9 @@ void vtkSinglePassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumAtlasSize: " << this->MaximumAtlasSize << "\n";
   os << indent << "LODThreshold: " << this->LODThreshold << "\n";
   os << indent << "UseDepthBuffer: " << (this->UseDepthBuffer ? "on" : "off") << "\n";
+  os << indent << "OpacityThreshold: " << this->OpacityThreshold << "\n";
+  os << indent << "EmptySpaceSkipping: " << (this->EmptySpaceSkipping ? "on" : "off") << "\n";
+  os << indent << "TransparentDataNodes: " << in.TransparentDataNodes << "\n";
   os << indent << "NumberOfBuilds: " << in.NumberOfBuilds << "\n";
   os << indent << "KdNodes: " << in.KdNodes << ", DataNodes: " << in.DataNodes << "\n";
   os << indent << "AtlasDimensions: " << in.AtlasDims.x << " x " << in.AtlasDims.y << " x "

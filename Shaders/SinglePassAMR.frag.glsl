@@ -17,6 +17,8 @@
 //   AMRSP_VERTEX_CENTRED trilinear sampling of vertex bricks (one texel larger per axis)
 //   AMRSP_USE_DEPTH     clip rays at the depth of the opaque geometry already drawn
 //   AMRSP_BLEND_MODE    0 composite, 1 maximum, 2 minimum, 3 average intensity (amrsp::BlendMode)
+//   AMRSP_SKIP_EMPTY    empty-space skipping (composite only): data segments whose node's value
+//                       range has zero opacity in the transfer table are not sampled
 //AMRSP::Defines
 
 #ifndef AMRSP_LEVEL_COUNT
@@ -36,9 +38,6 @@
 #define AMRSP_FN
 //AMRSP::KdTreeLayout
 
-// Accumulated opacity at which a ray stops (the CPU integrators never stop early; the difference
-// is below 0.26 of 255 per channel).
-#define AMRSP_OPAQUE_ALPHA 0.999
 #define AMRSP_INF 3.0e38
 
 //VTK::Output::Dec
@@ -70,6 +69,12 @@ uniform vec2 amrspTransferRange; // scalar at the first table entry, 1 / (last -
 uniform float amrspTransferSize; // number of table entries
 uniform float amrspUnitDistance; // vtkVolumeProperty::ScalarOpacityUnitDistance
 uniform vec3 amrspAtlasSize;     // atlas dimensions, texels
+// Early ray termination: a composite ray stops once its opacity reaches this (1: never early).
+uniform float amrspOpacityThreshold;
+#ifdef AMRSP_SKIP_EMPTY
+uniform sampler3D amrspDataNodeRanges; // RG32F, indexed like amrspDataNodes: min, max scalar
+uniform sampler2D amrspOpacityPrefix;  // R32F, 1 row: table entries 0..i with opacity > 0
+#endif
 
 // Level of detail at type (a) nodes, as amrsp::LevelOfDetail: stop descending when one cell of
 // the node's data level is smaller than amrspLodThreshold pixels at the ray's entry.
@@ -150,6 +155,28 @@ vec4 amrspTransferFunction(float scalar)
   float x = (u * (amrspTransferSize - 1.0) + 0.5) / amrspTransferSize;
   return texture(amrspTransfer, vec2(x, 0.5));
 }
+
+#ifdef AMRSP_SKIP_EMPTY
+// Whether every scalar of a data node's value range (min, max) has zero opacity in the transfer
+// table, with linear filtering between entries: no entry from one below the range's first
+// position to one above its last has opacity (as amrsp::TableRangeTransparent). An empty range
+// (min > max: the node holds only NaN) is transparent.
+bool amrspDataNodeTransparent(uint dataIndex)
+{
+  vec2 range = texelFetch(amrspDataNodeRanges, amrspTexelOf(dataIndex), 0).rg;
+  if (range.x > range.y)
+  {
+    return true;
+  }
+  float last = amrspTransferSize - 1.0;
+  float u0 = clamp((range.x - amrspTransferRange.x) * amrspTransferRange.y, 0.0, 1.0) * last;
+  float u1 = clamp((range.y - amrspTransferRange.x) * amrspTransferRange.y, 0.0, 1.0) * last;
+  int i0 = max(0, int(floor(u0)) - 1);
+  int i1 = min(int(last), int(ceil(u1)) + 1);
+  float below = i0 > 0 ? texelFetch(amrspOpacityPrefix, ivec2(i0 - 1, 0), 0).r : 0.0;
+  return texelFetch(amrspOpacityPrefix, ivec2(i1, 0), 0).r - below == 0.0;
+}
+#endif
 
 void main()
 {
@@ -262,6 +289,12 @@ void main()
     }
 
     uint data = amrspNodeData(texel);
+#ifdef AMRSP_SKIP_EMPTY
+    if (data != 0u && amrspDataNodeTransparent(data))
+    {
+      data = 0u; // empty space under this transfer function: nothing to sample
+    }
+#endif
     if (data != 0u)
     {
       uvec2 dataNode = amrspFetchDataNode(data);
@@ -304,14 +337,14 @@ void main()
           float a = 1.0 - pow(1.0 - min(tf.a, 1.0), exponent);
           colour += (1.0 - alpha) * a * tf.rgb;
           alpha += (1.0 - alpha) * a;
-          if (alpha >= AMRSP_OPAQUE_ALPHA)
+          if (alpha >= amrspOpacityThreshold)
           {
             break;
           }
         }
 #endif
       }
-      if (alpha >= AMRSP_OPAQUE_ALPHA)
+      if (alpha >= amrspOpacityThreshold)
       {
         break;
       }

@@ -30,6 +30,8 @@ PackingRenderer::PackingRenderer(vtkSinglePassAMRVolumeMapper* mapper, const Hie
 {
   this->Mapper->SetSampleDistanceFactor(s.SampleDistanceFactor);
   this->Mapper->SetLODThreshold(s.LodThresholdPixels);
+  this->Mapper->SetOpacityThreshold(s.OpacityThreshold);
+  this->Mapper->SetEmptySpaceSkipping(s.SkipEmptySpace);
 }
 
 vtkSinglePassAMRVolumeMapper* PackingRenderer::GetMapper() const
