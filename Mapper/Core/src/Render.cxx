@@ -448,6 +448,92 @@ float AtlasTrilinear(const BrickAtlas& atlas, const glm::vec3& u, const glm::ive
   return sum;
 }
 
+/// Point location in the encoded tree, as the shader's amrspLocateDataNode: from the root to the
+/// leaf containing p (level-0 index units); a point on a split plane goes to the upper side (the
+/// cell it starts). Returns the data index (0: empty leaf or outside the root box) and the
+/// node's box, computed as the traversal computes node boxes.
+uint32_t LocateDataNode(const EncodedKdTree& tree, const glm::vec3& p, glm::vec3& lo, glm::vec3& hi)
+{
+  using namespace layout;
+  lo = tree.RootLo;
+  hi = tree.RootHi;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (!(p[a] >= lo[a] && p[a] < hi[a]))
+    {
+      return 0;
+    }
+  }
+  uvec2 texel = tree.Tree.Texels[0];
+  for (;;)
+  {
+    const uint child = amrspNodeFirstChild(texel);
+    if (child == 0)
+    {
+      break;
+    }
+    const int axis = static_cast<int>(amrspNodeAxis(texel));
+    const uint level = amrspNodeLevel(texel);
+    const float plane =
+      lo[axis] + static_cast<float>(amrspNodeSplit(texel)) * tree.LevelCellSize[level][axis];
+    if (p[axis] < plane)
+    {
+      hi[axis] = plane;
+      texel = tree.Tree.Texels[child];
+    }
+    else
+    {
+      lo[axis] = plane;
+      texel = tree.Tree.Texels[child + 1];
+    }
+  }
+  return amrspNodeData(texel);
+}
+
+/// The nearest cell value of the data node `data` (box lo, hi) at p: from the grid, or from the
+/// atlas through the node's offset as the packing shader reads it.
+float NodeCellValue(const Hierarchy& h, const EncodedKdTree& tree, const BrickAtlas* atlas,
+  uint32_t data, const glm::vec3& lo, const glm::vec3& hi, const glm::vec3& p)
+{
+  using namespace layout;
+  const uvec2 dn = tree.DataNodes.Texels[data];
+  const glm::vec3 cellSize = tree.LevelCellSize[amrspDataLevel(dn)];
+  if (atlas)
+  {
+    const glm::ivec3 first = glm::ivec3(glm::floor(lo / cellSize));
+    const glm::ivec3 last = glm::ivec3(glm::ceil(hi / cellSize)) - 1;
+    const glm::ivec3 cell = glm::clamp(glm::ivec3(glm::floor(p / cellSize)), first, last);
+    return atlas->At(amrspDataOffset(dn) + cell - first);
+  }
+  return CellValue(
+    h, static_cast<int32_t>(amrspDataBrick(dn)), glm::i64vec3(glm::floor(p / cellSize)));
+}
+
+/// Smooth reconstruction (RenderSettings::SmoothCellData) at p for a sample of level `level`:
+/// trilinear in the level's dual cell, each corner the finest cell containing it; `fallback`
+/// for corners outside every grid.
+float SmoothKdTree(const Hierarchy& h, const EncodedKdTree& tree, const BrickAtlas* atlas,
+  const glm::vec3& p, int level, float fallback)
+{
+  const glm::vec3 cellSize = tree.LevelCellSize[level];
+  const glm::vec3 q = p / cellSize - 0.5f;
+  const glm::vec3 base = glm::floor(q);
+  const glm::vec3 w = q - base;
+  float sum = 0.0f;
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const glm::vec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+    const glm::vec3 x = (base + o + 0.5f) * cellSize;
+    glm::vec3 lo, hi;
+    const uint32_t data = LocateDataNode(tree, x, lo, hi);
+    const float v = data != 0 ? NodeCellValue(h, tree, atlas, data, lo, hi, x) : fallback;
+    const float weight =
+      (o.x > 0.0f ? w.x : 1.0f - w.x) * (o.y > 0.0f ? w.y : 1.0f - w.y) * (o.z > 0.0f ? w.z : 1.0f - w.z);
+    sum += weight * v;
+  }
+  return sum;
+}
+
 /// Per-row counters added to RenderSettings::Stats under a lock.
 struct StatsSink
 {
@@ -638,6 +724,10 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
           {
             v = CellValue(h, g, glm::i64vec3(glm::floor(p / cellSize)));
           }
+          if (s.SmoothCellData && !h.VertexCentred)
+          {
+            v = SmoothKdTree(h, tree, atlas, p, seg.Level, v);
+          }
           acc.Add(s.Transfer, v, dt);
           ++rowStats.Samples;
           if (acc.Done(s.OpacityThreshold))
@@ -653,6 +743,47 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
   });
   return img;
 }
+
+float SampleKdTreePoint(const Hierarchy& h, const EncodedKdTree& tree, const glm::vec3& p,
+  bool smooth)
+{
+  using namespace layout;
+  glm::vec3 lo, hi;
+  const uint32_t data = LocateDataNode(tree, p, lo, hi);
+  if (data == 0)
+  {
+    return std::numeric_limits<float>::quiet_NaN();
+  }
+  const float v = NodeCellValue(h, tree, nullptr, data, lo, hi, p);
+  return smooth ? SmoothKdTree(h, tree, nullptr, p,
+                    static_cast<int>(amrspDataLevel(tree.DataNodes.Texels[data])), v)
+                : v;
+}
+
+namespace
+{
+/// The reference's smooth reconstruction at p (level-0 index units) for a sample whose finest
+/// grid is of `level`: the same dual-cell rule, corners found by the tree-free locator.
+double SmoothReference(const Hierarchy& h, const FinestCellLocator& locator, const glm::dvec3& p,
+  int level, double fallback)
+{
+  const glm::dvec3 cellSize = h.CellSize(level);
+  const glm::dvec3 q = p / cellSize - 0.5;
+  const glm::dvec3 base = glm::floor(q);
+  const glm::dvec3 w = q - base;
+  double sum = 0.0;
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const glm::dvec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+    glm::i64vec3 cell;
+    const int32_t g = locator.Find((base + o + 0.5) * cellSize, cell);
+    const double v = g >= 0 ? static_cast<double>(CellValue(h, g, cell)) : fallback;
+    sum += (o.x > 0.0 ? w.x : 1.0 - w.x) * (o.y > 0.0 ? w.y : 1.0 - w.y) *
+      (o.z > 0.0 ? w.z : 1.0 - w.z) * v;
+  }
+  return sum;
+}
+} // namespace
 
 Image RenderReference(const Hierarchy& h, const RenderSettings& s)
 {
@@ -738,8 +869,13 @@ Image RenderReference(const Hierarchy& h, const RenderSettings& s)
         if (g >= 0)
         {
           const double mid = t + 0.5 * dt;
-          acc.Add(s.Transfer,
-            SampleGrid(h, g, o + mid * d, glm::dvec3(h.CumulativeRatio(h.Grids[g].Level))), dt);
+          double v =
+            SampleGrid(h, g, o + mid * d, glm::dvec3(h.CumulativeRatio(h.Grids[g].Level)));
+          if (s.SmoothCellData && !h.VertexCentred)
+          {
+            v = SmoothReference(h, locator, o + mid * d, h.Grids[g].Level, v);
+          }
+          acc.Add(s.Transfer, v, dt);
           ++rowStats.Samples;
         }
         t += dt;

@@ -141,6 +141,15 @@ struct RenderSettings
   const std::vector<glm::vec2>* DataNodeRanges = nullptr;
   /// When set, receives the work counters of the render.
   RenderStats* Stats = nullptr;
+  /// Smooth reconstruction of cell-centred data (all three integrators; vertex-centred data is
+  /// trilinear anyway). A sample at p whose level is d (the segment's data level; the reference:
+  /// the finest grid at p) is the trilinear interpolation, in the dual cell of level d that
+  /// contains p, of its 8 corners: the level-d cell centres around p, each looked up as the
+  /// finest cell containing it (kD integrators: by point location in the tree; reference:
+  /// straight from the grids). A corner outside every grid takes the nearest-cell value at p.
+  /// Continuous inside a level and across same-level grids; across level boundaries the
+  /// remaining jump is bounded by the field's change over one cell of the finer level.
+  bool SmoothCellData = false;
 };
 
 /// RGBA float image, row 0 at the bottom. Alpha is the accumulated opacity.
@@ -190,6 +199,12 @@ float CellValue(const Hierarchy& h, int32_t g, glm::i64vec3 cell);
 /// encoded with that atlas's origins). A NaN sample is transparent.
 Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSettings& s,
   const BrickAtlas* atlas = nullptr);
+/// The scalar the kD-tree integrator samples at p (level-0 index units; cell-centred data),
+/// nearest-cell or smooth (RenderSettings::SmoothCellData), at the finest level there. NaN
+/// outside every grid.
+float SampleKdTreePoint(const Hierarchy& h, const EncodedKdTree& tree, const glm::vec3& p,
+  bool smooth);
+
 /// Renders the independent reference (no kD-tree).
 Image RenderReference(const Hierarchy& h, const RenderSettings& s);
 
