@@ -695,6 +695,10 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     defines += "#define AMRSP_SKIP_EMPTY 1\n";
   }
+  if (this->CellInterpolation == SMOOTH_CELL && !in.VertexCentred)
+  {
+    defines += "#define AMRSP_SMOOTH_CELLS 1\n";
+  }
   std::string fragment = amrsp_SinglePassAMR_frag_glsl;
   vtkShaderProgram::Substitute(fragment, "//AMRSP::Defines", defines);
   vtkShaderProgram::Substitute(fragment, "//AMRSP::KdTreeLayout", amrsp_KdTreeLayout_glsl);
@@ -1036,6 +1040,8 @@ void vtkSinglePassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "UseDepthBuffer: " << (this->UseDepthBuffer ? "on" : "off") << "\n";
   os << indent << "OpacityThreshold: " << this->OpacityThreshold << "\n";
   os << indent << "EmptySpaceSkipping: " << (this->EmptySpaceSkipping ? "on" : "off") << "\n";
+  os << indent << "CellInterpolation: "
+     << (this->CellInterpolation == SMOOTH_CELL ? "smooth" : "nearest") << "\n";
   os << indent << "TransparentDataNodes: " << in.TransparentDataNodes << "\n";
   os << indent << "NumberOfBuilds: " << in.NumberOfBuilds << "\n";
   os << indent << "KdNodes: " << in.KdNodes << ", DataNodes: " << in.DataNodes << "\n";

@@ -163,6 +163,28 @@ public:
   vtkBooleanMacro(EmptySpaceSkipping, bool);
   ///@}
 
+  ///@{
+  /**
+   * Reconstruction of cell-centred data. NEAREST_CELL (the default, the paper's): the value of
+   * the cell containing the sample. SMOOTH_CELL: trilinear interpolation in the dual cell of the
+   * sample's level (the 8 surrounding cell centres of that level), each corner the nearest value
+   * of the finest cell containing it, found by point location in the kD-tree (so corners reach
+   * into neighbouring bricks and other levels); continuous inside a level and across same-level
+   * grids, with a jump across level boundaries of at most the field's change over one cell of
+   * the finer level. Up to 8 tree descents per sample near node boundaries. Point data is
+   * trilinear anyway and ignores it.
+   */
+  enum CellInterpolationModes
+  {
+    NEAREST_CELL = 0,
+    SMOOTH_CELL = 1
+  };
+  vtkSetClampMacro(CellInterpolation, int, NEAREST_CELL, SMOOTH_CELL);
+  vtkGetMacro(CellInterpolation, int);
+  void SetCellInterpolationToNearest() { this->SetCellInterpolation(NEAREST_CELL); }
+  void SetCellInterpolationToSmooth() { this->SetCellInterpolation(SMOOTH_CELL); }
+  ///@}
+
   /// Diagnostic of empty-space skipping: how many data nodes the last rendered frame's transfer
   /// function makes transparent (the shader skips every segment through them), computed on the
   /// CPU with the shader's test (amrsp::TableRangeTransparent); 0 when skipping is off or the
@@ -182,6 +204,7 @@ protected:
   double LODThreshold = 0.0;
   double OpacityThreshold = 0.999;
   bool EmptySpaceSkipping = true;
+  int CellInterpolation = NEAREST_CELL;
 
 private:
   vtkSinglePassAMRVolumeMapper(const vtkSinglePassAMRVolumeMapper&) = delete;

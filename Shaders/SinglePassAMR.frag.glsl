@@ -19,6 +19,9 @@
 //   AMRSP_BLEND_MODE    0 composite, 1 maximum, 2 minimum, 3 average intensity (amrsp::BlendMode)
 //   AMRSP_SKIP_EMPTY    empty-space skipping (composite only): data segments whose node's value
 //                       range has zero opacity in the transfer table are not sampled
+//   AMRSP_SMOOTH_CELLS  smooth reconstruction of cell data (with AMRSP_CELL_CENTRED): trilinear in
+//                       the sample level's dual cell, corners looked up through the tree at the
+//                       finest level there (as amrsp::RenderSettings::SmoothCellData)
 //AMRSP::Defines
 
 #ifndef AMRSP_LEVEL_COUNT
@@ -155,6 +158,103 @@ vec4 amrspTransferFunction(float scalar)
   float x = (u * (amrspTransferSize - 1.0) + 0.5) / amrspTransferSize;
   return texture(amrspTransfer, vec2(x, 0.5));
 }
+
+#ifdef AMRSP_SMOOTH_CELLS
+// Point location, as the core's LocateDataNode: from the root to the leaf containing p (level-0
+// index units); a point on a split plane goes to the upper side. Returns the data index (0: empty
+// leaf or outside the root box) and the leaf's box in exact finest-level cells.
+uint amrspLocateDataNode(vec3 p, out ivec3 loF, out ivec3 hiF)
+{
+  vec3 lo = amrspRootLo;
+  vec3 hi = amrspRootHi;
+  loF = ivec3(amrspRootLoFinest[0], amrspRootLoFinest[1], amrspRootLoFinest[2]);
+  hiF = ivec3(amrspRootHiFinest[0], amrspRootHiFinest[1], amrspRootHiFinest[2]);
+  if (any(lessThan(p, lo)) || any(greaterThanEqual(p, hi)))
+  {
+    return 0u;
+  }
+  uvec2 texel = amrspFetchNode(0u);
+  for (;;)
+  {
+    uint child = amrspNodeFirstChild(texel);
+    if (child == 0u)
+    {
+      break;
+    }
+    int axis = int(amrspNodeAxis(texel));
+    uint level = amrspNodeLevel(texel);
+    uint split = amrspNodeSplit(texel);
+    float plane = lo[axis] + float(split) * amrspLevelCellSize[level][axis];
+    int planeF = loF[axis] + int(split) * amrspLevelToFinest[3 * int(level) + axis];
+    if (p[axis] < plane)
+    {
+      hi[axis] = plane;
+      hiF[axis] = planeF;
+      texel = amrspFetchNode(child);
+    }
+    else
+    {
+      lo[axis] = plane;
+      loF[axis] = planeF;
+      texel = amrspFetchNode(child + 1u);
+    }
+  }
+  return amrspNodeData(texel);
+}
+
+ivec3 amrspToFinest(int level)
+{
+  return ivec3(amrspLevelToFinest[3 * level], amrspLevelToFinest[3 * level + 1],
+    amrspLevelToFinest[3 * level + 2]);
+}
+
+// Smooth value at p for a sample of data level `level` in the node (dataNode, box loF..hiF in
+// finest cells, cells firstCell..lastCell): trilinear in the level's dual cell around p, each of
+// the 8 corners (level cell centres) the nearest value of the finest cell containing it;
+// `nearest` (the nearest-cell value at p) for corners outside every grid. Corners whose cells lie
+// wholly inside the current node are read from it directly (point location would find it).
+float amrspSampleSmooth(vec3 p, int level, uvec2 dataNode, ivec3 loF, ivec3 hiF, ivec3 firstCell,
+  ivec3 lastCell, float nearest)
+{
+  vec3 cellSize = amrspLevelCellSize[level];
+  vec3 q = p / cellSize - 0.5;
+  vec3 base = floor(q);
+  vec3 w = q - base;
+  ivec3 toData = amrspToFinest(level);
+  ivec3 b = ivec3(base);
+  bool inside = all(greaterThanEqual(b * toData, loF)) && all(lessThanEqual((b + 2) * toData, hiF));
+  float sum = 0.0;
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    vec3 o = vec3(float(corner & 1), float((corner >> 1) & 1), float((corner >> 2) & 1));
+    vec3 x = (base + o + 0.5) * cellSize;
+    float v = nearest;
+    if (inside)
+    {
+      v = amrspSampleDataNode(dataNode, x, cellSize, firstCell, lastCell);
+    }
+    else
+    {
+      ivec3 cLoF, cHiF;
+      uint data = amrspLocateDataNode(x, cLoF, cHiF);
+      if (data != 0u)
+      {
+        uvec2 node = amrspFetchDataNode(data);
+        int l = int(amrspDataLevel(node));
+        ivec3 t = amrspToFinest(l);
+        ivec3 first = ivec3(amrspFloorDiv(cLoF.x, t.x), amrspFloorDiv(cLoF.y, t.y),
+          amrspFloorDiv(cLoF.z, t.z));
+        ivec3 last = ivec3(amrspCeilDiv(cHiF.x, t.x), amrspCeilDiv(cHiF.y, t.y),
+                       amrspCeilDiv(cHiF.z, t.z)) - 1;
+        v = amrspSampleDataNode(node, x, amrspLevelCellSize[l], first, last);
+      }
+    }
+    vec3 f = mix(vec3(1.0) - w, w, o);
+    sum += f.x * f.y * f.z * v;
+  }
+  return sum;
+}
+#endif
 
 #ifdef AMRSP_SKIP_EMPTY
 // Whether every scalar of a data node's value range (min, max) has zero opacity in the transfer
@@ -316,6 +416,9 @@ void main()
         float ts = t + (float(k) + 0.5) * dt;
         vec3 p = ro + ts * rd;
         float scalar = amrspSampleDataNode(dataNode, p, cellSize, firstCell, lastCell);
+#ifdef AMRSP_SMOOTH_CELLS
+        scalar = amrspSampleSmooth(p, level, dataNode, loF, hiF, firstCell, lastCell, scalar);
+#endif
         if (isnan(scalar))
         {
           continue; // missing data is transparent

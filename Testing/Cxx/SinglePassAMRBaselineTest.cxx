@@ -122,7 +122,7 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
     const Arguments a = ParseArguments(static_cast<int>(args.size()), args.data(), 1,
       { "array", "centering", "size", "azimuth", "elevation", "zoom", "tf", "scale",
         "unit-distance", "sample-factor", "reference-sample-factor", "lod", "blend",
-        "opacity-threshold", "empty-space-skipping" },
+        "opacity-threshold", "empty-space-skipping", "interpolation" },
       {});
     DatasetRequest request;
     request.Spec = spec;

@@ -134,7 +134,7 @@ const std::vector<std::string> DatasetOptions = { "array", "component", "centeri
 const std::vector<std::string> AtlasOptions = { "packer", "max-3d-texture-size", "atlas-budget-mb" };
 const std::vector<std::string> ViewOptions = { "size", "azimuth", "elevation", "zoom", "tf",
   "scale", "unit-distance", "sample-factor", "reference-sample-factor", "lod", "threads", "blend",
-  "view-json", "opacity-threshold", "empty-space-skipping" };
+  "view-json", "opacity-threshold", "empty-space-skipping", "interpolation" };
 
 std::vector<std::string> Concat(std::initializer_list<std::vector<std::string>> lists)
 {
@@ -226,6 +226,9 @@ const char* const ViewHelp =
   "  --empty-space-skipping on|off  skip data nodes whose value range is transparent\n"
   "                              (kD-tree methods, composite; default on; the reference never\n"
   "                              skips)\n"
+  "  --interpolation nearest|smooth  cell-centred data: nearest cell (default) or the smooth\n"
+  "                              dual-cell reconstruction across grids and levels (packing,\n"
+  "                              CPU methods and the reference)\n"
   "  --view-json FILE            camera, transfer function and background from a JSON file\n"
   "                              (e.g. written from ParaView; see README) instead of the\n"
   "                              conventions above; its transfer function implies --scale linear\n";
@@ -549,6 +552,12 @@ RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range)
     throw UsageError{ "--empty-space-skipping must be on or off" };
   }
   s.SkipEmptySpace = skipping == "on";
+  const std::string interpolation = a.Get("interpolation", "nearest");
+  if (interpolation != "nearest" && interpolation != "smooth")
+  {
+    throw UsageError{ "--interpolation must be nearest or smooth" };
+  }
+  s.SmoothCellData = interpolation == "smooth";
   return s;
 }
 

@@ -32,6 +32,8 @@ PackingRenderer::PackingRenderer(vtkSinglePassAMRVolumeMapper* mapper, const Hie
   this->Mapper->SetLODThreshold(s.LodThresholdPixels);
   this->Mapper->SetOpacityThreshold(s.OpacityThreshold);
   this->Mapper->SetEmptySpaceSkipping(s.SkipEmptySpace);
+  this->Mapper->SetCellInterpolation(s.SmoothCellData ? vtkSinglePassAMRVolumeMapper::SMOOTH_CELL
+                                                      : vtkSinglePassAMRVolumeMapper::NEAREST_CELL);
 }
 
 vtkSinglePassAMRVolumeMapper* PackingRenderer::GetMapper() const
