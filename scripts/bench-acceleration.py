@@ -7,7 +7,8 @@ several rounds (so that load from other processes hits every configuration alike
 the median frame time of each configuration and its speed-up over "both off".
 
 usage: scripts/bench-acceleration.py [--amrsp PATH] [--method packing|cpu-kdtree] [--size WxH]
-                                     [--frames N] [--rounds R] [--tf LIST] [DATASET ...]
+                                     [--frames N] [--rounds R] [--tf LIST] [--extra OPTIONS]
+                                     [DATASET[@ARRAY] ...]
 """
 import argparse
 import os
@@ -26,12 +27,13 @@ DEFAULT_DATASETS = [
 CONFIGS = [("off", "1"), ("on", "1"), ("off", "0.999"), ("on", "0.999")]
 
 
-def run(amrsp, dataset, array, method, size, frames, tf, skip, threshold):
+def run(amrsp, dataset, array, method, size, frames, extra, tf, skip, threshold):
     cmd = [amrsp, "render", dataset, "--method", method, "--size", size, "--tf", tf,
            "--repeat", str(frames), "--empty-space-skipping", skip,
            "--opacity-threshold", threshold, "--stats", "-o", os.devnull + ".png"]
     if array:
         cmd += ["--array", array]
+    cmd += extra.split()
     out = subprocess.run(cmd, capture_output=True, text=True)
     if out.returncode != 0:
         sys.exit("amrsp failed: " + " ".join(cmd) + "\n" + out.stderr)
@@ -49,6 +51,8 @@ def main():
     p.add_argument("--frames", type=int, default=4)
     p.add_argument("--rounds", type=int, default=3)
     p.add_argument("--tf", default="sparse,default")
+    p.add_argument("--extra", default="", help="further amrsp render options, e.g. "
+                   "'--unit-distance 0.001'")
     p.add_argument("datasets", nargs="*", help="DATASET[@ARRAY]")
     a = p.parse_args()
     for spec in a.datasets or DEFAULT_DATASETS:
@@ -58,12 +62,14 @@ def main():
             stats = {}
             for _ in range(a.rounds):
                 for c in CONFIGS:
-                    ms, st = run(a.amrsp, dataset, array, a.method, a.size, a.frames, tf, *c)
+                    ms, st = run(a.amrsp, dataset, array, a.method, a.size, a.frames, a.extra,
+                                 tf, *c)
                     times[c].append(ms)
                     stats[c] = st
             base = statistics.median(times[("off", "1")])
             print(f"{os.path.basename(dataset.rstrip('/'))} {array or ''} tf={tf} "
-                  f"method={a.method} size={a.size} ({a.rounds} rounds x {a.frames} frames)")
+                  f"method={a.method} size={a.size} {a.extra} "
+                  f"({a.rounds} rounds x {a.frames} frames)")
             for c in CONFIGS:
                 med = statistics.median(times[c])
                 print(f"  skipping {c[0]:3s} threshold {c[1]:5s}: {med:9.1f} ms  "
