@@ -26,6 +26,7 @@
 #include <exception>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 namespace vtkAMRRenderingUtilities
 {
@@ -264,6 +265,7 @@ bool TransferFunctionTable::Update(vtkOpenGLRenderWindow* renWin, vtkVolumePrope
   }
   this->Range[0] = range[0];
   this->Range[1] = range[1];
+  this->Opacity = std::move(alpha);
   this->Property = property;
   this->PropertyMTime = property->GetMTime();
   this->Time.Modified();

@@ -104,6 +104,9 @@ public:
   bool Update(vtkOpenGLRenderWindow* renWin, vtkVolumeProperty* property,
     const double scalarRange[2], const vtkTimeStamp& dataTime);
   vtkTextureObject* GetTexture() const { return this->Texture; }
+  /// The opacity column of the table (TransferTableSize entries) and when it was last tabulated.
+  const std::vector<float>& GetOpacityTable() const { return this->Opacity; }
+  vtkMTimeType GetTableTime() const { return this->Time.GetMTime(); }
   /// Scalar at the first entry and 1 / (last - first): the shader's amrspTransferRange.
   void GetShaderRange(float range[2]) const;
   void ReleaseGraphicsResources(vtkWindow* window);
@@ -114,6 +117,7 @@ private:
   vtkMTimeType PropertyMTime = 0;
   vtkTimeStamp Time;
   double Range[2] = { 0.0, 1.0 };
+  std::vector<float> Opacity;
 };
 
 /**

@@ -7,6 +7,7 @@
 #include "amrsp/Hierarchy.h"
 #include "amrsp/BrickAtlas.h"
 #include "amrsp/BrickPacking.h"
+#include "amrsp/EmptySpace.h"
 #include "amrsp/KdTree.h"
 #include "amrsp/KdTreeEncoding.h"
 
@@ -46,6 +47,7 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <cfloat>
 #include <set>
 #include <sstream>
 #include <string>
@@ -124,6 +126,8 @@ public:
   amrsp::UIntTexture3D TreeTexels;
   amrsp::UIntTexture3D PackedDataNodeTexels;
   amrsp::UIntTexture3D BindlessDataNodeTexels;
+  /// min, max scalar per data node (kept: 8 bytes per node, for the transparent-node count)
+  std::vector<glm::vec2> NodeRanges;
 
   // ---- OpenGL resources of the storage uploaded last (UploadedStorage)
   int UploadedStorage = -1;
@@ -136,6 +140,10 @@ public:
   std::vector<vtkSmartPointer<vtkTextureObject>> Bricks;
   std::vector<GLuint64> ResidentHandles;
   vtkSmartPointer<vtkTextureObject> Depth;
+  vtkSmartPointer<vtkTextureObject> Ranges;        // RG32F, indexed like the data nodes
+  vtkSmartPointer<vtkTextureObject> OpacityPrefix; // R32F, TransferTableSize x 1
+  vtkMTimeType PrefixTableTime = 0;                // the transfer table it was counted from
+  long long TransparentDataNodes = 0;
   vtkNew<vtkOpenGLBufferObject> BoxBuffer;
   vtkNew<vtkOpenGLVertexArrayObject> BoxArray;
   vtkShaderProgram* BoxArrayProgram = nullptr;
@@ -287,6 +295,7 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
     // bindless: every data node stores the offset of its lower corner inside its own brick
     const std::vector<glm::ivec3> brickStarts(h.Grids.size(), glm::ivec3(0));
     amrsp::EncodedKdTree enc = amrsp::EncodeKdTree(h, tree, &brickStarts);
+    this->NodeRanges = amrsp::ComputeDataNodeRanges(h, enc);
     this->BindlessDataNodeTexels = std::move(enc.DataNodes);
     // packing: one brick per grid (cells, or vertices one texel larger), packed within the
     // per-axis limit the data-node offsets can address and MaximumAtlasSize when set; a
@@ -366,8 +375,9 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
     }
     this->ScalarRange[0] = vmin <= vmax ? vmin : 0.0;
     this->ScalarRange[1] = vmin <= vmax ? vmax : 1.0;
-    const long long treeBytes =
-      static_cast<long long>(enc.Tree.Bytes() + this->BindlessDataNodeTexels.Bytes());
+    // tree textures: tree, data nodes and the data nodes' value ranges (RG32F, same layout)
+    const long long treeBytes = static_cast<long long>(enc.Tree.Bytes() +
+      2 * this->BindlessDataNodeTexels.Bytes());
     this->BindlessBytes = treeBytes +
       static_cast<long long>(amrsp::SeparateBrickBytes(h) + amrsp::HandleTextureBytes(h.Grids.size()));
     this->PackedBytes = this->PackingError.empty()
@@ -524,6 +534,25 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Upload(vtkOpenGLRenderWindow* r
     ok = this->Atlas != nullptr;
     bytes = this->PackedBytes;
   }
+  if (ok)
+  {
+    // value ranges, texel i at the data node's own texel (unused texels: empty range)
+    const glm::ivec3 dims = this->BindlessDataNodeTexels.Dims; // the same for both encodings
+    std::vector<glm::vec2> ranges(static_cast<std::size_t>(dims.x) * dims.y * dims.z,
+      glm::vec2(FLT_MAX, -FLT_MAX));
+    std::copy(this->NodeRanges.begin(),
+      this->NodeRanges.begin() + std::min(this->NodeRanges.size(), ranges.size()), ranges.begin());
+    this->Ranges = vtkSmartPointer<vtkTextureObject>::New();
+    this->Ranges->SetContext(renWin);
+    this->Ranges->SetInternalFormat(GL_RG32F);
+    this->Ranges->SetFormat(GL_RG);
+    this->Ranges->SetDataType(GL_FLOAT);
+    this->Ranges->SetMinificationFilter(vtkTextureObject::Nearest);
+    this->Ranges->SetMagnificationFilter(vtkTextureObject::Nearest);
+    ok = this->Ranges->Create3DFromRaw(static_cast<unsigned int>(dims.x),
+      static_cast<unsigned int>(dims.y), static_cast<unsigned int>(dims.z), 2, VTK_FLOAT,
+      &ranges[0].x);
+  }
   const GLenum glError = glGetError();
   if (!ok || glError != GL_NO_ERROR)
   {
@@ -540,6 +569,7 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Upload(vtkOpenGLRenderWindow* r
     this->Tree = nullptr;
     this->DataNodesTexture = nullptr;
     this->Atlas = nullptr;
+    this->Ranges = nullptr;
     return false;
   }
   this->FreePendingData();
@@ -608,7 +638,8 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWin
   this->ResidentHandles.clear();
   this->UploadedStorage = -1;
   for (vtkSmartPointer<vtkTextureObject>* t :
-    { &this->Tree, &this->DataNodesTexture, &this->Atlas, &this->HandlesTexture, &this->Depth })
+    { &this->Tree, &this->DataNodesTexture, &this->Atlas, &this->HandlesTexture, &this->Depth,
+      &this->Ranges, &this->OpacityPrefix })
   {
     if (*t)
     {
@@ -935,6 +966,15 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     defines += "#define AMRSP_USE_DEPTH 1\n";
   }
   defines += "#define AMRSP_BLEND_MODE " + std::to_string(blend) + "\n";
+  const bool skipEmpty = this->EmptySpaceSkipping && blend == 0;
+  if (skipEmpty)
+  {
+    defines += "#define AMRSP_SKIP_EMPTY 1\n";
+  }
+  if (this->CellInterpolation == SMOOTH_CELL && !in.VertexCentred)
+  {
+    defines += "#define AMRSP_SMOOTH_CELLS 1\n";
+  }
   std::string fragment = amrsp_SinglePassAMR_frag_glsl;
   vtkShaderProgram::Substitute(fragment, "//AMRSP::Defines", defines);
   vtkShaderProgram::Substitute(fragment, "//AMRSP::KdTreeLayout", amrsp_KdTreeLayout_glsl);
@@ -1059,6 +1099,48 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     in.Depth->CopyFromFrameBuffer(x0, y0, 0, 0, width, height);
   }
 
+  // ---- empty-space skipping: prefix count of the table's non-zero opacities, recounted when
+  // the transfer table was re-tabulated (the node ranges never change with it)
+  if (!skipEmpty)
+  {
+    in.TransparentDataNodes = 0;
+  }
+  else
+  {
+    if (!in.OpacityPrefix || in.OpacityPrefix->GetContext() != renWin ||
+      in.PrefixTableTime != in.Transfer.GetTableTime())
+    {
+      const std::vector<float> prefix = amrsp::OpacityPrefixCounts(in.Transfer.GetOpacityTable());
+      if (!in.OpacityPrefix || in.OpacityPrefix->GetContext() != renWin)
+      {
+        in.OpacityPrefix = vtkSmartPointer<vtkTextureObject>::New();
+        in.OpacityPrefix->SetContext(renWin);
+        in.OpacityPrefix->SetInternalFormat(GL_R32F);
+        in.OpacityPrefix->SetFormat(GL_RED);
+        in.OpacityPrefix->SetDataType(GL_FLOAT);
+        in.OpacityPrefix->SetMinificationFilter(vtkTextureObject::Nearest);
+        in.OpacityPrefix->SetMagnificationFilter(vtkTextureObject::Nearest);
+      }
+      if (prefix.empty() ||
+        !in.OpacityPrefix->Create2DFromRaw(static_cast<unsigned int>(prefix.size()), 1, 1,
+          VTK_FLOAT, const_cast<float*>(prefix.data())))
+      {
+        fail("uploading the empty-space skipping table failed");
+        return;
+      }
+      in.PrefixTableTime = in.Transfer.GetTableTime();
+      // the diagnostic: the shader's own test on the CPU
+      float tableRange[2];
+      in.Transfer.GetShaderRange(tableRange);
+      in.TransparentDataNodes = 0;
+      for (std::size_t k = 1; k < in.NodeRanges.size(); ++k)
+      {
+        in.TransparentDataNodes += amrsp::TableRangeTransparent(
+          prefix, tableRange, in.NodeRanges[k].x, in.NodeRanges[k].y) ? 1 : 0;
+      }
+    }
+  }
+
   // ---- uniforms
   const std::vector<glm::vec3>& cells = in.LevelCellSize;
   std::vector<float> steps;
@@ -1088,6 +1170,14 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   program->SetUniformi("amrspDataNodes", in.DataNodesTexture->GetTextureUnit());
   program->SetUniformi(bindless ? "amrspHandles" : "amrspAtlas", gridData->GetTextureUnit());
   program->SetUniformi("amrspTransfer", in.Transfer.GetTexture()->GetTextureUnit());
+  program->SetUniformf("amrspOpacityThreshold", static_cast<float>(this->OpacityThreshold));
+  if (skipEmpty)
+  {
+    in.Ranges->Activate();
+    in.OpacityPrefix->Activate();
+    program->SetUniformi("amrspDataNodeRanges", in.Ranges->GetTextureUnit());
+    program->SetUniformi("amrspOpacityPrefix", in.OpacityPrefix->GetTextureUnit());
+  }
   if (useDepth)
   {
     program->SetUniformi("amrspDepth", in.Depth->GetTextureUnit());
@@ -1151,6 +1241,11 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   in.DataNodesTexture->Deactivate();
   gridData->Deactivate();
   in.Transfer.GetTexture()->Deactivate();
+  if (skipEmpty)
+  {
+    in.Ranges->Deactivate();
+    in.OpacityPrefix->Deactivate();
+  }
   if (useDepth)
   {
     in.Depth->Deactivate();
@@ -1291,6 +1386,11 @@ long long vtkSinglePassAMRVolumeMapper::GetNumberOfDataNodes()
   return this->Internals->DataNodes;
 }
 
+long long vtkSinglePassAMRVolumeMapper::GetNumberOfTransparentDataNodes()
+{
+  return this->Internals->TransparentDataNodes;
+}
+
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
@@ -1306,6 +1406,11 @@ void vtkSinglePassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AutoBindlessWaste: " << this->AutoBindlessWaste << "\n";
   os << indent << "LastDataStorage: " << GetDataStorageName(in.LastStorage)
      << ", LastBindlessAccess: " << GetBindlessAccessName(in.LastAccess) << "\n";
+  os << indent << "OpacityThreshold: " << this->OpacityThreshold << "\n";
+  os << indent << "EmptySpaceSkipping: " << (this->EmptySpaceSkipping ? "on" : "off") << "\n";
+  os << indent << "CellInterpolation: "
+     << (this->CellInterpolation == SMOOTH_CELL ? "smooth" : "nearest") << "\n";
+  os << indent << "TransparentDataNodes: " << in.TransparentDataNodes << "\n";
   os << indent << "NumberOfBuilds: " << in.NumberOfBuilds << "\n";
   os << indent << "KdNodes: " << in.KdNodes << ", DataNodes: " << in.DataNodes << "\n";
   os << indent << "AtlasDimensions: " << in.AtlasDims.x << " x " << in.AtlasDims.y << " x "

@@ -32,8 +32,9 @@
  * Appearance comes from the vtkVolumeProperty: the colour (or grey) transfer function and the
  * scalar opacity function of component 0, tabulated over the union of their ranges (values beyond
  * clamp to the end points), and ScalarOpacityUnitDistance (a sample standing for a ray length dt
- * has opacity 1 - (1 - a)^(dt / unit)). Only composite blending is implemented; shading, gradient
- * opacity, cropping and clipping planes are ignored.
+ * has opacity 1 - (1 - a)^(dt / unit)). Composite rays stop at OpacityThreshold (early ray
+ * termination) and skip data nodes whose value range is transparent (EmptySpaceSkipping).
+ * Shading, gradient opacity, cropping and clipping planes are ignored.
  *
  * Rebuild policy: the hierarchy conversion, kD-tree, packing and texture upload happen only when
  * the input data object, its modification time, the array selection or the sample-independent
@@ -211,6 +212,60 @@ public:
   vtkGetMacro(LODThreshold, double);
   ///@}
 
+  ///@{
+  /**
+   * Early ray termination (composite blending): a ray stops once its accumulated opacity reaches
+   * this value, in [0, 1]. The default 0.999 changes no 8-bit channel by more than 0.26 of 255;
+   * 1 never stops a ray early. A pixel whose ray stopped at opacity A misses at most (1 - A) of
+   * any channel.
+   */
+  vtkSetClampMacro(OpacityThreshold, double, 0.0, 1.0);
+  vtkGetMacro(OpacityThreshold, double);
+  ///@}
+
+  ///@{
+  /**
+   * Empty-space skipping (composite blending; default on): the minimum and maximum scalar of
+   * every data node's block are stored in a small RG32F texture indexed like the data nodes
+   * (built with the data, 8 bytes per data node); per frame the shader skips a ray segment
+   * whose node's range has zero opacity anywhere in the tabulated transfer function (a prefix
+   * count of the table's non-zero opacities, re-tabulated with the transfer function: a
+   * transfer-function change never rebuilds the tree or the ranges). Skipped samples would have
+   * had zero opacity, so the image does not change.
+   */
+  vtkSetMacro(EmptySpaceSkipping, bool);
+  vtkGetMacro(EmptySpaceSkipping, bool);
+  vtkBooleanMacro(EmptySpaceSkipping, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Reconstruction of cell-centred data. NEAREST_CELL (the default, the paper's): the value of
+   * the cell containing the sample. SMOOTH_CELL: trilinear interpolation in the dual cell of the
+   * sample's level (the 8 surrounding cell centres of that level), each corner the nearest value
+   * of the finest cell containing it, found by point location in the kD-tree (so corners reach
+   * into neighbouring bricks and other levels); continuous inside a level and across same-level
+   * grids, with a jump across level boundaries of at most the field's change over one cell of
+   * the finer level. Up to 8 tree descents per sample near node boundaries. Point data is
+   * trilinear anyway and ignores it.
+   */
+  enum CellInterpolationModes
+  {
+    NEAREST_CELL = 0,
+    SMOOTH_CELL = 1
+  };
+  vtkSetClampMacro(CellInterpolation, int, NEAREST_CELL, SMOOTH_CELL);
+  vtkGetMacro(CellInterpolation, int);
+  void SetCellInterpolationToNearest() { this->SetCellInterpolation(NEAREST_CELL); }
+  void SetCellInterpolationToSmooth() { this->SetCellInterpolation(SMOOTH_CELL); }
+  ///@}
+
+  /// Diagnostic of empty-space skipping: how many data nodes the last rendered frame's transfer
+  /// function makes transparent (the shader skips every segment through them), computed on the
+  /// CPU with the shader's test (amrsp::TableRangeTransparent); 0 when skipping is off or the
+  /// blend mode is not composite.
+  long long GetNumberOfTransparentDataNodes();
+
 protected:
   vtkSinglePassAMRVolumeMapper();
   ~vtkSinglePassAMRVolumeMapper() override;
@@ -225,6 +280,9 @@ protected:
   int DataStorage = AUTO_STORAGE;
   int BindlessAccess = AUTO_ACCESS;
   double AutoBindlessWaste = 0.25;
+  double OpacityThreshold = 0.999;
+  bool EmptySpaceSkipping = true;
+  int CellInterpolation = NEAREST_CELL;
 
 private:
   vtkSinglePassAMRVolumeMapper(const vtkSinglePassAMRVolumeMapper&) = delete;

@@ -21,6 +21,11 @@
 //   AMRSP_VERTEX_CENTRED trilinear sampling of vertex bricks (one texel larger per axis)
 //   AMRSP_USE_DEPTH     clip rays at the depth of the opaque geometry already drawn
 //   AMRSP_BLEND_MODE    0 composite, 1 maximum, 2 minimum, 3 average intensity (amrsp::BlendMode)
+//   AMRSP_SKIP_EMPTY    empty-space skipping (composite only): data segments whose node's value
+//                       range has zero opacity in the transfer table are not sampled
+//   AMRSP_SMOOTH_CELLS  smooth reconstruction of cell data (with AMRSP_CELL_CENTRED): trilinear in
+//                       the sample level's dual cell, corners looked up through the tree at the
+//                       finest level there (as amrsp::RenderSettings::SmoothCellData)
 //AMRSP::Defines
 
 #ifndef AMRSP_LEVEL_COUNT
@@ -45,9 +50,6 @@
 #define AMRSP_FN
 //AMRSP::KdTreeLayout
 
-// Accumulated opacity at which a ray stops (the CPU integrators never stop early; the difference
-// is below 0.26 of 255 per channel).
-#define AMRSP_OPAQUE_ALPHA 0.999
 #define AMRSP_INF 3.0e38
 
 //VTK::Output::Dec
@@ -83,6 +85,12 @@ uniform int amrspMaxSegments;                             // guard against corru
 uniform vec2 amrspTransferRange; // scalar at the first table entry, 1 / (last - first)
 uniform float amrspTransferSize; // number of table entries
 uniform float amrspUnitDistance; // vtkVolumeProperty::ScalarOpacityUnitDistance
+// Early ray termination: a composite ray stops once its opacity reaches this (1: never early).
+uniform float amrspOpacityThreshold;
+#ifdef AMRSP_SKIP_EMPTY
+uniform sampler3D amrspDataNodeRanges; // RG32F, indexed like amrspDataNodes: min, max scalar
+uniform sampler2D amrspOpacityPrefix;  // R32F, 1 row: table entries 0..i with opacity > 0
+#endif
 
 // Level of detail at type (a) nodes, as amrsp::LevelOfDetail: stop descending when one cell of
 // the node's data level is smaller than amrspLodThreshold pixels at the ray's entry.
@@ -219,6 +227,125 @@ vec4 amrspTransferFunction(float scalar)
   return texture(amrspTransfer, vec2(x, 0.5));
 }
 
+#ifdef AMRSP_SMOOTH_CELLS
+// Point location, as the core's LocateDataNode: from the root to the leaf containing p (level-0
+// index units); a point on a split plane goes to the upper side. Returns the data index (0: empty
+// leaf or outside the root box) and the leaf's box in exact finest-level cells.
+uint amrspLocateDataNode(vec3 p, out ivec3 loF, out ivec3 hiF)
+{
+  vec3 lo = amrspRootLo;
+  vec3 hi = amrspRootHi;
+  loF = ivec3(amrspRootLoFinest[0], amrspRootLoFinest[1], amrspRootLoFinest[2]);
+  hiF = ivec3(amrspRootHiFinest[0], amrspRootHiFinest[1], amrspRootHiFinest[2]);
+  if (any(lessThan(p, lo)) || any(greaterThanEqual(p, hi)))
+  {
+    return 0u;
+  }
+  uvec2 texel = amrspFetchNode(0u);
+  for (;;)
+  {
+    uint child = amrspNodeFirstChild(texel);
+    if (child == 0u)
+    {
+      break;
+    }
+    int axis = int(amrspNodeAxis(texel));
+    uint level = amrspNodeLevel(texel);
+    uint split = amrspNodeSplit(texel);
+    float plane = lo[axis] + float(split) * amrspLevelCellSize[level][axis];
+    int planeF = loF[axis] + int(split) * amrspLevelToFinest[3 * int(level) + axis];
+    if (p[axis] < plane)
+    {
+      hi[axis] = plane;
+      hiF[axis] = planeF;
+      texel = amrspFetchNode(child);
+    }
+    else
+    {
+      lo[axis] = plane;
+      loF[axis] = planeF;
+      texel = amrspFetchNode(child + 1u);
+    }
+  }
+  return amrspNodeData(texel);
+}
+
+ivec3 amrspToFinest(int level)
+{
+  return ivec3(amrspLevelToFinest[3 * level], amrspLevelToFinest[3 * level + 1],
+    amrspLevelToFinest[3 * level + 2]);
+}
+
+// Smooth value at p for a sample of data level `level` in the node (dataNode, box loF..hiF in
+// finest cells, cells firstCell..lastCell): trilinear in the level's dual cell around p, each of
+// the 8 corners (level cell centres) the nearest value of the finest cell containing it;
+// `nearest` (the nearest-cell value at p) for corners outside every grid. Corners whose cells lie
+// wholly inside the current node are read from it directly (point location would find it).
+float amrspSampleSmooth(vec3 p, int level, uvec2 dataNode, ivec3 loF, ivec3 hiF, ivec3 firstCell,
+  ivec3 lastCell, float nearest)
+{
+  vec3 cellSize = amrspLevelCellSize[level];
+  vec3 q = p / cellSize - 0.5;
+  vec3 base = floor(q);
+  vec3 w = q - base;
+  ivec3 toData = amrspToFinest(level);
+  ivec3 b = ivec3(base);
+  bool inside = all(greaterThanEqual(b * toData, loF)) && all(lessThanEqual((b + 2) * toData, hiF));
+  float sum = 0.0;
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    vec3 o = vec3(float(corner & 1), float((corner >> 1) & 1), float((corner >> 2) & 1));
+    vec3 x = (base + o + 0.5) * cellSize;
+    float v = nearest;
+    if (inside)
+    {
+      v = amrspSampleDataNode(dataNode, x, cellSize, firstCell, lastCell);
+    }
+    else
+    {
+      ivec3 cLoF, cHiF;
+      uint data = amrspLocateDataNode(x, cLoF, cHiF);
+      if (data != 0u)
+      {
+        uvec2 node = amrspFetchDataNode(data);
+        int l = int(amrspDataLevel(node));
+        ivec3 t = amrspToFinest(l);
+        ivec3 first = ivec3(amrspFloorDiv(cLoF.x, t.x), amrspFloorDiv(cLoF.y, t.y),
+          amrspFloorDiv(cLoF.z, t.z));
+        ivec3 last = ivec3(amrspCeilDiv(cHiF.x, t.x), amrspCeilDiv(cHiF.y, t.y),
+                       amrspCeilDiv(cHiF.z, t.z)) - 1;
+        v = amrspSampleDataNode(node, x, amrspLevelCellSize[l], first, last);
+      }
+    }
+    vec3 f = mix(vec3(1.0) - w, w, o);
+    sum += f.x * f.y * f.z * v;
+  }
+  return sum;
+}
+#endif
+
+#ifdef AMRSP_SKIP_EMPTY
+// Whether every scalar of a data node's value range (min, max) has zero opacity in the transfer
+// table, with linear filtering between entries: no entry from one below the range's first
+// position to one above its last has opacity (as amrsp::TableRangeTransparent). An empty range
+// (min > max: the node holds only NaN) is transparent.
+bool amrspDataNodeTransparent(uint dataIndex)
+{
+  vec2 range = texelFetch(amrspDataNodeRanges, amrspTexelOf(dataIndex), 0).rg;
+  if (range.x > range.y)
+  {
+    return true;
+  }
+  float last = amrspTransferSize - 1.0;
+  float u0 = clamp((range.x - amrspTransferRange.x) * amrspTransferRange.y, 0.0, 1.0) * last;
+  float u1 = clamp((range.y - amrspTransferRange.x) * amrspTransferRange.y, 0.0, 1.0) * last;
+  int i0 = max(0, int(floor(u0)) - 1);
+  int i1 = min(int(last), int(ceil(u1)) + 1);
+  float below = i0 > 0 ? texelFetch(amrspOpacityPrefix, ivec2(i0 - 1, 0), 0).r : 0.0;
+  return texelFetch(amrspOpacityPrefix, ivec2(i1, 0), 0).r - below == 0.0;
+}
+#endif
+
 void main()
 {
   // The ray through this pixel's centre, in model coordinates: from the eye (perspective, as
@@ -330,6 +457,12 @@ void main()
     }
 
     uint data = amrspNodeData(texel);
+#ifdef AMRSP_SKIP_EMPTY
+    if (data != 0u && amrspDataNodeTransparent(data))
+    {
+      data = 0u; // empty space under this transfer function: nothing to sample
+    }
+#endif
     if (data != 0u)
     {
       uvec2 dataNode = amrspFetchDataNode(data);
@@ -351,6 +484,9 @@ void main()
         float ts = t + (float(k) + 0.5) * dt;
         vec3 p = ro + ts * rd;
         float scalar = amrspSampleDataNode(dataNode, p, cellSize, firstCell, lastCell);
+#ifdef AMRSP_SMOOTH_CELLS
+        scalar = amrspSampleSmooth(p, level, dataNode, loF, hiF, firstCell, lastCell, scalar);
+#endif
         if (isnan(scalar))
         {
           continue; // missing data is transparent
@@ -372,14 +508,14 @@ void main()
           float a = 1.0 - pow(1.0 - min(tf.a, 1.0), exponent);
           colour += (1.0 - alpha) * a * tf.rgb;
           alpha += (1.0 - alpha) * a;
-          if (alpha >= AMRSP_OPAQUE_ALPHA)
+          if (alpha >= amrspOpacityThreshold)
           {
             break;
           }
         }
 #endif
       }
-      if (alpha >= AMRSP_OPAQUE_ALPHA)
+      if (alpha >= amrspOpacityThreshold)
       {
         break;
       }

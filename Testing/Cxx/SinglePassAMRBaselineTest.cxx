@@ -121,7 +121,8 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
   {
     const Arguments a = ParseArguments(static_cast<int>(args.size()), args.data(), 1,
       { "array", "centering", "size", "azimuth", "elevation", "zoom", "tf", "scale",
-        "unit-distance", "sample-factor", "reference-sample-factor", "lod", "blend" },
+        "unit-distance", "sample-factor", "reference-sample-factor", "lod", "blend",
+        "opacity-threshold", "empty-space-skipping", "interpolation" },
       {});
     DatasetRequest request;
     request.Spec = spec;
@@ -162,12 +163,23 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
     const double rmse = Rmse(image, RenderReference(d.Data, ref));
     const double mirror =
       Rmse(image, RenderKdTree(d.Data, EncodeKdTree(d.Data, BuildKdTree(d.Data)), ref));
-    const bool agrees = rmse < c.ReferenceBound && mirror < 1.0;
+    bool agrees = rmse < c.ReferenceBound && mirror < 1.0;
     std::cout << (rmse < c.ReferenceBound ? "ok" : "FAILED")
               << ": GPU image vs CPU reference RMSE " << rmse << " (bound " << c.ReferenceBound
               << ")\n"
               << (mirror < 1.0 ? "ok" : "FAILED") << ": GPU image vs CPU kD-tree integrator RMSE "
               << mirror << " (bound 1)\n";
+
+    if (c.Check)
+    {
+      agrees = c.Check(gpu, image, std::cout) && agrees;
+      const double again = Rmse(image, gpu.RenderAsIs(ms));
+      if (again != 0.0)
+      {
+        std::cout << "FAILED: the checks left the mapper changed (RMSE " << again << ")\n";
+        agrees = false;
+      }
+    }
 
     vtkRenderWindow* window = gpu.GetRenderer()->GetRenderWindow();
     // vtkImageDifference ignores per-pixel differences below its own threshold and averages

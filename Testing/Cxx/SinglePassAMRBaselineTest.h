@@ -5,9 +5,12 @@
 /// with the amrsp tool's conventions, compared with VTK's baseline image AND with the CPU
 /// reference image of the same view.
 
+#include "amrsp/Render.h"
+
 #include <glm/glm.hpp>
 
 #include <functional>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -15,6 +18,10 @@ class vtkRenderer;
 
 namespace amrsp
 {
+namespace tool
+{
+class PackingRenderer;
+}
 namespace test
 {
 
@@ -42,6 +49,12 @@ struct BaselineCase
     double Grey;
   };
   std::vector<Square> Squares;
+
+  /// Optional further checks after the GPU image `image` was rendered (e.g. the same view with
+  /// an option switched off). They may render other frames but must leave the mapper as they
+  /// found it: the harness renders again and requires the very same image before comparing
+  /// with the baseline. Returns false (after printing why to `log`) to fail the test.
+  std::function<bool(tool::PackingRenderer& gpu, const Image& image, std::ostream& log)> Check;
 };
 
 /// Runs the test; returns the test driver's exit code (0 pass, 1 fail, 125 skipped).

@@ -9,6 +9,7 @@
 
 #include "amrsp/BrickAtlas.h"
 #include "amrsp/BrickPacking.h"
+#include "amrsp/EmptySpace.h"
 #include "amrsp/Invariants.h"
 #include "amrsp/KdTree.h"
 #include "amrsp/KdTreeEncoding.h"
@@ -16,6 +17,7 @@
 #include "amrsp/VertexData.h"
 
 #include "vtkImageData.h"
+#include "vtkSinglePassAMRVolumeMapper.h"
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
 #include "vtkUnsignedCharArray.h"
@@ -133,7 +135,7 @@ const std::vector<std::string> DatasetOptions = { "array", "component", "centeri
 const std::vector<std::string> AtlasOptions = { "packer", "max-3d-texture-size", "atlas-budget-mb" };
 const std::vector<std::string> ViewOptions = { "size", "azimuth", "elevation", "zoom", "tf",
   "scale", "unit-distance", "sample-factor", "reference-sample-factor", "lod", "threads", "blend",
-  "view-json" };
+  "view-json", "opacity-threshold", "empty-space-skipping", "interpolation" };
 
 std::vector<std::string> Concat(std::initializer_list<std::vector<std::string>> lists)
 {
@@ -211,7 +213,7 @@ const char* const ViewHelp =
   "  --size WxH                  image size (default 512x512)\n"
   "  --azimuth A --elevation E   degrees, applied after ResetCamera (default 30, 20)\n"
   "  --zoom Z                    vtkCamera::Zoom factor (default 1)\n"
-  "  --tf PRESET                 transfer function: default, grey, hot, grey-opaque\n"
+  "  --tf PRESET                 transfer function: default, grey, hot, grey-opaque, sparse\n"
   "  --scale auto|linear|log     scalar mapping; auto = log10 when the data is positive and\n"
   "                              spans more than 3 decades (default auto)\n"
   "  --unit-distance D           ScalarOpacityUnitDistance in world units (default: diagonal/100)\n"
@@ -220,6 +222,14 @@ const char* const ViewHelp =
   "  --lod PIXELS                level-of-detail threshold in pixels (default 0 = off)\n"
   "  --blend MODE                composite (default), maximum, minimum or average intensity\n"
   "  --threads N                 CPU threads (default: all cores)\n"
+  "  --opacity-threshold T       early ray termination: a composite ray stops at opacity T\n"
+  "                              (default 0.999; 1 = never early)\n"
+  "  --empty-space-skipping on|off  skip data nodes whose value range is transparent\n"
+  "                              (kD-tree methods, composite; default on; the reference never\n"
+  "                              skips)\n"
+  "  --interpolation nearest|smooth  cell-centred data: nearest cell (default) or the smooth\n"
+  "                              dual-cell reconstruction across grids and levels (packing,\n"
+  "                              CPU methods and the reference)\n"
   "  --view-json FILE            camera, transfer function and background from a JSON file\n"
   "                              (e.g. written from ParaView; see README) instead of the\n"
   "                              conventions above; its transfer function implies --scale linear\n";
@@ -532,6 +542,23 @@ RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range)
     throw UsageError{ "--blend must be composite, maximum, minimum or average" };
   }
   s.Threads = static_cast<int>(a.GetNumber("threads", 0.0));
+  s.OpacityThreshold = a.GetNumber("opacity-threshold", 0.999);
+  if (!(s.OpacityThreshold >= 0.0 && s.OpacityThreshold <= 1.0))
+  {
+    throw UsageError{ "--opacity-threshold must be between 0 and 1" };
+  }
+  const std::string skipping = a.Get("empty-space-skipping", "on");
+  if (skipping != "on" && skipping != "off")
+  {
+    throw UsageError{ "--empty-space-skipping must be on or off" };
+  }
+  s.SkipEmptySpace = skipping == "on";
+  const std::string interpolation = a.Get("interpolation", "nearest");
+  if (interpolation != "nearest" && interpolation != "smooth")
+  {
+    throw UsageError{ "--interpolation must be nearest or smooth" };
+  }
+  s.SmoothCellData = interpolation == "smooth";
   return s;
 }
 
@@ -696,7 +723,8 @@ int RunInspect(int argc, char** argv)
     j["atlas"] = atlas;
     {
       // the paper's Table 2 "GPU memory": tree textures + grid data, for either storage
-      const std::size_t treeBytes = enc.Tree.Bytes() + enc.DataNodes.Bytes();
+      // tree, data nodes, and the data nodes' value ranges (RG32F, as large as the data nodes)
+      const std::size_t treeBytes = enc.Tree.Bytes() + 2 * enc.DataNodes.Bytes();
       std::size_t brickBytes = 0;
       for (const glm::ivec3& e : extents)
       {
@@ -795,6 +823,7 @@ int RunImageCommand(int argc, char** argv, bool reference)
   {
     std::vector<std::string> valueOptions =
       Concat({ DatasetOptions, ViewOptions, AtlasOptions, { "output" } });
+    valueOptions.push_back("repeat");
     if (!reference)
     {
       valueOptions.push_back("method");
@@ -802,11 +831,17 @@ int RunImageCommand(int argc, char** argv, bool reference)
       valueOptions.push_back("driver");
     }
     const Arguments a = ParseArguments(argc, argv, 1, valueOptions,
-      reference ? std::vector<std::string>{} : std::vector<std::string>{ "compare" });
+      reference ? std::vector<std::string>{ "stats" }
+                : std::vector<std::string>{ "compare", "stats" });
     if (WantsHelp(a))
     {
       std::cout << help << "  -o, --output FILE           PNG to write (default " << name
                 << ".png)\n"
+                << "  --repeat N                  render N timed frames after the first (default\n"
+                   "                              1); prints their mean and minimum time\n"
+                   "  --stats                     print the work counters (CPU: samples, skipped\n"
+                   "                              segments and samples, terminated rays; packing:\n"
+                   "                              transparent data nodes)\n"
                 << ViewHelp << (reference ? "" : AtlasHelp) << (reference ? "" : DriverHelp)
                 << DatasetHelp;
       return 0;
@@ -849,6 +884,15 @@ int RunImageCommand(int argc, char** argv, bool reference)
     LoadedDataset d = Load(a, true, false);
     glm::dvec2 range;
     RenderSettings s = MakeSettings(d.Data, a, &range);
+    const int repeat = static_cast<int>(a.GetNumber("repeat", 1.0));
+    if (repeat < 1)
+    {
+      throw UsageError{ "--repeat must be at least 1" };
+    }
+    RenderStats stats;
+    s.Stats = &stats;
+    std::vector<double> frameMs; // the timed frames
+    std::ostringstream statsReport;
 
     auto t0 = Clock::now();
     Image img;
@@ -857,8 +901,12 @@ int RunImageCommand(int argc, char** argv, bool reference)
     std::ostringstream gpuReport;
     if (reference)
     {
-      img = RenderReference(d.Data, s);
-      renderSeconds = Seconds(t0);
+      for (int k = 0; k < repeat; ++k)
+      {
+        t0 = Clock::now();
+        img = RenderReference(d.Data, s);
+        frameMs.push_back(1000.0 * Seconds(t0));
+      }
     }
     else if (method == "packing" || method == "bindless" || method == "multipass")
     {
@@ -878,9 +926,22 @@ int RunImageCommand(int argc, char** argv, bool reference)
       GpuRenderer& r = *gpu;
       double firstMs = 0.0, ms = 0.0;
       r.Render(0.0, firstMs); // converts, builds, packs, uploads and compiles
-      img = r.Render(0.0, ms);
+      for (int k = 0; k < repeat; ++k)
+      {
+        img = r.Render(0.0, ms);
+        frameMs.push_back(ms);
+      }
       preprocess = r.BuildSeconds() + r.UploadSeconds();
-      renderSeconds = ms / 1000.0;
+      if (!multipass)
+      {
+        auto* packing = static_cast<PackingRenderer*>(gpu.get());
+        statsReport << "stats: transparent data nodes "
+                    << packing->GetMapper()->GetNumberOfTransparentDataNodes() << " of "
+                    << packing->GetMapper()->GetNumberOfDataNodes() << " (skipping "
+                    << (packing->GetMapper()->GetEmptySpaceSkipping() ? "on" : "off")
+                    << ", opacity threshold " << packing->GetMapper()->GetOpacityThreshold()
+                    << ")\n";
+      }
       const double cameraDifference = CameraDifference(r.LastCamera(), s.View);
       if (singlePass)
       {
@@ -917,22 +978,48 @@ int RunImageCommand(int argc, char** argv, bool reference)
     else if (method == "cpu-kdtree")
     {
       const EncodedKdTree enc = EncodeKdTree(d.Data, BuildKdTree(d.Data));
+      const std::vector<glm::vec2> ranges = ComputeDataNodeRanges(d.Data, enc);
+      s.DataNodeRanges = &ranges;
       preprocess = Seconds(t0);
-      t0 = Clock::now();
-      img = RenderKdTree(d.Data, enc, s);
-      renderSeconds = Seconds(t0);
+      for (int k = 0; k < repeat; ++k)
+      {
+        t0 = Clock::now();
+        img = RenderKdTree(d.Data, enc, s);
+        frameMs.push_back(1000.0 * Seconds(t0));
+      }
     }
     else
     {
       const BrickAtlas atlas = BuildBrickAtlas(
         d.Data, atlasRequest.Algorithm, atlasRequest.MaxDims, atlasRequest.MaxBytes);
       const EncodedKdTree enc = EncodeKdTree(d.Data, BuildKdTree(d.Data), &atlas.Layout.Origins);
+      const std::vector<glm::vec2> ranges = ComputeDataNodeRanges(d.Data, enc);
+      s.DataNodeRanges = &ranges;
       preprocess = Seconds(t0);
       std::cout << "atlas: " << AtlasJson(atlas.Layout).dump() << "\n";
-      t0 = Clock::now();
-      img = RenderKdTree(d.Data, enc, s, &atlas);
-      renderSeconds = Seconds(t0);
+      for (int k = 0; k < repeat; ++k)
+      {
+        t0 = Clock::now();
+        img = RenderKdTree(d.Data, enc, s, &atlas);
+        frameMs.push_back(1000.0 * Seconds(t0));
+      }
     }
+    if (method != "packing" && method != "multipass")
+    {
+      statsReport << "stats: rays " << stats.Rays << ", samples " << stats.Samples
+                  << ", data segments " << stats.DataSegments << ", skipped segments "
+                  << stats.SkippedSegments << " (" << stats.SkippedSamples
+                  << " samples), rays terminated early " << stats.TerminatedRays << "\n";
+    }
+    s.Stats = nullptr;
+    s.DataNodeRanges = nullptr;
+    double meanMs = 0.0, minMs = frameMs.empty() ? 0.0 : frameMs.front();
+    for (double ms : frameMs)
+    {
+      meanMs += ms / static_cast<double>(frameMs.size());
+      minMs = std::min(minMs, ms);
+    }
+    renderSeconds = meanMs / 1000.0;
     WritePng(img, output);
     std::cout << "method: " << (reference ? "cpu-reference" : method) << "\n"
               << "dataset: " << d.Spec << " (" << d.Format << "), array " << d.Data.ArrayName
@@ -946,6 +1033,14 @@ int RunImageCommand(int argc, char** argv, bool reference)
               << gpuReport.str()
               << "times (s): load " << d.LoadSeconds << ", preprocess " << preprocess
               << ", render " << renderSeconds << "\n";
+    if (repeat > 1)
+    {
+      std::cout << "frames: " << repeat << ", ms mean " << meanMs << ", min " << minMs << "\n";
+    }
+    if (a.Has("stats"))
+    {
+      std::cout << statsReport.str();
+    }
     if (!reference && a.Has("compare"))
     {
       const Image ref = RenderReference(d.Data, s);

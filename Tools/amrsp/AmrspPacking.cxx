@@ -51,6 +51,10 @@ PackingRenderer::PackingRenderer(vtkSinglePassAMRVolumeMapper* mapper, const Hie
                                                              : M::AUTO_ACCESS);
   this->Mapper->SetSampleDistanceFactor(s.SampleDistanceFactor);
   this->Mapper->SetLODThreshold(s.LodThresholdPixels);
+  this->Mapper->SetOpacityThreshold(s.OpacityThreshold);
+  this->Mapper->SetEmptySpaceSkipping(s.SkipEmptySpace);
+  this->Mapper->SetCellInterpolation(s.SmoothCellData ? vtkSinglePassAMRVolumeMapper::SMOOTH_CELL
+                                                      : vtkSinglePassAMRVolumeMapper::NEAREST_CELL);
 }
 
 std::string PackingRenderer::StorageUsed() const

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "amrsp/Render.h"
 
+#include "amrsp/EmptySpace.h"
 #include "amrsp/KdTreeLayout.h"
 #include "amrsp/VertexData.h"
 
@@ -8,6 +9,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <mutex>
 #include <stdexcept>
 #include <thread>
 
@@ -131,7 +133,7 @@ double TransferFunction::EvaluateOpacity(double s) const
 
 std::vector<std::string> TransferFunction::PresetNames()
 {
-  return { "default", "grey", "hot", "grey-opaque" };
+  return { "default", "grey", "hot", "grey-opaque", "sparse" };
 }
 
 TransferFunction TransferFunction::Preset(const std::string& name, double lo, double hi,
@@ -168,10 +170,17 @@ TransferFunction TransferFunction::Preset(const std::string& name, double lo, do
     tf.Color = { { at(0.0), { 0.0, 0.0, 0.0 } }, { at(1.0), { 1.0, 1.0, 1.0 } } };
     tf.Opacity = { { at(0.0), 1.0 }, { at(1.0), 1.0 } };
   }
+  else if (name == "sparse")
+  {
+    // the "hot" colours, transparent below 60 % of the range: most of the data is empty space
+    tf.Color = { { at(0.0), { 0.0, 0.0, 0.0 } }, { at(0.6), { 0.9, 0.0, 0.0 } },
+      { at(0.85), { 1.0, 0.9, 0.0 } }, { at(1.0), { 1.0, 1.0, 1.0 } } };
+    tf.Opacity = { { at(0.0), 0.0 }, { at(0.6), 0.0 }, { at(0.7), 0.1 }, { at(1.0), 0.9 } };
+  }
   else
   {
     throw std::invalid_argument("unknown transfer-function preset '" + name +
-      "' (known: default, grey, hot, grey-opaque)");
+      "' (known: default, grey, hot, grey-opaque, sparse)");
   }
   return tf;
 }
@@ -341,6 +350,13 @@ struct Accumulator
   double Sum = 0.0;
   double Length = 0.0;
 
+  /// Early ray termination: composite rays stop once their opacity reaches `threshold` (< 1).
+  bool Done(double threshold) const
+  {
+    return Mode == BlendMode::Composite && threshold < 1.0 &&
+      static_cast<double>(Alpha) >= threshold;
+  }
+
   void Add(const TransferFunction& tf, double scalar, double dt)
   {
     if (std::isnan(scalar))
@@ -432,6 +448,114 @@ float AtlasTrilinear(const BrickAtlas& atlas, const glm::vec3& u, const glm::ive
   return sum;
 }
 
+/// Point location in the encoded tree, as the shader's amrspLocateDataNode: from the root to the
+/// leaf containing p (level-0 index units); a point on a split plane goes to the upper side (the
+/// cell it starts). Returns the data index (0: empty leaf or outside the root box) and the
+/// node's box, computed as the traversal computes node boxes.
+uint32_t LocateDataNode(const EncodedKdTree& tree, const glm::vec3& p, glm::vec3& lo, glm::vec3& hi)
+{
+  using namespace layout;
+  lo = tree.RootLo;
+  hi = tree.RootHi;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (!(p[a] >= lo[a] && p[a] < hi[a]))
+    {
+      return 0;
+    }
+  }
+  uvec2 texel = tree.Tree.Texels[0];
+  for (;;)
+  {
+    const uint child = amrspNodeFirstChild(texel);
+    if (child == 0)
+    {
+      break;
+    }
+    const int axis = static_cast<int>(amrspNodeAxis(texel));
+    const uint level = amrspNodeLevel(texel);
+    const float plane =
+      lo[axis] + static_cast<float>(amrspNodeSplit(texel)) * tree.LevelCellSize[level][axis];
+    if (p[axis] < plane)
+    {
+      hi[axis] = plane;
+      texel = tree.Tree.Texels[child];
+    }
+    else
+    {
+      lo[axis] = plane;
+      texel = tree.Tree.Texels[child + 1];
+    }
+  }
+  return amrspNodeData(texel);
+}
+
+/// The nearest cell value of the data node `data` (box lo, hi) at p: from the grid, or from the
+/// atlas through the node's offset as the packing shader reads it.
+float NodeCellValue(const Hierarchy& h, const EncodedKdTree& tree, const BrickAtlas* atlas,
+  uint32_t data, const glm::vec3& lo, const glm::vec3& hi, const glm::vec3& p)
+{
+  using namespace layout;
+  const uvec2 dn = tree.DataNodes.Texels[data];
+  const glm::vec3 cellSize = tree.LevelCellSize[amrspDataLevel(dn)];
+  if (atlas)
+  {
+    const glm::ivec3 first = glm::ivec3(glm::floor(lo / cellSize));
+    const glm::ivec3 last = glm::ivec3(glm::ceil(hi / cellSize)) - 1;
+    const glm::ivec3 cell = glm::clamp(glm::ivec3(glm::floor(p / cellSize)), first, last);
+    return atlas->At(amrspDataOffset(dn) + cell - first);
+  }
+  return CellValue(
+    h, static_cast<int32_t>(amrspDataBrick(dn)), glm::i64vec3(glm::floor(p / cellSize)));
+}
+
+/// Smooth reconstruction (RenderSettings::SmoothCellData) at p for a sample of level `level`:
+/// trilinear in the level's dual cell, each corner the finest cell containing it; `fallback`
+/// for corners outside every grid.
+float SmoothKdTree(const Hierarchy& h, const EncodedKdTree& tree, const BrickAtlas* atlas,
+  const glm::vec3& p, int level, float fallback)
+{
+  const glm::vec3 cellSize = tree.LevelCellSize[level];
+  const glm::vec3 q = p / cellSize - 0.5f;
+  const glm::vec3 base = glm::floor(q);
+  const glm::vec3 w = q - base;
+  float sum = 0.0f;
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const glm::vec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+    const glm::vec3 x = (base + o + 0.5f) * cellSize;
+    glm::vec3 lo, hi;
+    const uint32_t data = LocateDataNode(tree, x, lo, hi);
+    const float v = data != 0 ? NodeCellValue(h, tree, atlas, data, lo, hi, x) : fallback;
+    const float weight =
+      (o.x > 0.0f ? w.x : 1.0f - w.x) * (o.y > 0.0f ? w.y : 1.0f - w.y) * (o.z > 0.0f ? w.z : 1.0f - w.z);
+    sum += weight * v;
+  }
+  return sum;
+}
+
+/// Per-row counters added to RenderSettings::Stats under a lock.
+struct StatsSink
+{
+  RenderStats* Target = nullptr;
+  std::mutex Lock;
+
+  void Add(const RenderStats& r)
+  {
+    if (!Target)
+    {
+      return;
+    }
+    std::lock_guard<std::mutex> guard(Lock);
+    Target->Rays += r.Rays;
+    Target->Samples += r.Samples;
+    Target->DataSegments += r.DataSegments;
+    Target->SkippedSegments += r.SkippedSegments;
+    Target->SkippedSamples += r.SkippedSamples;
+    Target->TerminatedRays += r.TerminatedRays;
+  }
+};
+
 double MinEdge(const glm::dvec3& v)
 {
   return std::min(v.x, std::min(v.y, v.z));
@@ -497,9 +621,38 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
       static_cast<float>(s.SampleDistanceFactor * MinEdge(h.Spacing0 * h.CellSize(l))));
   }
   const glm::vec3 spacing(h.Spacing0), worldOrigin(h.Origin);
+  // empty-space skipping: per data node, whether its value range is transparent under this
+  // transfer function (the ranges depend on the data only)
+  const bool skip = s.SkipEmptySpace && s.Blend == BlendMode::Composite;
+  std::vector<char> transparent;
+  if (skip)
+  {
+    std::vector<glm::vec2> computed;
+    if (!s.DataNodeRanges)
+    {
+      computed = ComputeDataNodeRanges(h, tree);
+    }
+    const std::vector<glm::vec2>& ranges = s.DataNodeRanges ? *s.DataNodeRanges : computed;
+    if (ranges.size() != static_cast<std::size_t>(tree.DataNodeCount + 1))
+    {
+      throw std::invalid_argument("the data-node ranges do not belong to this tree");
+    }
+    transparent.resize(ranges.size());
+    for (std::size_t k = 0; k < ranges.size(); ++k)
+    {
+      transparent[k] = TransparentRange(s.Transfer, ranges[k].x, ranges[k].y) ? 1 : 0;
+    }
+  }
+  StatsSink sink;
+  sink.Target = s.Stats;
+  if (s.Stats)
+  {
+    *s.Stats = RenderStats();
+  }
 
   ForEachRow(s.Height, s.Threads, [&](int j) {
     std::vector<RaySegment> segments;
+    RenderStats rowStats;
     for (int i = 0; i < s.Width; ++i)
     {
       glm::dvec3 wo, wd;
@@ -516,12 +669,17 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
         background = hitColour;
       }
       TraverseKdTree(tree, o, d, 0.0f, tMax, lod, segments);
+      rowStats.Rays += segments.empty() ? 0 : 1;
       Accumulator<float> acc(s.Blend);
       for (const RaySegment& seg : segments)
       {
         if (seg.Data == 0)
         {
           continue;
+        }
+        if (acc.Done(s.OpacityThreshold))
+        {
+          break;
         }
         const uvec2 dn = tree.DataNodes.Texels[seg.Data];
         const int32_t g = static_cast<int32_t>(amrspDataBrick(dn));
@@ -530,6 +688,13 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
         const int n =
           std::max(1, static_cast<int>(std::ceil(length / stepOfLevel[seg.Level])));
         const float dt = length / static_cast<float>(n);
+        ++rowStats.DataSegments;
+        if (skip && transparent[seg.Data])
+        {
+          ++rowStats.SkippedSegments;
+          rowStats.SkippedSamples += n;
+          continue;
+        }
         // packing path: the node's first cell sits at the data node's atlas offset; cells of
         // the node are [first, last] (clamped so float error never reaches a neighbour brick)
         const glm::ivec3 first = glm::ivec3(glm::floor(seg.NodeLo / cellSize));
@@ -559,14 +724,66 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
           {
             v = CellValue(h, g, glm::i64vec3(glm::floor(p / cellSize)));
           }
+          if (s.SmoothCellData && !h.VertexCentred)
+          {
+            v = SmoothKdTree(h, tree, atlas, p, seg.Level, v);
+          }
           acc.Add(s.Transfer, v, dt);
+          ++rowStats.Samples;
+          if (acc.Done(s.OpacityThreshold))
+          {
+            break;
+          }
         }
       }
+      rowStats.TerminatedRays += acc.Done(s.OpacityThreshold) ? 1 : 0;
       img.Pixels[static_cast<std::size_t>(j) * s.Width + i] = acc.Pixel(s.Transfer, background);
     }
+    sink.Add(rowStats);
   });
   return img;
 }
+
+float SampleKdTreePoint(const Hierarchy& h, const EncodedKdTree& tree, const glm::vec3& p,
+  bool smooth)
+{
+  using namespace layout;
+  glm::vec3 lo, hi;
+  const uint32_t data = LocateDataNode(tree, p, lo, hi);
+  if (data == 0)
+  {
+    return std::numeric_limits<float>::quiet_NaN();
+  }
+  const float v = NodeCellValue(h, tree, nullptr, data, lo, hi, p);
+  return smooth ? SmoothKdTree(h, tree, nullptr, p,
+                    static_cast<int>(amrspDataLevel(tree.DataNodes.Texels[data])), v)
+                : v;
+}
+
+namespace
+{
+/// The reference's smooth reconstruction at p (level-0 index units) for a sample whose finest
+/// grid is of `level`: the same dual-cell rule, corners found by the tree-free locator.
+double SmoothReference(const Hierarchy& h, const FinestCellLocator& locator, const glm::dvec3& p,
+  int level, double fallback)
+{
+  const glm::dvec3 cellSize = h.CellSize(level);
+  const glm::dvec3 q = p / cellSize - 0.5;
+  const glm::dvec3 base = glm::floor(q);
+  const glm::dvec3 w = q - base;
+  double sum = 0.0;
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const glm::dvec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+    glm::i64vec3 cell;
+    const int32_t g = locator.Find((base + o + 0.5) * cellSize, cell);
+    const double v = g >= 0 ? static_cast<double>(CellValue(h, g, cell)) : fallback;
+    sum += (o.x > 0.0 ? w.x : 1.0 - w.x) * (o.y > 0.0 ? w.y : 1.0 - w.y) *
+      (o.z > 0.0 ? w.z : 1.0 - w.z) * v;
+  }
+  return sum;
+}
+} // namespace
 
 Image RenderReference(const Hierarchy& h, const RenderSettings& s)
 {
@@ -586,7 +803,15 @@ Image RenderReference(const Hierarchy& h, const RenderSettings& s)
     stepOfLevel.push_back(s.ReferenceSampleFactor * MinEdge(h.Spacing0 * h.CellSize(l)));
   }
 
+  StatsSink sink;
+  sink.Target = s.Stats;
+  if (s.Stats)
+  {
+    *s.Stats = RenderStats();
+  }
+
   ForEachRow(s.Height, s.Threads, [&](int j) {
+    RenderStats rowStats;
     for (int i = 0; i < s.Width; ++i)
     {
       glm::dvec3 wo, wd;
@@ -620,8 +845,13 @@ Image RenderReference(const Hierarchy& h, const RenderSettings& s)
         background = opaqueColour;
       }
       double t = std::max(0.0, tEnter);
+      rowStats.Rays += hit && t < tExit ? 1 : 0;
       while (hit && t < tExit)
       {
+        if (acc.Done(s.OpacityThreshold))
+        {
+          break;
+        }
         // shrink the step until the level found at its midpoint does not ask for a smaller one
         double dt = std::min(stepOfLevel[0], tExit - t);
         int32_t g = -1;
@@ -639,13 +869,21 @@ Image RenderReference(const Hierarchy& h, const RenderSettings& s)
         if (g >= 0)
         {
           const double mid = t + 0.5 * dt;
-          acc.Add(s.Transfer,
-            SampleGrid(h, g, o + mid * d, glm::dvec3(h.CumulativeRatio(h.Grids[g].Level))), dt);
+          double v =
+            SampleGrid(h, g, o + mid * d, glm::dvec3(h.CumulativeRatio(h.Grids[g].Level)));
+          if (s.SmoothCellData && !h.VertexCentred)
+          {
+            v = SmoothReference(h, locator, o + mid * d, h.Grids[g].Level, v);
+          }
+          acc.Add(s.Transfer, v, dt);
+          ++rowStats.Samples;
         }
         t += dt;
       }
+      rowStats.TerminatedRays += acc.Done(s.OpacityThreshold) ? 1 : 0;
       img.Pixels[static_cast<std::size_t>(j) * s.Width + i] = acc.Pixel(s.Transfer, background);
     }
+    sink.Add(rowStats);
   });
   return img;
 }

@@ -80,7 +80,8 @@ struct TransferFunction
   double EvaluateOpacity(double s) const;
 
   /// A named preset spanning [lo, hi]: "default" (blue-white-red, opacity ramp), "grey",
-  /// "hot", "grey-opaque" (grey levels at opacity 1, for the intensity projections). Throws
+  /// "hot", "grey-opaque" (grey levels at opacity 1, for the intensity projections), "sparse"
+  /// ("hot" colours, zero opacity below 60 % of the range: for empty-space skipping). Throws
   /// std::invalid_argument for an unknown name.
   static TransferFunction Preset(const std::string& name, double lo, double hi,
     double unitDistance);
@@ -96,6 +97,17 @@ enum class BlendMode
   Maximum,
   Minimum,
   Average
+};
+
+/// Work counters of one render (summed over all rays), to show what the accelerations did.
+struct RenderStats
+{
+  long long Rays = 0;             ///< rays that entered the root box
+  long long Samples = 0;          ///< samples taken (transfer function evaluated or kept)
+  long long DataSegments = 0;     ///< segments through data nodes reached by a ray
+  long long SkippedSegments = 0;  ///< ... of which skipped as transparent (empty-space skipping)
+  long long SkippedSamples = 0;   ///< samples those skipped segments would have taken
+  long long TerminatedRays = 0;   ///< rays stopped early at the opacity threshold
 };
 
 struct RenderSettings
@@ -116,6 +128,28 @@ struct RenderSettings
     glm::dvec3& colour)>
     Opaque;
   int Threads = 0;                 ///< 0 = hardware concurrency
+  /// Early ray termination (composite blending): a ray stops once its accumulated opacity
+  /// reaches this value. 1 (the default here) never stops a ray early; the GPU mapper's default
+  /// is 0.999.
+  double OpacityThreshold = 1.0;
+  /// Empty-space skipping (kD-tree integrator, composite blending): a data segment whose node's
+  /// value range (ComputeDataNodeRanges) has zero opacity under the transfer function
+  /// (TransparentRange) is not sampled. The image is unchanged: every skipped sample would have
+  /// had zero opacity. The reference ignores it (it is what skipping is checked against).
+  bool SkipEmptySpace = false;
+  /// Precomputed ComputeDataNodeRanges of the tree being rendered; computed when null.
+  const std::vector<glm::vec2>* DataNodeRanges = nullptr;
+  /// When set, receives the work counters of the render.
+  RenderStats* Stats = nullptr;
+  /// Smooth reconstruction of cell-centred data (all three integrators; vertex-centred data is
+  /// trilinear anyway). A sample at p whose level is d (the segment's data level; the reference:
+  /// the finest grid at p) is the trilinear interpolation, in the dual cell of level d that
+  /// contains p, of its 8 corners: the level-d cell centres around p, each looked up as the
+  /// finest cell containing it (kD integrators: by point location in the tree; reference:
+  /// straight from the grids). A corner outside every grid takes the nearest-cell value at p.
+  /// Continuous inside a level and across same-level grids; across level boundaries the
+  /// remaining jump is bounded by the field's change over one cell of the finer level.
+  bool SmoothCellData = false;
 };
 
 /// RGBA float image, row 0 at the bottom. Alpha is the accumulated opacity.
@@ -165,6 +199,12 @@ float CellValue(const Hierarchy& h, int32_t g, glm::i64vec3 cell);
 /// encoded with that atlas's origins). A NaN sample is transparent.
 Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSettings& s,
   const BrickAtlas* atlas = nullptr);
+/// The scalar the kD-tree integrator samples at p (level-0 index units; cell-centred data),
+/// nearest-cell or smooth (RenderSettings::SmoothCellData), at the finest level there. NaN
+/// outside every grid.
+float SampleKdTreePoint(const Hierarchy& h, const EncodedKdTree& tree, const glm::vec3& p,
+  bool smooth);
+
 /// Renders the independent reference (no kD-tree).
 Image RenderReference(const Hierarchy& h, const RenderSettings& s);
 

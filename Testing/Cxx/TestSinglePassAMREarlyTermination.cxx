@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Early ray termination at opacity 0.95 on a real AMReX plotfile made dense (a short unit
+// distance, so that most rays become nearly opaque): the CPU reference and the CPU mirror stop
+// at the same threshold; without termination no 8-bit channel differs by more than
+// (1 - 0.95) * 255 + 1, and the threshold visibly matters (the test can fail).
+#include "SinglePassAMRBaselineTest.h"
+
+#include "AmrspPacking.h"
+
+#include "vtkSinglePassAMRVolumeMapper.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <ostream>
+
+namespace
+{
+int MaxChannelDifference(const amrsp::Image& a, const amrsp::Image& b)
+{
+  const std::vector<std::uint8_t> x = a.Rgb8(), y = b.Rgb8();
+  int worst = 0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+  {
+    worst = std::max(worst, std::abs(static_cast<int>(x[i]) - static_cast<int>(y[i])));
+  }
+  return worst;
+}
+} // namespace
+
+int TestSinglePassAMREarlyTermination(int argc, char* argv[])
+{
+  amrsp::test::BaselineCase c;
+  c.Dataset = "data:amrex_plt1_Y";
+  c.Options = { "--array", "Y(H2)", "--size", "200x200", "--unit-distance", "0.0002",
+    "--opacity-threshold", "0.95" };
+  c.ReferenceBound = 3.0;
+  c.Check = [](amrsp::tool::PackingRenderer& gpu, const amrsp::Image& image, std::ostream& log) {
+    vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
+    double ms = 0.0;
+    mapper->SetOpacityThreshold(1.0);
+    const amrsp::Image full = gpu.RenderAsIs(ms);
+    mapper->SetOpacityThreshold(0.5);
+    const amrsp::Image half = gpu.RenderAsIs(ms);
+    mapper->SetOpacityThreshold(0.95);
+    const int bound = static_cast<int>(std::ceil(0.05 * 255.0)) + 1;
+    const int difference = MaxChannelDifference(image, full);
+    const int halfDifference = MaxChannelDifference(half, full);
+    log << (difference <= bound ? "ok" : "FAILED") << ": threshold 0.95 vs no termination: largest "
+        << "channel difference " << difference << " (bound " << bound << "), RMSE "
+        << amrsp::Rmse(image, full) << "\n"
+        << (halfDifference > 2 * bound ? "ok" : "FAILED")
+        << ": threshold 0.5 vs no termination: largest channel difference " << halfDifference
+        << " (must exceed " << 2 * bound << ")\n";
+    return difference <= bound && halfDifference > 2 * bound;
+  };
+  return amrsp::test::RunBaselineTest(argc, argv, c);
+}

@@ -1,0 +1,32 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Smooth reconstruction of cell-centred data (SetCellInterpolationToSmooth) on a real Enzo
+// hierarchy (8 levels): the CPU reference and the CPU mirror use the same dual-cell rule
+// (RenderSettings::SmoothCellData); the nearest-cell image of the same view differs visibly.
+#include "SinglePassAMRBaselineTest.h"
+
+#include "AmrspPacking.h"
+
+#include "vtkSinglePassAMRVolumeMapper.h"
+
+#include <ostream>
+
+int TestSinglePassAMRSmoothCells(int argc, char* argv[])
+{
+  amrsp::test::BaselineCase c;
+  c.Dataset = "data:enzo_moving7/DD0010/moving7_0010.hierarchy";
+  c.Options = { "--array", "Density", "--size", "200x200", "--interpolation", "smooth" };
+  c.ReferenceBound = 2.5;
+  c.Check = [](amrsp::tool::PackingRenderer& gpu, const amrsp::Image& image, std::ostream& log) {
+    vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
+    const bool smooth = mapper->GetCellInterpolation() == vtkSinglePassAMRVolumeMapper::SMOOTH_CELL;
+    double ms = 0.0;
+    mapper->SetCellInterpolationToNearest();
+    const double difference = amrsp::Rmse(image, gpu.RenderAsIs(ms));
+    mapper->SetCellInterpolationToSmooth();
+    const bool differs = difference > 0.3;
+    log << (smooth && differs ? "ok" : "FAILED") << ": smooth vs nearest-cell image RMSE "
+        << difference << " (must exceed 0.3)\n";
+    return smooth && differs;
+  };
+  return amrsp::test::RunBaselineTest(argc, argv, c);
+}
