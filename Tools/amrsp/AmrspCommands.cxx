@@ -1004,7 +1004,7 @@ int RunImageCommand(int argc, char** argv, bool reference)
         frameMs.push_back(1000.0 * Seconds(t0));
       }
     }
-    if (method != "packing" && method != "multipass")
+    if (method != "packing" && method != "bindless" && method != "multipass")
     {
       statsReport << "stats: rays " << stats.Rays << ", samples " << stats.Samples
                   << ", data segments " << stats.DataSegments << ", skipped segments "
