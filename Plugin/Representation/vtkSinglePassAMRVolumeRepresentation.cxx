@@ -8,13 +8,16 @@
 #include "vtkInformationVector.h"
 #include "vtkLODProp3D.h"
 #include "vtkMath.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkOverlappingAMR.h"
 #include "vtkPVLODVolume.h"
 #include "vtkPVRenderView.h"
 #include "vtkRenderer.h"
 #include "vtkScalarsToColors.h"
+#include "vtkSinglePassAMRGather.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
+#include "vtkStructuredData.h"
 #include "vtkVolumeProperty.h"
 
 namespace
@@ -99,12 +102,37 @@ int vtkSinglePassAMRVolumeRepresentation::RequestData(
   vtkOverlappingAMR* input = inputVector[0]->GetNumberOfInformationObjects() == 1
     ? vtkOverlappingAMR::GetData(inputVector[0], 0)
     : nullptr;
+  vtkSmartPointer<vtkOverlappingAMR> cache;
   if (input)
   {
     // A shallow copy: the pipeline may replace its output later, the copy stays what was
     // delivered. The mapper keys its texture rebuilds on this object and its MTime.
-    vtkNew<vtkOverlappingAMR> cache;
+    cache = vtkSmartPointer<vtkOverlappingAMR>::New();
     cache->ShallowCopy(input);
+  }
+
+  // Several ranks (pvbatch or pvserver under mpiexec): each holds the whole metadata but only
+  // some blocks' data. Rank 0 gathers every block and renders the whole volume; the other ranks
+  // render nothing (their images are empty, so any compositing order gives rank 0's image).
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  this->RendersLocally = true;
+  if (controller && controller->GetNumberOfProcesses() > 1)
+  {
+    std::string error;
+    cache = vtkSinglePassAMRGather::GatherBlocks(controller, cache, 0, &error);
+    if (!error.empty())
+    {
+      vtkErrorMacro("gathering the AMR blocks on rank 0: " << error);
+    }
+    if (controller->GetLocalProcessId() != 0)
+    {
+      this->RendersLocally = false;
+      cache = nullptr;
+    }
+  }
+
+  if (cache)
+  {
     this->Cache = cache;
     if (cache->GetNumberOfDataSets(0) > 0)
     {
@@ -114,11 +142,16 @@ int vtkSinglePassAMRVolumeRepresentation::RequestData(
   }
   else
   {
-    // A process without the input still needs a data object of the right type for the view's
-    // delivery; an AMR with one empty level (an AMR with no level at all is not valid).
+    // A process without the input (or a rank other than 0 in parallel) still needs a data
+    // object of the right type for the view's delivery; an AMR with one empty level (an AMR
+    // with no level at all is not valid).
+    // ParaView's data movement marshals it, which needs an origin and a grid description.
     vtkNew<vtkOverlappingAMR> empty;
     int blocks = 0;
     empty->Initialize(1, &blocks);
+    const double origin[3] = { 0.0, 0.0, 0.0 };
+    empty->SetOrigin(origin);
+    empty->SetGridDescription(VTK_XYZ_GRID);
     this->Cache = empty;
   }
   return this->Superclass::RequestData(request, inputVector, outputVector);
@@ -138,6 +171,12 @@ int vtkSinglePassAMRVolumeRepresentation::ProcessViewRequest(
     // DataSize (kibibytes) drives the view's remote-rendering and LOD decisions
     vtkPVView::SetPiece(inInfo, this, this->Cache, this->DataSize);
     vtkPVRenderView::SetGeometryBounds(inInfo, this, this->DataBounds, this->Actor->GetMatrix());
+    // Translucent: with several rendering ranks the view composites in visibility order, using
+    // each rank's bounds (rank 0: the whole volume; other ranks: none, an empty image). The
+    // data itself is never redistributed by the view.
+    outInfo->Set(vtkPVRenderView::NEED_ORDERED_COMPOSITING(), 1);
+    vtkPVRenderView::SetOrderedCompositingConfiguration(
+      inInfo, this, vtkPVRenderView::USE_BOUNDS_FOR_REDISTRIBUTION, this->DataBounds);
   }
   else if (request_type == vtkPVView::REQUEST_RENDER())
   {
@@ -182,7 +221,7 @@ void vtkSinglePassAMRVolumeRepresentation::UpdateMapperParameters()
   this->VolumeMapper->SetArrayComponent(component);
 
   // Solid colouring has nothing to volume-render (as ParaView's Volume representation).
-  this->Actor->SetVisibility(this->GetVisibility() && haveArray ? 1 : 0);
+  this->Actor->SetVisibility(this->GetVisibility() && haveArray && this->RendersLocally ? 1 : 0);
 }
 
 //------------------------------------------------------------------------------
@@ -263,5 +302,6 @@ void vtkSinglePassAMRVolumeRepresentation::PrintSelf(ostream& os, vtkIndent inde
   os << indent << "SampleDistanceFactor: " << this->GetSampleDistanceFactor() << "\n";
   os << indent << "LODThreshold: " << this->GetLODThreshold() << "\n";
   os << indent << "BlendMode: " << this->GetBlendMode() << "\n";
+  os << indent << "RendersLocally: " << this->RendersLocally << "\n";
   os << indent << "Cache: " << static_cast<void*>(this->Cache.Get()) << "\n";
 }

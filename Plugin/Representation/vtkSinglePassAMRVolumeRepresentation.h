@@ -103,8 +103,11 @@ protected:
   void UpdateMapperParameters();
 
   vtkSmartPointer<vtkSinglePassAMRVolumeMapper> VolumeMapper;
-  /// Shallow copy of the input made by the last RequestData; what the view delivers.
+  /// Shallow copy of the input made by the last RequestData (on rank 0 of several: with the
+  /// blocks of all ranks gathered in; on the other ranks: empty); what the view delivers.
   vtkSmartPointer<vtkOverlappingAMR> Cache;
+  /// False on the ranks other than 0 when several MPI ranks share the data: they draw nothing.
+  bool RendersLocally = true;
 
 private:
   vtkSinglePassAMRVolumeRepresentation(const vtkSinglePassAMRVolumeRepresentation&) = delete;
