@@ -8,6 +8,7 @@
 #include "vtkInformationVector.h"
 #include "vtkLODProp3D.h"
 #include "vtkMath.h"
+#include "vtkMultiPassAMRVolumeMapper.h"
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkOverlappingAMR.h"
@@ -70,6 +71,7 @@ vtkStandardNewMacro(vtkSinglePassAMRVolumeRepresentation);
 //------------------------------------------------------------------------------
 vtkSinglePassAMRVolumeRepresentation::vtkSinglePassAMRVolumeRepresentation()
   : VolumeMapper(vtkSmartPointer<vtkSinglePassAMRVolumeMapper>::New())
+  , MultiPassMapper(vtkSmartPointer<vtkMultiPassAMRVolumeMapper>::New())
 {
   // replaces vtkVolumeRepresentation's prop (before anything else refers to it)
   this->Actor = vtkSmartPointer<vtkSinglePassAMRLODVolume>::New();
@@ -180,11 +182,18 @@ int vtkSinglePassAMRVolumeRepresentation::ProcessViewRequest(
   }
   else if (request_type == vtkPVView::REQUEST_RENDER())
   {
+    // both mappers follow the delivered piece; only the one in use builds textures (when it
+    // renders), so the other keeps its textures until it renders new data
     vtkAlgorithmOutput* producer = vtkPVRenderView::GetPieceProducer(inInfo, this);
     if (this->VolumeMapper->GetNumberOfInputConnections(0) < 1 ||
       this->VolumeMapper->GetInputConnection(0, 0) != producer)
     {
       this->VolumeMapper->SetInputConnection(producer);
+    }
+    if (this->MultiPassMapper->GetNumberOfInputConnections(0) < 1 ||
+      this->MultiPassMapper->GetInputConnection(0, 0) != producer)
+    {
+      this->MultiPassMapper->SetInputConnection(producer);
     }
     this->UpdateMapperParameters();
   }
@@ -206,6 +215,7 @@ void vtkSinglePassAMRVolumeRepresentation::UpdateMapperParameters()
     // The mapper looks the name up among the cell arrays, then the point arrays (point data is
     // rendered vertex-centred); ParaView's array list offers only arrays that exist.
     this->VolumeMapper->SelectScalarArray(arrayName);
+    this->MultiPassMapper->SelectScalarArray(arrayName);
   }
 
   // The component follows the colour map: a colour map in COMPONENT mode renders that
@@ -219,6 +229,8 @@ void vtkSinglePassAMRVolumeRepresentation::UpdateMapperParameters()
     }
   }
   this->VolumeMapper->SetArrayComponent(component);
+  this->MultiPassMapper->SetArrayComponent(component);
+  this->UpdateMethod();
 
   // Solid colouring has nothing to volume-render (as ParaView's Volume representation).
   this->Actor->SetVisibility(this->GetVisibility() && haveArray && this->RendersLocally ? 1 : 0);
@@ -249,9 +261,41 @@ bool vtkSinglePassAMRVolumeRepresentation::RemoveFromView(vtkView* view)
 }
 
 //------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeRepresentation::SetMethod(int method)
+{
+  if (method < METHOD_AUTO || method > METHOD_MULTI_PASS)
+  {
+    vtkErrorMacro("unknown method " << method
+                                    << " (0 auto, 1 packing, 2 multi-pass); keeping " << this->Method);
+    return;
+  }
+  if (method != this->Method)
+  {
+    this->Method = method;
+    this->UpdateMethod();
+    this->Modified();
+  }
+}
+
+void vtkSinglePassAMRVolumeRepresentation::UpdateMethod()
+{
+  // METHOD_AUTO and METHOD_PACKING: the single-pass mapper (whose only storage today is the
+  // packed atlas); a storage choice of that mapper maps here as one more case.
+  vtkVolumeMapper* mapper = this->VolumeMapper;
+  if (this->Method == METHOD_MULTI_PASS)
+  {
+    mapper = this->MultiPassMapper;
+  }
+  if (this->Actor->GetMapper() != mapper)
+  {
+    this->Actor->SetMapper(mapper);
+  }
+}
+
 void vtkSinglePassAMRVolumeRepresentation::SetSampleDistanceFactor(double factor)
 {
   this->VolumeMapper->SetSampleDistanceFactor(factor);
+  this->MultiPassMapper->SetSampleDistanceFactor(factor);
 }
 
 double vtkSinglePassAMRVolumeRepresentation::GetSampleDistanceFactor()
@@ -272,6 +316,7 @@ double vtkSinglePassAMRVolumeRepresentation::GetLODThreshold()
 void vtkSinglePassAMRVolumeRepresentation::SetBlendMode(int mode)
 {
   this->VolumeMapper->SetBlendMode(mode);
+  this->MultiPassMapper->SetBlendMode(mode); // composite only: it reports an error for others
 }
 
 int vtkSinglePassAMRVolumeRepresentation::GetBlendMode()
@@ -285,20 +330,28 @@ vtkSinglePassAMRVolumeMapper* vtkSinglePassAMRVolumeRepresentation::GetVolumeMap
   return this->VolumeMapper;
 }
 
+vtkMultiPassAMRVolumeMapper* vtkSinglePassAMRVolumeRepresentation::GetMultiPassMapper()
+{
+  return this->MultiPassMapper;
+}
+
 const char* vtkSinglePassAMRVolumeRepresentation::GetLastRenderError()
 {
-  return this->VolumeMapper->GetLastError();
+  return this->Method == METHOD_MULTI_PASS ? this->MultiPassMapper->GetLastError()
+                                           : this->VolumeMapper->GetLastError();
 }
 
 int vtkSinglePassAMRVolumeRepresentation::GetNumberOfTextureBuilds()
 {
-  return this->VolumeMapper->GetNumberOfBuilds();
+  return this->Method == METHOD_MULTI_PASS ? this->MultiPassMapper->GetNumberOfBuilds()
+                                           : this->VolumeMapper->GetNumberOfBuilds();
 }
 
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "Method: " << this->Method << "\n";
   os << indent << "SampleDistanceFactor: " << this->GetSampleDistanceFactor() << "\n";
   os << indent << "LODThreshold: " << this->GetLODThreshold() << "\n";
   os << indent << "BlendMode: " << this->GetBlendMode() << "\n";

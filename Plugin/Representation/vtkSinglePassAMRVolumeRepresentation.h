@@ -42,6 +42,7 @@
 #include "vtkSmartPointer.h"                // for ivar
 #include "vtkVolumeRepresentation.h"
 
+class vtkMultiPassAMRVolumeMapper;
 class vtkOverlappingAMR;
 class vtkSinglePassAMRVolumeMapper;
 
@@ -75,14 +76,35 @@ public:
   int GetBlendMode();
   ///@}
 
-  /// The mapper (for tests and diagnostics).
+  /**
+   * Rendering method. METHOD_AUTO: the single-pass mapper with the storage it chooses (today the
+   * packed atlas, its only storage). METHOD_PACKING: the single-pass mapper, packed atlas.
+   * METHOD_MULTI_PASS: vtkMultiPassAMRVolumeMapper (one draw per kD-tree data node, CPU
+   * traversal; composite blending only, no level of detail). Each mapper keeps its own textures:
+   * switching methods builds a mapper's textures only the first time it renders the current data,
+   * switching back never rebuilds. Values are stable (they are the proxy property's values); a
+   * new storage of the single-pass mapper is one more value mapped in UpdateMethod().
+   */
+  enum Methods
+  {
+    METHOD_AUTO = 0,
+    METHOD_PACKING = 1,
+    METHOD_MULTI_PASS = 2,
+  };
+  void SetMethod(int method);
+  vtkGetMacro(Method, int);
+
+  /// The single-pass mapper (for tests and diagnostics).
   vtkSinglePassAMRVolumeMapper* GetVolumeMapper();
+  /// The multi-pass mapper (for tests and diagnostics).
+  vtkMultiPassAMRVolumeMapper* GetMultiPassMapper();
 
   ///@{
   /**
    * Diagnostics, also offered as information-only proxy properties (SinglePassRenderError,
-   * SinglePassTextureBuilds) so that clients see them in every session type:
-   * the mapper's last error (empty after a successful render), and how many times it has built
+   * SinglePassTextureBuilds) so that clients see them in every session type: of the mapper the
+   * Method selects, its last error (empty after a successful render), and how many times it has
+   * built
    * its data textures (camera, colour-map, opacity, blend-mode, sampling and LOD changes must
    * not increase it).
    */
@@ -102,7 +124,12 @@ protected:
   /// Array selection, component and visibility, from the coloured array and the colour map.
   void UpdateMapperParameters();
 
+  /// Points the prop at the mapper Method selects (and sets that mapper's storage).
+  void UpdateMethod();
+
   vtkSmartPointer<vtkSinglePassAMRVolumeMapper> VolumeMapper;
+  vtkSmartPointer<vtkMultiPassAMRVolumeMapper> MultiPassMapper;
+  int Method = METHOD_AUTO;
   /// Shallow copy of the input made by the last RequestData (on rank 0 of several: with the
   /// blocks of all ranks gathered in; on the other ranks: empty); what the view delivers.
   vtkSmartPointer<vtkOverlappingAMR> Cache;
