@@ -173,12 +173,20 @@ int vtkSinglePassAMRVolumeRepresentation::ProcessViewRequest(
     // DataSize (kibibytes) drives the view's remote-rendering and LOD decisions
     vtkPVView::SetPiece(inInfo, this, this->Cache, this->DataSize);
     vtkPVRenderView::SetGeometryBounds(inInfo, this, this->DataBounds, this->Actor->GetMatrix());
-    // Translucent: with several rendering ranks the view composites in visibility order, using
-    // each rank's bounds (rank 0: the whole volume; other ranks: none, an empty image). The
-    // data itself is never redistributed by the view.
-    outInfo->Set(vtkPVRenderView::NEED_ORDERED_COMPOSITING(), 1);
-    vtkPVRenderView::SetOrderedCompositingConfiguration(
-      inInfo, this, vtkPVRenderView::USE_BOUNDS_FOR_REDISTRIBUTION, this->DataBounds);
+    // Translucent: with several rendering ranks the view composites the ranks' images by
+    // alpha blending in visibility order (IceT's ordered compositing; the volume writes no
+    // depth), ordered by each rank's bounds (rank 0: the whole volume; the others: none, an
+    // empty image). The data itself is never redistributed by the view.
+    // Not when the view cannot render on the ranks (RemoteRenderingAvailable false): ParaView
+    // 5.11 then renders on rank 0 alone but still gathers the ranks' bounds, a collective call
+    // only rank 0 makes (pvbatch deadlocks). Rank 0 holds every block, so its image is complete.
+    vtkPVRenderView* view = vtkPVRenderView::SafeDownCast(inInfo->Get(vtkPVView::VIEW()));
+    if (!view || view->GetRemoteRenderingAvailable())
+    {
+      outInfo->Set(vtkPVRenderView::NEED_ORDERED_COMPOSITING(), 1);
+      vtkPVRenderView::SetOrderedCompositingConfiguration(
+        inInfo, this, vtkPVRenderView::USE_BOUNDS_FOR_REDISTRIBUTION, this->DataBounds);
+    }
   }
   else if (request_type == vtkPVView::REQUEST_RENDER())
   {
