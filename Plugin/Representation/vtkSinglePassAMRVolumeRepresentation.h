@@ -23,10 +23,13 @@
  * pvbatch on one rank) the delivered piece is the copy itself: nothing is moved or duplicated.
  * With one pvserver, ParaView's delivery does the rest: below the remote-render threshold the
  * whole vtkOverlappingAMR is sent to the client, which renders it; above it the server renders
- * and sends the image (both tested). Not handled: several MPI ranks. Each rank holds only some
- * blocks, and the mapper needs the whole hierarchy: it reports "block ... has no data loaded" and
- * draws nothing (no gathering of the blocks, no ordered compositing of per-rank images).
- * Not handled either: block streaming, and LOD geometry while interacting (the mapper's own
+ * and sends the image (both tested). Several MPI ranks (pvbatch or pvserver under mpiexec):
+ * each rank holds the whole metadata but only some blocks' data; RequestData gathers every
+ * block on rank 0 (vtkSinglePassAMRGather), which renders the whole volume, while the other ranks
+ * deliver an empty hierarchy and draw nothing; the view composites the ranks' images with
+ * ordered (alpha-blending) compositing. Rank 0 thus holds the whole hierarchy's data; per-rank
+ * rendering of convex regions is not implemented.
+ * Not handled: block streaming, and LOD geometry while interacting (the mapper's own
  * LODThreshold is the level of detail).
  *
  * Invariants: when the mapper renders, its input is the piece the view delivered for the last
