@@ -8,13 +8,17 @@
 #include "vtkInformationVector.h"
 #include "vtkLODProp3D.h"
 #include "vtkMath.h"
+#include "vtkMultiPassAMRVolumeMapper.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkOverlappingAMR.h"
 #include "vtkPVLODVolume.h"
 #include "vtkPVRenderView.h"
 #include "vtkRenderer.h"
 #include "vtkScalarsToColors.h"
+#include "vtkSinglePassAMRGather.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
+#include "vtkStructuredData.h"
 #include "vtkVolumeProperty.h"
 
 namespace
@@ -67,6 +71,7 @@ vtkStandardNewMacro(vtkSinglePassAMRVolumeRepresentation);
 //------------------------------------------------------------------------------
 vtkSinglePassAMRVolumeRepresentation::vtkSinglePassAMRVolumeRepresentation()
   : VolumeMapper(vtkSmartPointer<vtkSinglePassAMRVolumeMapper>::New())
+  , MultiPassMapper(vtkSmartPointer<vtkMultiPassAMRVolumeMapper>::New())
 {
   // replaces vtkVolumeRepresentation's prop (before anything else refers to it)
   this->Actor = vtkSmartPointer<vtkSinglePassAMRLODVolume>::New();
@@ -99,12 +104,37 @@ int vtkSinglePassAMRVolumeRepresentation::RequestData(
   vtkOverlappingAMR* input = inputVector[0]->GetNumberOfInformationObjects() == 1
     ? vtkOverlappingAMR::GetData(inputVector[0], 0)
     : nullptr;
+  vtkSmartPointer<vtkOverlappingAMR> cache;
   if (input)
   {
     // A shallow copy: the pipeline may replace its output later, the copy stays what was
     // delivered. The mapper keys its texture rebuilds on this object and its MTime.
-    vtkNew<vtkOverlappingAMR> cache;
+    cache = vtkSmartPointer<vtkOverlappingAMR>::New();
     cache->ShallowCopy(input);
+  }
+
+  // Several ranks (pvbatch or pvserver under mpiexec): each holds the whole metadata but only
+  // some blocks' data. Rank 0 gathers every block and renders the whole volume; the other ranks
+  // render nothing (their images are empty, so any compositing order gives rank 0's image).
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  this->RendersLocally = true;
+  if (controller && controller->GetNumberOfProcesses() > 1)
+  {
+    std::string error;
+    cache = vtkSinglePassAMRGather::GatherBlocks(controller, cache, 0, &error);
+    if (!error.empty())
+    {
+      vtkErrorMacro("gathering the AMR blocks on rank 0: " << error);
+    }
+    if (controller->GetLocalProcessId() != 0)
+    {
+      this->RendersLocally = false;
+      cache = nullptr;
+    }
+  }
+
+  if (cache)
+  {
     this->Cache = cache;
     if (cache->GetNumberOfDataSets(0) > 0)
     {
@@ -114,11 +144,16 @@ int vtkSinglePassAMRVolumeRepresentation::RequestData(
   }
   else
   {
-    // A process without the input still needs a data object of the right type for the view's
-    // delivery; an AMR with one empty level (an AMR with no level at all is not valid).
+    // A process without the input (or a rank other than 0 in parallel) still needs a data
+    // object of the right type for the view's delivery; an AMR with one empty level (an AMR
+    // with no level at all is not valid).
+    // ParaView's data movement marshals it, which needs an origin and a grid description.
     vtkNew<vtkOverlappingAMR> empty;
     int blocks = 0;
     empty->Initialize(1, &blocks);
+    const double origin[3] = { 0.0, 0.0, 0.0 };
+    empty->SetOrigin(origin);
+    empty->SetGridDescription(VTK_XYZ_GRID);
     this->Cache = empty;
   }
   return this->Superclass::RequestData(request, inputVector, outputVector);
@@ -138,14 +173,35 @@ int vtkSinglePassAMRVolumeRepresentation::ProcessViewRequest(
     // DataSize (kibibytes) drives the view's remote-rendering and LOD decisions
     vtkPVView::SetPiece(inInfo, this, this->Cache, this->DataSize);
     vtkPVRenderView::SetGeometryBounds(inInfo, this, this->DataBounds, this->Actor->GetMatrix());
+    // Translucent: with several rendering ranks the view composites the ranks' images by
+    // alpha blending in visibility order (IceT's ordered compositing; the volume writes no
+    // depth), ordered by each rank's bounds (rank 0: the whole volume; the others: none, an
+    // empty image). The data itself is never redistributed by the view.
+    // Not when the view cannot render on the ranks (RemoteRenderingAvailable false): ParaView
+    // 5.11 then renders on rank 0 alone but still gathers the ranks' bounds, a collective call
+    // only rank 0 makes (pvbatch deadlocks). Rank 0 holds every block, so its image is complete.
+    vtkPVRenderView* view = vtkPVRenderView::SafeDownCast(inInfo->Get(vtkPVView::VIEW()));
+    if (!view || view->GetRemoteRenderingAvailable())
+    {
+      outInfo->Set(vtkPVRenderView::NEED_ORDERED_COMPOSITING(), 1);
+      vtkPVRenderView::SetOrderedCompositingConfiguration(
+        inInfo, this, vtkPVRenderView::USE_BOUNDS_FOR_REDISTRIBUTION, this->DataBounds);
+    }
   }
   else if (request_type == vtkPVView::REQUEST_RENDER())
   {
+    // both mappers follow the delivered piece; only the one in use builds textures (when it
+    // renders), so the other keeps its textures until it renders new data
     vtkAlgorithmOutput* producer = vtkPVRenderView::GetPieceProducer(inInfo, this);
     if (this->VolumeMapper->GetNumberOfInputConnections(0) < 1 ||
       this->VolumeMapper->GetInputConnection(0, 0) != producer)
     {
       this->VolumeMapper->SetInputConnection(producer);
+    }
+    if (this->MultiPassMapper->GetNumberOfInputConnections(0) < 1 ||
+      this->MultiPassMapper->GetInputConnection(0, 0) != producer)
+    {
+      this->MultiPassMapper->SetInputConnection(producer);
     }
     this->UpdateMapperParameters();
   }
@@ -167,6 +223,7 @@ void vtkSinglePassAMRVolumeRepresentation::UpdateMapperParameters()
     // The mapper looks the name up among the cell arrays, then the point arrays (point data is
     // rendered vertex-centred); ParaView's array list offers only arrays that exist.
     this->VolumeMapper->SelectScalarArray(arrayName);
+    this->MultiPassMapper->SelectScalarArray(arrayName);
   }
 
   // The component follows the colour map: a colour map in COMPONENT mode renders that
@@ -180,9 +237,11 @@ void vtkSinglePassAMRVolumeRepresentation::UpdateMapperParameters()
     }
   }
   this->VolumeMapper->SetArrayComponent(component);
+  this->MultiPassMapper->SetArrayComponent(component);
+  this->UpdateMethod();
 
   // Solid colouring has nothing to volume-render (as ParaView's Volume representation).
-  this->Actor->SetVisibility(this->GetVisibility() && haveArray ? 1 : 0);
+  this->Actor->SetVisibility(this->GetVisibility() && haveArray && this->RendersLocally ? 1 : 0);
 }
 
 //------------------------------------------------------------------------------
@@ -210,9 +269,41 @@ bool vtkSinglePassAMRVolumeRepresentation::RemoveFromView(vtkView* view)
 }
 
 //------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeRepresentation::SetMethod(int method)
+{
+  if (method < METHOD_AUTO || method > METHOD_MULTI_PASS)
+  {
+    vtkErrorMacro("unknown method " << method
+                                    << " (0 auto, 1 packing, 2 multi-pass); keeping " << this->Method);
+    return;
+  }
+  if (method != this->Method)
+  {
+    this->Method = method;
+    this->UpdateMethod();
+    this->Modified();
+  }
+}
+
+void vtkSinglePassAMRVolumeRepresentation::UpdateMethod()
+{
+  // METHOD_AUTO and METHOD_PACKING: the single-pass mapper (whose only storage today is the
+  // packed atlas); a storage choice of that mapper maps here as one more case.
+  vtkVolumeMapper* mapper = this->VolumeMapper;
+  if (this->Method == METHOD_MULTI_PASS)
+  {
+    mapper = this->MultiPassMapper;
+  }
+  if (this->Actor->GetMapper() != mapper)
+  {
+    this->Actor->SetMapper(mapper);
+  }
+}
+
 void vtkSinglePassAMRVolumeRepresentation::SetSampleDistanceFactor(double factor)
 {
   this->VolumeMapper->SetSampleDistanceFactor(factor);
+  this->MultiPassMapper->SetSampleDistanceFactor(factor);
 }
 
 double vtkSinglePassAMRVolumeRepresentation::GetSampleDistanceFactor()
@@ -233,6 +324,7 @@ double vtkSinglePassAMRVolumeRepresentation::GetLODThreshold()
 void vtkSinglePassAMRVolumeRepresentation::SetBlendMode(int mode)
 {
   this->VolumeMapper->SetBlendMode(mode);
+  this->MultiPassMapper->SetBlendMode(mode); // composite only: it reports an error for others
 }
 
 int vtkSinglePassAMRVolumeRepresentation::GetBlendMode()
@@ -246,22 +338,31 @@ vtkSinglePassAMRVolumeMapper* vtkSinglePassAMRVolumeRepresentation::GetVolumeMap
   return this->VolumeMapper;
 }
 
+vtkMultiPassAMRVolumeMapper* vtkSinglePassAMRVolumeRepresentation::GetMultiPassMapper()
+{
+  return this->MultiPassMapper;
+}
+
 const char* vtkSinglePassAMRVolumeRepresentation::GetLastRenderError()
 {
-  return this->VolumeMapper->GetLastError();
+  return this->Method == METHOD_MULTI_PASS ? this->MultiPassMapper->GetLastError()
+                                           : this->VolumeMapper->GetLastError();
 }
 
 int vtkSinglePassAMRVolumeRepresentation::GetNumberOfTextureBuilds()
 {
-  return this->VolumeMapper->GetNumberOfBuilds();
+  return this->Method == METHOD_MULTI_PASS ? this->MultiPassMapper->GetNumberOfBuilds()
+                                           : this->VolumeMapper->GetNumberOfBuilds();
 }
 
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "Method: " << this->Method << "\n";
   os << indent << "SampleDistanceFactor: " << this->GetSampleDistanceFactor() << "\n";
   os << indent << "LODThreshold: " << this->GetLODThreshold() << "\n";
   os << indent << "BlendMode: " << this->GetBlendMode() << "\n";
+  os << indent << "RendersLocally: " << this->RendersLocally << "\n";
   os << indent << "Cache: " << static_cast<void*>(this->Cache.Get()) << "\n";
 }

@@ -23,10 +23,13 @@
  * pvbatch on one rank) the delivered piece is the copy itself: nothing is moved or duplicated.
  * With one pvserver, ParaView's delivery does the rest: below the remote-render threshold the
  * whole vtkOverlappingAMR is sent to the client, which renders it; above it the server renders
- * and sends the image (both tested). Not handled: several MPI ranks. Each rank holds only some
- * blocks, and the mapper needs the whole hierarchy: it reports "block ... has no data loaded" and
- * draws nothing (no gathering of the blocks, no ordered compositing of per-rank images).
- * Not handled either: block streaming, and LOD geometry while interacting (the mapper's own
+ * and sends the image (both tested). Several MPI ranks (pvbatch or pvserver under mpiexec):
+ * each rank holds the whole metadata but only some blocks' data; RequestData gathers every
+ * block on rank 0 (vtkSinglePassAMRGather), which renders the whole volume, while the other ranks
+ * deliver an empty hierarchy and draw nothing; the view composites the ranks' images with
+ * ordered (alpha-blending) compositing. Rank 0 thus holds the whole hierarchy's data; per-rank
+ * rendering of convex regions is not implemented.
+ * Not handled: block streaming, and LOD geometry while interacting (the mapper's own
  * LODThreshold is the level of detail).
  *
  * Invariants: when the mapper renders, its input is the piece the view delivered for the last
@@ -42,6 +45,7 @@
 #include "vtkSmartPointer.h"                // for ivar
 #include "vtkVolumeRepresentation.h"
 
+class vtkMultiPassAMRVolumeMapper;
 class vtkOverlappingAMR;
 class vtkSinglePassAMRVolumeMapper;
 
@@ -75,14 +79,35 @@ public:
   int GetBlendMode();
   ///@}
 
-  /// The mapper (for tests and diagnostics).
+  /**
+   * Rendering method. METHOD_AUTO: the single-pass mapper with the storage it chooses (today the
+   * packed atlas, its only storage). METHOD_PACKING: the single-pass mapper, packed atlas.
+   * METHOD_MULTI_PASS: vtkMultiPassAMRVolumeMapper (one draw per kD-tree data node, CPU
+   * traversal; composite blending only, no level of detail). Each mapper keeps its own textures:
+   * switching methods builds a mapper's textures only the first time it renders the current data,
+   * switching back never rebuilds. Values are stable (they are the proxy property's values); a
+   * new storage of the single-pass mapper is one more value mapped in UpdateMethod().
+   */
+  enum Methods
+  {
+    METHOD_AUTO = 0,
+    METHOD_PACKING = 1,
+    METHOD_MULTI_PASS = 2,
+  };
+  void SetMethod(int method);
+  vtkGetMacro(Method, int);
+
+  /// The single-pass mapper (for tests and diagnostics).
   vtkSinglePassAMRVolumeMapper* GetVolumeMapper();
+  /// The multi-pass mapper (for tests and diagnostics).
+  vtkMultiPassAMRVolumeMapper* GetMultiPassMapper();
 
   ///@{
   /**
    * Diagnostics, also offered as information-only proxy properties (SinglePassRenderError,
-   * SinglePassTextureBuilds) so that clients see them in every session type:
-   * the mapper's last error (empty after a successful render), and how many times it has built
+   * SinglePassTextureBuilds) so that clients see them in every session type: of the mapper the
+   * Method selects, its last error (empty after a successful render), and how many times it has
+   * built
    * its data textures (camera, colour-map, opacity, blend-mode, sampling and LOD changes must
    * not increase it).
    */
@@ -102,9 +127,17 @@ protected:
   /// Array selection, component and visibility, from the coloured array and the colour map.
   void UpdateMapperParameters();
 
+  /// Points the prop at the mapper Method selects (and sets that mapper's storage).
+  void UpdateMethod();
+
   vtkSmartPointer<vtkSinglePassAMRVolumeMapper> VolumeMapper;
-  /// Shallow copy of the input made by the last RequestData; what the view delivers.
+  vtkSmartPointer<vtkMultiPassAMRVolumeMapper> MultiPassMapper;
+  int Method = METHOD_AUTO;
+  /// Shallow copy of the input made by the last RequestData (on rank 0 of several: with the
+  /// blocks of all ranks gathered in; on the other ranks: empty); what the view delivers.
   vtkSmartPointer<vtkOverlappingAMR> Cache;
+  /// False on the ranks other than 0 when several MPI ranks share the data: they draw nothing.
+  bool RendersLocally = true;
 
 private:
   vtkSinglePassAMRVolumeRepresentation(const vtkSinglePassAMRVolumeRepresentation&) = delete;

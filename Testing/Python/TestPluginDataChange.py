@@ -7,6 +7,8 @@
 #   changes the image;
 # - camera, colour-map, opacity, unit-distance, sample-distance, LOD and blend-mode changes, hiding
 #   and showing, and switching to another representation type and back, never rebuild them;
+# - switching the Method (Auto, Packing, Multi-Pass) builds each mapper's textures once per
+#   dataset and never again when switching back; Auto renders as Packing, Multi-Pass close to it;
 # - solid colouring (no array) draws nothing, colouring by the array again draws the volume;
 # - the blend modes and LOD give images that differ from composite / the finest level.
 # Exit codes: 0 pass, 1 fail, 125 skipped (no X display or no usable OpenGL context).
@@ -14,6 +16,7 @@ import os
 import sys
 
 SKIP = 125
+MULTIPASS_RMSE_BOUND = 1.0
 
 
 def leave(code):
@@ -135,11 +138,33 @@ def main():
     lut.RGBPoints, pwf.Points = points  # ColorBy rescaled them to the data range
     coloured = shot("coloured", 1)
 
+    # the Method: each mapper builds its textures once for this data; switching back rebuilds
+    # nothing (the counts are those of the mapper in use)
+    display.Method = "Multi-Pass"
+    multipass = shot("multi-pass", 1)
+    display.Method = "Packing"
+    packing = shot("packing", 1)
+    display.Method = "Multi-Pass"
+    shot("multi-pass again", 1)
+    # the multi-pass mapper is really the one in use: it alone refuses maximum intensity
+    display.BlendMode = "Maximum Intensity"
+    simple.Render(view)
+    refusal = info_property(display, "SinglePassRenderError")
+    print("multi-pass with maximum intensity: %s" % refusal)
+    if not refusal or "blend" not in refusal.lower():
+        fail("Method Multi-Pass does not render with vtkMultiPassAMRVolumeMapper")
+    display.BlendMode = "Composite"
+    display.Method = "Auto"
+    auto = shot("auto", 1)
+
     # a new dataset: one rebuild
     source.Seed = 4
     changed = shot("new data", 2)
     view.GetActiveCamera().Azimuth(10.0)
     shot("new camera", 2)
+    display.Method = "Multi-Pass"
+    shot("new multi-pass", 2)
+    display.Method = "Auto"
 
     checks = [
         ("hidden representation draws nothing", coverage(hidden) == 0.0),
@@ -151,9 +176,15 @@ def main():
         ("LOD changes the image", rmse(lod, finest) > 0.01),
         ("maximum intensity differs from composite", rmse(mip, finest) > 3.0),
         ("new data changes the image", rmse(changed, again) > 3.0),
+        ("packing after multi-pass: the same image", rmse(packing, finest) == 0.0),
+        ("auto is packing", rmse(auto, finest) == 0.0),
+        # both mappers take the same samples (README, "Multi-pass"); float blending differs
+        ("multi-pass renders the packing image", rmse(multipass, finest) < MULTIPASS_RMSE_BOUND),
     ]
     print("rmse (0-255): LOD vs finest %.2f, maximum intensity vs composite %.2f, new data vs "
-          "old %.2f" % (rmse(lod, finest), rmse(mip, finest), rmse(changed, again)))
+          "old %.2f, multi-pass vs packing %.2f (bound %.1f)"
+          % (rmse(lod, finest), rmse(mip, finest), rmse(changed, again),
+             rmse(multipass, finest), MULTIPASS_RMSE_BOUND))
     for what, ok in checks:
         print("%-45s %s" % (what, "ok" if ok else "FAILED"))
     if not all(ok for _, ok in checks):
