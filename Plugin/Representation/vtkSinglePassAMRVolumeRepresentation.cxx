@@ -271,10 +271,10 @@ bool vtkSinglePassAMRVolumeRepresentation::RemoveFromView(vtkView* view)
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRVolumeRepresentation::SetMethod(int method)
 {
-  if (method < METHOD_AUTO || method > METHOD_MULTI_PASS)
+  if (method < METHOD_AUTO || method > METHOD_BINDLESS)
   {
-    vtkErrorMacro("unknown method " << method
-                                    << " (0 auto, 1 packing, 2 multi-pass); keeping " << this->Method);
+    vtkErrorMacro("unknown method " << method << " (0 auto, 1 packing, 2 multi-pass, 3 bindless); keeping "
+                                    << this->Method);
     return;
   }
   if (method != this->Method)
@@ -287,12 +287,22 @@ void vtkSinglePassAMRVolumeRepresentation::SetMethod(int method)
 
 void vtkSinglePassAMRVolumeRepresentation::UpdateMethod()
 {
-  // METHOD_AUTO and METHOD_PACKING: the single-pass mapper (whose only storage today is the
-  // packed atlas); a storage choice of that mapper maps here as one more case.
+  // every method but multi-pass is a data storage of the single-pass mapper
   vtkVolumeMapper* mapper = this->VolumeMapper;
-  if (this->Method == METHOD_MULTI_PASS)
+  switch (this->Method)
   {
-    mapper = this->MultiPassMapper;
+    case METHOD_MULTI_PASS:
+      mapper = this->MultiPassMapper;
+      break;
+    case METHOD_PACKING:
+      this->VolumeMapper->SetDataStorageToPackedAtlas();
+      break;
+    case METHOD_BINDLESS:
+      this->VolumeMapper->SetDataStorageToBindlessTextures();
+      break;
+    default:
+      this->VolumeMapper->SetDataStorageToAuto();
+      break;
   }
   if (this->Actor->GetMapper() != mapper)
   {
@@ -309,6 +319,36 @@ void vtkSinglePassAMRVolumeRepresentation::SetSampleDistanceFactor(double factor
 double vtkSinglePassAMRVolumeRepresentation::GetSampleDistanceFactor()
 {
   return this->VolumeMapper->GetSampleDistanceFactor();
+}
+
+void vtkSinglePassAMRVolumeRepresentation::SetOpacityThreshold(double threshold)
+{
+  this->VolumeMapper->SetOpacityThreshold(threshold);
+}
+
+double vtkSinglePassAMRVolumeRepresentation::GetOpacityThreshold()
+{
+  return this->VolumeMapper->GetOpacityThreshold();
+}
+
+void vtkSinglePassAMRVolumeRepresentation::SetEmptySpaceSkipping(bool on)
+{
+  this->VolumeMapper->SetEmptySpaceSkipping(on);
+}
+
+bool vtkSinglePassAMRVolumeRepresentation::GetEmptySpaceSkipping()
+{
+  return this->VolumeMapper->GetEmptySpaceSkipping();
+}
+
+void vtkSinglePassAMRVolumeRepresentation::SetCellInterpolation(int mode)
+{
+  this->VolumeMapper->SetCellInterpolation(mode);
+}
+
+int vtkSinglePassAMRVolumeRepresentation::GetCellInterpolation()
+{
+  return this->VolumeMapper->GetCellInterpolation();
 }
 
 void vtkSinglePassAMRVolumeRepresentation::SetLODThreshold(double pixels)
@@ -353,6 +393,27 @@ int vtkSinglePassAMRVolumeRepresentation::GetNumberOfTextureBuilds()
 {
   return this->Method == METHOD_MULTI_PASS ? this->MultiPassMapper->GetNumberOfBuilds()
                                            : this->VolumeMapper->GetNumberOfBuilds();
+}
+
+const char* vtkSinglePassAMRVolumeRepresentation::GetLastDataStorage()
+{
+  if (this->Method == METHOD_MULTI_PASS)
+  {
+    this->LastDataStorage = "multi-pass";
+  }
+  else
+  {
+    const int storage = this->VolumeMapper->GetLastDataStorage();
+    this->LastDataStorage = vtkSinglePassAMRVolumeMapper::GetDataStorageName(storage);
+    if (storage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES)
+    {
+      this->LastDataStorage += std::string(" (") +
+        vtkSinglePassAMRVolumeMapper::GetBindlessAccessName(
+          this->VolumeMapper->GetLastBindlessAccess()) +
+        ")";
+    }
+  }
+  return this->LastDataStorage.c_str();
 }
 
 //------------------------------------------------------------------------------

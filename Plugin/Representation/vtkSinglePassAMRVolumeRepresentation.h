@@ -45,6 +45,8 @@
 #include "vtkSmartPointer.h"                // for ivar
 #include "vtkVolumeRepresentation.h"
 
+#include <string> // for ivar
+
 class vtkMultiPassAMRVolumeMapper;
 class vtkOverlappingAMR;
 class vtkSinglePassAMRVolumeMapper;
@@ -77,22 +79,34 @@ public:
   double GetLODThreshold();
   void SetBlendMode(int mode);
   int GetBlendMode();
+  /// Single-pass mapper options (see vtkSinglePassAMRVolumeMapper): early ray termination,
+  /// empty-space skipping, nearest (0) or smooth (1) reconstruction of cell data.
+  void SetOpacityThreshold(double threshold);
+  double GetOpacityThreshold();
+  void SetEmptySpaceSkipping(bool on);
+  bool GetEmptySpaceSkipping();
+  void SetCellInterpolation(int mode);
+  int GetCellInterpolation();
   ///@}
 
   /**
-   * Rendering method. METHOD_AUTO: the single-pass mapper with the storage it chooses (today the
-   * packed atlas, its only storage). METHOD_PACKING: the single-pass mapper, packed atlas.
-   * METHOD_MULTI_PASS: vtkMultiPassAMRVolumeMapper (one draw per kD-tree data node, CPU
-   * traversal; composite blending only, no level of detail). Each mapper keeps its own textures:
-   * switching methods builds a mapper's textures only the first time it renders the current data,
-   * switching back never rebuilds. Values are stable (they are the proxy property's values); a
-   * new storage of the single-pass mapper is one more value mapped in UpdateMethod().
+   * Rendering method. METHOD_AUTO: the single-pass mapper with the storage it chooses
+   * (vtkSinglePassAMRVolumeMapper::AUTO_STORAGE: bindless where the context offers it and the
+   * atlas would not fit or waste memory, else the packed atlas). METHOD_PACKING: the single-pass
+   * mapper, packed atlas. METHOD_BINDLESS: the single-pass mapper, one texture per brick through
+   * GL_ARB_bindless_texture handles (where the context lacks them it renders with the atlas and
+   * warns once). METHOD_MULTI_PASS: vtkMultiPassAMRVolumeMapper (one draw per kD-tree data
+   * node, CPU traversal; composite blending only, no level of detail). Each mapper keeps its own
+   * textures: switching to or from multi-pass builds a mapper's textures only the first time it
+   * renders the current data; switching the single-pass mapper's storage re-uploads its data.
+   * Values are stable (they are the proxy property's values).
    */
   enum Methods
   {
     METHOD_AUTO = 0,
     METHOD_PACKING = 1,
     METHOD_MULTI_PASS = 2,
+    METHOD_BINDLESS = 3,
   };
   void SetMethod(int method);
   vtkGetMacro(Method, int);
@@ -113,6 +127,9 @@ public:
    */
   const char* GetLastRenderError();
   int GetNumberOfTextureBuilds();
+  /// What rendered the last frame (SinglePassDataStorage): "packing", "bindless (waterfall)",
+  /// "bindless (direct)", "multi-pass", or "none" before the first successful frame.
+  const char* GetLastDataStorage();
   ///@}
 
 protected:
@@ -138,6 +155,7 @@ protected:
   vtkSmartPointer<vtkOverlappingAMR> Cache;
   /// False on the ranks other than 0 when several MPI ranks share the data: they draw nothing.
   bool RendersLocally = true;
+  std::string LastDataStorage; // GetLastDataStorage's text
 
 private:
   vtkSinglePassAMRVolumeRepresentation(const vtkSinglePassAMRVolumeRepresentation&) = delete;

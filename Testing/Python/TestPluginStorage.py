@@ -1,0 +1,141 @@
+# pvpython test of the representation's data storages and single-pass options, run on Mesa's zink
+# (CTest sets MESA_LOADER_DRIVER_OVERRIDE=zink, LIBGL_ALWAYS_SOFTWARE=1 and XDG_RUNTIME_DIR), whose
+# OpenGL offers GL_ARB_bindless_texture:
+#
+#   pvpython --force-offscreen-rendering TestPluginStorage.py PLUGIN OUTDIR
+#
+# - Method "Bindless" renders with one texture per brick (SinglePassDataStorage says
+#   "bindless (waterfall)") and gives the packed image (RMSE < 0.05 of 255);
+# - Method "Packing" and "Auto" render with the atlas (this data wastes little of it);
+# - empty-space skipping off gives the same image; early termination at opacity 1 stays within
+#   (1 - 0.999) * 255 of the default; smooth cell interpolation changes the image;
+# - none of these options rebuilds the kD-tree.
+# Exit codes: 0 pass, 1 fail, 125 skipped (no X display, or an OpenGL without bindless textures).
+import os
+import sys
+
+SKIP = 125
+SAME_BOUND = 0.05
+
+
+def leave(code):
+    # pvpython 5.11 (GLX) raises an X error while finalising after sys.exit() (see
+    # TestPluginRepresentation.py)
+    sys.stdout.flush()
+    os._exit(code)
+
+
+def fail(message):
+    print("FAIL: " + message)
+    leave(1)
+
+
+def skip(message):
+    print("SKIPPED: " + message)
+    leave(SKIP)
+
+
+def main():
+    plugin, outdir = sys.argv[1:3]
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from TestPluginRepresentation import coverage, info_property, read_png, require_display, rmse
+    from TestPluginDataChange import density_quantiles
+
+    require_display()
+    os.makedirs(outdir, exist_ok=True)
+    from paraview import simple
+
+    simple.LoadPlugin(plugin, remote=False, ns=globals())
+    source = AMRCosmologysynthetic(NumberOfGrids=120, NumberOfLevels=3, NumberOfCells=100000,
+        Seed=5)
+    view = simple.CreateView("RenderView")
+    view.ViewSize = [96, 96]
+    view.OrientationAxesVisibility = 0
+    view.UseColorPaletteForBackground = 0
+    view.Background = [0.0, 0.0, 0.0]
+    display = simple.Show(source, view)
+    display.Representation = "AMR Single-Pass Volume"
+    simple.ColorBy(display, ("CELLS", "Density"))
+    # the density is heavy-tailed: colours and opacity follow its quantiles, not its range
+    q = density_quantiles(source, [0.0, 0.5, 0.9, 0.99, 1.0])
+    lut = simple.GetColorTransferFunction("Density")
+    lut.AutomaticRescaleRangeMode = "Never"
+    lut.RGBPoints = [q[0], 0.2, 0.4, 1.0, q[2], 1.0, 1.0, 1.0, q[4], 1.0, 0.2, 0.1]
+    pwf = simple.GetOpacityTransferFunction("Density")
+    pwf.Points = [q[0], 0.0, 0.5, 0.0, q[1], 0.1, 0.5, 0.0, q[2], 0.5, 0.5, 0.0,
+                  q[3], 0.8, 0.5, 0.0, q[4], 0.9, 0.5, 0.0]
+    display.ScalarOpacityUnitDistance = 0.05
+    simple.Render(view)
+    view.ResetCamera()
+    view.GetActiveCamera().Azimuth(30.0)
+    view.GetActiveCamera().Elevation(20.0)
+
+    def shot(name):
+        path = os.path.join(outdir, "storage-%s.png" % name)
+        simple.SaveScreenshot(path, view, ImageResolution=[96, 96], TransparentBackground=0)
+        error = info_property(display, "SinglePassRenderError")
+        if error:
+            fail("%s: the representation reported an error: %s" % (name, error))
+        storage = info_property(display, "SinglePassDataStorage")
+        builds = info_property(display, "SinglePassTextureBuilds")
+        pixels = read_png(path)[2]
+        print("%-10s storage %-22s texture builds %d, volume on %5.1f %% of the pixels"
+              % (name, storage, builds, 100.0 * coverage(pixels)))
+        return pixels, storage, builds
+
+    display.Method = "Packing"
+    packed, packed_storage, first_builds = shot("packing")
+    if packed_storage != "packing":
+        fail("Method Packing rendered with %s" % packed_storage)
+    if coverage(packed) < 0.2:
+        fail("the packed image does not show the volume")
+    display.Method = "Bindless"
+    bindless, storage, _ = shot("bindless")
+    if storage == "packing":
+        skip("this OpenGL context has no bindless textures (the representation fell back to the "
+             "atlas); the test needs Mesa 25's zink")
+    display.Method = "Auto"
+    auto, auto_storage, auto_builds = shot("auto")
+    display.EmptySpaceSkipping = 0
+    unskipped, _, _ = shot("noskip")
+    display.EmptySpaceSkipping = 1
+    display.OpacityThreshold = 1.0
+    no_termination, _, _ = shot("noert")
+    display.OpacityThreshold = 0.999
+    display.CellInterpolation = "Smooth"
+    smooth, _, option_builds = shot("smooth")
+    display.Method = "Bindless"
+    smooth_bindless, _, last_builds = shot("smooth-bl")
+    display.CellInterpolation = "Nearest"
+
+    checks = [
+        ("bindless ran with the waterfall loop", storage == "bindless (waterfall)"),
+        ("bindless gives the packed image", rmse(bindless, packed) < SAME_BOUND),
+        ("auto takes the atlas for this data", auto_storage == "packing"
+            and rmse(auto, packed) < SAME_BOUND),
+        ("skipping off gives the same image", rmse(unskipped, packed) < SAME_BOUND),
+        ("no early termination stays within 0.26 levels",
+            abs(no_termination - packed).max() <= 1.0),
+        ("smooth interpolation changes the image", rmse(smooth, packed) > 0.2),
+        ("smooth is the same with bindless", rmse(smooth_bindless, smooth) < SAME_BOUND),
+        # a storage change rebuilds the textures once; the options never do
+        ("skipping, termination and interpolation rebuild nothing", option_builds == auto_builds),
+        ("each storage change rebuilds once", last_builds == option_builds + 1),
+    ]
+    print("rmse (0-255): bindless vs packing %.3f, auto %.3f, skipping off %.3f, smooth vs "
+          "nearest %.3f, smooth bindless vs smooth packing %.3f; builds %d -> %d"
+          % (rmse(bindless, packed), rmse(auto, packed), rmse(unskipped, packed),
+             rmse(smooth, packed), rmse(smooth_bindless, smooth), first_builds, last_builds))
+    for what, ok in checks:
+        print("%-45s %s" % (what, "ok" if ok else "FAILED"))
+    if not all(ok for _, ok in checks):
+        fail("a storage or option check does not hold")
+    print("PASS")
+    return 0
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 3:
+        print("usage: TestPluginStorage.py PLUGIN OUTDIR")
+        leave(2)
+    main()
