@@ -233,6 +233,28 @@ bool amrspSampleAtPoint(vec3 p, out float value, out vec3 cellSize)
   return !isnan(value);
 }
 
+// The kD node of the sample being shaded (set by the sample loop; amrspInNode = false for
+// iso-surface hits): a point inside its box [amrspNodeLo, amrspNodeHi) reaches the same leaf by a
+// descent (same float planes and tie rule), so its brick is read directly.
+bool amrspInNode = false;
+vec3 amrspNodeLo;
+vec3 amrspNodeHi;
+uvec2 amrspNodeDataNode;
+ivec3 amrspNodeFirstCell;
+ivec3 amrspNodeLastCell;
+
+bool amrspSampleNear(vec3 q, out float value)
+{
+  if (amrspInNode && all(greaterThanEqual(q, amrspNodeLo)) && all(lessThan(q, amrspNodeHi)))
+  {
+    value = amrspSampleDataNode(amrspNodeDataNode, q, amrspLevelCellSize[amrspDataLevel(
+      amrspNodeDataNode)], amrspNodeFirstCell, amrspNodeLastCell);
+    return !isnan(value);
+  }
+  vec3 ignored;
+  return amrspSampleAtPoint(q, value, ignored);
+}
+
 // Model-space gradient by central differences through the tree (one-sided where a neighbour is
 // absent), as amrsp::Gradient.
 vec3 amrspGradient(vec3 p, float value, vec3 cellSize)
@@ -243,14 +265,13 @@ vec3 amrspGradient(vec3 p, float value, vec3 cellSize)
     vec3 e = vec3(0.0);
     e[a] = cellSize[a];
     float plus, minus;
-    vec3 ignored;
     float n = 2.0;
-    if (!amrspSampleAtPoint(p + e, plus, ignored))
+    if (!amrspSampleNear(p + e, plus))
     {
       plus = value;
       n -= 1.0;
     }
-    if (!amrspSampleAtPoint(p - e, minus, ignored))
+    if (!amrspSampleNear(p - e, minus))
     {
       minus = value;
       n -= 1.0;
@@ -395,6 +416,7 @@ void amrspIsoCrossings(vec3 a0, float va, vec3 b0, float vb, vec3 towardEye, ino
     vec4 tf = amrspTransferFunction(iso);
     vec3 rgb = tf.rgb;
 #if defined(AMRSP_SHADE) || defined(AMRSP_SHADOWS)
+    amrspInNode = false;
     rgb = amrspShade(rgb, b, vh, cellSize, towardEye);
 #endif
     float opacity = clamp(tf.a, 0.0, 1.0);
@@ -576,6 +598,12 @@ void main()
         {
           float a = 1.0 - pow(1.0 - min(tf.a, 1.0), exponent);
 #if defined(AMRSP_SHADE) || defined(AMRSP_SHADOWS)
+          amrspInNode = true;
+          amrspNodeLo = lo;
+          amrspNodeHi = hi;
+          amrspNodeDataNode = dataNode;
+          amrspNodeFirstCell = firstCell;
+          amrspNodeLastCell = lastCell;
           tf.rgb = amrspShade(tf.rgb, p, scalar, cellSize, -dirMC);
 #endif
           colour += (1.0 - alpha) * a * tf.rgb;
