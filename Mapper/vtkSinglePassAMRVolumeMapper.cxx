@@ -15,6 +15,9 @@
 #include "vtkDataObject.h"
 #include "vtkInformation.h"
 #include "vtkCamera.h"
+#include "vtkContourValues.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
 #include "vtkMath.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
@@ -92,6 +95,7 @@ public:
   std::string BuildError; // ... or failed with this message
   vtkTimeStamp BuildTime;
   int NumberOfBuilds = 0;
+  int IsoCount = 0; // iso-values of the current frame
   double BuildSeconds = 0.0;
   double UploadSeconds = 0.0;
 
@@ -945,11 +949,37 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     case vtkVolumeMapper::AVERAGE_INTENSITY_BLEND:
       blend = 3;
       break;
+    case vtkVolumeMapper::ISOSURFACE_BLEND:
+      blend = 4;
+      break;
     default:
       fail("blend mode " + std::to_string(this->GetBlendMode()) +
-        " is not supported (composite, maximum, minimum and average intensity are)");
+        " is not supported (composite, maximum, minimum, average intensity and iso-surface are)");
       return;
   }
+  std::vector<float> isoValues;
+  if (blend == 4)
+  {
+    vtkContourValues* values = property->GetIsoSurfaceValues();
+    const int count = values ? values->GetNumberOfContours() : 0;
+    if (count < 1 || count > 8)
+    {
+      fail("iso-surface blending needs 1 to 8 values in vtkVolumeProperty::GetIsoSurfaceValues() "
+           "(it has " + std::to_string(count) + ")");
+      return;
+    }
+    for (int i = 0; i < count; ++i)
+    {
+      isoValues.push_back(static_cast<float>(values->GetValue(i)));
+    }
+    std::sort(isoValues.begin(), isoValues.end());
+    isoValues.resize(8, 0.0f);
+    in.IsoCount = count;
+  }
+  // shading and shadows apply to composite and iso-surface blending only
+  const bool lit = blend == 0 || blend == 4;
+  const bool shade = lit && property->GetShade(0) != 0;
+  const bool shadows = lit && this->Shadows;
 
   // ---- shader (one variant per level count and depth use; cached by VTK's shader cache)
   const int levels = static_cast<int>(in.LevelCellSize.size());
@@ -974,6 +1004,14 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   if (this->CellInterpolation == SMOOTH_CELL && !in.VertexCentred)
   {
     defines += "#define AMRSP_SMOOTH_CELLS 1\n";
+  }
+  if (shade)
+  {
+    defines += "#define AMRSP_SHADE 1\n";
+  }
+  if (shadows)
+  {
+    defines += "#define AMRSP_SHADOWS 1\n";
   }
   std::string fragment = amrsp_SinglePassAMR_frag_glsl;
   vtkShaderProgram::Substitute(fragment, "//AMRSP::Defines", defines);
@@ -1217,6 +1255,80 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   program->SetUniformf("amrspParallelPixelSize", parallelPixel);
   program->SetUniformf("amrspUnitDistance",
     static_cast<float>(std::max(property->GetScalarOpacityUnitDistance(0), 1e-12)));
+  if (shade || shadows || blend == 4)
+  {
+    // the first switched-on light, in model coordinates (none: ambient only)
+    float lightPosition[3] = { 0.0f, 0.0f, 0.0f };
+    float lightDirection[3] = { 0.0f, 0.0f, 1.0f };
+    float lightColour[3] = { 0.0f, 0.0f, 0.0f };
+    int positional = 0;
+    vtkLightCollection* lights = ren->GetLights();
+    vtkCollectionSimpleIterator it;
+    lights->InitTraversal(it);
+    while (vtkLight* light = lights->GetNextLight(it))
+    {
+      if (!light->GetSwitch())
+      {
+        continue;
+      }
+      double position[4] = { 0.0, 0.0, 0.0, 1.0 }, focal[4] = { 0.0, 0.0, 0.0, 1.0 };
+      light->GetTransformedPosition(position);
+      light->GetTransformedFocalPoint(focal);
+      double positionMC[4], focalMC[4];
+      wcmc->MultiplyPoint(position, positionMC);
+      wcmc->MultiplyPoint(focal, focalMC);
+      double toLight[3];
+      for (int a = 0; a < 3; ++a)
+      {
+        lightPosition[a] = static_cast<float>(positionMC[a] / positionMC[3]);
+        toLight[a] = positionMC[a] / positionMC[3] - focalMC[a] / focalMC[3];
+      }
+      if (vtkMath::Normalize(toLight) > 0.0)
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          lightDirection[a] = static_cast<float>(toLight[a]);
+        }
+      }
+      const double* colour = light->GetDiffuseColor();
+      for (int a = 0; a < 3; ++a)
+      {
+        lightColour[a] = static_cast<float>(colour[a] * light->GetIntensity());
+      }
+      positional = light->GetPositional() ? 1 : 0;
+      break;
+    }
+    const auto setIfUsed = [&](const char* name, auto&& set) {
+      if (program->IsUniformUsed(name))
+      {
+        set(name);
+      }
+    };
+    setIfUsed("amrspAmbient",
+      [&](const char* n) { program->SetUniformf(n, static_cast<float>(property->GetAmbient(0))); });
+    setIfUsed("amrspDiffuse",
+      [&](const char* n) { program->SetUniformf(n, static_cast<float>(property->GetDiffuse(0))); });
+    setIfUsed("amrspSpecular", [&](const char* n)
+      { program->SetUniformf(n, static_cast<float>(property->GetSpecular(0))); });
+    setIfUsed("amrspSpecularPower", [&](const char* n)
+      { program->SetUniformf(n, static_cast<float>(property->GetSpecularPower(0))); });
+    setIfUsed("amrspLightPositional", [&](const char* n) { program->SetUniformi(n, positional); });
+    setIfUsed("amrspLightPositionMC", [&](const char* n) { program->SetUniform3f(n, lightPosition); });
+    setIfUsed("amrspLightDirectionMC",
+      [&](const char* n) { program->SetUniform3f(n, lightDirection); });
+    setIfUsed("amrspLightColour", [&](const char* n) { program->SetUniform3f(n, lightColour); });
+    const double shadowStep = this->ShadowSampleDistance > 0.0
+      ? this->ShadowSampleDistance
+      : (in.LevelMinEdge.empty() ? 1.0 : in.LevelMinEdge[0]);
+    setIfUsed("amrspShadowStep",
+      [&](const char* n) { program->SetUniformf(n, static_cast<float>(shadowStep)); });
+    setIfUsed("amrspIsoCount", [&](const char* n) { program->SetUniformi(n, in.IsoCount); });
+    if (!isoValues.empty())
+    {
+      setIfUsed("amrspIsoValues",
+        [&](const char* n) { program->SetUniform1fv(n, 8, isoValues.data()); });
+    }
+  }
 
   // ---- draw the back faces once per pixel, blending premultiplied colour front to back
   {
@@ -1411,6 +1523,8 @@ void vtkSinglePassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CellInterpolation: "
      << (this->CellInterpolation == SMOOTH_CELL ? "smooth" : "nearest") << "\n";
   os << indent << "TransparentDataNodes: " << in.TransparentDataNodes << "\n";
+  os << indent << "Shadows: " << (this->Shadows ? "on" : "off")
+     << ", ShadowSampleDistance: " << this->ShadowSampleDistance << "\n";
   os << indent << "NumberOfBuilds: " << in.NumberOfBuilds << "\n";
   os << indent << "KdNodes: " << in.KdNodes << ", DataNodes: " << in.DataNodes << "\n";
   os << indent << "AtlasDimensions: " << in.AtlasDims.x << " x " << in.AtlasDims.y << " x "

@@ -32,9 +32,16 @@
  * Appearance comes from the vtkVolumeProperty: the colour (or grey) transfer function and the
  * scalar opacity function of component 0, tabulated over the union of their ranges (values beyond
  * clamp to the end points), and ScalarOpacityUnitDistance (a sample standing for a ray length dt
- * has opacity 1 - (1 - a)^(dt / unit)). Composite rays stop at OpacityThreshold (early ray
- * termination) and skip data nodes whose value range is transparent (EmptySpaceSkipping).
- * Shading, gradient opacity, cropping and clipping planes are ignored.
+ * has opacity 1 - (1 - a)^(dt / unit)). Blend modes: composite, maximum, minimum and average
+ * intensity, and iso-surfaces (ISOSURFACE_BLEND with vtkVolumeProperty::GetIsoSurfaceValues(), 1
+ * to 8 values, composited semi-transparently with the transfer function's colour and opacity at
+ * each value). ShadeOn (with Ambient, Diffuse, Specular, SpecularPower of component 0) lights
+ * composite samples and iso-surface hits with gradients taken by central differences through the
+ * kD-tree, under the first switched-on light of the renderer (headlight, camera or scene light;
+ * positional lights as point lights: cone angle and attenuation are ignored). Shadow rays
+ * (SetShadows) attenuate that light by the transmittance toward it. Composite rays stop at
+ * OpacityThreshold (early ray termination) and skip data nodes whose value range is transparent
+ * (EmptySpaceSkipping). Gradient opacity, cropping and clipping planes are ignored.
  *
  * Rebuild policy: the hierarchy conversion, kD-tree, packing and texture upload happen only when
  * the input data object, its modification time, the array selection or the sample-independent
@@ -266,6 +273,26 @@ public:
   /// blend mode is not composite.
   long long GetNumberOfTransparentDataNodes();
 
+  ///@{
+  /**
+   * Shadow rays (default off): from every composite sample or iso-surface hit a secondary ray
+   * toward the light (up to a positional light, or out of the root box along a directional one)
+   * samples the scalar through the kD-tree every ShadowSampleDistance and scales the light's
+   * diffuse and specular contribution by the transmittance (opacity corrected with
+   * ScalarOpacityUnitDistance). Without ShadeOn the sample is lit as if facing the light.
+   * Applies to composite and iso-surface blending.
+   */
+  vtkSetMacro(Shadows, bool);
+  vtkGetMacro(Shadows, bool);
+  vtkBooleanMacro(Shadows, bool);
+  ///@}
+
+  ///@{
+  /// Step of the shadow rays in model units; 0 (default) uses the smallest edge of a level-0 cell.
+  vtkSetClampMacro(ShadowSampleDistance, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(ShadowSampleDistance, double);
+  ///@}
+
 protected:
   vtkSinglePassAMRVolumeMapper();
   ~vtkSinglePassAMRVolumeMapper() override;
@@ -283,6 +310,8 @@ protected:
   double OpacityThreshold = 0.999;
   bool EmptySpaceSkipping = true;
   int CellInterpolation = NEAREST_CELL;
+  bool Shadows = false;
+  double ShadowSampleDistance = 0.0;
 
 private:
   vtkSinglePassAMRVolumeMapper(const vtkSinglePassAMRVolumeMapper&) = delete;

@@ -20,7 +20,10 @@
 //   AMRSP_CELL_CENTRED  nearest-cell sampling of cell bricks
 //   AMRSP_VERTEX_CENTRED trilinear sampling of vertex bricks (one texel larger per axis)
 //   AMRSP_USE_DEPTH     clip rays at the depth of the opaque geometry already drawn
-//   AMRSP_BLEND_MODE    0 composite, 1 maximum, 2 minimum, 3 average intensity (amrsp::BlendMode)
+//   AMRSP_BLEND_MODE    0 composite, 1 maximum, 2 minimum, 3 average intensity, 4 iso-surfaces
+//                       (amrsp::BlendMode)
+//   AMRSP_SHADE         gradient shading (composite and iso-surfaces); rules in amrsp/Shading.h
+//   AMRSP_SHADOWS       shadow rays toward the light (composite and iso-surfaces)
 //   AMRSP_SKIP_EMPTY    empty-space skipping (composite only): data segments whose node's value
 //                       range has zero opacity in the transfer table are not sampled
 //   AMRSP_SMOOTH_CELLS  smooth reconstruction of cell data (with AMRSP_CELL_CENTRED): trilinear in
@@ -97,6 +100,25 @@ uniform sampler2D amrspOpacityPrefix;  // R32F, 1 row: table entries 0..i with o
 uniform float amrspLodThreshold;         // pixels; 0 = always the finest level
 uniform float amrspPixelSizePerDistance; // perspective: model size of a pixel at distance 1
 uniform float amrspParallelPixelSize;    // parallel projection: model size of a pixel (> 0)
+
+#if defined(AMRSP_SHADE) || defined(AMRSP_SHADOWS) || AMRSP_BLEND_MODE == 4
+// Shading, shadows and iso-surfaces (the rules of Mapper/Core/include/amrsp/Shading.h).
+#define AMRSP_SHADOW_MAX_STEPS 4096
+#define AMRSP_SHADOW_MIN_TRANSMITTANCE 1.0e-3
+#define AMRSP_ISO_REFINE_STEPS 8
+#define AMRSP_MAX_ISO_VALUES 8
+uniform float amrspAmbient;       // vtkVolumeProperty Ambient, Diffuse, Specular, SpecularPower
+uniform float amrspDiffuse;
+uniform float amrspSpecular;
+uniform float amrspSpecularPower;
+uniform int amrspLightPositional; // 1: point light at amrspLightPositionMC; 0: directional
+uniform vec3 amrspLightPositionMC;
+uniform vec3 amrspLightDirectionMC; // unit, toward the light (directional)
+uniform vec3 amrspLightColour;      // diffuse colour x intensity
+uniform float amrspShadowStep;      // shadow-ray step, model units
+uniform float amrspIsoValues[AMRSP_MAX_ISO_VALUES]; // ascending
+uniform int amrspIsoCount;
+#endif
 
 uvec2 amrspFetchNode(uint index)
 {
@@ -346,6 +368,259 @@ bool amrspDataNodeTransparent(uint dataIndex)
 }
 #endif
 
+#if defined(AMRSP_SHADE) || defined(AMRSP_SHADOWS) || AMRSP_BLEND_MODE == 4
+// The scalar at point p (level-0 index units) from the kD-tree leaf containing p: a descent from
+// the root as kd-restart's, choosing the child by the point (lower when p[axis] < the split
+// plane). False outside the root box, in a leaf without data, or where the sample is NaN.
+// cellSize: the leaf's data-level cell size. Mirrors amrsp::SampleKdTreeAtPoint.
+bool amrspSampleAtPoint(vec3 p, out float value, out vec3 cellSize)
+{
+  value = 0.0;
+  cellSize = vec3(1.0);
+  if (any(lessThan(p, amrspRootLo)) || any(greaterThanEqual(p, amrspRootHi)))
+  {
+    return false;
+  }
+  vec3 lo = amrspRootLo;
+  ivec3 loF = ivec3(amrspRootLoFinest[0], amrspRootLoFinest[1], amrspRootLoFinest[2]);
+  ivec3 hiF = ivec3(amrspRootHiFinest[0], amrspRootHiFinest[1], amrspRootHiFinest[2]);
+  uvec2 texel = amrspFetchNode(0u);
+  for (int depth = 0; depth < amrspMaxSegments; ++depth)
+  {
+    uint child = amrspNodeFirstChild(texel);
+    if (child == 0u)
+    {
+      break;
+    }
+    int axis = int(amrspNodeAxis(texel));
+    uint level = amrspNodeLevel(texel);
+    uint split = amrspNodeSplit(texel);
+    float plane = lo[axis] + float(split) * amrspLevelCellSize[level][axis];
+    int planeF = loF[axis] + int(split) * amrspLevelToFinest[3 * int(level) + axis];
+    uint node = child;
+    if (p[axis] < plane)
+    {
+      hiF[axis] = planeF;
+    }
+    else
+    {
+      lo[axis] = plane;
+      loF[axis] = planeF;
+      node = child + 1u;
+    }
+    texel = amrspFetchNode(node);
+  }
+  uint data = amrspNodeData(texel);
+  if (data == 0u)
+  {
+    return false;
+  }
+  uvec2 dataNode = amrspFetchDataNode(data);
+  int level = int(amrspDataLevel(dataNode));
+  ivec3 toData = ivec3(amrspLevelToFinest[3 * level], amrspLevelToFinest[3 * level + 1],
+    amrspLevelToFinest[3 * level + 2]);
+  ivec3 firstCell = ivec3(amrspFloorDiv(loF.x, toData.x), amrspFloorDiv(loF.y, toData.y),
+    amrspFloorDiv(loF.z, toData.z));
+  ivec3 lastCell = ivec3(amrspCeilDiv(hiF.x, toData.x), amrspCeilDiv(hiF.y, toData.y),
+                     amrspCeilDiv(hiF.z, toData.z)) - 1;
+  cellSize = amrspLevelCellSize[level];
+  value = amrspSampleDataNode(dataNode, p, cellSize, firstCell, lastCell);
+  return !isnan(value);
+}
+
+// The kD node of the sample being shaded (set by the sample loop; amrspInNode = false for
+// iso-surface hits): a point inside its box [amrspNodeLo, amrspNodeHi) reaches the same leaf by a
+// descent (same float planes and tie rule), so its brick is read directly.
+bool amrspInNode = false;
+vec3 amrspNodeLo;
+vec3 amrspNodeHi;
+uvec2 amrspNodeDataNode;
+ivec3 amrspNodeFirstCell;
+ivec3 amrspNodeLastCell;
+
+bool amrspSampleNear(vec3 q, out float value)
+{
+  if (amrspInNode && all(greaterThanEqual(q, amrspNodeLo)) && all(lessThan(q, amrspNodeHi)))
+  {
+    value = amrspSampleDataNode(amrspNodeDataNode, q, amrspLevelCellSize[amrspDataLevel(
+      amrspNodeDataNode)], amrspNodeFirstCell, amrspNodeLastCell);
+    return !isnan(value);
+  }
+  vec3 ignored;
+  return amrspSampleAtPoint(q, value, ignored);
+}
+
+// Model-space gradient by central differences through the tree (one-sided where a neighbour is
+// absent), as amrsp::Gradient.
+vec3 amrspGradient(vec3 p, float value, vec3 cellSize)
+{
+  vec3 g = vec3(0.0);
+  for (int a = 0; a < 3; ++a)
+  {
+    vec3 e = vec3(0.0);
+    e[a] = cellSize[a];
+    float plus, minus;
+    float n = 2.0;
+    if (!amrspSampleNear(p + e, plus))
+    {
+      plus = value;
+      n -= 1.0;
+    }
+    if (!amrspSampleNear(p - e, minus))
+    {
+      minus = value;
+      n -= 1.0;
+    }
+    g[a] = n > 0.0 ? (plus - minus) / (n * cellSize[a] * amrspSpacing0[a]) : 0.0;
+  }
+  return g;
+}
+
+#ifdef AMRSP_SHADOWS
+// Transmittance from p (level-0 index units) toward the light, as amrsp::ShadowTransmittance.
+float amrspShadowTransmittance(vec3 p)
+{
+  vec3 x = amrspOrigin + p * amrspSpacing0;
+  vec3 toLight = amrspLightDirectionMC;
+  float tLight = AMRSP_INF;
+  if (amrspLightPositional != 0)
+  {
+    toLight = amrspLightPositionMC - x;
+    tLight = length(toLight);
+    if (!(tLight > 0.0))
+    {
+      return 1.0;
+    }
+    toLight /= tLight;
+  }
+  vec3 d = toLight / amrspSpacing0;
+  float tExit = AMRSP_INF;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (d[a] != 0.0)
+    {
+      tExit = min(tExit, ((d[a] > 0.0 ? amrspRootHi[a] : amrspRootLo[a]) - p[a]) / d[a]);
+    }
+  }
+  float tEnd = min(tExit, tLight);
+  float exponent = amrspShadowStep / amrspUnitDistance;
+  float transmittance = 1.0;
+  for (int k = 0; k < AMRSP_SHADOW_MAX_STEPS; ++k)
+  {
+    float t = (float(k) + 0.5) * amrspShadowStep;
+    if (t >= tEnd)
+    {
+      break;
+    }
+    float v;
+    vec3 ignored;
+    if (!amrspSampleAtPoint(p + t * d, v, ignored))
+    {
+      continue;
+    }
+    float opacity = min(amrspTransferFunction(v).a, 1.0);
+    transmittance *= pow(1.0 - opacity, exponent);
+    if (transmittance < AMRSP_SHADOW_MIN_TRANSMITTANCE)
+    {
+      break;
+    }
+  }
+  return transmittance;
+}
+#endif
+
+// The lit colour of base colour c at p (level-0 index units) of the given value, as
+// amrsp::ShadeSample; towardEye: unit model vector from the sample to the eye.
+vec3 amrspShade(vec3 c, vec3 p, float value, vec3 cellSize, vec3 towardEye)
+{
+  float transmittance = 1.0;
+#ifdef AMRSP_SHADOWS
+  transmittance = amrspShadowTransmittance(p);
+#endif
+#ifdef AMRSP_SHADE
+  vec3 x = amrspOrigin + p * amrspSpacing0;
+  vec3 l = amrspLightPositional != 0 ? normalize(amrspLightPositionMC - x) : amrspLightDirectionMC;
+  vec3 g = amrspGradient(p, value, cellSize);
+  float len = length(g);
+  float diffuse = 0.0;
+  float specular = 0.0;
+  if (len > 0.0)
+  {
+    vec3 n = g / len;
+    if (dot(n, towardEye) < 0.0)
+    {
+      n = -n;
+    }
+    diffuse = max(0.0, dot(n, l));
+    if (diffuse > 0.0)
+    {
+      specular = pow(max(0.0, dot(n, normalize(l + towardEye))), amrspSpecularPower);
+    }
+  }
+  vec3 lit = amrspAmbient * c +
+    transmittance * amrspLightColour * (amrspDiffuse * diffuse * c + amrspSpecular * specular);
+  return clamp(lit, 0.0, 1.0);
+#else
+  return clamp(c * (amrspAmbient + amrspDiffuse * transmittance * amrspLightColour), 0.0, 1.0);
+#endif
+}
+#endif
+
+#if AMRSP_BLEND_MODE == 4
+// Composites the iso-value crossings between consecutive samples a and b (values va, vb), refined
+// by bisection through the tree, as amrsp::IsoSurfaceTracker::Sample.
+void amrspIsoCrossings(vec3 a0, float va, vec3 b0, float vb, vec3 towardEye, inout vec3 colour,
+  inout float alpha)
+{
+  bool rising = vb > va;
+  for (int i = 0; i < amrspIsoCount; ++i)
+  {
+    float iso = amrspIsoValues[rising ? i : amrspIsoCount - 1 - i];
+    bool belowA = va < iso;
+    if (belowA == (vb < iso))
+    {
+      continue;
+    }
+    vec3 a = a0;
+    vec3 b = b0;
+    vec3 ignored;
+    for (int k = 0; k < AMRSP_ISO_REFINE_STEPS; ++k)
+    {
+      vec3 m = 0.5 * (a + b);
+      float vm;
+      if (!amrspSampleAtPoint(m, vm, ignored))
+      {
+        break;
+      }
+      if ((vm < iso) == belowA)
+      {
+        a = m;
+      }
+      else
+      {
+        b = m;
+      }
+    }
+    vec3 cellSize;
+    float vh;
+    if (!amrspSampleAtPoint(b, vh, cellSize))
+    {
+      vh = iso;
+      cellSize = vec3(1.0);
+    }
+    vec4 tf = amrspTransferFunction(iso);
+    vec3 rgb = tf.rgb;
+#if defined(AMRSP_SHADE) || defined(AMRSP_SHADOWS)
+    amrspInNode = false;
+    rgb = amrspShade(rgb, b, vh, cellSize, towardEye);
+#endif
+    float opacity = clamp(tf.a, 0.0, 1.0);
+    colour += (1.0 - alpha) * opacity * rgb;
+    alpha += (1.0 - alpha) * opacity;
+  }
+}
+#endif
+
 void main()
 {
   // The ray through this pixel's centre, in model coordinates: from the eye (perspective, as
@@ -388,6 +663,11 @@ void main()
   bool anySample = false;
   float weightedSum = 0.0;
   float sampledLength = 0.0;
+#if AMRSP_BLEND_MODE == 4
+  bool havePrevious = false; // iso-surfaces: the previous present sample along the ray
+  vec3 previousP = vec3(0.0);
+  float previousValue = 0.0;
+#endif
   for (int iteration = 0; t < tEnd && iteration < amrspMaxSegments; ++iteration)
   {
     // kd-restart: descend from the root to the node containing the ray at t.
@@ -489,6 +769,9 @@ void main()
 #endif
         if (isnan(scalar))
         {
+#if AMRSP_BLEND_MODE == 4
+          havePrevious = false;
+#endif
           continue; // missing data is transparent
         }
 #if AMRSP_BLEND_MODE == 1
@@ -501,11 +784,32 @@ void main()
         weightedSum += scalar * dt;
         sampledLength += dt;
         anySample = true;
+#elif AMRSP_BLEND_MODE == 4
+        if (havePrevious)
+        {
+          amrspIsoCrossings(previousP, previousValue, p, scalar, -dirMC, colour, alpha);
+        }
+        havePrevious = true;
+        previousP = p;
+        previousValue = scalar;
+        if (alpha >= amrspOpacityThreshold)
+        {
+          break;
+        }
 #else
         vec4 tf = amrspTransferFunction(scalar);
         if (tf.a > 0.0)
         {
           float a = 1.0 - pow(1.0 - min(tf.a, 1.0), exponent);
+#if defined(AMRSP_SHADE) || defined(AMRSP_SHADOWS)
+          amrspInNode = true;
+          amrspNodeLo = lo;
+          amrspNodeHi = hi;
+          amrspNodeDataNode = dataNode;
+          amrspNodeFirstCell = firstCell;
+          amrspNodeLastCell = lastCell;
+          tf.rgb = amrspShade(tf.rgb, p, scalar, cellSize, -dirMC);
+#endif
           colour += (1.0 - alpha) * a * tf.rgb;
           alpha += (1.0 - alpha) * a;
           if (alpha >= amrspOpacityThreshold)
@@ -520,10 +824,16 @@ void main()
         break;
       }
     }
+#if AMRSP_BLEND_MODE == 4
+    else
+    {
+      havePrevious = false; // empty space breaks the pairing of samples
+    }
+#endif
     t = tLeave;
   }
 
-#if AMRSP_BLEND_MODE != 0
+#if AMRSP_BLEND_MODE != 0 && AMRSP_BLEND_MODE != 4
   // the kept scalar through the transfer function, without opacity correction
   if (!anySample)
   {

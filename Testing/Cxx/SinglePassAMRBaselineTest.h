@@ -33,6 +33,8 @@ struct BaselineCase
   std::vector<std::string> Options;
   /// Largest RMSE (0-255 units) allowed between the GPU image and the CPU reference.
   double ReferenceBound = 2.0;
+  /// Largest RMSE allowed between the GPU image and the CPU kD-tree integrator (its mirror).
+  double MirrorBound = 1.0;
   /// Optional change of the scene before rendering (camera moves); the CPU reference uses the
   /// resulting VTK camera.
   std::function<void(vtkRenderer*)> Adjust;

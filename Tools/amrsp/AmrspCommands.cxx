@@ -2,6 +2,7 @@
 #include "AmrspCommands.h"
 
 #include "AmrspDataset.h"
+#include "AmrspLighting.h"
 #include "AmrspMultipass.h"
 #include "AmrspDriver.h"
 #include "AmrspPacking.h"
@@ -135,7 +136,8 @@ const std::vector<std::string> DatasetOptions = { "array", "component", "centeri
 const std::vector<std::string> AtlasOptions = { "packer", "max-3d-texture-size", "atlas-budget-mb" };
 const std::vector<std::string> ViewOptions = { "size", "azimuth", "elevation", "zoom", "tf",
   "scale", "unit-distance", "sample-factor", "reference-sample-factor", "lod", "threads", "blend",
-  "view-json", "opacity-threshold", "empty-space-skipping", "interpolation" };
+  "view-json", "opacity-threshold", "empty-space-skipping", "interpolation", "shade", "iso",
+  "shadows", "light" };
 
 std::vector<std::string> Concat(std::initializer_list<std::vector<std::string>> lists)
 {
@@ -220,7 +222,8 @@ const char* const ViewHelp =
   "  --sample-factor F           samples per cell of each segment's level = 1/F (default 1)\n"
   "  --reference-sample-factor F step of the reference in finest-cell edges (default 0.5)\n"
   "  --lod PIXELS                level-of-detail threshold in pixels (default 0 = off)\n"
-  "  --blend MODE                composite (default), maximum, minimum or average intensity\n"
+  "  --blend MODE                composite (default), maximum, minimum, average intensity or\n"
+  "                              iso (iso-surfaces)\n"
   "  --threads N                 CPU threads (default: all cores)\n"
   "  --opacity-threshold T       early ray termination: a composite ray stops at opacity T\n"
   "                              (default 0.999; 1 = never early)\n"
@@ -232,7 +235,12 @@ const char* const ViewHelp =
   "                              CPU methods and the reference)\n"
   "  --view-json FILE            camera, transfer function and background from a JSON file\n"
   "                              (e.g. written from ParaView; see README) instead of the\n"
-  "                              conventions above; its transfer function implies --scale linear\n";
+  "                              conventions above; its transfer function implies --scale linear\n"
+  "  --shade on|off              gradient shading, vtkVolumeProperty's defaults (default off)\n"
+  "  --iso F[,F...]              with --blend iso: iso-values as fractions of the transfer\n"
+  "                              function's range, at most 8 (default 0.5)\n"
+  "  --shadows STEP              shadow rays, step in world units (default 0 = off)\n"
+  "  --light X,Y,Z               a point light at this world position (default: headlight)\n";
 
 LoadedDataset Load(const Arguments& a, bool needValues, bool needVTK)
 {
@@ -537,10 +545,15 @@ RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range)
   {
     s.Blend = BlendMode::Average;
   }
+  else if (blend == "iso")
+  {
+    s.Blend = BlendMode::IsoSurface;
+  }
   else
   {
-    throw UsageError{ "--blend must be composite, maximum, minimum or average" };
+    throw UsageError{ "--blend must be composite, maximum, minimum, average or iso" };
   }
+  ApplyLightingOptions(s, a, vlo, vhi);
   s.Threads = static_cast<int>(a.GetNumber("threads", 0.0));
   s.OpacityThreshold = a.GetNumber("opacity-threshold", 0.999);
   if (!(s.OpacityThreshold >= 0.0 && s.OpacityThreshold <= 1.0))

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "AmrspGpuRenderer.h"
 
+#include "AmrspLighting.h"
+
 #include "vtkAMRCoreConversion.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
 #include "vtkSmartPointer.h"
@@ -156,6 +158,7 @@ GpuRenderer::GpuRenderer(const std::string& method, vtkVolumeMapper* mapper, con
       I->Mapper->SetBlendModeToAverageIntensity();
       break;
   }
+  ApplyLighting(s, I->Property, I->Mapper, I->Renderer);
   I->Volume->SetMapper(I->Mapper);
   I->Volume->SetProperty(I->Property);
 

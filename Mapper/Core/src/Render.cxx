@@ -357,7 +357,9 @@ struct Accumulator
       static_cast<double>(Alpha) >= threshold;
   }
 
-  void Add(const TransferFunction& tf, double scalar, double dt)
+  /// `shade`, when given, turns the transfer function's colour into the lit colour.
+  void Add(const TransferFunction& tf, double scalar, double dt,
+    const std::function<glm::dvec3(const glm::dvec3&)>* shade = nullptr)
   {
     if (std::isnan(scalar))
     {
@@ -377,6 +379,8 @@ struct Accumulator
         return;
       case BlendMode::Composite:
         break;
+      case BlendMode::IsoSurface:
+        return; // IsoSurfaceTracker composites the crossings
     }
     const T opacity = static_cast<T>(tf.EvaluateOpacity(scalar));
     if (opacity <= T(0))
@@ -385,14 +389,15 @@ struct Accumulator
     }
     const T a = T(1) -
       std::pow(T(1) - std::min(opacity, T(1)), static_cast<T>(dt / tf.UnitDistance));
-    const glm::tvec3<T, glm::defaultp> c(tf.EvaluateColor(scalar));
+    const glm::tvec3<T, glm::defaultp> c(
+      shade ? (*shade)(tf.EvaluateColor(scalar)) : tf.EvaluateColor(scalar));
     Color += (T(1) - Alpha) * a * c;
     Alpha += (T(1) - Alpha) * a;
   }
 
   glm::vec4 Pixel(const TransferFunction& tf, const glm::dvec3& background)
   {
-    if (Mode != BlendMode::Composite)
+    if (Mode != BlendMode::Composite && Mode != BlendMode::IsoSurface)
     {
       // the kept scalar through the transfer function, without opacity correction
       const double s = Mode == BlendMode::Average ? (Length > 0.0 ? Sum / Length : NAN) : Extremum;
@@ -561,7 +566,75 @@ double MinEdge(const glm::dvec3& v)
   return std::min(v.x, std::min(v.y, v.z));
 }
 
+/// The iso-values sorted ascending; throws for too many.
+std::vector<double> SortedIsoValues(const RenderSettings& s)
+{
+  if (s.Blend == BlendMode::IsoSurface &&
+    (s.IsoValues.empty() || s.IsoValues.size() > static_cast<std::size_t>(MaxIsoValues)))
+  {
+    throw std::invalid_argument("iso-surface blending needs 1 to " +
+      std::to_string(MaxIsoValues) + " iso-values");
+  }
+  if (s.Light.Shadows && !(s.Light.ShadowStep > 0.0))
+  {
+    throw std::invalid_argument("shadow rays need a positive step (Lighting::ShadowStep)");
+  }
+  std::vector<double> v = s.IsoValues;
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+bool OutsideBox(const glm::dvec3& p, const glm::dvec3& lo, const glm::dvec3& hi)
+{
+  return p.x < lo.x || p.y < lo.y || p.z < lo.z || p.x >= hi.x || p.y >= hi.y || p.z >= hi.z;
+}
+
 } // namespace
+
+double SampleKdTreeAtPoint(const Hierarchy& h, const EncodedKdTree& tree, const glm::vec3& p,
+  glm::vec3& cellSize)
+{
+  using namespace layout;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (OutsideBox(glm::dvec3(p), glm::dvec3(tree.RootLo), glm::dvec3(tree.RootHi)))
+  {
+    return nan;
+  }
+  glm::vec3 lo = tree.RootLo;
+  uvec2 texel = tree.Tree.Texels[0];
+  for (;;)
+  {
+    const uint child = amrspNodeFirstChild(texel);
+    if (child == 0u)
+    {
+      break;
+    }
+    const int axis = static_cast<int>(amrspNodeAxis(texel));
+    const uint level = amrspNodeLevel(texel);
+    const float plane =
+      lo[axis] + static_cast<float>(amrspNodeSplit(texel)) * tree.LevelCellSize[level][axis];
+    uint node = child;
+    if (!(p[axis] < plane))
+    {
+      lo[axis] = plane;
+      node = child + 1u;
+    }
+    texel = tree.Tree.Texels[node];
+  }
+  const uint data = amrspNodeData(texel);
+  if (data == 0u)
+  {
+    return nan;
+  }
+  const uvec2 dn = tree.DataNodes.Texels[data];
+  const int32_t g = static_cast<int32_t>(amrspDataBrick(dn));
+  cellSize = tree.LevelCellSize[amrspDataLevel(dn)];
+  if (h.VertexCentred)
+  {
+    return InterpolateVertices(h, g, glm::dvec3(p / cellSize) - glm::dvec3(h.Grids[g].Cells.Lo));
+  }
+  return CellValue(h, g, glm::i64vec3(glm::floor(p / cellSize)));
+}
 
 void SampleRayKdTree(const Hierarchy& h, const EncodedKdTree& tree, const glm::dvec3& origin,
   const glm::dvec3& direction, double sampleDistanceFactor, std::vector<TreeSample>& samples)
@@ -649,6 +722,16 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
   {
     *s.Stats = RenderStats();
   }
+  const std::vector<double> isoValues = SortedIsoValues(s);
+  const bool shaded = s.Light.Shade || s.Light.Shadows;
+  const ShadingContext shading = MakeShadingContext(s.Light, s.Transfer, h.Origin, h.Spacing0,
+    glm::dvec3(tree.RootLo), glm::dvec3(tree.RootHi), s.View.Position, s.View.FocalPoint);
+  const PointLookup lookup = [&](const glm::dvec3& q, glm::dvec3& cellSize) {
+    glm::vec3 size(1.0f);
+    const double v = SampleKdTreeAtPoint(h, tree, glm::vec3(q), size);
+    cellSize = glm::dvec3(size);
+    return v;
+  };
 
   ForEachRow(s.Height, s.Threads, [&](int j) {
     std::vector<RaySegment> segments;
@@ -671,10 +754,14 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
       TraverseKdTree(tree, o, d, 0.0f, tMax, lod, segments);
       rowStats.Rays += segments.empty() ? 0 : 1;
       Accumulator<float> acc(s.Blend);
+      IsoSurfaceTracker iso(shading, lookup, isoValues, -wd);
+      glm::dvec3 isoColour(0.0);
+      double isoAlpha = 0.0;
       for (const RaySegment& seg : segments)
       {
         if (seg.Data == 0)
         {
+          iso.Break();
           continue;
         }
         if (acc.Done(s.OpacityThreshold))
@@ -728,8 +815,23 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
           {
             v = SmoothKdTree(h, tree, atlas, p, seg.Level, v);
           }
-          acc.Add(s.Transfer, v, dt);
           ++rowStats.Samples;
+          if (s.Blend == BlendMode::IsoSurface)
+          {
+            if (std::isnan(v))
+            {
+              iso.Break();
+            }
+            else
+            {
+              iso.Sample(glm::dvec3(p), v, isoColour, isoAlpha);
+            }
+            continue;
+          }
+          const std::function<glm::dvec3(const glm::dvec3&)> shade = [&](const glm::dvec3& rgb) {
+            return ShadeSample(shading, lookup, rgb, glm::dvec3(p), v, glm::dvec3(cellSize), -wd);
+          };
+          acc.Add(s.Transfer, v, dt, shaded ? &shade : nullptr);
           if (acc.Done(s.OpacityThreshold))
           {
             break;
@@ -737,6 +839,11 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
         }
       }
       rowStats.TerminatedRays += acc.Done(s.OpacityThreshold) ? 1 : 0;
+      if (s.Blend == BlendMode::IsoSurface)
+      {
+        acc.Color = glm::vec3(isoColour);
+        acc.Alpha = static_cast<float>(isoAlpha);
+      }
       img.Pixels[static_cast<std::size_t>(j) * s.Width + i] = acc.Pixel(s.Transfer, background);
     }
     sink.Add(rowStats);
@@ -802,6 +909,22 @@ Image RenderReference(const Hierarchy& h, const RenderSettings& s)
   {
     stepOfLevel.push_back(s.ReferenceSampleFactor * MinEdge(h.Spacing0 * h.CellSize(l)));
   }
+  const std::vector<double> isoValues = SortedIsoValues(s);
+  const bool shaded = s.Light.Shade || s.Light.Shadows;
+  const ShadingContext shading = MakeShadingContext(
+    s.Light, s.Transfer, h.Origin, h.Spacing0, lo, hi, s.View.Position, s.View.FocalPoint);
+  // the reference's point lookup: the finest grid containing the point, from the boxes
+  const PointLookup lookup = [&](const glm::dvec3& q, glm::dvec3& cellSize) {
+    glm::i64vec3 cell;
+    const int32_t g = OutsideBox(q, lo, hi) ? -1 : locator.Find(q, cell);
+    if (g < 0)
+    {
+      return std::numeric_limits<double>::quiet_NaN();
+    }
+    const glm::dvec3 ratio(h.CumulativeRatio(h.Grids[g].Level));
+    cellSize = 1.0 / ratio;
+    return static_cast<double>(SampleGrid(h, g, q, ratio));
+  };
 
   StatsSink sink;
   sink.Target = s.Stats;
@@ -837,6 +960,7 @@ Image RenderReference(const Hierarchy& h, const RenderSettings& s)
         tExit = std::min(tExit, t1);
       }
       Accumulator<double> acc(s.Blend);
+      IsoSurfaceTracker iso(shading, lookup, isoValues, -wd);
       glm::dvec3 background = s.Background, opaqueColour;
       double opaqueDistance = 0.0;
       if (s.Opaque && s.Opaque(wo, wd, opaqueDistance, opaqueColour))
@@ -869,14 +993,37 @@ Image RenderReference(const Hierarchy& h, const RenderSettings& s)
         if (g >= 0)
         {
           const double mid = t + 0.5 * dt;
-          double v =
-            SampleGrid(h, g, o + mid * d, glm::dvec3(h.CumulativeRatio(h.Grids[g].Level)));
+          const glm::dvec3 ratio(h.CumulativeRatio(h.Grids[g].Level));
+          const glm::dvec3 p = o + mid * d;
+          double v = SampleGrid(h, g, p, ratio);
           if (s.SmoothCellData && !h.VertexCentred)
           {
-            v = SmoothReference(h, locator, o + mid * d, h.Grids[g].Level, v);
+            v = SmoothReference(h, locator, p, h.Grids[g].Level, v);
           }
-          acc.Add(s.Transfer, v, dt);
           ++rowStats.Samples;
+          if (s.Blend == BlendMode::IsoSurface)
+          {
+            if (std::isnan(v))
+            {
+              iso.Break();
+            }
+            else
+            {
+              iso.Sample(p, v, acc.Color, acc.Alpha);
+            }
+          }
+          else
+          {
+            const std::function<glm::dvec3(const glm::dvec3&)> shade =
+              [&](const glm::dvec3& rgb) {
+                return ShadeSample(shading, lookup, rgb, p, v, 1.0 / ratio, -wd);
+              };
+            acc.Add(s.Transfer, v, dt, shaded ? &shade : nullptr);
+          }
+        }
+        else
+        {
+          iso.Break();
         }
         t += dt;
       }

@@ -23,6 +23,7 @@
 #include "amrsp/Hierarchy.h"
 #include "amrsp/KdTraversal.h"
 #include "amrsp/KdTreeEncoding.h"
+#include "amrsp/Shading.h"
 
 #include <glm/glm.hpp>
 
@@ -90,13 +91,15 @@ struct TransferFunction
 
 /// vtkVolumeMapper's blend modes. Maximum/Minimum keep the extreme scalar along the ray,
 /// Average its length-weighted mean; the pixel is then the transfer function's colour and
-/// (uncorrected) opacity of that scalar over the background.
+/// (uncorrected) opacity of that scalar over the background. IsoSurface composites the crossings
+/// of RenderSettings::IsoValues (rules in amrsp/Shading.h).
 enum class BlendMode
 {
   Composite,
   Maximum,
   Minimum,
-  Average
+  Average,
+  IsoSurface
 };
 
 /// Work counters of one render (summed over all rays), to show what the accelerations did.
@@ -150,6 +153,10 @@ struct RenderSettings
   /// Continuous inside a level and across same-level grids; across level boundaries the
   /// remaining jump is bounded by the field's change over one cell of the finer level.
   bool SmoothCellData = false;
+  /// Gradient shading and shadow rays (composite and iso-surface blending; amrsp/Shading.h).
+  Lighting Light;
+  /// Iso-values of BlendMode::IsoSurface (at most MaxIsoValues), in the scalar's units.
+  std::vector<double> IsoValues;
 };
 
 /// RGBA float image, row 0 at the bottom. Alpha is the accumulated opacity.
@@ -192,6 +199,14 @@ private:
 
 /// Value of grid `g` at cell `cell` (clamped into the grid). Requires cell-centred values.
 float CellValue(const Hierarchy& h, int32_t g, glm::i64vec3 cell);
+
+/// The kD-tree integrator's point lookup (mirrors the shader's amrspSampleAtPoint): descends the
+/// encoded tree from the root to the leaf containing p (level-0 index units; the lower child when
+/// p[axis] < the node's float split plane) and samples that leaf's grid as the integrator does.
+/// Returns NaN outside the root box or in a leaf without data; cellSize is the leaf's data-level
+/// cell size (level-0 index units).
+double SampleKdTreeAtPoint(const Hierarchy& h, const EncodedKdTree& tree, const glm::vec3& p,
+  glm::vec3& cellSize);
 
 /// Renders with the CPU kD-tree integrator over the encoded textures. Without `atlas`, samples
 /// come from the grid named by each data node; with it, from the packed atlas through the data

@@ -1,0 +1,133 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/// @file
+/// Gradient shading, iso-surfaces and shadow rays of the CPU integrators, written against a point
+/// lookup so that the reference (finest grid found from the hierarchy's boxes) and the kD-tree
+/// integrator (descent of the encoded tree, as the shader's amrspSampleAtPoint) share the rules.
+/// The GLSL raycaster (Shaders/SinglePassAMR.frag.glsl) implements the same rules:
+///
+/// - Lookup: the scalar at a point p (level-0 index units) and the cell size (level-0 index units)
+///   of the level it comes from; absent (NaN) outside every grid and outside the root box.
+/// - Gradient at a sample p of value v whose level has cell size h (index units): per axis a
+///   central difference (f(p + h_a e_a) - f(p - h_a e_a)) / (2 h_a s_a), s = level-0 spacing
+///   (world units per index unit); an absent neighbour is replaced by v and the difference becomes
+///   one-sided (denominator h_a s_a); both absent gives 0. The neighbours may lie in other grids
+///   and other levels: the lookup finds them.
+/// - Shading (Blinn-Phong, two-sided; vtkVolumeProperty's Ambient Ka, Diffuse Kd, Specular Ks,
+///   SpecularPower n): N = gradient / |gradient| turned toward the viewer V (unit vector to the
+///   eye), L = unit vector to the light (positional: from the sample to the light position;
+///   directional: from the light's focal point to its position), H = normalize(L + V);
+///   rgb = Ka c + T Lc (Kd max(N.L, 0) c + Ks max(N.H, 0)^n [N.L > 0]), clamped to [0, 1]; a zero
+///   gradient has no diffuse or specular part. Lc: the light colour (diffuse colour x intensity);
+///   T: the shadow transmittance (1 without shadows).
+/// - Unshaded with shadows: rgb = clamp(c (Ka + Kd T Lc)), as a sample facing the light.
+/// - Shadow ray from a sample at world point x toward the light (positional: up to the light;
+///   directional: along L), clipped to the root box: steps of ShadowStep (world units), samples at
+///   the step midpoints t_k = (k + 1/2) ShadowStep, T = product of (1 - opacity(f))^(ShadowStep /
+///   UnitDistance) over the present samples; it stops when T < ShadowMinTransmittance or after
+///   ShadowMaxSteps samples.
+/// - Iso-surfaces: between two consecutive present samples a (value va) and b (vb) along the ray,
+///   an iso-value c is crossed when (va < c) != (vb < c); the crossings of one pair are taken in
+///   the order the ray meets them (ascending values when vb > va). Each is refined by IsoRefineSteps
+///   bisections on the segment [a, b] with the lookup (absent midpoint: refinement stops); the hit
+///   is the far end of the final interval. Its colour is the transfer function's colour at c,
+///   shaded at the hit (with the level found there), and its opacity the transfer function's
+///   opacity at c (no unit-distance correction, as VTK's iso-surface blend). Missing data between
+///   two samples (absent sample or empty space) breaks the pairing.
+
+#include <glm/glm.hpp>
+
+#include <functional>
+#include <vector>
+
+namespace amrsp
+{
+
+struct TransferFunction;
+
+/// vtkVolumeProperty's shading parameters, one light (vtkLight) and the shadow-ray settings.
+struct Lighting
+{
+  bool Shade = false; ///< vtkVolumeProperty::ShadeOn
+  double Ambient = 0.1;
+  double Diffuse = 0.7;
+  double Specular = 0.2;
+  double SpecularPower = 10.0;
+  /// The light: a headlight follows the camera (position = camera position, focal point = the
+  /// camera's focal point, directional), else Position/FocalPoint/Positional as set (world).
+  bool Headlight = true;
+  bool Positional = false;
+  glm::dvec3 Position{ 0.0, 0.0, 1.0 };
+  glm::dvec3 FocalPoint{ 0.0 };
+  glm::dvec3 Colour{ 1.0 }; ///< diffuse colour times intensity
+  bool Shadows = false;
+  double ShadowStep = 0.0; ///< world units; must be > 0 when Shadows is on
+};
+
+constexpr int ShadowMaxSteps = 4096;
+constexpr double ShadowMinTransmittance = 1e-3;
+constexpr int IsoRefineSteps = 8;
+constexpr int MaxIsoValues = 8;
+
+/// Scalar at p (level-0 index units), NaN when absent; sets cellSize (level-0 index units) of the
+/// level the value comes from.
+using PointLookup = std::function<double(const glm::dvec3& p, glm::dvec3& cellSize)>;
+
+/// Per-render constants of the shading rules.
+struct ShadingContext
+{
+  const Lighting* Light = nullptr;
+  const TransferFunction* Transfer = nullptr;
+  glm::dvec3 Origin{ 0.0 };   ///< world position of index (0, 0, 0)
+  glm::dvec3 Spacing0{ 1.0 }; ///< world size of a level-0 cell
+  glm::dvec3 RootLo{ 0.0 };   ///< root box, level-0 index units
+  glm::dvec3 RootHi{ 0.0 };
+  glm::dvec3 LightPosition{ 0.0 }; ///< resolved for the camera (headlight) in world units
+  glm::dvec3 LightDirection{ 0.0, 0.0, 1.0 }; ///< unit, toward the light (directional lights)
+  bool Positional = false;
+};
+
+/// Resolves the light for a camera (position and focal point in world units).
+ShadingContext MakeShadingContext(const Lighting& light, const TransferFunction& tf,
+  const glm::dvec3& origin, const glm::dvec3& spacing0, const glm::dvec3& rootLo,
+  const glm::dvec3& rootHi, const glm::dvec3& cameraPosition, const glm::dvec3& cameraFocalPoint);
+
+/// World-space gradient at p (index units) with value v and neighbour distance cellSize.
+glm::dvec3 Gradient(const ShadingContext& c, const PointLookup& f, const glm::dvec3& p, double v,
+  const glm::dvec3& cellSize);
+
+/// Shadow transmittance from p (index units) toward the light.
+double ShadowTransmittance(const ShadingContext& c, const PointLookup& f, const glm::dvec3& p);
+
+/// The lit colour of base colour `rgb` at p (index units) of value v; `towardEye` is the unit
+/// world vector from the sample to the eye (minus the ray direction).
+glm::dvec3 ShadeSample(const ShadingContext& c, const PointLookup& f, const glm::dvec3& rgb,
+  const glm::dvec3& p, double v, const glm::dvec3& cellSize, const glm::dvec3& towardEye);
+
+/// Iso-surface crossings of one ray, composited front to back into (colour, alpha) as they are
+/// found. Feed every sample in ray order; Break() where data is missing.
+class IsoSurfaceTracker
+{
+public:
+  IsoSurfaceTracker(const ShadingContext& c, const PointLookup& f,
+    const std::vector<double>& sortedValues, const glm::dvec3& towardEye)
+    : C(c)
+    , F(f)
+    , Values(sortedValues)
+    , TowardEye(towardEye)
+  {
+  }
+  void Sample(const glm::dvec3& p, double v, glm::dvec3& colour, double& alpha);
+  void Break() { HavePrevious = false; }
+
+private:
+  const ShadingContext& C;
+  const PointLookup& F;
+  const std::vector<double>& Values;
+  glm::dvec3 TowardEye;
+  bool HavePrevious = false;
+  glm::dvec3 PreviousP{ 0.0 };
+  double PreviousV = 0.0;
+};
+
+} // namespace amrsp
