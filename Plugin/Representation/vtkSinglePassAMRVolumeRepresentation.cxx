@@ -19,6 +19,7 @@
 #include "vtkSinglePassAMRGather.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
 #include "vtkStructuredData.h"
+#include "vtkContourValues.h"
 #include "vtkVolumeProperty.h"
 
 namespace
@@ -349,6 +350,51 @@ void vtkSinglePassAMRVolumeRepresentation::SetCellInterpolation(int mode)
 int vtkSinglePassAMRVolumeRepresentation::GetCellInterpolation()
 {
   return this->VolumeMapper->GetCellInterpolation();
+}
+
+void vtkSinglePassAMRVolumeRepresentation::SetShade(bool on)
+{
+  this->Property->SetShade(on ? 1 : 0);
+}
+
+void vtkSinglePassAMRVolumeRepresentation::SetAmbient(double value)
+{
+  this->Property->SetAmbient(value);
+}
+
+void vtkSinglePassAMRVolumeRepresentation::SetDiffuse(double value)
+{
+  this->Property->SetDiffuse(value);
+}
+
+void vtkSinglePassAMRVolumeRepresentation::SetSpecular(double value)
+{
+  this->Property->SetSpecular(value);
+}
+
+void vtkSinglePassAMRVolumeRepresentation::SetSpecularPower(double value)
+{
+  this->Property->SetSpecularPower(value);
+}
+
+void vtkSinglePassAMRVolumeRepresentation::SetShadows(bool on)
+{
+  this->VolumeMapper->SetShadows(on);
+}
+
+void vtkSinglePassAMRVolumeRepresentation::SetShadowSampleDistance(double distance)
+{
+  this->VolumeMapper->SetShadowSampleDistance(distance);
+}
+
+void vtkSinglePassAMRVolumeRepresentation::SetNumberOfIsosurfaces(int count)
+{
+  this->Property->GetIsoSurfaceValues()->SetNumberOfContours(count);
+}
+
+void vtkSinglePassAMRVolumeRepresentation::SetIsosurfaceValue(int index, double value)
+{
+  this->Property->GetIsoSurfaceValues()->SetValue(index, value);
 }
 
 void vtkSinglePassAMRVolumeRepresentation::SetLODThreshold(double pixels)

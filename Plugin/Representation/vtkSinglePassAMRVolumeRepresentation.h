@@ -89,6 +89,30 @@ public:
   int GetCellInterpolation();
   ///@}
 
+  ///@{
+  /// Lighting, forwarded to the vtkVolumeProperty (the names and meaning of ParaView's Volume
+  /// representation, whose properties these are shared with): gradient shading on/off and the
+  /// Phong coefficients.
+  void SetShade(bool on);
+  void SetAmbient(double value);
+  void SetDiffuse(double value);
+  void SetSpecular(double value);
+  void SetSpecularPower(double value);
+  ///@}
+
+  ///@{
+  /// Shadow rays toward the renderer's light and their step in model units (0: a level-0 cell
+  /// edge), forwarded to the single-pass mapper.
+  void SetShadows(bool on);
+  void SetShadowSampleDistance(double distance);
+  ///@}
+
+  ///@{
+  /// Iso-surface values of the "Isosurface" blend mode (vtkVolumeProperty's contour values).
+  void SetNumberOfIsosurfaces(int count);
+  void SetIsosurfaceValue(int index, double value);
+  ///@}
+
   /**
    * Rendering method. METHOD_AUTO: the single-pass mapper with the storage it chooses
    * (vtkSinglePassAMRVolumeMapper::AUTO_STORAGE: bindless where the context offers it and the

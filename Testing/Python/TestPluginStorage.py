@@ -9,7 +9,9 @@
 # - Method "Packing" and "Auto" render with the atlas (this data wastes little of it);
 # - empty-space skipping off gives the same image; early termination at opacity 1 stays within
 #   (1 - 0.999) * 255 of the default; smooth cell interpolation changes the image;
-# - none of these options rebuilds the kD-tree.
+# - none of these options rebuilds the kD-tree;
+# - Shade (shared with ParaView's Volume representation), Shadow Rays and the Isosurface blend mode
+#   with Isosurface Values change the image, identically with bindless.
 # Exit codes: 0 pass, 1 fail, 125 skipped (no X display, or an OpenGL without bindless textures).
 import os
 import sys
@@ -107,6 +109,21 @@ def main():
     display.Method = "Bindless"
     smooth_bindless, _, last_builds = shot("smooth-bl")
     display.CellInterpolation = "Nearest"
+    display.Method = "Packing"
+    display.Shade = 1  # ParaView's Volume representation's property, shared with this one
+    shaded, _, _ = shot("shaded")
+    display.Shadows = 1
+    shadowed, _, _ = shot("shadows")
+    display.Shadows = 0
+    display.BlendMode = "Isosurface"
+    display.SinglePassIsosurfaceValues = [q[2], q[3]]
+    iso, _, iso_builds = shot("iso")
+    display.Method = "Bindless"
+    iso_bindless, _, _ = shot("iso-bl")
+    display.BlendMode = "Composite"
+    display.Shade = 0
+    display.Method = "Packing"
+    unshaded_again, _, _ = shot("unshaded")
 
     checks = [
         ("bindless ran with the waterfall loop", storage == "bindless (waterfall)"),
@@ -121,7 +138,16 @@ def main():
         # a storage change rebuilds the textures once; the options never do
         ("skipping, termination and interpolation rebuild nothing", option_builds == auto_builds),
         ("each storage change rebuilds once", last_builds == option_builds + 1),
+        ("Shade changes the image", rmse(shaded, packed) > 1.0),
+        ("shadow rays change the shaded image", rmse(shadowed, shaded) > 0.5),
+        ("iso-surfaces show", coverage(iso) > 0.05 and rmse(iso, packed) > 1.0),
+        ("iso-surfaces are the same with bindless", rmse(iso_bindless, iso) < SAME_BOUND),
+        ("Shade off gives the packed image back", rmse(unshaded_again, packed) < SAME_BOUND),
     ]
+    print("rmse (0-255): shaded vs unshaded %.2f, shadows vs shaded %.2f, iso vs composite %.2f "
+          "(iso on %.1f %% of the pixels), iso bindless vs packing %.3f"
+          % (rmse(shaded, packed), rmse(shadowed, shaded), rmse(iso, packed),
+             100.0 * coverage(iso), rmse(iso_bindless, iso)))
     print("rmse (0-255): bindless vs packing %.3f, auto %.3f, skipping off %.3f, smooth vs "
           "nearest %.3f, smooth bindless vs smooth packing %.3f; builds %d -> %d"
           % (rmse(bindless, packed), rmse(auto, packed), rmse(unskipped, packed),
