@@ -29,7 +29,8 @@ class AmrResampleRenderer : public GpuRenderer
 {
 public:
   /// `samples` becomes NumberOfSamples: 0 keeps the mapper's default (128 per axis), -1 asks for
-  /// the count that resolves the finest level (FinestSamples). Throws GpuError when that grid
+  /// the count that resolves the finest level: two samples per finest cell edge over the frustum
+  /// box the mapper resamples (computed here as the mapper does on its first frame). Throws GpuError when that grid
   /// would exceed 2048 points per axis or 2^29 points (as uniform-gpu). The volume property's
   /// interpolation is nearest, as for the other methods.
   AmrResampleRenderer(
@@ -43,8 +44,8 @@ public:
   std::string RenderMode() const;
   /// NumberOfSamples as set.
   glm::ivec3 Samples() const;
-  /// The finest level's cell edges that fit into one sample spacing per axis of the frustum box
-  /// (1 or less: the finest level is resolved).
+  /// The finest level's cell edges that fit into one sample spacing, largest over the axes
+  /// (0.5 or less: two samples per finest cell).
   glm::dvec3 FinestCellsPerSample() const;
   /// Bytes of the resampled grid's scalars (what the internal GPU mapper uploads).
   long long TextureBytes() const override;

@@ -10,12 +10,17 @@
 #include "amrsp/KdTree.h"
 #include "amrsp/KdTreeEncoding.h"
 
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPNGWriter.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iomanip>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 
 namespace amrsp
 {
@@ -40,7 +45,7 @@ const std::vector<std::pair<std::string, std::string>>& BenchMethodHelp()
     { "vtk-amr-resample[:N]",
       "VTK's vtkAMRVolumeMapper (ParaView's VTK only) at its default 128^3 samples (or N^3)" },
     { "vtk-amr-resample:finest",
-      "vtkAMRVolumeMapper with the sample count that resolves the finest level" },
+      "vtkAMRVolumeMapper at two samples per finest cell edge (where that fits)" },
   };
   return help;
 }
@@ -153,6 +158,23 @@ bool IsBenchMethod(const std::string& m)
     m.rfind("vtk-amr-resample:", 0) == 0;
 }
 
+void WriteImagePng(const Image& img, const std::string& path)
+{
+  const std::vector<std::uint8_t> rgb = img.Rgb8();
+  vtkNew<vtkImageData> data;
+  data->SetDimensions(img.Width, img.Height, 1);
+  data->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  std::copy(rgb.begin(), rgb.end(), static_cast<std::uint8_t*>(data->GetScalarPointer()));
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetFileName(path.c_str());
+  writer->SetInputData(data);
+  writer->Write();
+  if (writer->GetErrorCode() != 0)
+  {
+    throw std::runtime_error("cannot write the image '" + path + "'");
+  }
+}
+
 Json DatasetStatistics(const Hierarchy& h)
 {
   Json j;
@@ -200,9 +222,14 @@ Json RunBenchMethods(const Hierarchy& h, const RenderSettings& s, const Image& r
     }
     return kdFrame0;
   };
+  if (!o.ImageFolder.empty() && o.CompareImages)
+  {
+    WriteImagePng(reference, o.ImageFolder + "/reference.png");
+  }
   for (const std::string& m : o.Methods)
   {
     Json r;
+    Image frame0;
     try
     {
       if (m == "cpu-kdtree")
@@ -237,6 +264,7 @@ Json RunBenchMethods(const Hierarchy& h, const RenderSettings& s, const Image& r
         }
         r["gpu_bytes"] = enc.Tree.Bytes() + enc.DataNodes.Bytes();
         r["preprocess_s"] = { { "tree", tree_s }, { "encode", encode_s } };
+        frame0 = first;
         kdFrame0 = std::move(first);
       }
       else if (m == "uniform-gpu" || m.rfind("uniform-gpu:", 0) == 0)
@@ -255,6 +283,7 @@ Json RunBenchMethods(const Hierarchy& h, const RenderSettings& s, const Image& r
         }
         UniformGpuRenderer gpu(h, s, o.View, level);
         const Image first = Orbit(gpu, o.Frames, r);
+        frame0 = first;
         if (o.CompareImages)
         {
           r["rmse"] = Rmse(first, reference);
@@ -273,6 +302,7 @@ Json RunBenchMethods(const Hierarchy& h, const RenderSettings& s, const Image& r
       {
         std::unique_ptr<GpuRenderer> gpu = MakeGpuRenderer(m, h, s, o.View);
         const Image first = Orbit(*gpu, o.Frames, r);
+        frame0 = first;
         if (o.CompareImages)
         {
           r["rmse"] = Rmse(first, reference);
@@ -338,6 +368,12 @@ Json RunBenchMethods(const Hierarchy& h, const RenderSettings& s, const Image& r
     catch (const std::exception& e)
     {
       r = { { "error", e.what() } };
+    }
+    if (!o.ImageFolder.empty() && !frame0.Pixels.empty())
+    {
+      std::string file = m;
+      std::replace(file.begin(), file.end(), ':', '-');
+      WriteImagePng(frame0, o.ImageFolder + "/" + file + ".png");
     }
     methods[m] = r;
   }

@@ -37,7 +37,13 @@ struct BenchOptions
   ViewAngles View;
   /// false: timings only, no image comparison (no rmse, psnr, rmse_vs_* fields).
   bool CompareImages = true;
+  /// Not empty: frame 0 of every method that ran is written there as METHOD.png (and the CPU
+  /// reference as reference.png).
+  std::string ImageFolder;
 };
+
+/// Writes `img` as an 8-bit RGB PNG; throws std::runtime_error when it cannot.
+void WriteImagePng(const Image& img, const std::string& path);
 
 /// Table-1 statistics of `h` (grids, levels, cells, kd_nodes, kd_data_nodes) and the CPU seconds
 /// of the tree, the encoding and the packing layout (`times_s` {tree, encode, pack}), measured

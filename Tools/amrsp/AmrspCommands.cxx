@@ -1017,7 +1017,8 @@ int RunBench(int argc, char** argv)
        "dataset has one of the paper's sizes. --json FILE (- for stdout instead of Markdown)\n"
        "writes {dataset, image, frames, statistics, methods: {NAME: {fps, ms_mean, ms_median,\n"
        "rmse, psnr, gpu_bytes, preprocess_s: {...}, ...} or {error}}}. --plot writes bar charts\n"
-       "of fps, GPU memory and RMSE (--plot-size, default 900x600).\n"
+       "of fps, GPU memory and RMSE (--plot-size, default 900x600). --save-images DIR writes\n"
+       "frame 0 of every method (METHOD.png) and the CPU reference (reference.png) there.\n"
        "--scaling runs synthetic:cosmo at each GRIDS:LEVELS:CELLS of --scaling-sizes (default "
     << DefaultScalingSizes
     << ",\n"
@@ -1034,7 +1035,8 @@ int RunBench(int argc, char** argv)
   {
     const Arguments a = ParseArguments(argc, argv, 1,
       Concat({ DatasetOptions, ViewOptions,
-        { "frames", "methods", "json", "plot", "plot-size", "scaling-sizes", "seed" } }),
+        { "frames", "methods", "json", "plot", "plot-size", "scaling-sizes", "seed",
+          "save-images" } }),
       { "scaling" });
     if (WantsHelp(a))
     {
@@ -1066,6 +1068,11 @@ int RunBench(int argc, char** argv)
     }
     BenchOptions o;
     o.Frames = static_cast<int>(framesValue);
+    o.ImageFolder = a.Get("save-images", "");
+    if (a.Has("save-images") && (scaling || o.ImageFolder.empty()))
+    {
+      throw UsageError{ "--save-images needs a folder and does not apply to --scaling" };
+    }
     o.View = ViewOf(a);
     o.Methods = SplitList(a.Get("methods", scaling ? "packing,multipass" : DefaultBenchMethods));
     if (o.Methods.empty())
