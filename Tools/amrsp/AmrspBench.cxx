@@ -566,47 +566,60 @@ std::string BenchMarkdown(const Json& bench)
   return md.str();
 }
 
-std::string ScalingMarkdown(const Json& scaling)
+std::string ScalingMarkdownHeader(const std::string& size, int frames)
 {
   std::ostringstream md;
-  md << "Scaling (`synthetic:cosmo`, " << scaling["image"][0] << "×" << scaling["image"][1] << ", "
-     << scaling["frames"] << " frames per method)\n\n"
+  md << "Scaling (`synthetic:cosmo`, " << size << ", " << frames << " frames per method)\n\n"
      << "| grids | levels | cells | kD nodes | paper dataset | tree [s] | encode [s] | pack [s] | "
         "method | build [s] | upload [s] | ms/frame (mean) | GPU memory [MB] |\n"
      << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  for (const Json& row : scaling["rows"])
+  return md.str();
+}
+
+std::string ScalingMarkdownRow(const Json& row)
+{
+  std::ostringstream md;
+  if (row.contains("error"))
   {
-    if (row.contains("error"))
+    md << "| " << row["dataset"].get<std::string>() << " | | | | | | | | | cannot run: "
+       << row["error"].get<std::string>() << " | | | |\n";
+    return md.str();
+  }
+  const Json& st = row["statistics"];
+  const int paper = PaperDataset(st);
+  const std::string head = "| " + Thousands(st["grids"].get<long long>()) + " | " +
+    st["levels"].dump() + " | " + Thousands(st["cells"].get<long long>()) + " | " +
+    Thousands(st["kd_nodes"].get<long long>()) + " | " + (paper ? std::to_string(paper) : "—") +
+    " | " + Fixed(st["times_s"]["tree"].get<double>(), 3) + " | " +
+    Fixed(st["times_s"]["encode"].get<double>(), 3) + " | " +
+    Fixed(st["times_s"]["pack"].get<double>(), 3) + " | ";
+  for (const auto& item : row["methods"].items())
+  {
+    const Json& r = item.value();
+    md << head << item.key() << " | ";
+    if (r.contains("error"))
     {
-      md << "| " << row["dataset"].get<std::string>() << " | | | | | | | | | cannot run: "
-         << row["error"].get<std::string>() << " | | | |\n";
+      md << "cannot run: " << r["error"].get<std::string>() << " | | | |\n";
       continue;
     }
-    const Json& st = row["statistics"];
-    const int paper = PaperDataset(st);
-    const std::string head = "| " + Thousands(st["grids"].get<long long>()) + " | " +
-      st["levels"].dump() + " | " + Thousands(st["cells"].get<long long>()) + " | " +
-      Thousands(st["kd_nodes"].get<long long>()) + " | " + (paper ? std::to_string(paper) : "—") +
-      " | " + Fixed(st["times_s"]["tree"].get<double>(), 3) + " | " +
-      Fixed(st["times_s"]["encode"].get<double>(), 3) + " | " +
-      Fixed(st["times_s"]["pack"].get<double>(), 3) + " | ";
-    for (const auto& item : row["methods"].items())
-    {
-      const Json& r = item.value();
-      md << head << item.key() << " | ";
-      if (r.contains("error"))
-      {
-        md << "cannot run: " << r["error"].get<std::string>() << " | | | |\n";
-        continue;
-      }
-      const Json& p = r["preprocess_s"];
-      md << (p.contains("build") ? Fixed(p["build"].get<double>(), 3) : "—") << " | "
-         << (p.contains("upload") ? Fixed(p["upload"].get<double>(), 3) : "—") << " | "
-         << Fixed(r["ms_mean"].get<double>(), 1) << " | " << Mb(r["gpu_bytes"].get<double>())
-         << " |\n";
-    }
+    const Json& p = r["preprocess_s"];
+    md << (p.contains("build") ? Fixed(p["build"].get<double>(), 3) : "—") << " | "
+       << (p.contains("upload") ? Fixed(p["upload"].get<double>(), 3) : "—") << " | "
+       << Fixed(r["ms_mean"].get<double>(), 1) << " | " << Mb(r["gpu_bytes"].get<double>())
+       << " |\n";
   }
   return md.str();
+}
+
+std::string ScalingMarkdown(const Json& scaling)
+{
+  std::string md = ScalingMarkdownHeader(
+    scaling["image"][0].dump() + "×" + scaling["image"][1].dump(), scaling["frames"].get<int>());
+  for (const Json& row : scaling["rows"])
+  {
+    md += ScalingMarkdownRow(row);
+  }
+  return md;
 }
 
 } // namespace tool

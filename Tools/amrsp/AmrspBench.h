@@ -67,8 +67,11 @@ int PaperDataset(const BenchJson& stats);
 /// paper size.
 std::string BenchMarkdown(const BenchJson& bench);
 
-/// The scaling table (one row per dataset size and method) of `amrsp bench --scaling`.
+/// The scaling table (one row per dataset size and method) of `amrsp bench --scaling`; its
+/// header (`size` as "W×H") and the rows of one dataset size, printed as each size finishes.
 std::string ScalingMarkdown(const BenchJson& scaling);
+std::string ScalingMarkdownHeader(const std::string& size, int frames);
+std::string ScalingMarkdownRow(const BenchJson& row);
 
 } // namespace tool
 } // namespace amrsp

@@ -158,7 +158,12 @@ void WriteBenchPlot(const BenchJson& bench, const std::string& path, int width, 
   Canvas c(width, height);
   const int titleSize = std::max(10, std::min(22, height / 30));
   std::ostringstream title;
-  title << "amrsp bench: " << bench["dataset"].get<std::string>() << ", " << bench["image"][0]
+  std::string name = bench["dataset"].get<std::string>();
+  if (name.rfind("synthetic:", 0) != 0 && name.find('/') != std::string::npos)
+  {
+    name = name.substr(name.find_last_of('/') + 1); // the file, not its folders
+  }
+  title << "amrsp bench: " << name << ", " << bench["image"][0]
         << "x" << bench["image"][1] << ", " << bench["frames"] << " frames";
   c.Text(title.str(), 10, height - titleSize - 8, titleSize, true);
 

@@ -1139,6 +1139,17 @@ int RunBench(int argc, char** argv)
       j["dataset"] = "synthetic:cosmo (scaling)";
       j["frames"] = o.Frames;
       j["rows"] = Json::array();
+      // the table grows row by row on stdout (a size that exhausts memory may end the process)
+      const bool progressive = jsonPath != "-";
+      if (progressive)
+      {
+        std::string size = viewArgs.Get("size", "");
+        if (size.find('x') != std::string::npos)
+        {
+          size.replace(size.find('x'), 1, "×");
+        }
+        std::cout << ScalingMarkdownHeader(size, o.Frames) << std::flush;
+      }
       for (const std::string& spec :
         ScalingDatasets(a.Get("scaling-sizes", DefaultScalingSizes), a.Get("seed", "7")))
       {
@@ -1166,7 +1177,10 @@ int RunBench(int argc, char** argv)
         {
           row["error"] = e.Message;
         }
-        std::cerr << "amrsp bench --scaling: " << spec << " done\n";
+        if (progressive)
+        {
+          std::cout << ScalingMarkdownRow(row) << std::flush;
+        }
         j["rows"].push_back(row);
       }
     }
@@ -1203,7 +1217,10 @@ int RunBench(int argc, char** argv)
           return Fail("cannot write the JSON file '" + jsonPath + "'");
         }
       }
-      std::cout << (scaling ? ScalingMarkdown(j) : BenchMarkdown(j));
+      if (!scaling)
+      {
+        std::cout << BenchMarkdown(j);
+      }
     }
     return 0;
   }
