@@ -1140,6 +1140,10 @@ int RunBench(int argc, char** argv)
       j["frames"] = o.Frames;
       j["rows"] = Json::array();
       // the table grows row by row on stdout (a size that exhausts memory may end the process)
+      const std::vector<std::string> specs =
+        ScalingDatasets(a.Get("scaling-sizes", DefaultScalingSizes), a.Get("seed", "7"));
+      int width = 0, height = 0; // checked before the first row (rows catch their own errors)
+      ParseSize(viewArgs.Get("size", ""), "size", 1, width, height);
       const bool progressive = jsonPath != "-";
       if (progressive)
       {
@@ -1150,8 +1154,7 @@ int RunBench(int argc, char** argv)
         }
         std::cout << ScalingMarkdownHeader(size, o.Frames) << std::flush;
       }
-      for (const std::string& spec :
-        ScalingDatasets(a.Get("scaling-sizes", DefaultScalingSizes), a.Get("seed", "7")))
+      for (const std::string& spec : specs)
       {
         Json row;
         row["dataset"] = spec;
