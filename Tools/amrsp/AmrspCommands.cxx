@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "AmrspCommands.h"
 
+#include "AmrspBench.h"
+#include "AmrspBenchPlot.h"
 #include "AmrspDataset.h"
 #include "AmrspLighting.h"
 #include "AmrspMultipass.h"
@@ -30,6 +32,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -1106,232 +1109,288 @@ int RunRender(int argc, char** argv)
   return RunImageCommand(argc, argv, false);
 }
 
+namespace
+{
+/// Parses "WxH" (both at least `minimum`); throws UsageError naming `option`.
+void ParseSize(const std::string& text, const std::string& option, int minimum, int& w, int& h)
+{
+  char x = 0;
+  std::istringstream in(text);
+  if (!(in >> w >> x >> h) || x != 'x' || !in.eof() || w < minimum || h < minimum)
+  {
+    throw UsageError{ "--" + option + " expects WxH with W, H >= " + std::to_string(minimum) +
+      ", got '" + text + "'" };
+  }
+}
+
+std::vector<std::string> SplitList(const std::string& text)
+{
+  std::vector<std::string> items;
+  std::stringstream list(text);
+  for (std::string item; std::getline(list, item, ',');)
+  {
+    if (!item.empty())
+    {
+      items.push_back(item);
+    }
+  }
+  return items;
+}
+
+/// --scaling-sizes "GRIDS:LEVELS:CELLS,..." to synthetic:cosmo specs.
+std::vector<std::string> ScalingDatasets(const std::string& text, const std::string& seed)
+{
+  std::vector<std::string> specs;
+  for (const std::string& item : SplitList(text))
+  {
+    std::vector<std::string> parts;
+    std::stringstream in(item);
+    for (std::string p; std::getline(in, p, ':');)
+    {
+      parts.push_back(p);
+    }
+    if (parts.size() != 3 || parts[0].empty() || parts[1].empty() || parts[2].empty())
+    {
+      throw UsageError{ "--scaling-sizes expects GRIDS:LEVELS:CELLS,... (e.g. 2666:4:19M), got '" +
+        item + "'" };
+    }
+    specs.push_back("synthetic:cosmo:grids=" + parts[0] + ",levels=" + parts[1] +
+      ",cells=" + parts[2] + ",seed=" + seed);
+  }
+  if (specs.empty())
+  {
+    throw UsageError{ "--scaling-sizes is empty" };
+  }
+  return specs;
+}
+
+const char* const DefaultScalingSizes = "200:4:1M,2666:4:19M,18528:4:33M,39061:13:140M";
+} // namespace
+
 int RunBench(int argc, char** argv)
 {
-  const char* help =
-    "usage: amrsp bench [DATASET] [--size WxH] [--frames N] [--methods LIST] [--json FILE]\n"
-    "Renders an orbit of N frames per method in one process and reports ms/frame, fps,\n"
-    "preprocessing seconds and the RMSE/PSNR of frame 0 against the CPU reference.\n"
-    "Methods in this build: cpu-kdtree, packing (vtkSinglePassAMRVolumeMapper, offscreen),\n"
-    "multipass (vtkMultiPassAMRVolumeMapper: one draw per kD-tree data node, blended front to\n"
-    "back). A GPU method's first frame, which builds, uploads and compiles, is reported apart\n"
-    "and not timed with the orbit; its frame 0 is also compared with the CPU kD-tree image\n"
-    "(rmse_vs_cpu_kdtree) and, for multipass, with the packing image (rmse_vs_packing).\n"
-    "uniform-gpu[:LEVEL] resamples the hierarchy onto one uniform grid at the finest level (or\n"
-    "LEVEL) and renders it with vtkGPUVolumeRayCastMapper; where the grid does not fit (2048\n"
-    "per axis, 2^29 voxels) it is listed with the error. Other methods (bindless,\n"
-    "vtk-amr-resample) are listed with an error until they are implemented.\n";
+  std::ostringstream help;
+  help
+    << "usage: amrsp bench [DATASET] [--size WxH] [--frames N] [--methods LIST] [--json FILE]\n"
+       "                   [--plot FILE.png [--plot-size WxH]]\n"
+       "       amrsp bench --scaling [--scaling-sizes G:L:C,...] [--methods LIST] [--size WxH]\n"
+       "                   [--frames N] [--json FILE]\n"
+       "Renders an orbit of N frames (default 8; --scaling: 2) per method in one process, after\n"
+       "one untimed warm-up frame per method (build, upload, shader compile: first_frame_ms),\n"
+       "each frame ending with glFinish before the clock is read. Prints Markdown: Table 1\n"
+       "(grids, levels, cells, kD nodes, kD data nodes) and Table 2 (GPU memory, preprocessing,\n"
+       "fps, RMSE/PSNR of frame 0 against the CPU reference) next to the paper's figures when the\n"
+       "dataset has one of the paper's sizes. --json FILE (- for stdout instead of Markdown)\n"
+       "writes {dataset, image, frames, statistics, methods: {NAME: {fps, ms_mean, ms_median,\n"
+       "rmse, psnr, gpu_bytes, preprocess_s: {...}, ...} or {error}}}. --plot writes bar charts\n"
+       "of fps, GPU memory and RMSE (--plot-size, default 900x600). --save-images DIR writes\n"
+       "frame 0 of every method (METHOD.png) and the CPU reference (reference.png) there.\n"
+       "--scaling runs synthetic:cosmo at each GRIDS:LEVELS:CELLS of --scaling-sizes (default "
+    << DefaultScalingSizes
+    << ",\n"
+       "the paper's datasets 1-3 and a small one; default size 128x128, methods packing,multipass)\n"
+       "and reports how preprocessing and frame time grow; a size that cannot run is a row with\n"
+       "its error.\n"
+       "Methods (default "
+    << DefaultBenchMethods << "):\n";
+  for (const auto& m : BenchMethodHelp())
+  {
+    help << "  " << std::left << std::setw(25) << m.first << m.second << "\n";
+  }
   try
   {
-    const Arguments a = ParseArguments(
-      argc, argv, 1, Concat({ DatasetOptions, ViewOptions, { "frames", "methods", "json" } }), {});
+    const Arguments a = ParseArguments(argc, argv, 1,
+      Concat({ DatasetOptions, ViewOptions,
+        { "frames", "methods", "json", "plot", "plot-size", "scaling-sizes", "seed",
+          "save-images" } }),
+      { "scaling" });
     if (WantsHelp(a))
     {
-      std::cout << help << ViewHelp << DatasetHelp;
+      std::cout << help.str() << ViewHelp << DatasetHelp;
       return 0;
     }
-    const int frames = static_cast<int>(a.GetNumber("frames", 8));
-    if (frames < 1)
+    const bool scaling = a.Has("scaling");
+    if (scaling && a.Positional.size() > 1)
     {
-      throw UsageError{ "--frames must be at least 1" };
+      throw UsageError{ "--scaling takes no DATASET (it generates synthetic:cosmo at "
+                        "--scaling-sizes)" };
     }
-    std::vector<std::string> methods;
-    std::stringstream list(a.Get("methods", "cpu-kdtree,packing,bindless,multipass"));
-    for (std::string m; std::getline(list, m, ',');)
+    if (!scaling && (a.Has("scaling-sizes") || a.Has("seed")))
     {
-      if (!m.empty())
+      throw UsageError{ "--scaling-sizes and --seed need --scaling" };
+    }
+    if (scaling && a.Has("plot"))
+    {
+      throw UsageError{ "--plot draws one dataset's methods; it does not apply to --scaling" };
+    }
+    if (a.Has("plot-size") && !a.Has("plot"))
+    {
+      throw UsageError{ "--plot-size needs --plot FILE.png" };
+    }
+    const double framesValue = a.GetNumber("frames", scaling ? 2 : 8);
+    if (framesValue < 1 || framesValue != std::floor(framesValue))
+    {
+      throw UsageError{ "--frames must be a whole number of at least 1" };
+    }
+    BenchOptions o;
+    o.Frames = static_cast<int>(framesValue);
+    o.ImageFolder = a.Get("save-images", "");
+    if (a.Has("save-images") && (scaling || o.ImageFolder.empty()))
+    {
+      throw UsageError{ "--save-images needs a folder and does not apply to --scaling" };
+    }
+    o.View = ViewOf(a);
+    o.Methods = SplitList(a.Get("methods", scaling ? "packing,multipass" : DefaultBenchMethods));
+    if (o.Methods.empty())
+    {
+      throw UsageError{ "--methods is empty" };
+    }
+    for (const std::string& m : o.Methods)
+    {
+      if (!IsBenchMethod(m))
       {
-        methods.push_back(m);
+        throw UsageError{ "unknown method '" + m +
+          "' in --methods (cpu-kdtree, packing, bindless, multipass, uniform-gpu[:LEVEL], "
+          "vtk-amr-resample[:N|:finest])" };
       }
+    }
+    int plotWidth = 900, plotHeight = 600;
+    if (a.Has("plot-size"))
+    {
+      ParseSize(a.Get("plot-size", ""), "plot-size", 1, plotWidth, plotHeight);
+      if (plotWidth < 300 || plotHeight < 200)
+      {
+        throw UsageError{ "--plot-size must be at least 300x200" };
+      }
+    }
+    const std::string plot = a.Get("plot", "");
+    if (a.Has("plot") && (plot.size() < 5 || plot.substr(plot.size() - 4) != ".png"))
+    {
+      throw UsageError{ "--plot expects a file name ending in .png, got '" + plot + "'" };
+    }
+    if (a.Has("plot") && !std::ofstream(plot, std::ios::app))
+    {
+      return Fail("cannot write the plot file '" + plot + "'");
+    }
+    const std::string jsonPath = a.Get("json", "");
+    if (a.Has("json") && jsonPath.empty())
+    {
+      throw UsageError{ "--json needs a file name (or - for stdout)" };
     }
     Arguments viewArgs = a;
     if (!a.Has("size"))
     {
-      viewArgs.Options["size"] = "256x256";
+      viewArgs.Options["size"] = scaling ? "128x128" : "256x256";
     }
-    LoadedDataset d = Load(viewArgs, true, false);
-    RenderSettings s = MakeSettings(d.Data, viewArgs);
-    const Image reference = RenderReference(d.Data, s);
+    std::string device;
+    {
+      std::string why;
+      device = GpuRenderer::Available(why) ? "" : "no OpenGL here: " + why;
+    }
 
     Json j;
-    j["dataset"] = d.Spec;
-    j["image"] = { s.Width, s.Height };
-    j["frames"] = frames;
-    j["methods"] = Json::object();
-    Image kdFrame0; // the CPU kD-tree image of frame 0, for the GPU methods' comparison
-    Image packingFrame0; // the packing image of frame 0, for the multipass comparison
-    auto summary = [frames](const std::vector<double>& ms, Json& out) {
-      std::vector<double> sorted = ms;
-      std::sort(sorted.begin(), sorted.end());
-      double mean = 0.0;
-      for (double v : ms)
-      {
-        mean += v / frames;
-      }
-      out["fps"] = 1000.0 / mean;
-      out["ms_mean"] = mean;
-      out["ms_median"] = sorted[sorted.size() / 2];
-    };
-    auto psnr = [](double rmse) { return rmse > 0.0 ? 20.0 * std::log10(255.0 / rmse) : 99.0; };
-    for (const std::string& m : methods)
+    if (!scaling)
     {
-      if (m == "packing" || m == "multipass")
+      LoadedDataset d = Load(viewArgs, true, false);
+      RenderSettings s = MakeSettings(d.Data, viewArgs);
+      const Image reference = RenderReference(d.Data, s);
+      j["dataset"] = d.Spec;
+      j["image"] = { s.Width, s.Height };
+      j["frames"] = o.Frames;
+      j["statistics"] = DatasetStatistics(d.Data);
+      j["methods"] = RunBenchMethods(d.Data, s, reference, o, j["statistics"]);
+    }
+    else
+    {
+      j["dataset"] = "synthetic:cosmo (scaling)";
+      j["frames"] = o.Frames;
+      j["rows"] = Json::array();
+      // the table grows row by row on stdout (a size that exhausts memory may end the process)
+      const std::vector<std::string> specs =
+        ScalingDatasets(a.Get("scaling-sizes", DefaultScalingSizes), a.Get("seed", "7"));
+      int width = 0, height = 0; // checked before the first row (rows catch their own errors)
+      ParseSize(viewArgs.Get("size", ""), "size", 1, width, height);
+      const bool progressive = jsonPath != "-";
+      if (progressive)
       {
-        try
+        std::string size = viewArgs.Get("size", "");
+        if (size.find('x') != std::string::npos)
         {
-          std::unique_ptr<GpuRenderer> owner;
-          MultipassRenderer* multipass = nullptr;
-          if (m == "multipass")
-          {
-            multipass = new MultipassRenderer(d.Data, s, ViewOf(a));
-            owner.reset(multipass);
-          }
-          else
-          {
-            owner.reset(new PackingRenderer(d.Data, s, ViewOf(a)));
-          }
-          GpuRenderer& gpu = *owner;
-          double firstMs = 0.0;
-          gpu.Render(0.0, firstMs);
-          std::vector<double> ms;
-          Image first;
-          for (int f = 0; f < frames; ++f)
-          {
-            double frameMs = 0.0;
-            Image img = gpu.Render(360.0 * f / frames, frameMs);
-            ms.push_back(frameMs);
-            if (f == 0)
-            {
-              first = std::move(img);
-            }
-          }
-          if (kdFrame0.Pixels.empty())
-          {
-            kdFrame0 = RenderKdTree(d.Data, EncodeKdTree(d.Data, BuildKdTree(d.Data)), s);
-          }
-          Json r;
-          summary(ms, r);
-          const double rmse = Rmse(first, reference);
-          r["rmse"] = rmse;
-          r["psnr"] = psnr(rmse);
-          r["rmse_vs_cpu_kdtree"] = Rmse(first, kdFrame0);
-          if (multipass && !packingFrame0.Pixels.empty())
-          {
-            r["rmse_vs_packing"] = Rmse(first, packingFrame0);
-          }
-          r["gpu_bytes"] = gpu.TextureBytes();
-          r["atlas"] = gpu.AtlasDimensions();
-          r["first_frame_ms"] = firstMs;
-          r["builds"] = gpu.NumberOfBuilds();
-          r["device"] = gpu.Device();
-          r["preprocess_s"] = { { "build", gpu.BuildSeconds() }, { "upload", gpu.UploadSeconds() } };
-          if (multipass)
-          {
-            r["passes"] = multipass->Passes();
-            r["order_ms"] = 1000.0 * multipass->OrderSeconds();
-            r["accumulation_bytes"] = multipass->AccumulationBytes();
-          }
-          else
-          {
-            packingFrame0 = first;
-          }
-          j["methods"][m] = r;
+          size.replace(size.find('x'), 1, "×");
         }
-        catch (const GpuError& e)
-        {
-          j["methods"][m] = { { "error", e.what() } };
-        }
-        continue;
+        std::cout << ScalingMarkdownHeader(size, o.Frames) << std::flush;
       }
-      if (m == "uniform-gpu" || m.rfind("uniform-gpu:", 0) == 0)
+      for (const std::string& spec : specs)
       {
-        // vtkGPUVolumeRayCastMapper on a uniform resampling at the finest level (or the level
-        // after the colon): what a plain VTK user renders instead
-        const int level = m == "uniform-gpu" ? d.Data.NumberOfLevels() - 1 : std::stoi(m.substr(12));
+        Json row;
+        row["dataset"] = spec;
         try
         {
-          if (level < 0 || level >= d.Data.NumberOfLevels())
-          {
-            throw UsageError{ "uniform-gpu level " + std::to_string(level) + " does not exist" };
-          }
-          UniformGpuRenderer gpu(d.Data, s, ViewOf(a), level);
-          double firstMs = 0.0;
-          gpu.Render(0.0, firstMs);
-          std::vector<double> ms;
-          Image first;
-          for (int f = 0; f < frames; ++f)
-          {
-            double frameMs = 0.0;
-            Image img = gpu.Render(360.0 * f / frames, frameMs);
-            ms.push_back(frameMs);
-            if (f == 0)
-            {
-              first = std::move(img);
-            }
-          }
-          Json r;
-          summary(ms, r);
-          const double rmse = Rmse(first, reference);
-          r["rmse"] = rmse;
-          r["psnr"] = psnr(rmse);
-          r["level"] = level;
-          r["grid"] = gpu.Dimensions();
-          r["gpu_bytes"] = gpu.TextureBytes();
-          r["first_frame_ms"] = firstMs;
-          r["preprocess_s"] = { { "resample", gpu.ResampleSeconds() } };
-          j["methods"][m] = r;
+          Arguments rowArgs = viewArgs;
+          rowArgs.Positional = { "bench", spec };
+          LoadedDataset d = Load(rowArgs, true, false);
+          RenderSettings s = MakeSettings(d.Data, rowArgs);
+          j["image"] = { s.Width, s.Height };
+          row["load_s"] = d.LoadSeconds;
+          row["statistics"] = DatasetStatistics(d.Data);
+          // timings only: no CPU reference image (the plain bench measures the RMSE)
+          BenchOptions timingOnly = o;
+          timingOnly.CompareImages = false;
+          row["methods"] = RunBenchMethods(d.Data, s, Image(), timingOnly, row["statistics"]);
         }
         catch (const std::exception& e)
         {
-          j["methods"][m] = { { "error", e.what() } };
+          row["error"] = e.what();
         }
         catch (const UsageError& e)
         {
-          j["methods"][m] = { { "error", e.Message } };
+          row["error"] = e.Message;
         }
-        continue;
-      }
-      if (m != "cpu-kdtree")
-      {
-        j["methods"][m] = { { "error", "not available in this build (not implemented yet)" } };
-        continue;
-      }
-      auto t0 = Clock::now();
-      const KdTree tree = BuildKdTree(d.Data);
-      const double kd = Seconds(t0);
-      t0 = Clock::now();
-      const EncodedKdTree enc = EncodeKdTree(d.Data, tree);
-      const double encode = Seconds(t0);
-      std::vector<double> ms;
-      double rmse = 0.0;
-      const Camera start = s.View;
-      for (int f = 0; f < frames; ++f)
-      {
-        RenderSettings fs = s;
-        fs.View = start;
-        fs.View.Azimuth(360.0 * f / frames);
-        t0 = Clock::now();
-        Image img = RenderKdTree(d.Data, enc, fs);
-        ms.push_back(1000.0 * Seconds(t0));
-        if (f == 0)
+        if (progressive)
         {
-          rmse = Rmse(img, reference);
-          kdFrame0 = std::move(img);
+          std::cout << ScalingMarkdownRow(row) << std::flush;
+        }
+        j["rows"].push_back(row);
+      }
+    }
+    if (!device.empty())
+    {
+      j["device"] = device;
+    }
+    else if (!scaling)
+    {
+      for (const auto& m : j["methods"].items())
+      {
+        if (m.value().contains("device"))
+        {
+          j["device"] = m.value()["device"];
+          break;
         }
       }
-      Json r;
-      summary(ms, r);
-      r["rmse"] = rmse;
-      r["psnr"] = psnr(rmse);
-      r["gpu_bytes"] = enc.Tree.Bytes() + enc.DataNodes.Bytes();
-      r["preprocess_s"] = { { "kdtree", kd }, { "encode", encode } };
-      j["methods"][m] = r;
     }
-    if (a.Has("json"))
+    if (a.Has("plot"))
     {
-      std::ofstream(a.Get("json", "")) << j.dump(2) << "\n";
+      WriteBenchPlot(j, plot, plotWidth, plotHeight);
     }
-    std::cout << j.dump(2) << "\n";
+    if (jsonPath == "-")
+    {
+      std::cout << j.dump(2) << "\n";
+    }
+    else
+    {
+      if (!jsonPath.empty())
+      {
+        std::ofstream out(jsonPath);
+        if (!(out << j.dump(2) << "\n"))
+        {
+          return Fail("cannot write the JSON file '" + jsonPath + "'");
+        }
+      }
+      if (!scaling)
+      {
+        std::cout << BenchMarkdown(j);
+      }
+    }
     return 0;
   }
   catch (const UsageError& e)

@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/// @file
+/// `amrsp bench`: runs the rendering methods on one hierarchy in one process, and writes the
+/// results as JSON, as Markdown next to the paper's Tables 1 and 2, and as a bar-chart PNG.
+
+#include "AmrspGpuRenderer.h"
+
+#include "amrsp/Hierarchy.h"
+#include "amrsp/Render.h"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace amrsp
+{
+namespace tool
+{
+
+using BenchJson = nlohmann::ordered_json;
+
+/// The methods `amrsp bench` knows, in the order of its default list, with one line each.
+const std::vector<std::pair<std::string, std::string>>& BenchMethodHelp();
+
+/// Whether `name` is a method `amrsp bench` knows (it may still not run here).
+bool IsBenchMethod(const std::string& name);
+
+/// The methods run when --methods is not given.
+extern const char* const DefaultBenchMethods;
+
+struct BenchOptions
+{
+  std::vector<std::string> Methods;
+  int Frames = 8;
+  ViewAngles View;
+  /// false: timings only, no image comparison (no rmse, psnr, rmse_vs_* fields).
+  bool CompareImages = true;
+  /// Not empty: frame 0 of every method that ran is written there as METHOD.png (and the CPU
+  /// reference as reference.png).
+  std::string ImageFolder;
+};
+
+/// Writes `img` as an 8-bit RGB PNG; throws std::runtime_error when it cannot.
+void WriteImagePng(const Image& img, const std::string& path);
+
+/// Table-1 statistics of `h` (grids, levels, cells, kd_nodes, kd_data_nodes) and the CPU seconds
+/// of the tree, the encoding and the packing layout (`times_s` {tree, encode, pack}), measured
+/// with the core functions the mappers call.
+BenchJson DatasetStatistics(const Hierarchy& h);
+
+/// Renders an orbit of `o.Frames` frames per method (after one untimed warm-up frame; every
+/// frame ends with glFinish before the clock is read) and returns the "methods" object: per
+/// method fps, ms_mean, ms_median, rmse and psnr of frame 0 against `reference` (0-255 units),
+/// gpu_bytes, preprocess_s {...}, or {"error": why} when the method cannot run here. `stats` is
+/// DatasetStatistics(h) (its times go into the methods' preprocess_s).
+BenchJson RunBenchMethods(const Hierarchy& h, const RenderSettings& s, const Image& reference,
+  const BenchOptions& o, const BenchJson& stats);
+
+/// 1, 2 or 3 when `stats` has the grid and level counts of the paper's dataset 1, 2 or 3
+/// (Table 1), else 0.
+int PaperDataset(const BenchJson& stats);
+
+/// Table 1 (dataset statistics) and Table 2 (GPU memory, preprocessing, fps per method) of a
+/// bench result, as Markdown, with the paper's figures beside ours where the dataset has a
+/// paper size.
+std::string BenchMarkdown(const BenchJson& bench);
+
+/// The scaling table (one row per dataset size and method) of `amrsp bench --scaling`; its
+/// header (`size` as "W×H") and the rows of one dataset size, printed as each size finishes.
+std::string ScalingMarkdown(const BenchJson& scaling);
+std::string ScalingMarkdownHeader(const std::string& size, int frames);
+std::string ScalingMarkdownRow(const BenchJson& row);
+
+} // namespace tool
+} // namespace amrsp
