@@ -1202,13 +1202,15 @@ int RunBench(int argc, char** argv)
     const Arguments a = ParseArguments(argc, argv, 1,
       Concat({ DatasetOptions, ViewOptions,
         { "frames", "methods", "json", "plot", "plot-size", "scaling-sizes", "seed",
-          "save-images" } }),
+          "save-images", "driver" } }),
       { "scaling" });
     if (WantsHelp(a))
     {
-      std::cout << help.str() << ViewHelp << DatasetHelp;
+      std::cout << help.str() << ViewHelp << DriverHelp << DatasetHelp;
       return 0;
     }
+    // every method of the run renders in contexts of this driver (comparable timings)
+    SelectDriver(a.Get("driver", "default"));
     const bool scaling = a.Has("scaling");
     if (scaling && a.Positional.size() > 1)
     {
