@@ -114,6 +114,7 @@ public:
   long long KdNodes = 0;
   long long DataNodes = 0;
   long long TextureBytes = 0;
+  long long GridCount = 0; // grids of the hierarchy: bricks, and textures of the bindless storage
   glm::ivec3 AtlasDims{ 0 };   // (0,0,0) when the bricks could not be packed
   double AtlasWaste = 0.0;     // unused fraction of the atlas's texels
   std::string PackingError;    // why no atlas could be packed (empty when packed)
@@ -163,12 +164,17 @@ public:
   // shader
   std::string FailedFragmentSource; // do not retry a program that failed to compile
   std::string LastError;
+  std::string StorageNote; // why the last frame did not use the bindless storage it was asked for
 
   // extensions of the context last asked (cached per context)
   vtkOpenGLRenderWindow* CapsContext = nullptr;
   bool HasBindless = false;
   bool HasNVShader5 = false;
   bool HasBallot = false;
+  // bindless textures the driver can hold (-1: no known limit). Mesa's zink crashes when more
+  // than 1023 handles are made resident (its bindless descriptor array has 1024 slots); checked
+  // with Mesa 25.0.7: 1023 grids render, 1024 crash inside glMakeTextureHandleResidentARB.
+  long long MaxBindlessTextures = -1;
   std::set<std::string> Warned; // fallback notes already given (each is said once)
 
   void FreePendingData()
@@ -191,6 +197,9 @@ public:
     this->HasBindless = glewIsSupported("GL_ARB_bindless_texture") != 0;
     this->HasNVShader5 = glewIsSupported("GL_NV_gpu_shader5") != 0;
     this->HasBallot = glewIsSupported("GL_ARB_shader_ballot") != 0;
+    const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    this->MaxBindlessTextures =
+      renderer && std::string(renderer).find("zink") != std::string::npos ? 1023 : -1;
     this->CapsContext = renWin;
   }
 
@@ -388,6 +397,7 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
       ? treeBytes + this->Layout.TotalTexels * static_cast<long long>(amrsp::AtlasTexelBytes)
       : 0;
     this->TextureBytes = 0;
+    this->GridCount = static_cast<long long>(h.Grids.size());
     this->TreeTexels = std::move(enc.Tree);
     this->Data = std::move(h);
     this->PendingUpload = true;
@@ -820,6 +830,7 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   in.LastError.clear();
   in.LastStorage = -1;
   in.LastAccess = -1;
+  in.StorageNote.clear();
   auto fail = [&](const std::string& message)
   {
     if (message != previousError)
@@ -867,7 +878,14 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     }
   };
   std::string noBindless;
-  const int access = in.ResolveAccess(this->BindlessAccess, noBindless);
+  int access = in.ResolveAccess(this->BindlessAccess, noBindless);
+  if (access >= 0 && in.MaxBindlessTextures >= 0 && in.GridCount > in.MaxBindlessTextures)
+  {
+    noBindless = "this driver (Mesa's zink) holds at most " +
+      std::to_string(in.MaxBindlessTextures) + " bindless textures and the hierarchy has " +
+      std::to_string(in.GridCount) + " grids";
+    access = -1;
+  }
   std::string noAtlas;
   const bool atlasFits = in.AtlasFits(renWin, this->MaximumAtlasSize, noAtlas);
   int storage = PACKED_ATLAS;
@@ -879,6 +897,7 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     }
     else
     {
+      in.StorageNote = noBindless;
       warnOnce("bindless textures requested, but " + noBindless +
         ": rendering with the packed atlas instead");
     }
@@ -1425,6 +1444,11 @@ double vtkSinglePassAMRVolumeMapper::GetAtlasWaste()
 int vtkSinglePassAMRVolumeMapper::GetLastDataStorage()
 {
   return this->Internals->LastStorage;
+}
+
+const char* vtkSinglePassAMRVolumeMapper::GetBindlessFallbackReason()
+{
+  return this->Internals->StorageNote.c_str();
 }
 
 int vtkSinglePassAMRVolumeMapper::GetLastBindlessAccess()

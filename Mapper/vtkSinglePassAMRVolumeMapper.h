@@ -20,8 +20,9 @@
  *   readFirstInvocationARB). SetBindlessAccess forces either.
  * - AUTO_STORAGE (default): bindless where the extension exists and the atlas cannot be built or
  *   would leave more than AutoBindlessWaste of its texels unused; packing otherwise.
- * When bindless is requested and cannot run (extension missing, or neither access mode
- * available), the mapper renders with the packed atlas and says so once with a VTK warning.
+ * When bindless is requested and cannot run (extension missing, neither access mode available,
+ * or more grids than the driver can hold: Mesa's zink holds 1023), the mapper renders with the
+ * packed atlas and says so once with a VTK warning (GetBindlessFallbackReason).
  * GetLastDataStorage() tells what rendered the last frame.
  *
  * Input: vtkOverlappingAMR with cell data (one port). The scalars are the array selected with
@@ -178,6 +179,9 @@ public:
   /// successful Render), and for bindless DIRECT_ACCESS or WATERFALL_ACCESS (-1 for packing).
   int GetLastDataStorage();
   int GetLastBindlessAccess();
+  /// Why the last frame rendered with the atlas although BINDLESS_TEXTURES was asked for (the
+  /// missing extension, or a driver limit); empty otherwise.
+  const char* GetBindlessFallbackReason();
   /// "packing", "bindless" or "none"; "direct", "waterfall" or "none".
   static const char* GetDataStorageName(int storage);
   static const char* GetBindlessAccessName(int access);

@@ -258,6 +258,33 @@ void TestAutomaticChoice()
       Fixed(Rmse(changed, expectedOther)));
 }
 
+/// More grids than the driver can hold bindless (Mesa's zink: 1023) fall back to the atlas with
+/// one warning naming the limit, instead of crashing inside the driver.
+void TestDriverLimit()
+{
+  std::cout << "more grids than zink's 1023 bindless textures\n";
+  Hierarchy h = Load("synthetic:cosmo:grids=1100,levels=3,cells=200k,seed=5");
+  const RenderSettings s = Settings(h, { "--size", "32x32" });
+  PackingRenderer gpu(h, s, ViewAngles(), "packing");
+  Mapper* m = gpu.GetMapper();
+  double ms = 0.0;
+  const Image packed = gpu.Render(0.0, ms);
+  WarningCounter warnings(m);
+  m->SetDataStorageToBindlessTextures();
+  gpu.Render(0.0, ms);
+  const Image img = gpu.Render(0.0, ms);
+  const std::string reason = m->GetBindlessFallbackReason();
+  if (reason.find("zink") == std::string::npos)
+  {
+    Check(m->GetLastDataStorage() == Mapper::BINDLESS_TEXTURES && Rmse(img, packed) < BoundVsPacking,
+      "this driver has no known bindless limit: 1100 grids render bindless (" + StorageName(m) + ")");
+    return;
+  }
+  Check(m->GetLastDataStorage() == Mapper::PACKED_ATLAS && Rmse(img, packed) < BoundVsPacking &&
+      warnings.Count == 1 && warnings.Last.find("1023") != std::string::npos,
+    "1100 grids on zink render with the atlas, one warning: " + reason);
+}
+
 int RunBindless()
 {
   TestDataset("one grid", Load("synthetic:cosmo:grids=1,levels=1,cells=20k,seed=2"), true);
@@ -266,6 +293,7 @@ int RunBindless()
   TestDataset("synthetic, vertex-centred",
     Load("synthetic:cosmo:grids=60,levels=3,cells=100k,seed=4", "vertex"), false);
   TestAutomaticChoice();
+  TestDriverLimit();
   return Failures == 0 ? 0 : 1;
 }
 

@@ -312,9 +312,8 @@ Json RunBenchMethods(const Hierarchy& h, const RenderSettings& s, const Image& r
           r["gpu_bytes_bindless"] = singlePass->BindlessBytes();
           if (m == "bindless" && singlePass->StorageUsed().rfind("bindless", 0) != 0)
           {
-            throw GpuError("bindless textures are not available in this OpenGL context (no "
-                           "GL_ARB_bindless_texture, or neither GL_NV_gpu_shader5 nor "
-                           "GL_ARB_shader_ballot); on a CPU run with --driver zink");
+            throw GpuError("bindless textures are not available: " +
+              singlePass->BindlessFallbackReason() + " (on a CPU run with --driver zink)");
           }
         }
         frame0 = first;

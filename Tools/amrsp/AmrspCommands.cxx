@@ -964,8 +964,9 @@ int RunImageCommand(int argc, char** argv, bool reference)
         const std::string used = singlePass->StorageUsed();
         if (method == "bindless" && used.rfind("bindless", 0) != 0)
         {
-          std::cerr << "amrsp: note: bindless textures are not available in this OpenGL context "
-                       "(try --driver zink); rendered with the packed atlas\n";
+          std::cerr << "amrsp: note: bindless textures cannot be used here ("
+                    << singlePass->BindlessFallbackReason()
+                    << "; on a CPU try --driver zink); rendered with the packed atlas\n";
           method = "packing";
         }
         gpuReport << "storage: " << used << "; textures for packing "

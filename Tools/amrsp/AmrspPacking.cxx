@@ -70,6 +70,11 @@ std::string PackingRenderer::StorageUsed() const
   return name;
 }
 
+std::string PackingRenderer::BindlessFallbackReason() const
+{
+  return this->Mapper->GetBindlessFallbackReason();
+}
+
 long long PackingRenderer::PackedBytes() const
 {
   return this->Mapper->GetPackedTextureBytes();

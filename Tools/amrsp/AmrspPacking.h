@@ -33,6 +33,8 @@ public:
   /// "none" before the first successful frame.
   std::string StorageUsed() const;
   /// Bytes of the data textures each storage needs for the current data (tree included).
+  /// Why bindless was asked for but the atlas rendered (empty when it did not fall back).
+  std::string BindlessFallbackReason() const;
   long long PackedBytes() const;
   long long BindlessBytes() const;
 
