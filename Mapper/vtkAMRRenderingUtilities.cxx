@@ -127,26 +127,38 @@ bool BuildPackedHierarchy(vtkOverlappingAMR* amr, const std::string& array, int 
 }
 
 //------------------------------------------------------------------------------
+bool AtlasFitsContext(vtkOpenGLRenderWindow* renWin, const glm::ivec3& dims, int atlasLimit,
+  std::string& why)
+{
+  const int max3D = vtkTextureObject::GetMaximumTextureSize3D(renWin);
+  const int limit = atlasLimit > 0 ? std::min(atlasLimit, max3D) : max3D;
+  if (dims.x <= limit && dims.y <= limit && dims.z <= limit)
+  {
+    return true;
+  }
+  std::ostringstream msg;
+  msg << "the packed atlas (" << dims.x << " x " << dims.y << " x " << dims.z
+      << " texels) exceeds ";
+  if (limit < max3D)
+  {
+    msg << "MaximumAtlasSize = " << limit << " (GL_MAX_3D_TEXTURE_SIZE is " << max3D << ")";
+  }
+  else
+  {
+    msg << "GL_MAX_3D_TEXTURE_SIZE = " << max3D << " of this OpenGL context";
+  }
+  why = msg.str();
+  return false;
+}
+
+//------------------------------------------------------------------------------
 bool UploadAtlas(vtkOpenGLRenderWindow* renWin, const amrsp::BrickAtlas& atlas, bool vertexCentred,
   int atlasLimit, vtkSmartPointer<vtkTextureObject>& texture, std::string& error)
 {
   texture = nullptr;
-  const int max3D = vtkTextureObject::GetMaximumTextureSize3D(renWin);
-  const int limit = atlasLimit > 0 ? std::min(atlasLimit, max3D) : max3D;
   const glm::ivec3 d = atlas.Layout.Dims;
-  if (d.x > limit || d.y > limit || d.z > limit)
+  if (!AtlasFitsContext(renWin, d, atlasLimit, error))
   {
-    std::ostringstream msg;
-    msg << "the packed atlas (" << d.x << " x " << d.y << " x " << d.z << " texels) exceeds ";
-    if (limit < max3D)
-    {
-      msg << "MaximumAtlasSize = " << limit << " (GL_MAX_3D_TEXTURE_SIZE is " << max3D << ")";
-    }
-    else
-    {
-      msg << "GL_MAX_3D_TEXTURE_SIZE = " << max3D << " of this OpenGL context";
-    }
-    error = msg.str();
     return false;
   }
   while (glGetError() != GL_NO_ERROR)

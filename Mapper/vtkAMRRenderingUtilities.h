@@ -82,6 +82,13 @@ bool BuildPackedHierarchy(vtkOverlappingAMR* amr, const std::string& array, int 
   int packLimit, PackedHierarchy& out, std::string& error);
 
 /**
+ * Whether an atlas of `dims` texels fits `renWin`'s GL_MAX_3D_TEXTURE_SIZE and `atlasLimit`
+ * (> 0: a lower limit set by the user). When not, `why` names the limit it exceeds.
+ */
+bool AtlasFitsContext(vtkOpenGLRenderWindow* renWin, const glm::ivec3& dims, int atlasLimit,
+  std::string& why);
+
+/**
  * Uploads the atlas as an R32F 3D texture (nearest filtering for cell bricks, linear for vertex
  * bricks, clamped). Fails with a one-line `error` when an edge exceeds GL_MAX_3D_TEXTURE_SIZE or
  * `atlasLimit` (> 0), or when OpenGL reports an error (e.g. out of memory); `texture` is then

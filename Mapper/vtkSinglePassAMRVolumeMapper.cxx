@@ -424,25 +424,7 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::AtlasFits(vtkOpenGLRenderWindow
     why = this->PackingError;
     return false;
   }
-  const int max3D = vtkTextureObject::GetMaximumTextureSize3D(renWin);
-  const int limit = atlasLimit > 0 ? std::min(atlasLimit, max3D) : max3D;
-  const glm::ivec3 d = this->AtlasDims;
-  if (d.x <= limit && d.y <= limit && d.z <= limit)
-  {
-    return true;
-  }
-  std::ostringstream msg;
-  msg << "the packed atlas (" << d.x << " x " << d.y << " x " << d.z << " texels) exceeds ";
-  if (limit < max3D)
-  {
-    msg << "MaximumAtlasSize = " << limit << " (GL_MAX_3D_TEXTURE_SIZE is " << max3D << ")";
-  }
-  else
-  {
-    msg << "GL_MAX_3D_TEXTURE_SIZE = " << max3D << " of this OpenGL context";
-  }
-  why = msg.str();
-  return false;
+  return vtkAMRRenderingUtilities::AtlasFitsContext(renWin, this->AtlasDims, atlasLimit, why);
 }
 
 //------------------------------------------------------------------------------

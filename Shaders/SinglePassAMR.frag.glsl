@@ -249,7 +249,26 @@ vec4 amrspTransferFunction(float scalar)
   return texture(amrspTransfer, vec2(x, 0.5));
 }
 
-#ifdef AMRSP_SMOOTH_CELLS
+// Finest-level cells per cell of `level`, per axis.
+ivec3 amrspToFinest(int level)
+{
+  return ivec3(amrspLevelToFinest[3 * level], amrspLevelToFinest[3 * level + 1],
+    amrspLevelToFinest[3 * level + 2]);
+}
+
+// The cells firstCell..lastCell of data level `level` that cover the node box loF..hiF (exact
+// finest-level cells): the cells a segment in that node samples.
+void amrspLeafCells(int level, ivec3 loF, ivec3 hiF, out ivec3 firstCell, out ivec3 lastCell)
+{
+  ivec3 toData = amrspToFinest(level);
+  firstCell = ivec3(amrspFloorDiv(loF.x, toData.x), amrspFloorDiv(loF.y, toData.y),
+    amrspFloorDiv(loF.z, toData.z));
+  lastCell = ivec3(amrspCeilDiv(hiF.x, toData.x), amrspCeilDiv(hiF.y, toData.y),
+               amrspCeilDiv(hiF.z, toData.z)) - 1;
+}
+
+#if defined(AMRSP_SMOOTH_CELLS) || defined(AMRSP_SHADE) || defined(AMRSP_SHADOWS) || \
+  AMRSP_BLEND_MODE == 4
 // Point location, as the core's LocateDataNode: from the root to the leaf containing p (level-0
 // index units); a point on a split plane goes to the upper side. Returns the data index (0: empty
 // leaf or outside the root box) and the leaf's box in exact finest-level cells.
@@ -264,7 +283,7 @@ uint amrspLocateDataNode(vec3 p, out ivec3 loF, out ivec3 hiF)
     return 0u;
   }
   uvec2 texel = amrspFetchNode(0u);
-  for (;;)
+  for (int depth = 0; depth < amrspMaxSegments; ++depth) // a guard against corrupt textures
   {
     uint child = amrspNodeFirstChild(texel);
     if (child == 0u)
@@ -291,13 +310,9 @@ uint amrspLocateDataNode(vec3 p, out ivec3 loF, out ivec3 hiF)
   }
   return amrspNodeData(texel);
 }
+#endif
 
-ivec3 amrspToFinest(int level)
-{
-  return ivec3(amrspLevelToFinest[3 * level], amrspLevelToFinest[3 * level + 1],
-    amrspLevelToFinest[3 * level + 2]);
-}
-
+#ifdef AMRSP_SMOOTH_CELLS
 // Smooth value at p for a sample of data level `level` in the node (dataNode, box loF..hiF in
 // finest cells, cells firstCell..lastCell): trilinear in the level's dual cell around p, each of
 // the 8 corners (level cell centres) the nearest value of the finest cell containing it;
@@ -331,11 +346,8 @@ float amrspSampleSmooth(vec3 p, int level, uvec2 dataNode, ivec3 loF, ivec3 hiF,
       {
         uvec2 node = amrspFetchDataNode(data);
         int l = int(amrspDataLevel(node));
-        ivec3 t = amrspToFinest(l);
-        ivec3 first = ivec3(amrspFloorDiv(cLoF.x, t.x), amrspFloorDiv(cLoF.y, t.y),
-          amrspFloorDiv(cLoF.z, t.z));
-        ivec3 last = ivec3(amrspCeilDiv(cHiF.x, t.x), amrspCeilDiv(cHiF.y, t.y),
-                       amrspCeilDiv(cHiF.z, t.z)) - 1;
+        ivec3 first, last;
+        amrspLeafCells(l, cLoF, cHiF, first, last);
         v = amrspSampleDataNode(node, x, amrspLevelCellSize[l], first, last);
       }
     }
@@ -377,52 +389,16 @@ bool amrspSampleAtPoint(vec3 p, out float value, out vec3 cellSize)
 {
   value = 0.0;
   cellSize = vec3(1.0);
-  if (any(lessThan(p, amrspRootLo)) || any(greaterThanEqual(p, amrspRootHi)))
-  {
-    return false;
-  }
-  vec3 lo = amrspRootLo;
-  ivec3 loF = ivec3(amrspRootLoFinest[0], amrspRootLoFinest[1], amrspRootLoFinest[2]);
-  ivec3 hiF = ivec3(amrspRootHiFinest[0], amrspRootHiFinest[1], amrspRootHiFinest[2]);
-  uvec2 texel = amrspFetchNode(0u);
-  for (int depth = 0; depth < amrspMaxSegments; ++depth)
-  {
-    uint child = amrspNodeFirstChild(texel);
-    if (child == 0u)
-    {
-      break;
-    }
-    int axis = int(amrspNodeAxis(texel));
-    uint level = amrspNodeLevel(texel);
-    uint split = amrspNodeSplit(texel);
-    float plane = lo[axis] + float(split) * amrspLevelCellSize[level][axis];
-    int planeF = loF[axis] + int(split) * amrspLevelToFinest[3 * int(level) + axis];
-    uint node = child;
-    if (p[axis] < plane)
-    {
-      hiF[axis] = planeF;
-    }
-    else
-    {
-      lo[axis] = plane;
-      loF[axis] = planeF;
-      node = child + 1u;
-    }
-    texel = amrspFetchNode(node);
-  }
-  uint data = amrspNodeData(texel);
+  ivec3 loF, hiF;
+  uint data = amrspLocateDataNode(p, loF, hiF);
   if (data == 0u)
   {
     return false;
   }
   uvec2 dataNode = amrspFetchDataNode(data);
   int level = int(amrspDataLevel(dataNode));
-  ivec3 toData = ivec3(amrspLevelToFinest[3 * level], amrspLevelToFinest[3 * level + 1],
-    amrspLevelToFinest[3 * level + 2]);
-  ivec3 firstCell = ivec3(amrspFloorDiv(loF.x, toData.x), amrspFloorDiv(loF.y, toData.y),
-    amrspFloorDiv(loF.z, toData.z));
-  ivec3 lastCell = ivec3(amrspCeilDiv(hiF.x, toData.x), amrspCeilDiv(hiF.y, toData.y),
-                     amrspCeilDiv(hiF.z, toData.z)) - 1;
+  ivec3 firstCell, lastCell;
+  amrspLeafCells(level, loF, hiF, firstCell, lastCell);
   cellSize = amrspLevelCellSize[level];
   value = amrspSampleDataNode(dataNode, p, cellSize, firstCell, lastCell);
   return !isnan(value);
@@ -747,12 +723,8 @@ void main()
     {
       uvec2 dataNode = amrspFetchDataNode(data);
       int level = int(amrspDataLevel(dataNode));
-      ivec3 toData = ivec3(amrspLevelToFinest[3 * level], amrspLevelToFinest[3 * level + 1],
-        amrspLevelToFinest[3 * level + 2]);
-      ivec3 firstCell = ivec3(amrspFloorDiv(loF.x, toData.x), amrspFloorDiv(loF.y, toData.y),
-        amrspFloorDiv(loF.z, toData.z));
-      ivec3 lastCell = ivec3(amrspCeilDiv(hiF.x, toData.x), amrspCeilDiv(hiF.y, toData.y),
-                         amrspCeilDiv(hiF.z, toData.z)) - 1;
+      ivec3 firstCell, lastCell;
+      amrspLeafCells(level, loF, hiF, firstCell, lastCell);
       vec3 cellSize = amrspLevelCellSize[level];
       // Sampling rule: n = max(1, ceil(length / D)) equal steps, samples at their midpoints.
       float segmentLength = tLeave - t;
