@@ -16,6 +16,7 @@
 // cannot pass as bindless.
 
 #include "AmrspCommands.h"
+#include "MapperTestHelpers.h"
 #include "AmrspDataset.h"
 #include "AmrspPacking.h"
 
@@ -43,43 +44,19 @@ namespace
 {
 using namespace amrsp;
 using namespace amrsp::tool;
+using mappertest::Check;
+using mappertest::Coverage;
+using mappertest::Failures;
+using mappertest::Fixed;
+using mappertest::Settings;
 using Mapper = vtkSinglePassAMRVolumeMapper;
 
 constexpr double BoundVsPacking = 0.05;
 constexpr double BoundVsKdTree = 1.0;
 constexpr double BoundVsReference = 2.0;
-int Failures = 0;
 
-void Check(bool ok, const std::string& what)
-{
-  std::cout << (ok ? "  ok      " : "  FAILED  ") << what << "\n";
-  if (!ok)
-  {
-    ++Failures;
-  }
-}
 
-std::string Fixed(double v)
-{
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.3f", v);
-  return buffer;
-}
 
-RenderSettings Settings(Hierarchy& h, std::vector<std::string> options)
-{
-  std::vector<char*> argv;
-  std::string command = "render";
-  argv.push_back(&command[0]);
-  for (std::string& o : options)
-  {
-    argv.push_back(&o[0]);
-  }
-  const Arguments a = ParseArguments(static_cast<int>(argv.size()), argv.data(), 1,
-    { "size", "azimuth", "elevation", "zoom", "tf", "scale", "unit-distance", "sample-factor" },
-    {});
-  return MakeSettings(h, a);
-}
 
 Hierarchy Load(const std::string& spec, const std::string& centering = "auto")
 {
@@ -294,7 +271,7 @@ int RunBindless()
     Load("synthetic:cosmo:grids=60,levels=3,cells=100k,seed=4", "vertex"), false);
   TestAutomaticChoice();
   TestDriverLimit();
-  return Failures == 0 ? 0 : 1;
+  return Failures() == 0 ? 0 : 1;
 }
 
 /// Without the extension, asking for bindless renders with the atlas and warns exactly once.
@@ -323,7 +300,7 @@ int RunFallback()
   gpu.Render(0.0, ms);
   Check(m->GetLastDataStorage() == Mapper::PACKED_ATLAS && warnings.Count == 1,
     "auto without the extension takes the atlas silently");
-  return Failures == 0 ? 0 : 1;
+  return Failures() == 0 ? 0 : 1;
 }
 
 } // namespace

@@ -20,6 +20,7 @@
 // (no X display for this GLX-only VTK, or an OpenGL older than 3.2 core).
 
 #include "AmrspCommands.h"
+#include "MapperTestHelpers.h"
 #include "AmrspDataset.h"
 #include "AmrspPacking.h"
 
@@ -62,55 +63,18 @@ namespace
 {
 using namespace amrsp;
 using namespace amrsp::tool;
+using mappertest::Check;
+using mappertest::Coverage;
+using mappertest::Failures;
+using mappertest::Fixed;
+using mappertest::Settings;
 
 constexpr double BoundVsReference = 2.0;
 constexpr double BoundVsKdTree = 1.0;
-int Failures = 0;
 
-void Check(bool ok, const std::string& what)
-{
-  std::cout << (ok ? "  ok      " : "  FAILED  ") << what << "\n";
-  if (!ok)
-  {
-    ++Failures;
-  }
-}
 
-std::string Fixed(double v)
-{
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.3f", v);
-  return buffer;
-}
 
-/// Share of pixels with any channel above 4/255.
-double Coverage(const Image& img)
-{
-  const std::vector<std::uint8_t> rgb = img.Rgb8();
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < rgb.size(); i += 3)
-  {
-    n += (rgb[i] > 4 || rgb[i + 1] > 4 || rgb[i + 2] > 4) ? 1 : 0;
-  }
-  return static_cast<double>(n) / static_cast<double>(rgb.size() / 3);
-}
 
-RenderSettings Settings(Hierarchy& h, std::vector<std::string> options)
-{
-  std::vector<char*> argv;
-  std::string command = "render";
-  argv.push_back(&command[0]);
-  for (std::string& o : options)
-  {
-    argv.push_back(&o[0]);
-  }
-  const Arguments a = ParseArguments(static_cast<int>(argv.size()),
-    argv.data(),
-    1,
-    { "size", "azimuth", "elevation", "zoom", "tf", "scale", "unit-distance", "sample-factor" },
-    {});
-  return MakeSettings(h, a);
-}
 
 /// A black, unlit, opaque square of half-size `half` centred at `centre`, facing `normal`.
 vtkSmartPointer<vtkActor> OpaqueSquare(const glm::dvec3& centre,
@@ -578,9 +542,9 @@ int main()
   catch (const std::exception& e)
   {
     std::cout << "  FAILED  " << e.what() << "\n";
-    ++Failures;
+    ++Failures();
   }
-  std::cout << (Failures == 0 ? "PASSED" : "FAILED: " + std::to_string(Failures) + " check(s)")
+  std::cout << (Failures() == 0 ? "PASSED" : "FAILED: " + std::to_string(Failures()) + " check(s)")
             << "\n";
-  return Failures == 0 ? 0 : 1;
+  return Failures() == 0 ? 0 : 1;
 }

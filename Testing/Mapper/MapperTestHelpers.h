@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/// @file
+/// Helpers shared by the mapper image tests: a check counter that prints every check, number
+/// formatting, image coverage and render settings built from `amrsp render` options.
+
+#include "AmrspCommands.h"
+
+#include "amrsp/Render.h"
+
+#include <cstdint>
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace mappertest
+{
+
+/// Failed checks so far (the test's exit code is non-zero when any failed).
+inline int& Failures()
+{
+  static int failures = 0;
+  return failures;
+}
+
+/// Prints "ok" or "FAILED" with `what` and counts failures.
+inline void Check(bool ok, const std::string& what)
+{
+  std::cout << (ok ? "  ok      " : "  FAILED  ") << what << "\n";
+  if (!ok)
+  {
+    ++Failures();
+  }
+}
+
+/// `v` with three decimals.
+inline std::string Fixed(double v)
+{
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), "%.3f", v);
+  return buffer;
+}
+
+/// Share of pixels with any channel above 4/255.
+inline double Coverage(const amrsp::Image& img)
+{
+  const std::vector<std::uint8_t> rgb = img.Rgb8();
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < rgb.size(); i += 3)
+  {
+    n += (rgb[i] > 4 || rgb[i + 1] > 4 || rgb[i + 2] > 4) ? 1 : 0;
+  }
+  return static_cast<double>(n) / static_cast<double>(rgb.size() / 3);
+}
+
+/// The settings `amrsp render OPTIONS` would use for `h` (which gets the --scale applied).
+inline amrsp::RenderSettings Settings(amrsp::Hierarchy& h, std::vector<std::string> options)
+{
+  std::vector<char*> argv;
+  std::string command = "render";
+  argv.push_back(&command[0]);
+  for (std::string& o : options)
+  {
+    argv.push_back(&o[0]);
+  }
+  const amrsp::tool::Arguments a = amrsp::tool::ParseArguments(static_cast<int>(argv.size()),
+    argv.data(), 1,
+    { "size", "azimuth", "elevation", "zoom", "tf", "scale", "unit-distance", "sample-factor" },
+    {});
+  return amrsp::tool::MakeSettings(h, a);
+}
+
+} // namespace mappertest
