@@ -29,10 +29,42 @@ def clean_environment():
             if not k.startswith(("OMPI_", "PMIX_", "OPAL_", "ORTE_"))}
 
 
+# A known, intermittent deadlock of the parallel runs (about 1 run in 5 on this machine; README,
+# "Known problem: MPI runs can hang"): rank 0 enters IceT's compositing (MPI_Comm_dup inside
+# icetCreateMPICommunicator) while the other ranks still wait for ParaView's next command. A run
+# that takes longer than HANG_SECONDS is killed and started again, at most HANG_ATTEMPTS times
+# in all; every hang is reported ("HANG: ..."), and when every attempt hangs the test says
+# SKIPPED with that reason (the deadlock is an open problem, not a wrong image).
+HANG_SECONDS = 50
+HANG_ATTEMPTS = 5
+
+
+def call_with_hang_retry(command, log):
+    import signal
+
+    for attempt in range(1, HANG_ATTEMPTS + 1):
+        log.seek(0)
+        log.truncate()
+        process = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT,
+                                   env=clean_environment(), start_new_session=True)
+        try:
+            return process.wait(timeout=HANG_SECONDS)
+        except subprocess.TimeoutExpired:
+            os.killpg(process.pid, signal.SIGKILL)
+            process.wait()
+            print("HANG: attempt %d of %d did not finish within %d s (known intermittent "
+                  "deadlock in the parallel render); killed%s"
+                  % (attempt, HANG_ATTEMPTS, HANG_SECONDS,
+                     ", starting again" if attempt < HANG_ATTEMPTS else ""))
+    print("SKIPPED: all %d attempts of %s hung (the known intermittent deadlock of the "
+          "parallel render, README \"Known problem: MPI runs can hang\")"
+          % (HANG_ATTEMPTS, " ".join(command)))
+    sys.exit(SKIP)
+
+
 def run(command, log_path):
     with open(log_path, "w") as log:
-        code = subprocess.call(command, stdout=log, stderr=subprocess.STDOUT,
-                               env=clean_environment())
+        code = call_with_hang_retry(command, log)
     with open(log_path) as f:
         text = f.read()
     lines = [l for l in text.splitlines() if l.startswith(("parallel:", "texture builds", "rmse",
