@@ -65,18 +65,8 @@ double MinEdge(const glm::dvec3& v)
   return std::min(v.x, std::min(v.y, v.z));
 }
 
-/// Column-major float copy of a row-major vtkMatrix4x4, as glUniformMatrix4fv expects.
-void ToColumnMajor(vtkMatrix4x4* m, float out[16])
-{
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      out[c * 4 + r] = static_cast<float>(m->GetElement(r, c));
-    }
-  }
-}
-
+using vtkAMRRenderingUtilities::RequestedArray;
+using vtkAMRRenderingUtilities::ToColumnMajor;
 using vtkAMRRenderingUtilities::TransferTableSize;
 
 } // namespace
@@ -712,27 +702,6 @@ vtkOverlappingAMR* vtkSinglePassAMRVolumeMapper::GetAMRInput()
 }
 
 //------------------------------------------------------------------------------
-namespace
-{
-/// The array the mapper's selection asks for: a name, an index into the cell arrays, or "" for
-/// the first cell array.
-std::string RequestedArray(vtkOverlappingAMR* amr, int accessMode, const char* name, int id)
-{
-  if (accessMode == VTK_GET_ARRAY_BY_NAME && name && *name)
-  {
-    return name;
-  }
-  if (accessMode == VTK_GET_ARRAY_BY_ID && id >= 0)
-  {
-    const std::vector<std::string> names = vtkAMRCoreConversion::CellArrayNames(amr);
-    if (static_cast<std::size_t>(id) < names.size())
-    {
-      return names[static_cast<std::size_t>(id)];
-    }
-  }
-  return std::string();
-}
-} // namespace
 
 //------------------------------------------------------------------------------
 double* vtkSinglePassAMRVolumeMapper::GetBounds()
@@ -774,33 +743,7 @@ void vtkSinglePassAMRVolumeMapper::GetBounds(double bounds[6])
 //------------------------------------------------------------------------------
 bool vtkSinglePassAMRVolumeMapper::IsRenderSupported(vtkRenderWindow* window, std::string* why)
 {
-  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
-  auto fail = [why](const std::string& reason)
-  {
-    if (why)
-    {
-      *why = reason;
-    }
-    return false;
-  };
-  if (!renWin)
-  {
-    return fail("the render window is not an OpenGL render window");
-  }
-  if (!renWin->SupportsOpenGL())
-  {
-    return fail("the OpenGL context cannot be created or is older than VTK's minimum (3.2 core)");
-  }
-  renWin->Initialize(); // creates the context if the window has none yet
-  renWin->MakeCurrent();
-  int major = 0, minor = 0;
-  renWin->GetOpenGLVersion(major, minor);
-  if (major < 3 || (major == 3 && minor < 2))
-  {
-    return fail("OpenGL " + std::to_string(major) + "." + std::to_string(minor) +
-      " lacks GLSL 1.50 integer textures (3.2 core needed)");
-  }
-  return true;
+  return vtkAMRRenderingUtilities::IsRenderSupported(window, why);
 }
 
 //------------------------------------------------------------------------------
