@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkAMRCoreConversion.h"
 
+#include "amrsp/RefinedCells.h"
 #include "amrsp/VertexData.h"
 
 #include "vtkAMRBox.h"
-#include "vtkAMRUtilities.h"
 #include "vtkCellData.h"
+#include "vtkDataSetAttributes.h"
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkNew.h"
@@ -14,6 +15,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkStructuredData.h"
 #include "vtkUniformGrid.h"
+#include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <cmath>
@@ -287,6 +289,10 @@ void vtkAMRCoreConversion::ToOverlappingAMR(const amrsp::Hierarchy& h, vtkOverla
     // vtkOverlappingAMR keeps one isotropic ratio per level: the one to the next finer level
     out->SetRefinementRatio(l, l + 1 < levels ? h.RefinementRatio[l + 1].x : 2);
   }
+  // Blanking as vtkAMRUtilities::BlankCells writes it (REFINEDCELL in vtkGhostType), computed
+  // from the boxes: BlankCells' parent-child search bins each level's whole index space and
+  // runs out of memory on deep, sparse hierarchies (13 levels: tens of GB).
+  const std::vector<std::vector<amrsp::Box>> refined = amrsp::RefinedRegions(h);
   std::vector<int> next(static_cast<std::size_t>(levels), 0);
   for (std::size_t gi = 0; gi < h.Grids.size(); ++gi)
   {
@@ -321,7 +327,15 @@ void vtkAMRCoreConversion::ToOverlappingAMR(const amrsp::Hierarchy& h, vtkOverla
         grid->GetCellData()->AddArray(values);
       }
     }
+    const std::vector<unsigned char> mask = amrsp::RefinedCellMask(g.Cells, refined[gi]);
+    vtkNew<vtkUnsignedCharArray> ghosts;
+    ghosts->SetName(vtkDataSetAttributes::GhostArrayName());
+    ghosts->SetNumberOfTuples(static_cast<vtkIdType>(mask.size()));
+    for (std::size_t c = 0; c < mask.size(); ++c)
+    {
+      ghosts->SetValue(static_cast<vtkIdType>(c), mask[c] ? vtkDataSetAttributes::REFINEDCELL : 0);
+    }
+    grid->GetCellData()->AddArray(ghosts);
     out->SetDataSet(g.Level, index, grid);
   }
-  vtkAMRUtilities::BlankCells(out);
 }

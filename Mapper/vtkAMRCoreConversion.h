@@ -38,8 +38,10 @@ public:
   static bool FromOverlappingAMR(vtkOverlappingAMR* amr, const ArraySelection& selection,
     amrsp::Hierarchy& out, std::string& error);
 
-  /// Writes `h` into `out` as vtkUniformGrid blocks with blanking: cell-centred values as a
-  /// cell array, vertex-centred values as a point array.
+  /// Writes `h` into `out` as vtkUniformGrid blocks: cell-centred values as a cell array,
+  /// vertex-centred values as a point array, and blanking as a vtkGhostType cell array (REFINEDCELL
+  /// where the next level refines a cell), as vtkAMRUtilities::BlankCells writes it. Parent-child
+  /// information is not generated (VTK code that needs it generates it).
   static void ToOverlappingAMR(const amrsp::Hierarchy& h, vtkOverlappingAMR* out);
 
   /// Names of the cell arrays of the first non-empty block.
