@@ -3,6 +3,8 @@
 #include "vtkAMRCoreConversion.h"
 
 #include "vtkAMRBox.h"
+#include "vtkAMRUtilities.h"
+#include "vtkDataSetAttributes.h"
 #include "vtkCellData.h"
 #include "vtkDoubleArray.h"
 #include "vtkIntArray.h"
@@ -170,3 +172,57 @@ TEST(Conversion, BadInputGivesOneClearError)
 }
 
 } // namespace
+
+TEST(Conversion, BlankingMatchesVtkBlankCells)
+{
+  // ToOverlappingAMR writes REFINEDCELL itself; VTK's BlankCells on a second conversion with the
+  // ghost arrays removed must mark exactly the same cells (refinement 2, three levels,
+  // children not aligned to their parents' cells).
+  amrsp::Hierarchy h;
+  h.RefinementRatio = { glm::ivec3(1), glm::ivec3(2), glm::ivec3(2) };
+  auto box = [](int x0, int y0, int z0, int x1, int y1, int z1)
+  { return amrsp::Box{ glm::i64vec3(x0, y0, z0), glm::i64vec3(x1, y1, z1) }; };
+  h.Grids = { { 0, box(0, 0, 0, 8, 8, 4) }, { 1, box(2, 2, 0, 8, 10, 8) },
+    { 1, box(9, 3, 1, 15, 9, 7) }, { 2, box(5, 5, 1, 14, 12, 9) } };
+  for (const amrsp::Grid& g : h.Grids)
+  {
+    h.Values.emplace_back(static_cast<std::size_t>(g.Cells.Cells()), 1.0f);
+  }
+  vtkNew<vtkOverlappingAMR> ours;
+  vtkAMRCoreConversion::ToOverlappingAMR(h, ours);
+  vtkNew<vtkOverlappingAMR> vtks;
+  vtkAMRCoreConversion::ToOverlappingAMR(h, vtks);
+  for (unsigned int l = 0; l < vtks->GetNumberOfLevels(); ++l)
+  {
+    for (unsigned int i = 0; i < vtks->GetNumberOfDataSets(l); ++i)
+    {
+      vtks->GetDataSet(l, i)->GetCellData()->RemoveArray(vtkDataSetAttributes::GhostArrayName());
+      ASSERT_EQ(vtks->GetDataSet(l, i)->GetCellData()->GetArray(
+                  vtkDataSetAttributes::GhostArrayName()),
+        nullptr);
+    }
+  }
+  vtkAMRUtilities::BlankCells(vtks);
+  int refined = 0;
+  for (unsigned int l = 0; l < ours->GetNumberOfLevels(); ++l)
+  {
+    for (unsigned int i = 0; i < ours->GetNumberOfDataSets(l); ++i)
+    {
+      vtkDataArray* a = ours->GetDataSet(l, i)->GetCellData()->GetArray(
+        vtkDataSetAttributes::GhostArrayName());
+      vtkDataArray* b = vtks->GetDataSet(l, i)->GetCellData()->GetArray(
+        vtkDataSetAttributes::GhostArrayName());
+      ASSERT_NE(a, nullptr);
+      ASSERT_NE(b, nullptr);
+      ASSERT_EQ(a->GetNumberOfTuples(), b->GetNumberOfTuples());
+      for (vtkIdType c = 0; c < a->GetNumberOfTuples(); ++c)
+      {
+        EXPECT_EQ(a->GetTuple1(c), b->GetTuple1(c)) << "level " << l << " block " << i << " cell " << c;
+        refined += a->GetTuple1(c) == vtkDataSetAttributes::REFINEDCELL ? 1 : 0;
+      }
+    }
+  }
+  // level 0: 3*4*4 + 4*4*4 cells under the two level-1 grids; level 1: 5*4*5 under the level-2
+  // grid (boxes coarsened outward), so the comparison is not vacuous
+  EXPECT_EQ(refined, 48 + 64 + 100);
+}
