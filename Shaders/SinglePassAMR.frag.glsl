@@ -644,16 +644,28 @@ void main()
   vec3 previousP = vec3(0.0);
   float previousValue = 0.0;
 #endif
+  // kd-restart with push-down: the restart node is the deepest node reached so far without a
+  // choice between two children, i.e. whose box holds the rest of the ray [t, tEnd); each
+  // restart descends from it instead of the root, and visits the same leaves as from the root.
+  // Level-of-detail cut-offs in perspective depend on t, so there every restart is from the root.
+  bool canPushDown = amrspLodThreshold <= 0.0 || amrspParallelPixelSize > 0.0;
+  uint restartNode = 0u;
+  vec3 restartLo = amrspRootLo;
+  vec3 restartHi = amrspRootHi;
+  ivec3 restartLoF = rootLoF;
+  ivec3 restartHiF = rootHiF;
+  uvec2 restartTexel = amrspFetchNode(0u);
   for (int iteration = 0; t < tEnd && iteration < amrspMaxSegments; ++iteration)
   {
-    // kd-restart: descend from the root to the node containing the ray at t.
-    uint node = 0u;
-    vec3 lo = amrspRootLo;
-    vec3 hi = amrspRootHi;
-    ivec3 loF = rootLoF; // the same box in exact finest-level cells
-    ivec3 hiF = rootHiF;
+    // kd-restart: descend from the restart node to the node containing the ray at t.
+    uint node = restartNode;
+    vec3 lo = restartLo;
+    vec3 hi = restartHi;
+    ivec3 loF = restartLoF; // the same box in exact finest-level cells
+    ivec3 hiF = restartHiF;
     float tLeave = tEnd;
-    uvec2 texel = amrspFetchNode(0u);
+    uvec2 texel = restartTexel;
+    bool pushDown = canPushDown;
     for (;;)
     {
       uint child = amrspNodeFirstChild(texel);
@@ -696,6 +708,7 @@ void main()
       {
         lower = originBelow;
         tLeave = tSplit;
+        pushDown = false;
       }
       if (lower)
       {
@@ -710,6 +723,15 @@ void main()
         node = child + 1u;
       }
       texel = amrspFetchNode(node);
+      if (pushDown)
+      {
+        restartNode = node;
+        restartLo = lo;
+        restartHi = hi;
+        restartLoF = loF;
+        restartHiF = hiF;
+        restartTexel = texel;
+      }
     }
 
     uint data = amrspNodeData(texel);

@@ -6,6 +6,7 @@
 #include "amrsp/KdTreeEncoding.h"
 #include "amrsp/KdTreeLayout.h"
 #include "amrsp/Render.h"
+#include "amrsp/SyntheticCosmo.h"
 #include "TestHierarchies.h"
 
 #include <gtest/gtest.h>
@@ -243,6 +244,82 @@ TEST(Traversal, SegmentsAreOrderedContiguousAndInsideTheirNodes)
       }
     }
   }
+}
+
+TEST(Traversal, PushDownGivesTheSegmentsOfRestartsFromTheRoot)
+{
+  // Push-down must be invisible: bit-identical segments (t, node, box) to the paper's restart
+  // from the root, on random hierarchies, with and without a parallel-projection LOD cut-off.
+  std::mt19937_64 rng(17);
+  std::size_t segments = 0;
+  for (int trial = 0; trial < 30; ++trial)
+  {
+    const Hierarchy h = RandomHierarchy(rng);
+    const EncodedKdTree enc = EncodeKdTree(h, BuildKdTree(h));
+    LevelOfDetail parallelLod;
+    parallelLod.ThresholdPixels = 2.0f;
+    parallelLod.ParallelPixelSize = 0.3f;
+    for (const LevelOfDetail& lod : { LevelOfDetail(), parallelLod })
+    {
+      for (int r = 0; r < 300; ++r)
+      {
+        glm::dvec3 o, d;
+        RandomRay(rng, h, o, d);
+        const glm::vec3 oi((o - h.Origin) / h.Spacing0), di(d / h.Spacing0);
+        std::vector<RaySegment> pushed, fromRoot;
+        TraverseKdTree(enc, oi, di, 0.0f, 1e30f, lod, pushed);
+        TraverseKdTree(enc, oi, di, 0.0f, 1e30f, lod, fromRoot, true);
+        ASSERT_EQ(pushed.size(), fromRoot.size()) << "trial " << trial << " ray " << r;
+        for (std::size_t i = 0; i < pushed.size(); ++i)
+        {
+          ASSERT_EQ(pushed[i].T0, fromRoot[i].T0);
+          ASSERT_EQ(pushed[i].T1, fromRoot[i].T1);
+          ASSERT_EQ(pushed[i].Node, fromRoot[i].Node);
+          ASSERT_EQ(pushed[i].NodeLo, fromRoot[i].NodeLo);
+          ASSERT_EQ(pushed[i].NodeHi, fromRoot[i].NodeHi);
+        }
+        segments += pushed.size();
+      }
+    }
+  }
+  EXPECT_GT(segments, 10000u);
+}
+
+TEST(Traversal, PushDownShortensDescentsOnADeepHierarchy)
+{
+  // The paper's dataset-3 shape (13 levels, 39,061 grids): tree levels descended per segment,
+  // push-down against restarts from the root, on rays through the root box's centre region.
+  CosmoParameters p;
+  p.Grids = 39061;
+  p.Levels = 13;
+  p.Cells = 140000000;
+  p.GenerateValues = false;
+  const Hierarchy h = GenerateCosmo(p);
+  const EncodedKdTree enc = EncodeKdTree(h, BuildKdTree(h));
+  std::mt19937_64 rng(3);
+  std::uint64_t pushedSteps = 0, rootSteps = 0, segments = 0;
+  for (int r = 0; r < 400; ++r)
+  {
+    glm::dvec3 o, d;
+    RandomRay(rng, h, o, d);
+    const glm::vec3 oi((o - h.Origin) / h.Spacing0), di(d / h.Spacing0);
+    std::vector<RaySegment> pushed, fromRoot;
+    TraverseKdTree(enc, oi, di, 0.0f, 1e30f, LevelOfDetail(), pushed);
+    TraverseKdTree(enc, oi, di, 0.0f, 1e30f, LevelOfDetail(), fromRoot, true);
+    ASSERT_EQ(pushed.size(), fromRoot.size());
+    for (std::size_t i = 0; i < pushed.size(); ++i)
+    {
+      ASSERT_EQ(pushed[i].Node, fromRoot[i].Node);
+      pushedSteps += pushed[i].Descent;
+      rootSteps += fromRoot[i].Descent;
+    }
+    segments += pushed.size();
+  }
+  std::cout << segments << " segments; levels descended per segment: from the root "
+            << double(rootSteps) / double(segments) << ", with push-down "
+            << double(pushedSteps) / double(segments) << "\n";
+  EXPECT_GT(segments, 1000u);
+  EXPECT_LT(pushedSteps, rootSteps);
 }
 
 TEST(Encoding, LimitsGiveClearErrors)

@@ -38,7 +38,8 @@ bool IntersectBox(const glm::vec3& lo, const glm::vec3& hi, const glm::vec3& ori
 }
 
 void TraverseKdTree(const EncodedKdTree& tree, const glm::vec3& origin, const glm::vec3& direction,
-  float tMin, float tMax, const LevelOfDetail& lod, std::vector<RaySegment>& segments)
+  float tMin, float tMax, const LevelOfDetail& lod, std::vector<RaySegment>& segments,
+  bool restartFromRoot)
 {
   using namespace layout;
   float tEnter, tExit;
@@ -52,13 +53,24 @@ void TraverseKdTree(const EncodedKdTree& tree, const glm::vec3& origin, const gl
   // Every restart ends on a distinct split plane or the exit, so the number of segments is
   // bounded by the number of nodes; the guard only protects against corrupt textures.
   const int64_t guard = 4 * tree.NodeCount + 16;
+  // kd-restart with push-down, as the shader: each restart descends from the deepest node
+  // reached without a choice between two children (its box holds the rest of the ray), which
+  // visits the same leaves with the same planes as a descent from the root. Perspective
+  // level-of-detail cut-offs depend on t, so there every restart is from the root.
+  const bool canPushDown =
+    !restartFromRoot && (lod.ThresholdPixels <= 0.0f || lod.ParallelPixelSize > 0.0f);
+  uint restartNode = 0;
+  glm::vec3 restartLo = tree.RootLo;
+  glm::vec3 restartHi = tree.RootHi;
   for (int64_t iteration = 0; t < tEnd && iteration < guard; ++iteration)
   {
-    uint node = 0;
-    glm::vec3 lo = tree.RootLo;
-    glm::vec3 hi = tree.RootHi;
+    uint node = restartNode;
+    glm::vec3 lo = restartLo;
+    glm::vec3 hi = restartHi;
     float tLeave = tEnd;
-    uvec2 texel = tree.Tree.Texels[0];
+    uvec2 texel = tree.Tree.Texels[node];
+    bool pushDown = canPushDown;
+    uint32_t descent = 0;
     for (;;)
     {
       const uint child = amrspNodeFirstChild(texel);
@@ -100,6 +112,7 @@ void TraverseKdTree(const EncodedKdTree& tree, const glm::vec3& origin, const gl
       {
         lower = originBelow;
         tLeave = tSplit;
+        pushDown = false;
       }
       if (lower)
       {
@@ -112,6 +125,13 @@ void TraverseKdTree(const EncodedKdTree& tree, const glm::vec3& origin, const gl
         node = child + 1u;
       }
       texel = tree.Tree.Texels[node];
+      ++descent;
+      if (pushDown)
+      {
+        restartNode = node;
+        restartLo = lo;
+        restartHi = hi;
+      }
     }
     RaySegment s;
     s.T0 = t;
@@ -121,6 +141,7 @@ void TraverseKdTree(const EncodedKdTree& tree, const glm::vec3& origin, const gl
     s.Level = s.Data != 0u ? static_cast<int>(amrspDataLevel(tree.DataNodes.Texels[s.Data])) : -1;
     s.NodeLo = lo;
     s.NodeHi = hi;
+    s.Descent = descent;
     segments.push_back(s);
     t = tLeave;
   }

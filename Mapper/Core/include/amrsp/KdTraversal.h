@@ -25,6 +25,7 @@ struct RaySegment
   int Level = 0;      ///< data level (of the grid sampled); -1 for empty space
   glm::vec3 NodeLo{ 0.0f }; ///< the node's box in level-0 index units, as the shader computes it
   glm::vec3 NodeHi{ 0.0f };
+  uint32_t Descent = 0; ///< tree levels descended by the restart that found this segment
 };
 
 /// Level-of-detail selection at type (a) nodes: the traversal stops descending when one cell of
@@ -40,8 +41,12 @@ struct LevelOfDetail
 /// Ray: origin + t * direction in level-0 index units. When direction is a unit world direction
 /// divided by the level-0 spacing, t is the world distance. Appends the segments of [tMin, tMax]
 /// that lie inside the root box; empty-space segments are included (Data == 0).
+/// Each restart descends from the deepest node whose box holds the rest of the ray (push-down,
+/// as the shader); restartFromRoot = true descends from the root every time (the paper's plain
+/// kd-restart), which gives the same segments and is kept for comparison.
 void TraverseKdTree(const EncodedKdTree& tree, const glm::vec3& origin, const glm::vec3& direction,
-  float tMin, float tMax, const LevelOfDetail& lod, std::vector<RaySegment>& segments);
+  float tMin, float tMax, const LevelOfDetail& lod, std::vector<RaySegment>& segments,
+  bool restartFromRoot = false);
 
 /// Slab test of a ray against a box; returns false when they miss. Mirrors the shader.
 bool IntersectBox(const glm::vec3& lo, const glm::vec3& hi, const glm::vec3& origin,
