@@ -19,12 +19,10 @@
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMath.h"
-#include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLBufferObject.h"
-#include "vtkOpenGLCamera.h"
 #include "vtkOpenGLError.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
@@ -66,7 +64,6 @@ double MinEdge(const glm::dvec3& v)
 }
 
 using vtkAMRRenderingUtilities::RequestedArray;
-using vtkAMRRenderingUtilities::ToColumnMajor;
 using vtkAMRRenderingUtilities::TransferTableSize;
 
 } // namespace
@@ -974,42 +971,17 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     return;
   }
 
-  // ---- matrices: model -> normalized device coordinates and back
-  int width = 0, height = 0, x0 = 0, y0 = 0;
-  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
-  vtkOpenGLCamera* camera = vtkOpenGLCamera::SafeDownCast(ren->GetActiveCamera());
-  if (!camera || width < 1 || height < 1)
+  // ---- the view: viewport, model <-> normalized device matrices and the rays' origin
+  vtkAMRRenderingUtilities::ViewGeometry view;
+  std::string viewError;
+  if (!vtkAMRRenderingUtilities::ComputeViewGeometry(ren, vol, view, viewError))
   {
-    fail("the renderer has no OpenGL camera or an empty viewport");
+    fail(viewError);
     return;
   }
-  vtkMatrix4x4* wcvc = nullptr;
-  vtkMatrix3x3* normal = nullptr;
-  vtkMatrix4x4* vcdc = nullptr;
-  vtkMatrix4x4* wcdcGL = nullptr;
-  camera->GetKeyMatrices(ren, wcvc, normal, vcdc, wcdcGL);
-  vtkNew<vtkMatrix4x4> wcdc; // GetKeyMatrices returns OpenGL (transposed) order
-  vtkMatrix4x4::Transpose(wcdcGL, wcdc);
-  vtkNew<vtkMatrix4x4> mcdc;
-  vtkMatrix4x4::Multiply4x4(wcdc, vol->GetMatrix(), mcdc);
-  vtkNew<vtkMatrix4x4> dcmc;
-  vtkMatrix4x4::Invert(mcdc, dcmc);
-  // perspective rays start at the eye (README: a pinhole at the camera position), parallel ones
-  // on the near plane
-  const bool parallel = camera->GetParallelProjection() != 0;
-  double eyeWC[4] = { 0.0, 0.0, 0.0, 1.0 };
-  camera->GetPosition(eyeWC);
-  vtkNew<vtkMatrix4x4> wcmc;
+  vtkCamera* camera = ren->GetActiveCamera();
+  vtkNew<vtkMatrix4x4> wcmc; // world -> model, for the light
   vtkMatrix4x4::Invert(vol->GetMatrix(), wcmc);
-  double eyeMC[4];
-  wcmc->MultiplyPoint(eyeWC, eyeMC);
-  const float eye[4] = { static_cast<float>(eyeMC[0] / eyeMC[3]),
-    static_cast<float>(eyeMC[1] / eyeMC[3]),
-    static_cast<float>(eyeMC[2] / eyeMC[3]),
-    parallel ? 0.0f : 1.0f };
-  float mcdcGL[16], dcmcGL[16];
-  ToColumnMajor(mcdc, mcdcGL);
-  ToColumnMajor(dcmc, dcmcGL);
 
   // ---- proxy geometry: the root box's faces, wound counter-clockwise seen from outside
   if (in.BoxBufferTime < in.BuildTime || in.BoxBuffer->GetHandle() == 0)
@@ -1063,22 +1035,7 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   // ---- depth of the opaque geometry drawn so far
   if (useDepth)
   {
-    if (!in.Depth || in.Depth->GetContext() != renWin ||
-      in.Depth->GetWidth() != static_cast<unsigned int>(width) ||
-      in.Depth->GetHeight() != static_cast<unsigned int>(height))
-    {
-      in.Depth = vtkSmartPointer<vtkTextureObject>::New();
-      in.Depth->SetContext(renWin);
-      in.Depth->SetMinificationFilter(vtkTextureObject::Nearest);
-      in.Depth->SetMagnificationFilter(vtkTextureObject::Nearest);
-      in.Depth->SetWrapS(vtkTextureObject::ClampToEdge);
-      in.Depth->SetWrapT(vtkTextureObject::ClampToEdge);
-      in.Depth->AllocateDepth(static_cast<unsigned int>(width),
-        static_cast<unsigned int>(height),
-        vtkTextureObject::Float32);
-    }
-    in.Depth->Activate();
-    in.Depth->CopyFromFrameBuffer(x0, y0, 0, 0, width, height);
+    vtkAMRRenderingUtilities::CopyDepthBuffer(renWin, view, in.Depth);
   }
 
   // ---- empty-space skipping: prefix count of the table's non-zero opacities, recounted when
@@ -1136,10 +1093,10 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   const float spacing[3] = { static_cast<float>(in.Spacing0.x),
     static_cast<float>(in.Spacing0.y),
     static_cast<float>(in.Spacing0.z) };
-  const float viewport[4] = { static_cast<float>(x0),
-    static_cast<float>(y0),
-    static_cast<float>(width),
-    static_cast<float>(height) };
+  const float viewport[4] = { static_cast<float>(view.X0),
+    static_cast<float>(view.Y0),
+    static_cast<float>(view.Width),
+    static_cast<float>(view.Height) };
   float transferRange[2];
   in.Transfer.GetShaderRange(transferRange);
 
@@ -1164,10 +1121,10 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     program->SetUniformi("amrspDepth", in.Depth->GetTextureUnit());
   }
-  program->SetUniformMatrix4x4("amrspMCDCMatrix", mcdcGL);
-  program->SetUniformMatrix4x4("amrspDCMCMatrix", dcmcGL);
+  program->SetUniformMatrix4x4("amrspMCDCMatrix", view.MCDC);
+  program->SetUniformMatrix4x4("amrspDCMCMatrix", view.DCMC);
   program->SetUniform4f("amrspViewport", viewport);
-  program->SetUniform4f("amrspEyeMC", eye);
+  program->SetUniform4f("amrspEyeMC", view.EyeMC);
   program->SetUniform3f("amrspOrigin", origin);
   program->SetUniform3f("amrspSpacing0", spacing);
   program->SetUniform3f("amrspRootLo", &in.RootLo.x);
@@ -1189,11 +1146,11 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   // level of detail: world size of a pixel at distance 1 (perspective) or everywhere (parallel),
   // as amrsp::LevelOfDetail
-  const float pixelPerDistance = parallel ? 0.0f
+  const float pixelPerDistance = view.Parallel ? 0.0f
     : static_cast<float>(2.0 * std::tan(vtkMath::RadiansFromDegrees(camera->GetViewAngle()) * 0.5) /
-        height);
+        view.Height);
   const float parallelPixel =
-    parallel ? static_cast<float>(2.0 * camera->GetParallelScale() / height) : 0.0f;
+    view.Parallel ? static_cast<float>(2.0 * camera->GetParallelScale() / view.Height) : 0.0f;
   program->SetUniformf("amrspLodThreshold", static_cast<float>(this->LODThreshold));
   program->SetUniformf("amrspPixelSizePerDistance", pixelPerDistance);
   program->SetUniformf("amrspParallelPixelSize", parallelPixel);
@@ -1283,7 +1240,7 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     vtkOpenGLState::ScopedglBlendFuncSeparate blendFuncSaved(state);
     state->vtkglEnable(GL_CULL_FACE);
     // a mirroring volume transform flips the winding
-    state->vtkglCullFace(vol->GetMatrix()->Determinant() < 0.0 ? GL_BACK : GL_FRONT);
+    state->vtkglCullFace(view.Mirrored ? GL_BACK : GL_FRONT);
     state->vtkglDisable(GL_DEPTH_TEST);
     state->vtkglDepthMask(GL_FALSE);
     state->vtkglEnable(GL_BLEND);
