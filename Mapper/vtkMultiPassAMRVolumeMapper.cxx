@@ -31,6 +31,7 @@
 #include "amrsp_MultiPassAMRComposite_frag_glsl.h"
 #include "amrsp_MultiPassAMR_frag_glsl.h"
 #include "amrsp_MultiPassAMR_vert_glsl.h"
+#include "amrsp_RayCommon_glsl.h"
 
 #include <algorithm>
 #include <chrono>
@@ -698,6 +699,7 @@ void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   std::string fragment = amrsp_MultiPassAMR_frag_glsl;
   vtkShaderProgram::Substitute(fragment, "//AMRSP::Defines", defines);
+  vtkShaderProgram::Substitute(fragment, "//AMRSP::RayCommon", amrsp_RayCommon_glsl);
   if (fragment == in.FailedFragmentSource)
   {
     fail("the multi-pass AMR shader failed to compile or link (see the earlier error)");

@@ -40,6 +40,7 @@
 
 // GLSL embedded at build time (vtk_encode_string)
 #include "amrsp_KdTreeLayout_glsl.h"
+#include "amrsp_RayCommon_glsl.h"
 #include "amrsp_SinglePassAMR_frag_glsl.h"
 #include "amrsp_SinglePassAMR_vert_glsl.h"
 
@@ -957,6 +958,7 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   std::string fragment = amrsp_SinglePassAMR_frag_glsl;
   vtkShaderProgram::Substitute(fragment, "//AMRSP::Defines", defines);
   vtkShaderProgram::Substitute(fragment, "//AMRSP::KdTreeLayout", amrsp_KdTreeLayout_glsl);
+  vtkShaderProgram::Substitute(fragment, "//AMRSP::RayCommon", amrsp_RayCommon_glsl);
   if (fragment == in.FailedFragmentSource)
   {
     fail("the single-pass AMR shader failed to compile or link (see the earlier error)");

@@ -22,7 +22,6 @@
 #error "AMRSP_CELL_CENTRED or AMRSP_VERTEX_CENTRED must be defined"
 #endif
 
-#define AMRSP_INF 3.0e38
 
 //VTK::Output::Dec
 
@@ -52,62 +51,15 @@ uniform ivec3 amrspFirstCell;   // the node's first and last cell, in its level'
 uniform ivec3 amrspLastCell;
 uniform ivec3 amrspAtlasOffset; // atlas texel of amrspFirstCell
 
-// Slab test, as amrsp::IntersectBox.
-bool amrspIntersectBox(vec3 lo, vec3 hi, vec3 o, vec3 d, out float tEnter, out float tExit)
-{
-  tEnter = -AMRSP_INF;
-  tExit = AMRSP_INF;
-  for (int a = 0; a < 3; ++a)
-  {
-    if (d[a] == 0.0)
-    {
-      if (o[a] < lo[a] || o[a] > hi[a])
-      {
-        return false;
-      }
-      continue;
-    }
-    float t0 = (lo[a] - o[a]) / d[a];
-    float t1 = (hi[a] - o[a]) / d[a];
-    if (t0 > t1)
-    {
-      float s = t0;
-      t0 = t1;
-      t1 = s;
-    }
-    tEnter = max(tEnter, t0);
-    tExit = min(tExit, t1);
-  }
-  return tEnter < tExit;
-}
-
-vec4 amrspTransferFunction(float scalar)
-{
-  float u = clamp((scalar - amrspTransferRange.x) * amrspTransferRange.y, 0.0, 1.0);
-  float x = (u * (amrspTransferSize - 1.0) + 0.5) / amrspTransferSize;
-  return texture(amrspTransfer, vec2(x, 0.5));
-}
+// Ray set-up, slab test and transfer function, shared with the single-pass shader
+// (Shaders/RayCommon.glsl).
+//AMRSP::RayCommon
 
 void main()
 {
-  // The ray through this pixel's centre, in model coordinates: from the eye (perspective) or
-  // from the near plane (parallel projection), as the single-pass shader builds it.
-  vec2 ndc = 2.0 * (gl_FragCoord.xy - amrspViewport.xy) / amrspViewport.zw - 1.0;
-  vec4 nearMC = amrspDCMCMatrix * vec4(ndc, -1.0, 1.0);
-  vec4 farMC = amrspDCMCMatrix * vec4(ndc, 1.0, 1.0);
-  vec3 nearPoint = nearMC.xyz / nearMC.w;
-  vec3 dirMC = normalize(farMC.xyz / farMC.w - nearPoint);
-  vec3 entry = amrspEyeMC.w != 0.0 ? amrspEyeMC.xyz : nearPoint;
-
-  float tMax = AMRSP_INF;
-#ifdef AMRSP_USE_DEPTH
-  float depth = texelFetch(amrspDepth, ivec2(gl_FragCoord.xy - amrspViewport.xy), 0).r;
-  if (depth < 1.0)
-  {
-    vec4 hitMC = amrspDCMCMatrix * vec4(ndc, 2.0 * depth - 1.0, 1.0);
-    tMax = dot(hitMC.xyz / hitMC.w - entry, dirMC);
-  }
-#endif
+  vec3 entry, dirMC;
+  float tMax;
+  amrspPixelRay(entry, dirMC, tMax);
 
   // Level-0 index units; t stays the model-space distance along the ray.
   vec3 ro = (entry - amrspOrigin) / amrspSpacing0;

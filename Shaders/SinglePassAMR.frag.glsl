@@ -53,7 +53,6 @@
 #define AMRSP_FN
 //AMRSP::KdTreeLayout
 
-#define AMRSP_INF 3.0e38
 
 //VTK::Output::Dec
 
@@ -120,6 +119,10 @@ uniform float amrspIsoValues[AMRSP_MAX_ISO_VALUES]; // ascending
 uniform int amrspIsoCount;
 #endif
 
+// Ray set-up, slab test and transfer function, shared with the multi-pass shader
+// (Shaders/RayCommon.glsl).
+//AMRSP::RayCommon
+
 uvec2 amrspFetchNode(uint index)
 {
   return texelFetch(amrspTree, amrspTexelOf(index), 0).rg;
@@ -128,35 +131,6 @@ uvec2 amrspFetchNode(uint index)
 uvec2 amrspFetchDataNode(uint index)
 {
   return texelFetch(amrspDataNodes, amrspTexelOf(index), 0).rg;
-}
-
-// Slab test, as amrsp::IntersectBox.
-bool amrspIntersectBox(vec3 lo, vec3 hi, vec3 o, vec3 d, out float tEnter, out float tExit)
-{
-  tEnter = -AMRSP_INF;
-  tExit = AMRSP_INF;
-  for (int a = 0; a < 3; ++a)
-  {
-    if (d[a] == 0.0)
-    {
-      if (o[a] < lo[a] || o[a] > hi[a])
-      {
-        return false;
-      }
-      continue;
-    }
-    float t0 = (lo[a] - o[a]) / d[a];
-    float t1 = (hi[a] - o[a]) / d[a];
-    if (t0 > t1)
-    {
-      float s = t0;
-      t0 = t1;
-      t1 = s;
-    }
-    tEnter = max(tEnter, t0);
-    tExit = min(tExit, t1);
-  }
-  return tEnter < tExit;
 }
 
 // Integer division rounding towards minus infinity (b > 0), and its ceiling counterpart.
@@ -240,13 +214,6 @@ float amrspSampleDataNode(uvec2 dataNode, vec3 p, vec3 cellSize, ivec3 firstCell
   return amrspReadBrick(handle, texel, where);
 #endif
 #endif
-}
-
-vec4 amrspTransferFunction(float scalar)
-{
-  float u = clamp((scalar - amrspTransferRange.x) * amrspTransferRange.y, 0.0, 1.0);
-  float x = (u * (amrspTransferSize - 1.0) + 0.5) / amrspTransferSize;
-  return texture(amrspTransfer, vec2(x, 0.5));
 }
 
 // Finest-level cells per cell of `level`, per axis.
@@ -599,24 +566,9 @@ void amrspIsoCrossings(vec3 a0, float va, vec3 b0, float vb, vec3 towardEye, ino
 
 void main()
 {
-  // The ray through this pixel's centre, in model coordinates: from the eye (perspective, as
-  // the CPU integrators' pinhole camera) or from the near plane (parallel projection).
-  vec2 ndc = 2.0 * (gl_FragCoord.xy - amrspViewport.xy) / amrspViewport.zw - 1.0;
-  vec4 nearMC = amrspDCMCMatrix * vec4(ndc, -1.0, 1.0);
-  vec4 farMC = amrspDCMCMatrix * vec4(ndc, 1.0, 1.0);
-  vec3 nearPoint = nearMC.xyz / nearMC.w;
-  vec3 dirMC = normalize(farMC.xyz / farMC.w - nearPoint);
-  vec3 entry = amrspEyeMC.w != 0.0 ? amrspEyeMC.xyz : nearPoint;
-
-  float tMax = AMRSP_INF;
-#ifdef AMRSP_USE_DEPTH
-  float depth = texelFetch(amrspDepth, ivec2(gl_FragCoord.xy - amrspViewport.xy), 0).r;
-  if (depth < 1.0)
-  {
-    vec4 hitMC = amrspDCMCMatrix * vec4(ndc, 2.0 * depth - 1.0, 1.0);
-    tMax = dot(hitMC.xyz / hitMC.w - entry, dirMC);
-  }
-#endif
+  vec3 entry, dirMC;
+  float tMax;
+  amrspPixelRay(entry, dirMC, tMax);
 
   // Level-0 index units; t stays the model-space distance along the ray.
   vec3 ro = (entry - amrspOrigin) / amrspSpacing0;

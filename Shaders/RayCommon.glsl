@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: BSD-3-Clause
+//
+// Ray set-up, slab test and transfer-function lookup shared by the single-pass and the multi-pass
+// fragment shaders (spliced in by the mappers at their //AMRSP::RayCommon marker, after the
+// uniforms it reads are declared: amrspDCMCMatrix, amrspViewport, amrspEyeMC, amrspTransfer,
+// amrspTransferRange, amrspTransferSize and, with AMRSP_USE_DEPTH, amrspDepth).
+
+#define AMRSP_INF 3.0e38
+
+// Slab test, as amrsp::IntersectBox.
+bool amrspIntersectBox(vec3 lo, vec3 hi, vec3 o, vec3 d, out float tEnter, out float tExit)
+{
+  tEnter = -AMRSP_INF;
+  tExit = AMRSP_INF;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (d[a] == 0.0)
+    {
+      if (o[a] < lo[a] || o[a] > hi[a])
+      {
+        return false;
+      }
+      continue;
+    }
+    float t0 = (lo[a] - o[a]) / d[a];
+    float t1 = (hi[a] - o[a]) / d[a];
+    if (t0 > t1)
+    {
+      float s = t0;
+      t0 = t1;
+      t1 = s;
+    }
+    tEnter = max(tEnter, t0);
+    tExit = min(tExit, t1);
+  }
+  return tEnter < tExit;
+}
+
+// Colour and unit-distance opacity of a scalar: the table's entries span amrspTransferRange,
+// sampled linearly between entry centres and clamped at both ends.
+vec4 amrspTransferFunction(float scalar)
+{
+  float u = clamp((scalar - amrspTransferRange.x) * amrspTransferRange.y, 0.0, 1.0);
+  float x = (u * (amrspTransferSize - 1.0) + 0.5) / amrspTransferSize;
+  return texture(amrspTransfer, vec2(x, 0.5));
+}
+
+// The ray through this pixel's centre in model coordinates: `entry` is the eye (perspective, as
+// the CPU integrators' pinhole camera) or the point on the near plane (parallel projection),
+// `dirMC` is unit length, and `tMax` is the model-space distance from `entry` to the opaque
+// geometry already drawn (AMRSP_INF where there is none or without AMRSP_USE_DEPTH).
+void amrspPixelRay(out vec3 entry, out vec3 dirMC, out float tMax)
+{
+  vec2 ndc = 2.0 * (gl_FragCoord.xy - amrspViewport.xy) / amrspViewport.zw - 1.0;
+  vec4 nearMC = amrspDCMCMatrix * vec4(ndc, -1.0, 1.0);
+  vec4 farMC = amrspDCMCMatrix * vec4(ndc, 1.0, 1.0);
+  vec3 nearPoint = nearMC.xyz / nearMC.w;
+  dirMC = normalize(farMC.xyz / farMC.w - nearPoint);
+  entry = amrspEyeMC.w != 0.0 ? amrspEyeMC.xyz : nearPoint;
+  tMax = AMRSP_INF;
+#ifdef AMRSP_USE_DEPTH
+  float depth = texelFetch(amrspDepth, ivec2(gl_FragCoord.xy - amrspViewport.xy), 0).r;
+  if (depth < 1.0)
+  {
+    vec4 hitMC = amrspDCMCMatrix * vec4(ndc, 2.0 * depth - 1.0, 1.0);
+    tMax = dot(hitMC.xyz / hitMC.w - entry, dirMC);
+  }
+#endif
+}
