@@ -17,7 +17,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <iomanip>
+#include <map>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
@@ -103,6 +105,82 @@ Image Orbit(Renderer& r, int frames, Json& out)
   Summarize(ms, out);
   out["first_frame_ms"] = firstMs;
   return first;
+}
+
+/// Mean ms/frame of one more orbit of an already warm renderer.
+template <class Renderer>
+double OrbitMeanMs(Renderer& r, int frames)
+{
+  double sum = 0.0;
+  for (int f = 0; f < frames; ++f)
+  {
+    double frameMs = 0.0;
+    r.Render(360.0 * f / frames, frameMs);
+    sum += frameMs;
+  }
+  return sum / frames;
+}
+
+double Median(std::vector<double> v)
+{
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n == 0 ? 0.0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/// A GPU method kept alive for the interleaved rounds: its name and one more orbit.
+struct KeptRenderer
+{
+  std::string Method;
+  std::function<double()> OrbitMs;
+};
+
+/// Rounds 2..o.Rounds of the methods in `kept` (BenchOptions::Rounds), into `methods`.
+void RunRounds(const std::vector<KeptRenderer>& kept, const BenchOptions& o, Json& methods)
+{
+  std::map<std::string, std::vector<double>> ms;
+  for (const KeptRenderer& k : kept)
+  {
+    ms[k.Method].push_back(methods[k.Method]["ms_mean"].get<double>());
+  }
+  for (int round = 1; round < o.Rounds; ++round)
+  {
+    for (std::size_t i = 0; i < kept.size(); ++i)
+    {
+      const KeptRenderer& k = kept[round % 2 ? kept.size() - 1 - i : i];
+      if (methods[k.Method].contains("rounds_error"))
+      {
+        continue;
+      }
+      try
+      {
+        ms[k.Method].push_back(k.OrbitMs());
+      }
+      catch (const std::exception& e)
+      {
+        methods[k.Method]["rounds_error"] = e.what();
+      }
+    }
+  }
+  const auto packing = ms.find("packing");
+  for (const KeptRenderer& k : kept)
+  {
+    Json& r = methods[k.Method];
+    const std::vector<double>& mine = ms[k.Method];
+    r["rounds_ms_mean"] = mine;
+    r["ms_rounds_median"] = Median(mine);
+    if (packing != ms.end() && packing->second.size() == mine.size())
+    {
+      std::vector<double> ratios;
+      for (std::size_t i = 0; i < mine.size(); ++i)
+      {
+        ratios.push_back(packing->second[i] / mine[i]);
+      }
+      r["fps_vs_packing"] = Median(ratios);
+      r["fps_vs_packing_range"] = { *std::min_element(ratios.begin(), ratios.end()),
+        *std::max_element(ratios.begin(), ratios.end()) };
+    }
+  }
 }
 
 /// The renderer of a method that goes through GpuRenderer, or a GpuError saying why it cannot.
@@ -228,6 +306,7 @@ Json RunBenchMethods(const Hierarchy& h, const RenderSettings& s, const Image& r
   {
     WriteImagePng(reference, o.ImageFolder + "/reference.png");
   }
+  std::vector<KeptRenderer> kept; // for the interleaved rounds (o.Rounds > 1)
   for (const std::string& m : o.Methods)
   {
     Json r;
@@ -283,8 +362,14 @@ Json RunBenchMethods(const Hierarchy& h, const RenderSettings& s, const Image& r
           }
           level = std::stoi(l);
         }
-        UniformGpuRenderer gpu(h, s, o.View, level);
+        auto gpuShared = std::make_shared<UniformGpuRenderer>(h, s, o.View, level);
+        UniformGpuRenderer& gpu = *gpuShared;
         const Image first = Orbit(gpu, o.Frames, r);
+        if (o.Rounds > 1)
+        {
+          const int frames = o.Frames;
+          kept.push_back({ m, [gpuShared, frames]() { return OrbitMeanMs(*gpuShared, frames); } });
+        }
         frame0 = first;
         if (o.CompareImages)
         {
@@ -302,8 +387,13 @@ Json RunBenchMethods(const Hierarchy& h, const RenderSettings& s, const Image& r
       }
       else
       {
-        std::unique_ptr<GpuRenderer> gpu = MakeGpuRenderer(m, h, s, o.View);
+        std::shared_ptr<GpuRenderer> gpu = MakeGpuRenderer(m, h, s, o.View);
         const Image first = Orbit(*gpu, o.Frames, r);
+        if (o.Rounds > 1)
+        {
+          const int frames = o.Frames;
+          kept.push_back({ m, [gpu, frames]() { return OrbitMeanMs(*gpu, frames); } });
+        }
         PackingRenderer* singlePass = dynamic_cast<PackingRenderer*>(gpu.get());
         if (singlePass)
         {
@@ -393,7 +483,15 @@ Json RunBenchMethods(const Hierarchy& h, const RenderSettings& s, const Image& r
       std::replace(file.begin(), file.end(), ':', '-');
       WriteImagePng(frame0, o.ImageFolder + "/" + file + ".png");
     }
+    if (r.contains("error") && !kept.empty() && kept.back().Method == m)
+    {
+      kept.pop_back(); // a method that failed after its orbit (bindless fell back) has no rounds
+    }
     methods[m] = r;
+  }
+  if (o.Rounds > 1 && !kept.empty())
+  {
+    RunRounds(kept, o, methods);
   }
   return methods;
 }
@@ -497,6 +595,58 @@ std::string PreprocessDetail(const Json& r)
 }
 } // namespace
 
+std::string RoundsMarkdown(const Json& methods)
+{
+  std::ostringstream md;
+  std::size_t rounds = 0;
+  for (const auto& item : methods.items())
+  {
+    if (item.value().contains("rounds_ms_mean"))
+    {
+      rounds = std::max(rounds, item.value()["rounds_ms_mean"].size());
+    }
+  }
+  if (rounds < 2)
+  {
+    return "";
+  }
+  md << "\nInterleaved rounds (" << rounds
+     << " orbits per method, the methods' order reversed every round; fps relative to packing = "
+        "median over rounds of packing's ms/frame over the method's)\n\n"
+     << "| method | ms/frame per round | median | fps relative to packing (min–max) |\n"
+     << "|---|---|---|---|\n";
+  for (const auto& item : methods.items())
+  {
+    const Json& r = item.value();
+    if (!r.contains("rounds_ms_mean"))
+    {
+      continue;
+    }
+    md << "| " << item.key() << " | ";
+    bool first = true;
+    for (const Json& v : r["rounds_ms_mean"])
+    {
+      md << (first ? "" : ", ") << Fixed(v.get<double>(), 1);
+      first = false;
+    }
+    md << " | " << Fixed(r["ms_rounds_median"].get<double>(), 1) << " | ";
+    if (r.contains("fps_vs_packing"))
+    {
+      md << Fixed(r["fps_vs_packing"].get<double>(), 2) << " ("
+         << Fixed(r["fps_vs_packing_range"][0].get<double>(), 2) << "–"
+         << Fixed(r["fps_vs_packing_range"][1].get<double>(), 2) << ")";
+    }
+    else
+    {
+      md << "—";
+    }
+    md << (r.contains("rounds_error") ? " (stopped: " + r["rounds_error"].get<std::string>() + ")"
+                                      : "")
+       << " |\n";
+  }
+  return md.str();
+}
+
 std::string BenchMarkdown(const Json& bench)
 {
   std::ostringstream md;
@@ -581,6 +731,7 @@ std::string BenchMarkdown(const Json& bench)
     md << "\nThe paper's figures: GTX 680, its own real cosmology data of that size (its image "
           "size is not stated).\n";
   }
+  md << RoundsMarkdown(bench["methods"]);
   return md.str();
 }
 

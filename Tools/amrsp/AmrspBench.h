@@ -40,6 +40,11 @@ struct BenchOptions
   /// Not empty: frame 0 of every method that ran is written there as METHOD.png (and the CPU
   /// reference as reference.png).
   std::string ImageFolder;
+  /// > 1: after the first pass over the methods, the GPU methods' renderers stay alive and render
+  /// Rounds - 1 more orbits each, interleaved (the order reversed every round), so that ratios
+  /// between methods are taken from orbits rendered close in time: rounds_ms_mean, and
+  /// fps_vs_packing (median over rounds of packing's ms / the method's ms).
+  int Rounds = 1;
 };
 
 /// Writes `img` as an 8-bit RGB PNG; throws std::runtime_error when it cannot.
@@ -66,6 +71,8 @@ int PaperDataset(const BenchJson& stats);
 /// bench result, as Markdown, with the paper's figures beside ours where the dataset has a
 /// paper size.
 std::string BenchMarkdown(const BenchJson& bench);
+/// The interleaved rounds' table of a "methods" object (empty without rounds).
+std::string RoundsMarkdown(const BenchJson& methods);
 
 /// The scaling table (one row per dataset size and method) of `amrsp bench --scaling`; its
 /// header (`size` as "W×H") and the rows of one dataset size, printed as each size finishes.

@@ -1173,9 +1173,9 @@ int RunBench(int argc, char** argv)
   std::ostringstream help;
   help
     << "usage: amrsp bench [DATASET] [--size WxH] [--frames N] [--methods LIST] [--json FILE]\n"
-       "                   [--plot FILE.png [--plot-size WxH]]\n"
+       "                   [--plot FILE.png [--plot-size WxH]] [--rounds R]\n"
        "       amrsp bench --scaling [--scaling-sizes G:L:C,...] [--methods LIST] [--size WxH]\n"
-       "                   [--frames N] [--json FILE]\n"
+       "                   [--frames N] [--json FILE] [--rounds R]\n"
        "Renders an orbit of N frames (default 8; --scaling: 2) per method in one process, after\n"
        "one untimed warm-up frame per method (build, upload, shader compile: first_frame_ms),\n"
        "each frame ending with glFinish before the clock is read. Prints Markdown: Table 1\n"
@@ -1186,6 +1186,10 @@ int RunBench(int argc, char** argv)
        "rmse, psnr, gpu_bytes, preprocess_s: {...}, ...} or {error}}}. --plot writes bar charts\n"
        "of fps, GPU memory and RMSE (--plot-size, default 900x600). --save-images DIR writes\n"
        "frame 0 of every method (METHOD.png) and the CPU reference (reference.png) there.\n"
+       "--rounds R (default 1) keeps the GPU methods alive and renders R - 1 more orbits per\n"
+       "method, interleaved (order reversed every round), for ratios on a machine whose load\n"
+       "drifts: rounds_ms_mean, ms_rounds_median and fps_vs_packing (median of the per-round\n"
+       "ratios) per method, and a table of them.\n"
        "--scaling runs synthetic:cosmo at each GRIDS:LEVELS:CELLS of --scaling-sizes (default "
     << DefaultScalingSizes
     << ",\n"
@@ -1203,7 +1207,7 @@ int RunBench(int argc, char** argv)
     const Arguments a = ParseArguments(argc, argv, 1,
       Concat({ DatasetOptions, ViewOptions,
         { "frames", "methods", "json", "plot", "plot-size", "scaling-sizes", "seed",
-          "save-images", "driver" } }),
+          "save-images", "driver", "rounds" } }),
       { "scaling" });
     if (WantsHelp(a))
     {
@@ -1235,8 +1239,14 @@ int RunBench(int argc, char** argv)
     {
       throw UsageError{ "--frames must be a whole number of at least 1" };
     }
+    const double roundsValue = a.GetNumber("rounds", 1);
+    if (roundsValue < 1 || roundsValue > 1000 || roundsValue != std::floor(roundsValue))
+    {
+      throw UsageError{ "--rounds must be a whole number from 1 to 1000" };
+    }
     BenchOptions o;
     o.Frames = static_cast<int>(framesValue);
+    o.Rounds = static_cast<int>(roundsValue);
     o.ImageFolder = a.Get("save-images", "");
     if (a.Has("save-images") && (scaling || o.ImageFolder.empty()))
     {
@@ -1354,6 +1364,17 @@ int RunBench(int argc, char** argv)
           std::cout << ScalingMarkdownRow(row) << std::flush;
         }
         j["rows"].push_back(row);
+      }
+      if (progressive)
+      {
+        for (const Json& row : j["rows"])
+        {
+          if (row.contains("methods") && !RoundsMarkdown(row["methods"]).empty())
+          {
+            std::cout << "\n`" << row["dataset"].get<std::string>() << "`:\n"
+                      << RoundsMarkdown(row["methods"]);
+          }
+        }
       }
     }
     if (!device.empty())
