@@ -4,6 +4,7 @@
 
 #include "amrsp/Hierarchy.h"
 #include "amrsp/Render.h"
+#include "amrsp/SyntheticCosmo.h"
 
 #include <cmath>
 #include <cstdint>
@@ -180,6 +181,18 @@ inline void RandomRay(std::mt19937_64& rng, const Hierarchy& h, glm::dvec3& o, g
     o = h.Origin + glm::floor((target - h.Origin) / h.Spacing0) * h.Spacing0;
     o[a] = d[a] > 0 ? lo[a] - 1.0 : hi[a] + 1.0;
   }
+}
+
+/// Boxes only (no values) of synthetic:cosmo at the paper's dataset-3 size: 39,061 grids on 13
+/// levels, 140M cells; level 12 spans 2^12 root cells per axis.
+inline Hierarchy PaperDataset3Boxes()
+{
+  CosmoParameters p;
+  p.Grids = 39061;
+  p.Levels = 13;
+  p.Cells = 140000000;
+  p.GenerateValues = false;
+  return GenerateCosmo(p);
 }
 
 inline RenderSettings SmallView(const Hierarchy& h)

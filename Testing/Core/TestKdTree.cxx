@@ -6,7 +6,6 @@
 #include "amrsp/KdTreeEncoding.h"
 #include "amrsp/KdTreeLayout.h"
 #include "amrsp/Render.h"
-#include "amrsp/SyntheticCosmo.h"
 #include "TestHierarchies.h"
 
 #include <gtest/gtest.h>
@@ -289,12 +288,7 @@ TEST(Traversal, PushDownShortensDescentsOnADeepHierarchy)
 {
   // The paper's dataset-3 shape (13 levels, 39,061 grids): tree levels descended per segment,
   // push-down against restarts from the root, on rays through the root box's centre region.
-  CosmoParameters p;
-  p.Grids = 39061;
-  p.Levels = 13;
-  p.Cells = 140000000;
-  p.GenerateValues = false;
-  const Hierarchy h = GenerateCosmo(p);
+  const Hierarchy h = amrsp::test::PaperDataset3Boxes();
   const EncodedKdTree enc = EncodeKdTree(h, BuildKdTree(h));
   std::mt19937_64 rng(3);
   std::uint64_t pushedSteps = 0, rootSteps = 0, segments = 0;

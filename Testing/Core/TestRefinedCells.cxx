@@ -3,7 +3,6 @@
 // hierarchy (the paper's dataset-3 shape) whose level index spaces span 2^12 root cells.
 #include "TestHierarchies.h"
 #include "amrsp/RefinedCells.h"
-#include "amrsp/SyntheticCosmo.h"
 
 #include <gtest/gtest.h>
 
@@ -94,12 +93,7 @@ TEST(RefinedCells, DeepSparseHierarchyStaysSmall)
 {
   // 13 levels: level 12 spans 2^12 times the root per axis. A bin grid over each level's
   // index space (VTK's GenerateParentChildInformation) needs tens of GB here.
-  CosmoParameters p;
-  p.Grids = 39061;
-  p.Levels = 13;
-  p.Cells = 140000000;
-  p.GenerateValues = false;
-  const Hierarchy h = GenerateCosmo(p);
+  const Hierarchy h = amrsp::test::PaperDataset3Boxes();
   const std::vector<std::vector<Box>> regions = RefinedRegions(h);
   std::size_t refinedGrids = 0;
   std::size_t boxes = 0;
