@@ -14,6 +14,7 @@
 #include "vtkOverlappingAMR.h"
 #include "vtkPVLODVolume.h"
 #include "vtkPVRenderView.h"
+#include "vtkProcessModule.h"
 #include "vtkRenderer.h"
 #include "vtkScalarsToColors.h"
 #include "vtkSinglePassAMRGather.h"
@@ -178,10 +179,11 @@ int vtkSinglePassAMRVolumeRepresentation::ProcessViewRequest(
     // alpha blending in visibility order (IceT's ordered compositing; the volume writes no
     // depth), ordered by each rank's bounds (rank 0: the whole volume; the others: none, an
     // empty image). The data itself is never redistributed by the view.
-    // Not when the view cannot render on the ranks (RemoteRenderingAvailable false): ParaView
-    // 5.11 then renders on rank 0 alone but still gathers the ranks' bounds, a collective call
-    // only rank 0 makes (pvbatch deadlocks). Rank 0 holds every block, so its image is complete.
+    // Not when the view cannot render on the ranks (RemoteRenderingAvailable false): the view
+    // then renders on one process, and vtkPVRenderView::Render would still redistribute data
+    // for ordered compositing there, a collective call only that process makes.
     vtkPVRenderView* view = vtkPVRenderView::SafeDownCast(inInfo->Get(vtkPVView::VIEW()));
+    this->ReportParallelRenderingOff(view);
     if (!view || view->GetRemoteRenderingAvailable())
     {
       outInfo->Set(vtkPVRenderView::NEED_ORDERED_COMPOSITING(), 1);
@@ -207,6 +209,30 @@ int vtkSinglePassAMRVolumeRepresentation::ProcessViewRequest(
     this->UpdateMapperParameters();
   }
   return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeRepresentation::ReportParallelRenderingOff(vtkPVRenderView* view)
+{
+  // pvbatch on several ranks renders on every rank and composites with IceT, unless the view's
+  // RemoteRenderingAvailable is off: vtkSMRenderViewProxy::CreateVTKObjects turns it off on all
+  // ranks when any rank fails vtkPVRenderingCapabilitiesInformation's probe (XOpenDisplay and
+  // an OpenGL context, once per process; a refused X connection is enough). Rank 0 then renders
+  // alone, but its renderer keeps the IceT pass, whose first render duplicates the MPI
+  // communicator (MPI_Comm_dup, collective) while the other ranks wait for commands: ParaView
+  // 5.11 deadlocks there whatever is shown. Say why before that happens.
+  vtkProcessModule* pm = vtkProcessModule::GetProcessModule();
+  if (this->ReportedParallelRenderingOff || !view || view->GetRemoteRenderingAvailable() ||
+    !pm || vtkProcessModule::GetProcessType() != vtkProcessModule::PROCESS_BATCH ||
+    pm->GetNumberOfLocalPartitions() < 2 || pm->GetPartitionId() != 0)
+  {
+    return;
+  }
+  this->ReportedParallelRenderingOff = true;
+  vtkErrorMacro("parallel rendering is off on these " << pm->GetNumberOfLocalPartitions()
+    << " pvbatch ranks (a rank failed ParaView's X display/OpenGL check; pvbatch "
+       "--disable-xdisplay-test skips it): ParaView 5.11 then deadlocks in IceT "
+       "(MPI_Comm_dup) at the first render");
 }
 
 //------------------------------------------------------------------------------

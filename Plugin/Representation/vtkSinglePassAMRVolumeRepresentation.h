@@ -49,6 +49,7 @@
 
 class vtkMultiPassAMRVolumeMapper;
 class vtkOverlappingAMR;
+class vtkPVRenderView;
 class vtkSinglePassAMRVolumeMapper;
 
 class VTKSINGLEPASSAMRPARAVIEW_EXPORT vtkSinglePassAMRVolumeRepresentation
@@ -171,6 +172,10 @@ protected:
   /// Points the prop at the mapper Method selects (and sets that mapper's storage).
   void UpdateMethod();
 
+  /// Reports once (rank 0) when several pvbatch ranks cannot render in parallel, a state in
+  /// which ParaView 5.11 deadlocks at the first render (see the .cxx).
+  void ReportParallelRenderingOff(vtkPVRenderView* view);
+
   vtkSmartPointer<vtkSinglePassAMRVolumeMapper> VolumeMapper;
   vtkSmartPointer<vtkMultiPassAMRVolumeMapper> MultiPassMapper;
   int Method = METHOD_AUTO;
@@ -179,6 +184,7 @@ protected:
   vtkSmartPointer<vtkOverlappingAMR> Cache;
   /// False on the ranks other than 0 when several MPI ranks share the data: they draw nothing.
   bool RendersLocally = true;
+  bool ReportedParallelRenderingOff = false;
   std::string LastDataStorage; // GetLastDataStorage's text
 
 private:

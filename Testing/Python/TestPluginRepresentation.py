@@ -324,6 +324,12 @@ def main():
              value_range[0], value_range[1]))
 
     view = simple.CreateView("RenderView")
+    if ranks > 1 and not view.GetClientSideObject().GetRemoteRenderingAvailable():
+        # ParaView 5.11 would deadlock at the first render (README, "MPI runs and the X display
+        # check"); TestPluginParallel.py passes --disable-xdisplay-test, which keeps it on
+        fail("parallel rendering is off on these %d ranks: a rank failed ParaView's X display/"
+             "OpenGL check (pvbatch --disable-xdisplay-test skips it); ParaView 5.11 would "
+             "deadlock at the first render" % ranks)
     view.ViewSize = [200, 200]
     view.OrientationAxesVisibility = 0
     view.UseColorPaletteForBackground = 0
