@@ -31,6 +31,7 @@ import time
 
 SKIP = 125
 SERVER = []  # the pvserver this test started, if any; ended with the test
+SERVER_LOGS = []  # its log files
 
 def enzo_transfer(lo, hi):
     """Enzo density spans six decades (0.1 to 2.6e5 in code units, 6e-28 to 1.6e-21 g/cm^3):
@@ -118,6 +119,17 @@ def leave(code):
 
 
 def fail(message):
+    # An X refusal inside our pvserver shows only in its log: repeat its line here, where
+    # RetryOnXFailure.py (which reruns a test the X server refused) can see it.
+    for path in SERVER_LOGS:
+        try:
+            with open(path, errors="replace") as f:
+                for line in f:
+                    if "bad X server connection" in line:
+                        print("pvserver log: " + line.rstrip())
+                        break
+        except OSError:
+            pass
     print("FAIL: " + message)
     leave(1)
 
@@ -224,6 +236,7 @@ def start_server(pvserver, log_path):
     for attempt in range(3):
         port = free_port()
         log = open(log_path, "w")
+        SERVER_LOGS.append(log_path)
         server = subprocess.Popen([pvserver, "--force-offscreen-rendering",
                                    "--server-port=%d" % port], stdout=log,
                                   stderr=subprocess.STDOUT)
