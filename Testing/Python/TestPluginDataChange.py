@@ -15,46 +15,14 @@
 import os
 import sys
 
-SKIP = 125
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from PluginTestKit import fail, leave, show_density_volume, skip  # noqa: E402
+
 MULTIPASS_RMSE_BOUND = 1.0
-
-
-def leave(code):
-    # pvpython 5.11 (GLX) raises an X error while finalising after sys.exit() once a render view
-    # exists; leave without finalising (see TestPluginRepresentation.py)
-    sys.stdout.flush()
-    os._exit(code)
-
-
-def fail(message):
-    print("FAIL: " + message)
-    leave(1)
-
-
-def skip(message):
-    print("SKIPPED: " + message)
-    leave(SKIP)
-
-
-def density_quantiles(source, fractions):
-    """Quantiles of the cell array Density over the level-0 blocks, i.e. by volume (builtin
-    session: the source's own output, as servermanager.Fetch cannot move a vtkOverlappingAMR)."""
-    import numpy
-    from vtkmodules.util.numpy_support import vtk_to_numpy
-
-    source.UpdatePipeline()
-    amr = source.GetClientSideObject().GetOutputDataObject(0)
-    values = []
-    for index in range(amr.GetNumberOfDataSets(0)):
-        block = amr.GetDataSet(0, index)
-        if block is not None:
-            values.append(vtk_to_numpy(block.GetCellData().GetArray("Density")))
-    return numpy.quantile(numpy.concatenate(values), fractions).tolist()
 
 
 def main():
     plugin, outdir = sys.argv[1:3]
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     from TestPluginRepresentation import coverage, info_property, read_png, require_display, rmse
 
     require_display()
@@ -64,27 +32,9 @@ def main():
     simple.LoadPlugin(plugin, remote=False, ns=globals())
     source = AMRCosmologysynthetic(NumberOfGrids=400, NumberOfLevels=4, NumberOfCells=300000,
         Seed=3)
-    view = simple.CreateView("RenderView")
-    view.ViewSize = [120, 120]
-    view.OrientationAxesVisibility = 0
-    view.UseColorPaletteForBackground = 0
-    view.Background = [0.0, 0.0, 0.0]
-    display = simple.Show(source, view)
-    display.Representation = "AMR Single-Pass Volume"
-    simple.ColorBy(display, ("CELLS", "Density"))
-    # the density is heavy-tailed: colours and opacity follow its quantiles, not its range
-    q = density_quantiles(source, [0.0, 0.5, 0.9, 0.99, 1.0])
+    view, display, q = show_density_volume(source, 120)
     lut = simple.GetColorTransferFunction("Density")
-    lut.AutomaticRescaleRangeMode = "Never"
-    lut.RGBPoints = [q[0], 0.2, 0.4, 1.0, q[2], 1.0, 1.0, 1.0, q[4], 1.0, 0.2, 0.1]
     pwf = simple.GetOpacityTransferFunction("Density")
-    pwf.Points = [q[0], 0.0, 0.5, 0.0, q[1], 0.1, 0.5, 0.0, q[2], 0.5, 0.5, 0.0,
-                  q[3], 0.8, 0.5, 0.0, q[4], 0.9, 0.5, 0.0]
-    display.ScalarOpacityUnitDistance = 0.05
-    simple.Render(view)
-    view.ResetCamera()
-    view.GetActiveCamera().Azimuth(30.0)
-    view.GetActiveCamera().Elevation(20.0)
 
     shots = {}
 

@@ -29,9 +29,12 @@ import subprocess
 import sys
 import time
 
-SKIP = 125
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from PluginTestKit import BEFORE_FAIL, BEFORE_LEAVE, fail, leave, skip  # noqa: E402
+
 SERVER = []  # the pvserver this test started, if any; ended with the test
 SERVER_LOGS = []  # its log files
+
 
 def enzo_transfer(lo, hi):
     """Enzo density spans six decades (0.1 to 2.6e5 in code units, 6e-28 to 1.6e-21 g/cm^3):
@@ -102,10 +105,7 @@ REMOTE_PACKING_RMSE_BOUND = 3.0
 REMOTE_DIFFERING_BOUND = 0.04
 
 
-def leave(code):
-    """Ends the process with `code`. pvpython 5.11 (GLX) raises an X error (GLXBadContext) while
-    finalising after sys.exit() once a render view exists, which turns every exit code into 1:
-    leave without finalising instead. A test that passes simply returns from the script."""
+def stop_servers():
     for server in SERVER:
         if server.poll() is None:
             server.terminate()
@@ -113,12 +113,9 @@ def leave(code):
                 server.wait(timeout=10)
             except subprocess.TimeoutExpired:
                 server.kill()
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(code)
 
 
-def fail(message):
+def repeat_server_x_refusal():
     # An X refusal inside our pvserver shows only in its log: repeat its line here, where
     # RetryOnXFailure.py (which reruns a test the X server refused) can see it.
     for path in SERVER_LOGS:
@@ -130,13 +127,10 @@ def fail(message):
                         break
         except OSError:
             pass
-    print("FAIL: " + message)
-    leave(1)
 
 
-def skip(message):
-    print("SKIPPED: " + message)
-    leave(SKIP)
+BEFORE_LEAVE.append(stop_servers)
+BEFORE_FAIL.append(repeat_server_x_refusal)
 
 
 def read_png(path):

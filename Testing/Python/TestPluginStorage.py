@@ -16,32 +16,15 @@
 import os
 import sys
 
-SKIP = 125
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from PluginTestKit import fail, leave, show_density_volume, skip  # noqa: E402
+
 SAME_BOUND = 0.05
-
-
-def leave(code):
-    # pvpython 5.11 (GLX) raises an X error while finalising after sys.exit() (see
-    # TestPluginRepresentation.py)
-    sys.stdout.flush()
-    os._exit(code)
-
-
-def fail(message):
-    print("FAIL: " + message)
-    leave(1)
-
-
-def skip(message):
-    print("SKIPPED: " + message)
-    leave(SKIP)
 
 
 def main():
     plugin, outdir = sys.argv[1:3]
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     from TestPluginRepresentation import coverage, info_property, read_png, require_display, rmse
-    from TestPluginDataChange import density_quantiles
 
     require_display()
     os.makedirs(outdir, exist_ok=True)
@@ -50,27 +33,7 @@ def main():
     simple.LoadPlugin(plugin, remote=False, ns=globals())
     source = AMRCosmologysynthetic(NumberOfGrids=120, NumberOfLevels=3, NumberOfCells=100000,
         Seed=5)
-    view = simple.CreateView("RenderView")
-    view.ViewSize = [96, 96]
-    view.OrientationAxesVisibility = 0
-    view.UseColorPaletteForBackground = 0
-    view.Background = [0.0, 0.0, 0.0]
-    display = simple.Show(source, view)
-    display.Representation = "AMR Single-Pass Volume"
-    simple.ColorBy(display, ("CELLS", "Density"))
-    # the density is heavy-tailed: colours and opacity follow its quantiles, not its range
-    q = density_quantiles(source, [0.0, 0.5, 0.9, 0.99, 1.0])
-    lut = simple.GetColorTransferFunction("Density")
-    lut.AutomaticRescaleRangeMode = "Never"
-    lut.RGBPoints = [q[0], 0.2, 0.4, 1.0, q[2], 1.0, 1.0, 1.0, q[4], 1.0, 0.2, 0.1]
-    pwf = simple.GetOpacityTransferFunction("Density")
-    pwf.Points = [q[0], 0.0, 0.5, 0.0, q[1], 0.1, 0.5, 0.0, q[2], 0.5, 0.5, 0.0,
-                  q[3], 0.8, 0.5, 0.0, q[4], 0.9, 0.5, 0.0]
-    display.ScalarOpacityUnitDistance = 0.05
-    simple.Render(view)
-    view.ResetCamera()
-    view.GetActiveCamera().Azimuth(30.0)
-    view.GetActiveCamera().Elevation(20.0)
+    view, display, q = show_density_volume(source, 96)
 
     def shot(name):
         path = os.path.join(outdir, "storage-%s.png" % name)

@@ -14,31 +14,13 @@
 import os
 import sys
 
-SKIP = 125
-
-
-def leave(code):
-    # pvpython 5.11 (GLX) raises an X error while finalising after sys.exit() once a render view
-    # exists; leave without finalising (see TestPluginRepresentation.py)
-    sys.stdout.flush()
-    os._exit(code)
-
-
-def fail(message):
-    print("FAIL: " + message)
-    leave(1)
-
-
-def skip(message):
-    print("SKIPPED: " + message)
-    leave(SKIP)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from PluginTestKit import density_quantiles, fail, leave, skip  # noqa: E402
 
 
 def main():
     plugin, outdir = sys.argv[1:3]
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     from TestPluginRepresentation import coverage, info_property, read_png, require_display, rmse
-    from TestPluginDataChange import density_quantiles
 
     require_display()
     os.makedirs(outdir, exist_ok=True)

@@ -1,0 +1,81 @@
+# Shared by the plugin's Python tests: exit codes, and the synthetic cosmology volume they view.
+# Imports nothing of ParaView at module level (TestGuiSmoke.py runs under plain python3).
+import os
+import sys
+
+SKIP = 125  # CTest's skip code (SKIP_RETURN_CODE)
+
+# Functions called (without arguments) before a failure is printed, e.g. to repeat what a
+# helper process logged.
+BEFORE_FAIL = []
+# Functions called before the process ends, e.g. to stop a helper process.
+BEFORE_LEAVE = []
+
+
+def leave(code):
+    """Ends the process with `code`. pvpython 5.11 (GLX) raises an X error (GLXBadContext) while
+    finalising after sys.exit() once a render view exists, which turns every exit code into 1:
+    leave without finalising instead. A test that passes simply returns from the script."""
+    for hook in BEFORE_LEAVE:
+        hook()
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(code)
+
+
+def fail(message):
+    for hook in BEFORE_FAIL:
+        hook()
+    print("FAIL: " + message)
+    leave(1)
+
+
+def skip(message):
+    print("SKIPPED: " + message)
+    leave(SKIP)
+
+
+def density_quantiles(source, fractions):
+    """Quantiles of the cell array Density over the level-0 blocks, i.e. by volume (builtin
+    session: the source's own output, as servermanager.Fetch cannot move a vtkOverlappingAMR)."""
+    import numpy
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    source.UpdatePipeline()
+    amr = source.GetClientSideObject().GetOutputDataObject(0)
+    values = []
+    for index in range(amr.GetNumberOfDataSets(0)):
+        block = amr.GetDataSet(0, index)
+        if block is not None:
+            values.append(vtk_to_numpy(block.GetCellData().GetArray("Density")))
+    return numpy.quantile(numpy.concatenate(values), fractions).tolist()
+
+
+def show_density_volume(source, size):
+    """A black `size`² render view showing `source` (the plugin's synthetic cosmology) with the
+    representation "AMR Single-Pass Volume" coloured by Density; the density is heavy-tailed, so
+    colours and opacity follow its quantiles, not its range. Returns (view, display, q): q the
+    Density quantiles 0, 0.5, 0.9, 0.99 and 1 the maps are built on."""
+    from paraview import simple
+
+    view = simple.CreateView("RenderView")
+    view.ViewSize = [size, size]
+    view.OrientationAxesVisibility = 0
+    view.UseColorPaletteForBackground = 0
+    view.Background = [0.0, 0.0, 0.0]
+    display = simple.Show(source, view)
+    display.Representation = "AMR Single-Pass Volume"
+    simple.ColorBy(display, ("CELLS", "Density"))
+    q = density_quantiles(source, [0.0, 0.5, 0.9, 0.99, 1.0])
+    lut = simple.GetColorTransferFunction("Density")
+    lut.AutomaticRescaleRangeMode = "Never"
+    lut.RGBPoints = [q[0], 0.2, 0.4, 1.0, q[2], 1.0, 1.0, 1.0, q[4], 1.0, 0.2, 0.1]
+    pwf = simple.GetOpacityTransferFunction("Density")
+    pwf.Points = [q[0], 0.0, 0.5, 0.0, q[1], 0.1, 0.5, 0.0, q[2], 0.5, 0.5, 0.0,
+                  q[3], 0.8, 0.5, 0.0, q[4], 0.9, 0.5, 0.0]
+    display.ScalarOpacityUnitDistance = 0.05
+    simple.Render(view)
+    view.ResetCamera()
+    view.GetActiveCamera().Azimuth(30.0)
+    view.GetActiveCamera().Elevation(20.0)
+    return view, display, q
