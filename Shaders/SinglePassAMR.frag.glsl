@@ -28,7 +28,8 @@
 //                       range has zero opacity in the transfer table are not sampled
 //   AMRSP_SMOOTH_CELLS  smooth reconstruction of cell data (with AMRSP_CELL_CENTRED): trilinear in
 //                       the sample level's dual cell, corners looked up through the tree at the
-//                       finest level there (as amrsp::RenderSettings::SmoothCellData)
+//                       finest level there (as amrsp::RenderSettings::SmoothCellData); the
+//                       gradient's neighbours (AMRSP_SHADE) are reconstructed the same way
 //AMRSP::Defines
 
 #ifndef AMRSP_LEVEL_COUNT
