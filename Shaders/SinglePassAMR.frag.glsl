@@ -28,7 +28,8 @@
 //                       range has zero opacity in the transfer table are not sampled
 //   AMRSP_SMOOTH_CELLS  smooth reconstruction of cell data (with AMRSP_CELL_CENTRED): trilinear in
 //                       the sample level's dual cell, corners looked up through the tree at the
-//                       finest level there (as amrsp::RenderSettings::SmoothCellData)
+//                       finest level there (as amrsp::RenderSettings::SmoothCellData); the
+//                       gradient's neighbours (AMRSP_SHADE) are reconstructed the same way
 //AMRSP::Defines
 
 #ifndef AMRSP_LEVEL_COUNT
@@ -377,20 +378,44 @@ bool amrspSampleAtPoint(vec3 p, out float value, out vec3 cellSize)
 bool amrspInNode = false;
 vec3 amrspNodeLo;
 vec3 amrspNodeHi;
+ivec3 amrspNodeLoF; // the same box in exact finest-level cells
+ivec3 amrspNodeHiF;
 uvec2 amrspNodeDataNode;
 ivec3 amrspNodeFirstCell;
 ivec3 amrspNodeLastCell;
 
+// A gradient neighbour: the value at q of the leaf containing q, as the sample loop computes it
+// there (nearest cell, or the smooth reconstruction at the leaf's level with AMRSP_SMOOTH_CELLS;
+// as the core's KdTreePointLookup). False where absent or NaN.
 bool amrspSampleNear(vec3 q, out float value)
 {
+  uvec2 dataNode;
+  ivec3 loF, hiF, firstCell, lastCell;
   if (amrspInNode && all(greaterThanEqual(q, amrspNodeLo)) && all(lessThan(q, amrspNodeHi)))
   {
-    value = amrspSampleDataNode(amrspNodeDataNode, q, amrspLevelCellSize[amrspDataLevel(
-      amrspNodeDataNode)], amrspNodeFirstCell, amrspNodeLastCell);
-    return !isnan(value);
+    dataNode = amrspNodeDataNode;
+    loF = amrspNodeLoF;
+    hiF = amrspNodeHiF;
+    firstCell = amrspNodeFirstCell;
+    lastCell = amrspNodeLastCell;
   }
-  vec3 ignored;
-  return amrspSampleAtPoint(q, value, ignored);
+  else
+  {
+    uint data = amrspLocateDataNode(q, loF, hiF);
+    if (data == 0u)
+    {
+      value = 0.0;
+      return false;
+    }
+    dataNode = amrspFetchDataNode(data);
+    amrspLeafCells(int(amrspDataLevel(dataNode)), loF, hiF, firstCell, lastCell);
+  }
+  int level = int(amrspDataLevel(dataNode));
+  value = amrspSampleDataNode(dataNode, q, amrspLevelCellSize[level], firstCell, lastCell);
+#ifdef AMRSP_SMOOTH_CELLS
+  value = amrspSampleSmooth(q, level, dataNode, loF, hiF, firstCell, lastCell, value);
+#endif
+  return !isnan(value);
 }
 
 // Model-space gradient by central differences through the tree (one-sided where a neighbour is
@@ -751,6 +776,8 @@ void main()
           amrspInNode = true;
           amrspNodeLo = lo;
           amrspNodeHi = hi;
+          amrspNodeLoF = loF;
+          amrspNodeHiF = hiF;
           amrspNodeDataNode = dataNode;
           amrspNodeFirstCell = firstCell;
           amrspNodeLastCell = lastCell;

@@ -41,6 +41,45 @@ inline void FillValues(Hierarchy& h)
   }
 }
 
+/// The unit cube (world units, origin 0) holding field(world point) at the cell centres, with
+/// `finest` cells per axis (even) at its finest level. levels = 1: one grid; levels = 2: a level-0
+/// grid of finest / 2 cells per axis and a level-1 patch (ratio 2) over the middle of the domain,
+/// [1/4, 3/4)^3 (finest must then be a multiple of 8). Every cell, the covered level-0 cells
+/// too, holds the field at its own centre. The same field on levels 1 and 2 differs only by the
+/// level boundary (and the cell size outside the patch).
+template <typename F>
+Hierarchy LevelPatch(int levels, int finest, F field)
+{
+  Hierarchy h;
+  const int64_t n0 = levels == 1 ? finest : finest / 2;
+  h.Spacing0 = glm::dvec3(1.0 / static_cast<double>(n0));
+  h.Grids.push_back(Grid{ 0, MakeBox(0, 0, 0, n0, n0, n0) });
+  if (levels == 2)
+  {
+    h.RefinementRatio.push_back(glm::ivec3(2));
+    const int64_t lo = n0 / 2, hi = 3 * n0 / 2; // level-1 cells of [n0 / 4, 3 n0 / 4)
+    h.Grids.push_back(Grid{ 1, MakeBox(lo, lo, lo, hi, hi, hi) });
+  }
+  for (std::size_t g = 0; g < h.Grids.size(); ++g)
+  {
+    const Grid& grid = h.Grids[g];
+    h.Grids[g].SourceId = static_cast<int64_t>(g);
+    const glm::dvec3 cs = h.CellSize(grid.Level) * h.Spacing0; // world units
+    const glm::i64vec3 e = grid.Cells.Extent();
+    GridValues v(static_cast<std::size_t>(grid.Cells.Cells()));
+    for (int64_t k = 0; k < e.z; ++k)
+      for (int64_t j = 0; j < e.y; ++j)
+        for (int64_t i = 0; i < e.x; ++i)
+        {
+          v[static_cast<std::size_t>((k * e.y + j) * e.x + i)] = static_cast<float>(
+            field((glm::dvec3(grid.Cells.Lo + glm::i64vec3(i, j, k)) + 0.5) * cs));
+        }
+    h.Values.push_back(std::move(v));
+  }
+  h.ArrayName = "field";
+  return h;
+}
+
 /// The 2D example of the paper's Figure 2, extruded: one root grid, three level-1 grids (one of
 /// them overlapping two parents' worth of cells), two level-2 grids abutting level-0 cells.
 inline Hierarchy PaperExample()

@@ -97,7 +97,7 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
     return VTK_SKIP_RETURN_CODE;
   }
   std::string spec = c.Dataset;
-  if (spec.rfind("data:", 0) == 0)
+  if (!c.Data && spec.rfind("data:", 0) == 0)
   {
     spec = std::string(AMRSP_DATA_DIR) + "/" + spec.substr(5);
     if (std::FILE* f = std::fopen(spec.c_str(), "r"))
@@ -130,8 +130,20 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
     request.Array = a.Get("array", "");
     request.Centering = a.Get("centering", "auto");
     request.NeedVTK = false;
-    LoadedDataset d = LoadDataset(request);
+    LoadedDataset d;
+    if (c.Data)
+    {
+      d.Data = c.Data();
+    }
+    else
+    {
+      d = LoadDataset(request);
+    }
     RenderSettings s = MakeSettings(d.Data, a);
+    if (c.Settings)
+    {
+      c.Settings(s);
+    }
     ViewAngles view;
     view.Azimuth = a.GetNumber("azimuth", 30.0);
     view.Elevation = a.GetNumber("elevation", 20.0);
@@ -174,7 +186,7 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
 
     if (c.Check)
     {
-      agrees = c.Check(gpu, image, std::cout) && agrees;
+      agrees = c.Check(gpu, image, ref, std::cout) && agrees;
       const double again = Rmse(image, gpu.RenderAsIs(ms));
       if (again != 0.0)
       {

@@ -31,6 +31,12 @@ struct BaselineCase
   std::string Dataset;
   /// amrsp options (--array, --centering, --size, --azimuth, --lod, ...).
   std::vector<std::string> Options;
+  /// Optional: the hierarchy to render (cell-centred values as displayed) instead of loading
+  /// Dataset, which then only names it in the log.
+  std::function<Hierarchy()> Data;
+  /// Optional change of the settings after the amrsp options were applied (e.g. a transfer
+  /// function written in the data's own values); used by the GPU and the CPU images alike.
+  std::function<void(RenderSettings&)> Settings;
   /// Largest RMSE (0-255 units) allowed between the GPU image and the CPU reference.
   double ReferenceBound = 2.0;
   /// Largest RMSE allowed between the GPU image and the CPU kD-tree integrator (its mirror).
@@ -53,10 +59,13 @@ struct BaselineCase
   std::vector<Square> Squares;
 
   /// Optional further checks after the GPU image `image` was rendered (e.g. the same view with
-  /// an option switched off). They may render other frames but must leave the mapper as they
-  /// found it: the harness renders again and requires the very same image before comparing
-  /// with the baseline. Returns false (after printing why to `log`) to fail the test.
-  std::function<bool(tool::PackingRenderer& gpu, const Image& image, std::ostream& log)> Check;
+  /// an option switched off); `settings` are those of the image, with the camera of the frame.
+  /// They may render other frames but must leave the mapper as they found it: the harness
+  /// renders again and requires the very same image before comparing with the baseline.
+  /// Returns false (after printing why to `log`) to fail the test.
+  std::function<bool(tool::PackingRenderer& gpu, const Image& image,
+    const RenderSettings& settings, std::ostream& log)>
+    Check;
 };
 
 /// Runs the test; returns the test driver's exit code (0 pass, 1 fail, 125 skipped).

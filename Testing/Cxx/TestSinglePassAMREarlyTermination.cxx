@@ -35,7 +35,8 @@ int TestSinglePassAMREarlyTermination(int argc, char* argv[])
   c.Options = { "--array", "Y(H2)", "--size", "200x200", "--unit-distance", "0.0002",
     "--opacity-threshold", "0.95" };
   c.ReferenceBound = 3.0;
-  c.Check = [](amrsp::tool::PackingRenderer& gpu, const amrsp::Image& image, std::ostream& log) {
+  c.Check = [](amrsp::tool::PackingRenderer& gpu, const amrsp::Image& image,
+    const amrsp::RenderSettings&, std::ostream& log) {
     vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
     double ms = 0.0;
     mapper->SetOpacityThreshold(1.0);

@@ -25,7 +25,8 @@ int TestSinglePassAMREmptySpaceSkipping(int argc, char* argv[])
   // measured 2.4 (llvmpipe): the noisy particle-deposited field at one sample per cell against
   // the reference's two
   c.ReferenceBound = 3.5;
-  c.Check = [](amrsp::tool::PackingRenderer& gpu, const amrsp::Image& image, std::ostream& log) {
+  c.Check = [](amrsp::tool::PackingRenderer& gpu, const amrsp::Image& image,
+    const amrsp::RenderSettings&, std::ostream& log) {
     vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
     bool ok = true;
     const long long transparent = mapper->GetNumberOfTransparentDataNodes();

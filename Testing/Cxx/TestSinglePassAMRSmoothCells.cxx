@@ -16,7 +16,8 @@ int TestSinglePassAMRSmoothCells(int argc, char* argv[])
   c.Dataset = "data:enzo_moving7/DD0010/moving7_0010.hierarchy";
   c.Options = { "--array", "Density", "--size", "200x200", "--interpolation", "smooth" };
   c.ReferenceBound = 2.5;
-  c.Check = [](amrsp::tool::PackingRenderer& gpu, const amrsp::Image& image, std::ostream& log) {
+  c.Check = [](amrsp::tool::PackingRenderer& gpu, const amrsp::Image& image,
+    const amrsp::RenderSettings&, std::ostream& log) {
     vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
     const bool smooth = mapper->GetCellInterpolation() == vtkSinglePassAMRVolumeMapper::SMOOTH_CELL;
     double ms = 0.0;

@@ -539,6 +539,25 @@ float SmoothKdTree(const Hierarchy& h, const EncodedKdTree& tree, const BrickAtl
   return sum;
 }
 
+/// The cell-centred value the kD-tree integrator samples at p: point location, then the leaf's
+/// nearest cell or, with `smooth`, the smooth reconstruction at the leaf's data level (the rule of
+/// the sample loop). NaN outside every leaf with data; cellSize: the leaf's data-level cell size.
+float SampleCellsKdTree(const Hierarchy& h, const EncodedKdTree& tree, const BrickAtlas* atlas,
+  const glm::vec3& p, bool smooth, glm::vec3& cellSize)
+{
+  using namespace layout;
+  glm::vec3 lo, hi;
+  const uint32_t data = LocateDataNode(tree, p, lo, hi);
+  if (data == 0)
+  {
+    return std::numeric_limits<float>::quiet_NaN();
+  }
+  const int level = static_cast<int>(amrspDataLevel(tree.DataNodes.Texels[data]));
+  cellSize = tree.LevelCellSize[level];
+  const float v = NodeCellValue(h, tree, atlas, data, lo, hi, p);
+  return smooth ? SmoothKdTree(h, tree, atlas, p, level, v) : v;
+}
+
 /// Per-row counters added to RenderSettings::Stats under a lock.
 struct StatsSink
 {
@@ -724,14 +743,13 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
   }
   const std::vector<double> isoValues = SortedIsoValues(s);
   const bool shaded = s.Light.Shade || s.Light.Shadows;
-  const ShadingContext shading = MakeShadingContext(s.Light, s.Transfer, h.Origin, h.Spacing0,
+  ShadingContext shading = MakeShadingContext(s.Light, s.Transfer, h.Origin, h.Spacing0,
     glm::dvec3(tree.RootLo), glm::dvec3(tree.RootHi), s.View.Position, s.View.FocalPoint);
-  const PointLookup lookup = [&](const glm::dvec3& q, glm::dvec3& cellSize) {
-    glm::vec3 size(1.0f);
-    const double v = SampleKdTreeAtPoint(h, tree, glm::vec3(q), size);
-    cellSize = glm::dvec3(size);
-    return v;
-  };
+  const PointLookup lookup = KdTreePointLookup(h, tree, false);
+  if (s.SmoothCellData && !h.VertexCentred)
+  {
+    shading.Neighbours = KdTreePointLookup(h, tree, true, atlas);
+  }
 
   ForEachRow(s.Height, s.Threads, [&](int j) {
     std::vector<RaySegment> segments;
@@ -854,17 +872,28 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
 float SampleKdTreePoint(const Hierarchy& h, const EncodedKdTree& tree, const glm::vec3& p,
   bool smooth)
 {
-  using namespace layout;
-  glm::vec3 lo, hi;
-  const uint32_t data = LocateDataNode(tree, p, lo, hi);
-  if (data == 0)
+  glm::vec3 ignored;
+  return SampleCellsKdTree(h, tree, nullptr, p, smooth, ignored);
+}
+
+PointLookup KdTreePointLookup(const Hierarchy& h, const EncodedKdTree& tree, bool smooth,
+  const BrickAtlas* atlas)
+{
+  if (!smooth || h.VertexCentred)
   {
-    return std::numeric_limits<float>::quiet_NaN();
+    return [&h, &tree](const glm::dvec3& q, glm::dvec3& cellSize) {
+      glm::vec3 size(1.0f);
+      const double v = SampleKdTreeAtPoint(h, tree, glm::vec3(q), size);
+      cellSize = glm::dvec3(size);
+      return v;
+    };
   }
-  const float v = NodeCellValue(h, tree, nullptr, data, lo, hi, p);
-  return smooth ? SmoothKdTree(h, tree, nullptr, p,
-                    static_cast<int>(amrspDataLevel(tree.DataNodes.Texels[data])), v)
-                : v;
+  return [&h, &tree, atlas](const glm::dvec3& q, glm::dvec3& cellSize) {
+    glm::vec3 size(1.0f);
+    const double v = SampleCellsKdTree(h, tree, atlas, glm::vec3(q), true, size);
+    cellSize = glm::dvec3(size);
+    return v;
+  };
 }
 
 namespace
@@ -892,6 +921,26 @@ double SmoothReference(const Hierarchy& h, const FinestCellLocator& locator, con
 }
 } // namespace
 
+PointLookup ReferencePointLookup(const Hierarchy& h, const FinestCellLocator& locator, bool smooth)
+{
+  const Box root = h.RootCells();
+  const glm::dvec3 lo(root.Lo), hi(root.Hi);
+  const bool smoothCells = smooth && !h.VertexCentred;
+  return [&h, &locator, lo, hi, smoothCells](const glm::dvec3& q, glm::dvec3& cellSize) {
+    glm::i64vec3 cell;
+    const int32_t g = OutsideBox(q, lo, hi) ? -1 : locator.Find(q, cell);
+    if (g < 0)
+    {
+      return std::numeric_limits<double>::quiet_NaN();
+    }
+    const int level = h.Grids[g].Level;
+    const glm::dvec3 ratio(h.CumulativeRatio(level));
+    cellSize = 1.0 / ratio;
+    const double v = SampleGrid(h, g, q, ratio);
+    return smoothCells ? SmoothReference(h, locator, q, level, v) : v;
+  };
+}
+
 Image RenderReference(const Hierarchy& h, const RenderSettings& s)
 {
   RequireValues(h);
@@ -911,20 +960,14 @@ Image RenderReference(const Hierarchy& h, const RenderSettings& s)
   }
   const std::vector<double> isoValues = SortedIsoValues(s);
   const bool shaded = s.Light.Shade || s.Light.Shadows;
-  const ShadingContext shading = MakeShadingContext(
+  ShadingContext shading = MakeShadingContext(
     s.Light, s.Transfer, h.Origin, h.Spacing0, lo, hi, s.View.Position, s.View.FocalPoint);
   // the reference's point lookup: the finest grid containing the point, from the boxes
-  const PointLookup lookup = [&](const glm::dvec3& q, glm::dvec3& cellSize) {
-    glm::i64vec3 cell;
-    const int32_t g = OutsideBox(q, lo, hi) ? -1 : locator.Find(q, cell);
-    if (g < 0)
-    {
-      return std::numeric_limits<double>::quiet_NaN();
-    }
-    const glm::dvec3 ratio(h.CumulativeRatio(h.Grids[g].Level));
-    cellSize = 1.0 / ratio;
-    return static_cast<double>(SampleGrid(h, g, q, ratio));
-  };
+  const PointLookup lookup = ReferencePointLookup(h, locator, false);
+  if (s.SmoothCellData && !h.VertexCentred)
+  {
+    shading.Neighbours = ReferencePointLookup(h, locator, true);
+  }
 
   StatsSink sink;
   sink.Target = s.Stats;

@@ -120,7 +120,7 @@ glm::dvec3 ShadeSample(const ShadingContext& c, const PointLookup& f, const glm:
   }
   const glm::dvec3 x = c.Origin + p * c.Spacing0;
   const glm::dvec3 l = c.Positional ? glm::normalize(c.LightPosition - x) : c.LightDirection;
-  const glm::dvec3 g = Gradient(c, f, p, v, cellSize);
+  const glm::dvec3 g = Gradient(c, c.Neighbours ? c.Neighbours : f, p, v, cellSize);
   const double length = glm::length(g);
   double diffuse = 0.0, specular = 0.0;
   if (length > 0.0)

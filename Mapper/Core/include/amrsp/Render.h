@@ -152,6 +152,8 @@ struct RenderSettings
   /// straight from the grids). A corner outside every grid takes the nearest-cell value at p.
   /// Continuous inside a level and across same-level grids; across level boundaries the
   /// remaining jump is bounded by the field's change over one cell of the finer level.
+  /// With shading, the gradient's central differences read the same reconstruction at the
+  /// neighbours (each at the level of the finest data there): ShadingContext::Neighbours.
   bool SmoothCellData = false;
   /// Gradient shading and shadow rays (composite and iso-surface blending; amrsp/Shading.h).
   Lighting Light;
@@ -207,6 +209,22 @@ float CellValue(const Hierarchy& h, int32_t g, glm::i64vec3 cell);
 /// cell size (level-0 index units).
 double SampleKdTreeAtPoint(const Hierarchy& h, const EncodedKdTree& tree, const glm::vec3& p,
   glm::vec3& cellSize);
+
+/// The kD-tree integrator's point lookup for the shading rules (PointLookup): point location in
+/// the encoded tree (as the shader's amrspLocateDataNode; outside the root box or in a leaf without
+/// data: NaN), then the leaf's brick, read from the grid or, with `atlas`, through the data node's
+/// atlas offset; cellSize: the leaf's data-level cell size. `smooth` (cell-centred data only):
+/// the smooth reconstruction of RenderSettings::SmoothCellData at the leaf's level, as the
+/// sample loop computes it (the gradient's neighbours under SmoothCellData); otherwise the same
+/// value as SampleKdTreeAtPoint. The lookup refers to h, tree and atlas, which must outlive it.
+PointLookup KdTreePointLookup(const Hierarchy& h, const EncodedKdTree& tree, bool smooth,
+  const BrickAtlas* atlas = nullptr);
+
+/// The reference's point lookup: the finest grid containing the point, found by `locator` (no
+/// kD-tree); NaN outside the root box and every grid; cellSize: that grid's cell size. `smooth`
+/// (cell-centred data only): the reference's smooth reconstruction at the finest level there.
+/// Refers to h and locator, which must outlive it.
+PointLookup ReferencePointLookup(const Hierarchy& h, const FinestCellLocator& locator, bool smooth);
 
 /// Renders with the CPU kD-tree integrator over the encoded textures. Without `atlas`, samples
 /// come from the grid named by each data node; with it, from the packed atlas through the data

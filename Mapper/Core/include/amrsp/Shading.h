@@ -12,7 +12,10 @@
 ///   central difference (f(p + h_a e_a) - f(p - h_a e_a)) / (2 h_a s_a), s = level-0 spacing
 ///   (world units per index unit); an absent neighbour is replaced by v and the difference becomes
 ///   one-sided (denominator h_a s_a); both absent gives 0. The neighbours may lie in other grids
-///   and other levels: the lookup finds them.
+///   and other levels: the lookup finds them. The neighbour values come from
+///   ShadingContext::Neighbours when set (the integrators set it to the smooth reconstruction
+///   under RenderSettings::SmoothCellData, so that the gradient is the one of the sampled field),
+///   else from the point lookup.
 /// - Shading (Blinn-Phong, two-sided; vtkVolumeProperty's Ambient Ka, Diffuse Kd, Specular Ks,
 ///   SpecularPower n): N = gradient / |gradient| turned toward the viewer V (unit vector to the
 ///   eye), L = unit vector to the light (positional: from the sample to the light position;
@@ -85,6 +88,9 @@ struct ShadingContext
   glm::dvec3 LightPosition{ 0.0 }; ///< resolved for the camera (headlight) in world units
   glm::dvec3 LightDirection{ 0.0, 0.0, 1.0 }; ///< unit, toward the light (directional lights)
   bool Positional = false;
+  /// The lookup of the gradient's neighbours; empty: the point lookup passed to the rules (which
+  /// shadow rays and iso-surface refinement always use).
+  PointLookup Neighbours;
 };
 
 /// Resolves the light for a camera (position and focal point in world units).
