@@ -51,11 +51,12 @@ def density_quantiles(source, fractions):
     return numpy.quantile(numpy.concatenate(values), fractions).tolist()
 
 
-def show_density_volume(source, size):
+def show_density_volume(source, size, before_show=None):
     """A black `size`² render view showing `source` (the plugin's synthetic cosmology) with the
     representation "AMR Single-Pass Volume" coloured by Density; the density is heavy-tailed, so
     colours and opacity follow its quantiles, not its range. Returns (view, display, q): q the
-    Density quantiles 0, 0.5, 0.9, 0.99 and 1 the maps are built on."""
+    Density quantiles 0, 0.5, 0.9, 0.99 and 1 the maps are built on. before_show(view), if given,
+    runs between creating the view and showing the source in it."""
     from paraview import simple
 
     view = simple.CreateView("RenderView")
@@ -63,6 +64,8 @@ def show_density_volume(source, size):
     view.OrientationAxesVisibility = 0
     view.UseColorPaletteForBackground = 0
     view.Background = [0.0, 0.0, 0.0]
+    if before_show:
+        before_show(view)
     display = simple.Show(source, view)
     display.Representation = "AMR Single-Pass Volume"
     simple.ColorBy(display, ("CELLS", "Density"))

@@ -15,7 +15,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from PluginTestKit import density_quantiles, fail, leave, skip  # noqa: E402
+from PluginTestKit import fail, leave, show_density_volume, skip  # noqa: E402
 
 
 def main():
@@ -45,31 +45,16 @@ def main():
     if len(times) != 3:
         fail("the file series has %d time steps, expected 3" % len(times))
 
-    view = simple.CreateView("RenderView")
-    view.ViewSize = [120, 120]
-    view.OrientationAxesVisibility = 0
-    view.UseColorPaletteForBackground = 0
-    view.Background = [0.0, 0.0, 0.0]
+    def first_step(view):
+        scene = simple.GetAnimationScene()
+        scene.UpdateAnimationUsingDataTimeSteps()
+        scene.AnimationTime = times[0]
+
+    # colours and opacity follow the density's quantiles at step 0
+    view, display, q = show_density_volume(reader, 120, first_step)
     scene = simple.GetAnimationScene()
-    scene.UpdateAnimationUsingDataTimeSteps()
-    scene.AnimationTime = times[0]
-    display = simple.Show(reader, view)
-    display.Representation = "AMR Single-Pass Volume"
-    simple.ColorBy(display, ("CELLS", "Density"))
-    # the density is heavy-tailed: colours and opacity follow its quantiles at step 0
-    q = density_quantiles(reader, [0.0, 0.5, 0.9, 0.99, 1.0])
     lut = simple.GetColorTransferFunction("Density")
-    lut.AutomaticRescaleRangeMode = "Never"
-    colours = [q[0], 0.2, 0.4, 1.0, q[2], 1.0, 1.0, 1.0, q[4], 1.0, 0.2, 0.1]
-    lut.RGBPoints = colours
-    pwf = simple.GetOpacityTransferFunction("Density")
-    pwf.Points = [q[0], 0.0, 0.5, 0.0, q[1], 0.1, 0.5, 0.0, q[2], 0.5, 0.5, 0.0,
-                  q[3], 0.8, 0.5, 0.0, q[4], 0.9, 0.5, 0.0]
-    display.ScalarOpacityUnitDistance = 0.05
-    simple.Render(view)
-    view.ResetCamera()
-    view.GetActiveCamera().Azimuth(30.0)
-    view.GetActiveCamera().Elevation(20.0)
+    colours = list(lut.RGBPoints)
 
     def shot(name, expected_builds):
         path = os.path.join(outdir, "timeseries-%s.png" % name)
