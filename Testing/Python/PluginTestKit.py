@@ -1,5 +1,6 @@
 # Shared by the plugin's Python tests: exit codes, and the synthetic cosmology volume they view.
 # Imports nothing of ParaView at module level (TestGuiSmoke.py runs under plain python3).
+# Importing it makes an uncaught exception a FAIL that runs the BEFORE_FAIL hooks.
 import os
 import sys
 
@@ -28,6 +29,18 @@ def fail(message):
         hook()
     print("FAIL: " + message)
     leave(1)
+
+
+def _fail_on_uncaught_exception(kind, value, trace):
+    # An exception nobody caught (e.g. simple.Show raising when a pvserver died) goes through
+    # fail(), so that the BEFORE_FAIL hooks report what the helper processes logged.
+    import traceback
+
+    traceback.print_exception(kind, value, trace)
+    fail("uncaught %s: %s" % (kind.__name__, value))
+
+
+sys.excepthook = _fail_on_uncaught_exception
 
 
 def skip(message):

@@ -32,8 +32,8 @@ import time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from PluginTestKit import BEFORE_FAIL, BEFORE_LEAVE, fail, leave, skip  # noqa: E402
 
-SERVER = []  # the pvserver this test started, if any; ended with the test
-SERVER_LOGS = []  # its log files
+SERVER = []  # the pvservers this test started (one; more after a failed start); ended with it
+SERVER_LOGS = []  # their log files, in the same order
 
 
 def enzo_transfer(lo, hi):
@@ -115,22 +115,27 @@ def stop_servers():
                 server.kill()
 
 
-def repeat_server_x_refusal():
-    # An X refusal inside our pvserver shows only in its log: repeat its line here, where
-    # RetryOnXFailure.py (which reruns a test the X server refused) can see it.
-    for path in SERVER_LOGS:
+def report_servers():
+    # What happened inside our pvserver shows only in its log: repeat an X refusal line here,
+    # where RetryOnXFailure.py (which reruns a test the X server refused) can see it, and the end
+    # of the log of a pvserver that is gone (its exit code says whether it crashed).
+    for server, path in zip(SERVER, SERVER_LOGS):
         try:
             with open(path, errors="replace") as f:
-                for line in f:
-                    if "bad X server connection" in line:
-                        print("pvserver log: " + line.rstrip())
-                        break
+                lines = f.readlines()
         except OSError:
-            pass
+            continue
+        for line in lines:
+            if "bad X server connection" in line:
+                print("pvserver log: " + line.rstrip())
+                break
+        if server.poll() is not None:
+            print("pvserver ended with exit code %s; its log (%s) ends:\n%s"
+                  % (server.returncode, path, "".join(lines[-15:])))
 
 
 BEFORE_LEAVE.append(stop_servers)
-BEFORE_FAIL.append(repeat_server_x_refusal)
+BEFORE_FAIL.append(report_servers)
 
 
 def read_png(path):
@@ -230,11 +235,11 @@ def start_server(pvserver, log_path):
     for attempt in range(3):
         port = free_port()
         log = open(log_path, "w")
-        SERVER_LOGS.append(log_path)
         server = subprocess.Popen([pvserver, "--force-offscreen-rendering",
                                    "--server-port=%d" % port], stdout=log,
                                   stderr=subprocess.STDOUT)
         SERVER.append(server)
+        SERVER_LOGS.append(log_path)
         deadline = time.time() + 60.0
         while server.poll() is None and time.time() < deadline:
             with open(log_path) as f:
@@ -250,11 +255,9 @@ def start_server(pvserver, log_path):
     fail("pvserver did not start (see %s)" % log_path)
 
 
-def server_died(server, log_path):
-    """Fails with the end of the server's log when our pvserver is gone."""
+def server_died(server):
+    """Fails (report_servers prints the end of its log) when our pvserver is gone."""
     if server is not None and server.poll() is not None:
-        with open(log_path) as f:
-            print("pvserver log (end):\n" + "".join(f.readlines()[-15:]))
         fail("pvserver ended unexpectedly (exit code %s)" % server.returncode)
 
 
@@ -365,7 +368,7 @@ def main():
 
     # First render, then a camera change and a colour-map change: none may rebuild the textures.
     simple.Render(view)
-    server_died(server, server_log)
+    server_died(server)
     error = info_property(display, "SinglePassRenderError")
     if error:
         if "OpenGL" in error or "context" in error:
@@ -386,7 +389,7 @@ def main():
     shot = os.path.join(outdir, "%s-paraview.png" % label)
     simple.SaveScreenshot(shot, view, ImageResolution=[200, 200], TransparentBackground=0)
     pv_seconds = time.time() - started
-    server_died(server, server_log)
+    server_died(server)
 
     error = info_property(display, "SinglePassRenderError")
     if error:
