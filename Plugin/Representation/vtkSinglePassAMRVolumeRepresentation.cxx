@@ -13,15 +13,19 @@
 #include "vtkObjectFactory.h"
 #include "vtkOverlappingAMR.h"
 #include "vtkPVLODVolume.h"
+#include "vtkPVLogger.h"
 #include "vtkPVRenderView.h"
 #include "vtkProcessModule.h"
 #include "vtkRenderer.h"
 #include "vtkScalarsToColors.h"
 #include "vtkSinglePassAMRGather.h"
+#include "vtkSinglePassAMRRegionSplit.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
 #include "vtkStructuredData.h"
 #include "vtkContourValues.h"
 #include "vtkVolumeProperty.h"
+
+#include <algorithm>
 
 namespace
 {
@@ -116,11 +120,38 @@ int vtkSinglePassAMRVolumeRepresentation::RequestData(
   }
 
   // Several ranks (pvbatch or pvserver under mpiexec): each holds the whole metadata but only
-  // some blocks' data. Rank 0 gathers every block and renders the whole volume; the other ranks
-  // render nothing (their images are empty, so any compositing order gives rank 0's image).
+  // some blocks' data. pvbatch: each rank takes its region of the hierarchy and renders it; its
+  // bounds are the region's, which order the ranks' images for compositing. Otherwise rank 0
+  // gathers every block and renders the whole volume; the other ranks render nothing (their
+  // images are empty, so any compositing order gives rank 0's image).
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
   this->RendersLocally = true;
-  if (controller && controller->GetNumberOfProcesses() > 1)
+  bool haveRegion = false;
+  double regionBounds[6];
+  if (controller && controller->GetNumberOfProcesses() > 1 &&
+    this->ParallelMode == PARALLEL_REGIONS &&
+    vtkProcessModule::GetProcessType() == vtkProcessModule::PROCESS_BATCH)
+  {
+    // collective; on failure every rank returns null and all gather below
+    std::string error;
+    vtkSmartPointer<vtkOverlappingAMR> region =
+      vtkSinglePassAMRRegionSplit::SplitByRegion(controller, cache, regionBounds, &error);
+    if (region)
+    {
+      vtkVLogF(PARAVIEW_LOG_DATA_MOVEMENT_VERBOSITY(),
+        "AMR single-pass: rank %d renders region [%g, %g] x [%g, %g] x [%g, %g]: %u blocks",
+        controller->GetLocalProcessId(), regionBounds[0], regionBounds[1], regionBounds[2],
+        regionBounds[3], regionBounds[4], regionBounds[5], region->GetTotalNumberOfBlocks());
+      cache = region;
+      haveRegion = true;
+    }
+    else if (controller->GetLocalProcessId() == 0)
+    {
+      vtkErrorMacro("cannot split the AMR hierarchy into per-rank regions (" << error
+                                                                            << "): rank 0 gathers every block and renders alone");
+    }
+  }
+  if (controller && controller->GetNumberOfProcesses() > 1 && !haveRegion)
   {
     std::string error;
     cache = vtkSinglePassAMRGather::GatherBlocks(controller, cache, 0, &error);
@@ -138,7 +169,12 @@ int vtkSinglePassAMRVolumeRepresentation::RequestData(
   if (cache)
   {
     this->Cache = cache;
-    if (cache->GetNumberOfDataSets(0) > 0)
+    if (haveRegion)
+    {
+      // the region, even where its blocks leave gaps: the ranks' bounds must tile the domain
+      std::copy(regionBounds, regionBounds + 6, this->DataBounds);
+    }
+    else if (cache->GetNumberOfDataSets(0) > 0)
     {
       cache->GetBounds(this->DataBounds);
     }
@@ -177,7 +213,8 @@ int vtkSinglePassAMRVolumeRepresentation::ProcessViewRequest(
     vtkPVRenderView::SetGeometryBounds(inInfo, this, this->DataBounds, this->Actor->GetMatrix());
     // Translucent: with several rendering ranks the view composites the ranks' images by
     // alpha blending in visibility order (IceT's ordered compositing; the volume writes no
-    // depth), ordered by each rank's bounds (rank 0: the whole volume; the others: none, an
+    // depth), ordered by each rank's bounds (the geometry bounds above: each rank's region,
+    // which tile the domain; when gathering, rank 0 the whole volume and the others none, an
     // empty image). The data itself is never redistributed by the view.
     // Not when the view cannot render on the ranks (RemoteRenderingAvailable false): the view
     // then renders on one process, and vtkPVRenderView::Render would still redistribute data
@@ -293,6 +330,22 @@ bool vtkSinglePassAMRVolumeRepresentation::RemoveFromView(vtkView* view)
   }
   renderView->GetRenderer()->RemoveActor(this->Actor);
   return this->Superclass::RemoveFromView(view);
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeRepresentation::SetParallelMode(int mode)
+{
+  if (mode != PARALLEL_REGIONS && mode != PARALLEL_GATHER)
+  {
+    vtkErrorMacro("unknown parallel mode " << mode << " (0 regions, 1 gather on rank 0); keeping "
+                                           << this->ParallelMode);
+    return;
+  }
+  if (mode != this->ParallelMode)
+  {
+    this->ParallelMode = mode;
+    this->MarkModified();
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -497,5 +550,6 @@ void vtkSinglePassAMRVolumeRepresentation::PrintSelf(ostream& os, vtkIndent inde
   os << indent << "LODThreshold: " << this->GetLODThreshold() << "\n";
   os << indent << "BlendMode: " << this->GetBlendMode() << "\n";
   os << indent << "RendersLocally: " << this->RendersLocally << "\n";
+  os << indent << "ParallelMode: " << this->ParallelMode << "\n";
   os << indent << "Cache: " << static_cast<void*>(this->Cache.Get()) << "\n";
 }

@@ -24,11 +24,14 @@
  * With one pvserver, ParaView's delivery does the rest: below the remote-render threshold the
  * whole vtkOverlappingAMR is sent to the client, which renders it; above it the server renders
  * and sends the image (both tested). Several MPI ranks (pvbatch or pvserver under mpiexec):
- * each rank holds the whole metadata but only some blocks' data; RequestData gathers every
- * block on rank 0 (vtkSinglePassAMRGather), which renders the whole volume, while the other ranks
- * deliver an empty hierarchy and draw nothing; the view composites the ranks' images with
- * ordered (alpha-blending) compositing. Rank 0 thus holds the whole hierarchy's data; per-rank
- * rendering of convex regions is not implemented.
+ * each rank holds the whole metadata but only some blocks' data. With PARALLEL_REGIONS (the
+ * default; pvbatch only) RequestData splits the root box into one convex region per rank and
+ * redistributes the blocks' parts (vtkSinglePassAMRRegionSplit); each rank renders its region and
+ * reports it as its bounds, and the view composites the ranks' images in visibility order
+ * (IceT's ordered compositing by those bounds). With PARALLEL_GATHER, and always on a
+ * multi-rank pvserver (whose view may deliver the data to the client instead of rendering on
+ * the ranks), rank 0 gathers every block (vtkSinglePassAMRGather) and renders the whole volume
+ * while the other ranks deliver an empty hierarchy and draw nothing.
  * Not handled: block streaming, and LOD geometry while interacting (the mapper's own
  * LODThreshold is the level of detail).
  *
@@ -136,6 +139,21 @@ public:
   void SetMethod(int method);
   vtkGetMacro(Method, int);
 
+  /**
+   * How several MPI ranks share the rendering. PARALLEL_REGIONS: each pvbatch rank renders one
+   * convex region of the domain (regions balance the cells of all levels) and the images are
+   * composited in visibility order. PARALLEL_GATHER: rank 0 gathers all blocks and renders alone.
+   * A multi-rank pvserver always gathers. Changing it re-executes the representation. Values
+   * are stable (the proxy property's values).
+   */
+  enum ParallelModes
+  {
+    PARALLEL_REGIONS = 0,
+    PARALLEL_GATHER = 1,
+  };
+  void SetParallelMode(int mode);
+  vtkGetMacro(ParallelMode, int);
+
   /// The single-pass mapper (for tests and diagnostics).
   vtkSinglePassAMRVolumeMapper* GetVolumeMapper();
   /// The multi-pass mapper (for tests and diagnostics).
@@ -179,10 +197,12 @@ protected:
   vtkSmartPointer<vtkSinglePassAMRVolumeMapper> VolumeMapper;
   vtkSmartPointer<vtkMultiPassAMRVolumeMapper> MultiPassMapper;
   int Method = METHOD_AUTO;
-  /// Shallow copy of the input made by the last RequestData (on rank 0 of several: with the
-  /// blocks of all ranks gathered in; on the other ranks: empty); what the view delivers.
+  int ParallelMode = PARALLEL_REGIONS;
+  /// What the view delivers: a shallow copy of the input made by the last RequestData; with
+  /// several ranks, this rank's region of the hierarchy, or (gathering) the whole hierarchy on
+  /// rank 0 and an empty one on the others.
   vtkSmartPointer<vtkOverlappingAMR> Cache;
-  /// False on the ranks other than 0 when several MPI ranks share the data: they draw nothing.
+  /// False on the ranks other than 0 when gathering on rank 0: they draw nothing.
   bool RendersLocally = true;
   bool ReportedParallelRenderingOff = false;
   std::string LastDataStorage; // GetLastDataStorage's text

@@ -1,22 +1,28 @@
 # MPI-parallel test of the "AMR Single-Pass Volume" representation in pvbatch.
 #
-#   pvpython TestPluginParallel.py MPIEXEC PVBATCH RANKS PLUGIN AMRSP DATASET OUTDIR
+#   pvpython TestPluginParallel.py MPIEXEC PVBATCH RANKS PLUGIN AMRSP DATASET OUTDIR [regions|gather]
 #
 # Runs TestPluginRepresentation.py (same dataset, camera, colour map and checks, including the
 # CPU reference) twice: in pvbatch on one rank, then under `MPIEXEC -np RANKS pvbatch`, where
-# each rank reads only some of the blocks and the representation gathers them on rank 0. Then
-# compares the two screenshots: the parallel one must equal the serial one within the bounds
-# below. Exit codes: 0 pass, 1 fail, 125 skipped (a run skipped: no display, no data).
+# each rank reads only some of the blocks. With `regions` (the default, the representation's
+# default ParallelMode) every rank receives and renders its own box of the domain; the log of
+# that run must show one region per rank, each with blocks, tiling the domain. With `gather`,
+# rank 0 receives every block and renders alone. Then compares the two screenshots: the
+# parallel one must equal the serial one within the bounds below.
+# Exit codes: 0 pass, 1 fail, 125 skipped (a run skipped: no display, no data).
 import os
+import re
 import subprocess
 import sys
 
 SKIP = 125
-# The parallel image is rank 0's, composited by IceT with the other ranks' empty images. Inside
-# the volume it is the serial image; pixels on the volume's silhouette differ, as they do when a
-# pvserver renders (Plugin.ClientServer.remote.*): measured with 2 and 4 ranks on Enzo RMSE
-# 0.15, 0.17 % of the pixels by more than 2 levels; on AMReX (2 ranks) RMSE 1.94, 2.2 %. The
-# bounds are those of the remote-rendering test.
+# The parallel image is the ranks' region images composited by IceT in visibility order (or,
+# gathering, rank 0's image over the others' empty ones). Pixels on the volume's silhouette
+# differ, as they do when a pvserver renders (Plugin.ClientServer.remote.*), and with regions
+# the samples along a ray restart at each region face (a shift below one sample step).
+# Measured, RMSE and pixels differing by more than 2 levels: Enzo 2 ranks 0.33, 0.68 %;
+# 4 ranks 0.46, 1.30 %; gathering 0.15, 0.17 %; AMReX 2 and 4 ranks 1.94, 2.2 % (silhouette).
+# The bounds are those of the remote-rendering test.
 RMSE_BOUND = 3.0
 DIFFERING_BOUND = 0.04
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -24,9 +30,61 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 
 def clean_environment():
     """pvpython initialises MPI as a singleton and exports OpenMPI's variables (OMPI_*, PMIX_*);
-    an mpiexec (or pvbatch) started with them exits at once with code 1 and no output."""
-    return {k: v for k, v in os.environ.items()
-            if not k.startswith(("OMPI_", "PMIX_", "OPAL_", "ORTE_"))}
+    an mpiexec (or pvbatch) started with them exits at once with code 1 and no output.
+    ParaView's data-movement log is switched on: the representation names each rank's region
+    there."""
+    env = {k: v for k, v in os.environ.items()
+           if not k.startswith(("OMPI_", "PMIX_", "OPAL_", "ORTE_"))}
+    env["PARAVIEW_LOG_DATA_MOVEMENT_VERBOSITY"] = "INFO"
+    return env
+
+
+REGION_LINE = re.compile(r"AMR single-pass: rank (\d+) renders region \[(\S+), (\S+)\] x "
+                         r"\[(\S+), (\S+)\] x \[(\S+), (\S+)\]: (\d+) blocks")
+
+
+def check_regions(log_path, ranks, mode):
+    """The ranks' regions from the representation's log lines: one per rank, each holding
+    blocks, disjoint and filling their bounding box (regions mode); none when gathering."""
+    with open(log_path) as f:
+        text = f.read()
+    if "cannot split the AMR hierarchy" in text:
+        print("FAIL: the representation could not split the hierarchy into regions (log %s)"
+              % log_path)
+        sys.exit(1)
+    regions = {}
+    for match in REGION_LINE.finditer(text):
+        rank = int(match.group(1))
+        box = [float(match.group(i)) for i in range(2, 8)]
+        regions[rank] = (box, int(match.group(8)))
+        print("rank %d: region %s, %d blocks" % (rank, box, regions[rank][1]))
+    if mode == "gather":
+        if regions:
+            print("FAIL: ranks rendered their own regions although ParallelMode is gather")
+            sys.exit(1)
+        return
+    if sorted(regions) != list(range(ranks)):
+        print("FAIL: expected one region for each of the %d ranks, found ranks %s (log %s)"
+              % (ranks, sorted(regions), log_path))
+        sys.exit(1)
+    boxes = [box for box, blocks in regions.values()]
+    if any(blocks == 0 for box, blocks in regions.values()):
+        print("FAIL: a rank's region holds no block")
+        sys.exit(1)
+
+    def volume(b):
+        return max(0.0, b[1] - b[0]) * max(0.0, b[3] - b[2]) * max(0.0, b[5] - b[4])
+
+    union = [min(b[0] for b in boxes), max(b[1] for b in boxes), min(b[2] for b in boxes),
+             max(b[3] for b in boxes), min(b[4] for b in boxes), max(b[5] for b in boxes)]
+    overlap = sum(volume([max(a[0], b[0]), min(a[1], b[1]), max(a[2], b[2]), min(a[3], b[3]),
+                          max(a[4], b[4]), min(a[5], b[5])])
+                  for i, a in enumerate(boxes) for b in boxes[i + 1:])
+    covered = sum(volume(b) for b in boxes)
+    if overlap > 1e-9 * volume(union) or abs(covered - volume(union)) > 1e-9 * volume(union):
+        print("FAIL: the regions do not tile their bounding box (overlap %g, covered %g of %g)"
+              % (overlap, covered, volume(union)))
+        sys.exit(1)
 
 
 # pvbatch on several ranks renders in parallel only while every rank passed ParaView's X display
@@ -82,10 +140,12 @@ def run(command, log_path):
 
 
 def main():
-    if len(sys.argv) != 8:
-        print("usage: TestPluginParallel.py MPIEXEC PVBATCH RANKS PLUGIN AMRSP DATASET OUTDIR")
+    if len(sys.argv) not in (8, 9) or sys.argv[8:] not in ([], ["regions"], ["gather"]):
+        print("usage: TestPluginParallel.py MPIEXEC PVBATCH RANKS PLUGIN AMRSP DATASET OUTDIR "
+              "[regions|gather]")
         return 2
-    mpiexec, pvbatch, ranks, plugin, amrsp, dataset, outdir = sys.argv[1:]
+    mpiexec, pvbatch, ranks, plugin, amrsp, dataset, outdir = sys.argv[1:8]
+    mode = sys.argv[8] if len(sys.argv) == 9 else "regions"
     os.makedirs(outdir, exist_ok=True)
     script = [os.path.join(HERE, "TestPluginRepresentation.py"), plugin, amrsp, dataset, outdir]
     pvbatch_args = [pvbatch, "--force-offscreen-rendering"]
@@ -94,8 +154,9 @@ def main():
     if os.geteuid() == 0:
         mpi.append("--allow-run-as-root")  # OpenMPI refuses root without it
     mpi.append("--oversubscribe")  # more ranks than cores on small machines
-    run(mpi + pvbatch_args + MPI_PVBATCH_OPTIONS + script,
-        os.path.join(outdir, "%s-mpi%s.log" % (dataset, ranks)))
+    mpi_log = os.path.join(outdir, "%s-mpi%s.log" % (dataset, ranks))
+    run(mpi + pvbatch_args + MPI_PVBATCH_OPTIONS + script + ["--parallel-mode", mode], mpi_log)
+    check_regions(mpi_log, int(ranks), mode)
 
     import numpy
     from vtkmodules.util.numpy_support import vtk_to_numpy

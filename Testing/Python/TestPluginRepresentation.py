@@ -274,13 +274,22 @@ def stop_server(server):
 
 def main():
     usage = ("usage: TestPluginRepresentation.py PLUGIN AMRSP enzo|amrex OUTDIR "
-             "[--server PVSERVER [--remote-rendering]]")
+             "[--parallel-mode regions|gather] [--server PVSERVER [--remote-rendering]]")
     args = sys.argv[1:]
     if len(args) < 4:
         print(usage)
         return 2
     plugin, amrsp, name, outdir = args[:4]
     options = args[4:]
+    # the representation's ParallelMode (several pvbatch ranks): 0 each rank renders its region,
+    # 1 rank 0 gathers every block
+    parallel_mode = None
+    if options[:1] == ["--parallel-mode"] and len(options) >= 2:
+        parallel_mode = {"regions": 0, "gather": 1}.get(options[1])
+        if parallel_mode is None:
+            print(usage)
+            return 2
+        options = options[2:]
     pvserver = None
     if options[:1] == ["--server"] and len(options) >= 2:
         pvserver = options[1]
@@ -365,6 +374,8 @@ def main():
     diagonal = math.sqrt(sum((bounds[2 * i + 1] - bounds[2 * i]) ** 2 for i in range(3)))
     display.ScalarOpacityUnitDistance = diagonal / 100.0  # amrsp's default unit distance
     display.SampleDistanceFactor = SAMPLE_DISTANCE_FACTOR
+    if parallel_mode is not None:
+        display.ParallelMode = parallel_mode
 
     # First render, then a camera change and a colour-map change: none may rebuild the textures.
     simple.Render(view)

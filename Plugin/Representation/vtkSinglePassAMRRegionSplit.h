@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * Redistributing a distributed vtkOverlappingAMR into one convex region per rank (private to the
+ * representation module), for sort-last parallel rendering.
+ *
+ * ParaView's parallel AMR readers give every rank the whole hierarchy's metadata but the cell
+ * data of only some blocks. Here the root box is split into one box of level-0 cells per rank
+ * (amrsp::PartitionRootBox: recursive bisection on level-0 cell planes, balancing the cells of all
+ * levels), and every rank receives the part of every block inside its region, whichever rank
+ * loaded that block. Each rank then renders its region alone; as the regions are disjoint
+ * boxes, IceT's ordered compositing by the ranks' bounds gives the whole image.
+ */
+#ifndef vtkSinglePassAMRRegionSplit_h
+#define vtkSinglePassAMRRegionSplit_h
+
+#include "vtkSmartPointer.h" // for the return value
+
+#include <string> // for the error message
+
+class vtkMultiProcessController;
+class vtkOverlappingAMR;
+
+namespace vtkSinglePassAMRRegionSplit
+{
+/**
+ * Collective over all ranks of `controller` (every rank calls it, in the same order with respect
+ * to other collective calls). Returns a new hierarchy with the same levels, origin, spacings and
+ * refinement ratios as `local`, holding every block clipped to this rank's region (cells on
+ * level-0 cell planes, so no cell is split), with all of the block's cell and point arrays; a
+ * block loaded on several ranks is taken from the lowest one. `regionBounds` receives the region
+ * in world coordinates (uninitialized bounds, vtkMath::UninitializeBounds, for an empty region:
+ * more ranks than level-0 cells). Memory: each rank holds its region's part of the hierarchy,
+ * plus, during the exchange, the pieces it sends.
+ *
+ * Returns null on every rank (and sets `error` to one line naming the problem) when the ranks'
+ * metadata differ, a rank has none (`local` null), or the hierarchy cannot be split (no blocks,
+ * non-integer refinement); the caller then gathers instead.
+ */
+vtkSmartPointer<vtkOverlappingAMR> SplitByRegion(vtkMultiProcessController* controller,
+  vtkOverlappingAMR* local, double regionBounds[6], std::string* error);
+}
+
+#endif
