@@ -22,6 +22,7 @@
 #include "vtkSinglePassAMRRegionSplit.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
 #include "vtkStructuredData.h"
+#include "vtkUniformGrid.h"
 #include "vtkContourValues.h"
 #include "vtkVolumeProperty.h"
 
@@ -138,10 +139,21 @@ int vtkSinglePassAMRVolumeRepresentation::RequestData(
       vtkSinglePassAMRRegionSplit::SplitByRegion(controller, cache, regionBounds, &error);
     if (region)
     {
+      long long cells = 0;
+      for (unsigned int level = 0; level < region->GetNumberOfLevels(); ++level)
+      {
+        for (unsigned int index = 0; index < region->GetNumberOfDataSets(level); ++index)
+        {
+          vtkUniformGrid* grid = region->GetDataSet(level, index);
+          cells += grid ? static_cast<long long>(grid->GetNumberOfCells()) : 0;
+        }
+      }
       vtkVLogF(PARAVIEW_LOG_DATA_MOVEMENT_VERBOSITY(),
-        "AMR single-pass: rank %d renders region [%g, %g] x [%g, %g] x [%g, %g]: %u blocks",
+        "AMR single-pass: rank %d renders region [%g, %g] x [%g, %g] x [%g, %g]: %u blocks, "
+        "%lld cells",
         controller->GetLocalProcessId(), regionBounds[0], regionBounds[1], regionBounds[2],
-        regionBounds[3], regionBounds[4], regionBounds[5], region->GetTotalNumberOfBlocks());
+        regionBounds[3], regionBounds[4], regionBounds[5], region->GetTotalNumberOfBlocks(),
+        cells);
       cache = region;
       haveRegion = true;
     }

@@ -40,7 +40,8 @@ def clean_environment():
 
 
 REGION_LINE = re.compile(r"AMR single-pass: rank (\d+) renders region \[(\S+), (\S+)\] x "
-                         r"\[(\S+), (\S+)\] x \[(\S+), (\S+)\]: (\d+) blocks")
+                         r"\[(\S+), (\S+)\] x \[(\S+), (\S+)\]: (\d+) blocks, "
+                         r"(\d+) cells")
 
 
 def check_regions(log_path, ranks, mode):
@@ -57,7 +58,8 @@ def check_regions(log_path, ranks, mode):
         rank = int(match.group(1))
         box = [float(match.group(i)) for i in range(2, 8)]
         regions[rank] = (box, int(match.group(8)))
-        print("rank %d: region %s, %d blocks" % (rank, box, regions[rank][1]))
+        print("rank %d: region %s, %d blocks, %s cells" % (rank, box, regions[rank][1],
+                                                           match.group(9)))
     if mode == "gather":
         if regions:
             print("FAIL: ranks rendered their own regions although ParallelMode is gather")
