@@ -209,6 +209,18 @@ vtkSmartPointer<vtkOverlappingAMR> vtkSinglePassAMRRegionSplit::SplitByRegion(
     return nullptr;
   }
   const std::vector<amrsp::Box> regions = amrsp::PartitionRootBox(boxes, ranks);
+  if (std::any_of(regions.begin(), regions.end(), [](const amrsp::Box& b) { return b.Empty(); }))
+  {
+    if (error)
+    {
+      const glm::i64vec3 e = boxes.RootCells().Extent();
+      std::ostringstream message;
+      message << "more ranks (" << ranks << ") than the root box of " << e.x << " x " << e.y
+              << " x " << e.z << " level-0 cells can be split into";
+      *error = message.str();
+    }
+    return nullptr;
+  }
   const amrsp::Box& own = regions[static_cast<std::size_t>(rank)];
   if (!own.Empty())
   {

@@ -28,13 +28,14 @@ namespace vtkSinglePassAMRRegionSplit
  * refinement ratios as `local`, holding every block clipped to this rank's region (cells on
  * level-0 cell planes, so no cell is split), with all of the block's cell and point arrays; a
  * block loaded on several ranks is taken from the lowest one. `regionBounds` receives the region
- * in world coordinates (uninitialized bounds, vtkMath::UninitializeBounds, for an empty region:
- * more ranks than level-0 cells). Memory: each rank holds its region's part of the hierarchy,
+ * in world coordinates; the ranks' regions tile the root box. A region may hold no block where
+ * the level-0 grids leave gaps. Memory: each rank holds its region's part of the hierarchy,
  * plus, during the exchange, the pieces it sends.
  *
  * Returns null on every rank (and sets `error` to one line naming the problem) when the ranks'
  * metadata differ, a rank has none (`local` null), or the hierarchy cannot be split (no blocks,
- * non-integer refinement); the caller then gathers instead.
+ * non-integer refinement, more ranks than level-0 cells to split); the caller then gathers
+ * instead.
  */
 vtkSmartPointer<vtkOverlappingAMR> SplitByRegion(vtkMultiProcessController* controller,
   vtkOverlappingAMR* local, double regionBounds[6], std::string* error);

@@ -156,6 +156,9 @@ int vtkSinglePassAMRVolumeRepresentation::RequestData(
         cells);
       cache = region;
       haveRegion = true;
+      // a region in a gap between level-0 grids holds nothing: draw nothing there (the mapper
+      // would report an empty hierarchy), but keep the region as this rank's bounds
+      this->RendersLocally = region->GetTotalNumberOfBlocks() > 0;
     }
     else if (controller->GetLocalProcessId() == 0)
     {
