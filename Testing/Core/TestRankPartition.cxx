@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // PartitionRootBox: the regions tile the root box, every grid cell falls in exactly one region,
-// the cuts balance the cells, and degenerate boxes give empty parts.
+// the cuts balance the cells, and degenerate boxes give empty parts. Clipping rays to a region:
+// the region's ghosted pieces render exactly what the whole hierarchy renders there.
 #include "TestHierarchies.h"
 #include "amrsp/RankPartition.h"
+#include "amrsp/Render.h"
 
 #include <gtest/gtest.h>
 
@@ -15,6 +17,48 @@ namespace
 {
 
 /// Cells of all grids inside `region` (each grid clipped to it).
+/// The hierarchy a region's rank holds: every grid cut to `piece(grid)`, values copied
+/// (cell-centred).
+template <typename Piece>
+Hierarchy PiecesOf(const Hierarchy& h, Piece piece)
+{
+  Hierarchy out = h;
+  out.Grids.clear();
+  out.Values.clear();
+  for (std::size_t g = 0; g < h.Grids.size(); ++g)
+  {
+    const Grid& grid = h.Grids[g];
+    const Box p = piece(grid);
+    if (p.Empty())
+    {
+      continue;
+    }
+    const glm::i64vec3 e = grid.Cells.Extent(), pe = p.Extent();
+    GridValues values;
+    for (int64_t k = p.Lo.z; k < p.Hi.z; ++k)
+      for (int64_t j = p.Lo.y; j < p.Hi.y; ++j)
+        for (int64_t i = p.Lo.x; i < p.Hi.x; ++i)
+        {
+          const glm::i64vec3 c = glm::i64vec3(i, j, k) - grid.Cells.Lo;
+          values.push_back(h.Values[g][static_cast<std::size_t>((c.z * e.y + c.y) * e.x + c.x)]);
+        }
+    EXPECT_EQ(static_cast<int64_t>(values.size()), pe.x * pe.y * pe.z);
+    out.Grids.push_back(Grid{ grid.Level, p, grid.SourceId });
+    out.Values.push_back(std::move(values));
+  }
+  return out;
+}
+
+double LargestDifference(const Image& a, const Image& b)
+{
+  double largest = 0.0;
+  for (std::size_t k = 0; k < a.Pixels.size(); ++k)
+  {
+    largest = std::max(largest, static_cast<double>(glm::length(a.Pixels[k] - b.Pixels[k])));
+  }
+  return largest;
+}
+
 int64_t CellsIn(const Hierarchy& h, const Box& region)
 {
   int64_t n = 0;
@@ -140,4 +184,66 @@ TEST(RankPartition, RejectsBadArguments)
   Hierarchy h;
   h.Grids.push_back(Grid{ 0, MakeBox(0, 0, 0, 4, 4, 4) });
   EXPECT_THROW(PartitionRootBox(h, 0), std::invalid_argument);
+}
+
+namespace
+{
+
+/// Reference images of the paper example clipped to the upper region of a 2-part split: the whole
+/// hierarchy, its ghosted pieces (what a rank holds) and its pieces without ghosts.
+struct ClippedImages
+{
+  Image Whole, Ghosted, Bare;
+  double Covered = 0.0; // share of pixels whose rays cross the region
+};
+
+ClippedImages RenderRegion(bool smooth, bool shade)
+{
+  const Hierarchy h = amrsp::test::PaperExample();
+  const std::vector<Box> regions = PartitionRootBox(h, 2);
+  const Box region = regions[1];
+  RenderSettings s = amrsp::test::SmallView(h);
+  s.Threads = 1;
+  s.SmoothCellData = smooth;
+  s.Light.Shade = shade;
+  s.Clip = true;
+  s.ClipLo = h.WorldLo(region, 0);
+  s.ClipHi = h.WorldHi(region, 0);
+  ClippedImages out;
+  out.Whole = RenderReference(h, s);
+  out.Ghosted = RenderReference(
+    PiecesOf(h, [&](const Grid& g) { return GhostedPiece(h, g.Cells, g.Level, region); }), s);
+  out.Bare = RenderReference(
+    PiecesOf(h, [&](const Grid& g) { return ClipToRegion(h, g.Cells, g.Level, region); }), s);
+  RenderSettings unclipped = s;
+  unclipped.Clip = false;
+  const Image all = RenderReference(h, unclipped);
+  int covered = 0;
+  for (std::size_t k = 0; k < all.Pixels.size(); ++k)
+  {
+    covered += out.Whole.Pixels[k].a > 0.0f ? 1 : 0;
+  }
+  out.Covered = static_cast<double>(covered) / static_cast<double>(all.Pixels.size());
+  EXPECT_GT(LargestDifference(all, out.Whole), 0.05) << "the clip box changes nothing";
+  return out;
+}
+
+} // namespace
+
+TEST(RankPartition, ClippedRaysSeeTheRegionOnly)
+{
+  const ClippedImages nearest = RenderRegion(false, false);
+  EXPECT_GT(nearest.Covered, 0.1);
+  // nearest cells: the region's cells alone give the same image
+  EXPECT_LT(LargestDifference(nearest.Whole, nearest.Ghosted), 1e-6);
+  EXPECT_LT(LargestDifference(nearest.Whole, nearest.Bare), 1e-6);
+}
+
+TEST(RankPartition, GhostCellsKeepSmoothShadingAtTheRegionFace)
+{
+  const ClippedImages smooth = RenderRegion(true, true);
+  // smooth corners and gradient neighbours read across the face: the ghosted pieces give the
+  // whole hierarchy's image, the bare pieces do not
+  EXPECT_LT(LargestDifference(smooth.Whole, smooth.Ghosted), 1e-6);
+  EXPECT_GT(LargestDifference(smooth.Whole, smooth.Bare), 0.01);
 }

@@ -133,4 +133,23 @@ Box ClipToRegion(const Hierarchy& h, const Box& cells, int level, const Box& reg
   return clipped.Empty() ? Box{ cells.Lo, cells.Lo } : clipped;
 }
 
+glm::i64vec3 RegionGhostWidth(const Hierarchy& h, int level)
+{
+  return level == 0 ? glm::i64vec3(2) : glm::i64vec3(h.RefinementRatio[level]) * int64_t(2);
+}
+
+Box GhostedPiece(const Hierarchy& h, const Box& cells, int level, const Box& region)
+{
+  if (region.Empty())
+  {
+    return Box{ cells.Lo, cells.Lo };
+  }
+  Box grown = h.ToLevel(region, 0, level);
+  const glm::i64vec3 ghost = RegionGhostWidth(h, level);
+  grown.Lo -= ghost;
+  grown.Hi += ghost;
+  const Box piece = grown.Intersection(cells);
+  return piece.Empty() ? Box{ cells.Lo, cells.Lo } : piece;
+}
+
 } // namespace amrsp

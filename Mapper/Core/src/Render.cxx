@@ -685,6 +685,36 @@ void SampleRayKdTree(const Hierarchy& h, const EncodedKdTree& tree, const glm::d
   }
 }
 
+bool ClipInterval(const RenderSettings& s, const glm::dvec3& wo, const glm::dvec3& wd, double& t0,
+  double& t1)
+{
+  t0 = -std::numeric_limits<double>::infinity();
+  t1 = std::numeric_limits<double>::infinity();
+  if (!s.Clip)
+  {
+    return true;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    if (wd[a] == 0.0)
+    {
+      if (wo[a] < s.ClipLo[a] || wo[a] > s.ClipHi[a])
+      {
+        return false;
+      }
+      continue;
+    }
+    double a0 = (s.ClipLo[a] - wo[a]) / wd[a], a1 = (s.ClipHi[a] - wo[a]) / wd[a];
+    if (a0 > a1)
+    {
+      std::swap(a0, a1);
+    }
+    t0 = std::max(t0, a0);
+    t1 = std::min(t1, a1);
+  }
+  return t0 < t1;
+}
+
 Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSettings& s,
   const BrickAtlas* atlas)
 {
@@ -769,7 +799,12 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
         tMax = static_cast<float>(hit);
         background = hitColour;
       }
-      TraverseKdTree(tree, o, d, 0.0f, tMax, lod, segments);
+      double clip0, clip1;
+      if (ClipInterval(s, wo, wd, clip0, clip1))
+      {
+        TraverseKdTree(tree, o, d, static_cast<float>(std::max(0.0, clip0)),
+          static_cast<float>(std::min(static_cast<double>(tMax), clip1)), lod, segments);
+      }
       rowStats.Rays += segments.empty() ? 0 : 1;
       Accumulator<float> acc(s.Blend);
       IsoSurfaceTracker iso(shading, lookup, isoValues, -wd);
@@ -1002,6 +1037,10 @@ Image RenderReference(const Hierarchy& h, const RenderSettings& s)
         tEnter = std::max(tEnter, t0);
         tExit = std::min(tExit, t1);
       }
+      double clip0, clip1;
+      hit = hit && ClipInterval(s, wo, wd, clip0, clip1);
+      tEnter = std::max(tEnter, clip0);
+      tExit = std::min(tExit, clip1);
       Accumulator<double> acc(s.Blend);
       IsoSurfaceTracker iso(shading, lookup, isoValues, -wd);
       glm::dvec3 background = s.Background, opaqueColour;

@@ -27,4 +27,15 @@ std::vector<Box> PartitionRootBox(const Hierarchy& h, int parts);
 /// level): the part of a grid a region's rank renders. Empty when they do not overlap.
 Box ClipToRegion(const Hierarchy& h, const Box& cells, int level, const Box& region);
 
+/// Ghost width of `level` around a region, in cells of that level per axis: two cells of the next
+/// coarser level (two cells for level 0). Samples near a region face read data up to two cells
+/// of their own level away (smooth corners and gradient neighbours), and under proper nesting
+/// the coarsest samples next to level-l data are of level l - 1.
+glm::i64vec3 RegionGhostWidth(const Hierarchy& h, int level);
+
+/// The part of a grid (`cells`, a box of `level`) that the rank of `region` (level-0 cells) needs
+/// when it clips its rays to the region: the region grown by RegionGhostWidth and intersected
+/// with the grid. Empty when the grid is farther away.
+Box GhostedPiece(const Hierarchy& h, const Box& cells, int level, const Box& region);
+
 } // namespace amrsp

@@ -159,7 +159,20 @@ struct RenderSettings
   Lighting Light;
   /// Iso-values of BlendMode::IsoSurface (at most MaxIsoValues), in the scalar's units.
   std::vector<double> IsoValues;
+  /// Clip box, world units (vtkVolumeMapper's cropping of the central sub-volume,
+  /// VTK_CROP_SUBVOLUME): with Clip on, every ray is integrated only where it lies inside
+  /// [ClipLo, ClipHi]; samples are placed as if the data ended at the box (a segment starts at
+  /// the box face). Point lookups (smooth corners, gradient neighbours, shadow rays, iso-surface
+  /// refinement) still read data outside it.
+  bool Clip = false;
+  glm::dvec3 ClipLo{ 0.0 };
+  glm::dvec3 ClipHi{ 0.0 };
 };
+
+/// The ray parameter interval [t0, t1] (world distance along the unit direction `wd` from `wo`)
+/// inside the settings' clip box: false when the ray misses it; (-inf, inf) without Clip.
+bool ClipInterval(const RenderSettings& s, const glm::dvec3& wo, const glm::dvec3& wd, double& t0,
+  double& t1);
 
 /// RGBA float image, row 0 at the bottom. Alpha is the accumulated opacity.
 struct Image
