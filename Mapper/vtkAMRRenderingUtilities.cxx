@@ -62,6 +62,36 @@ void ToColumnMajor(vtkMatrix4x4* m, float out[16])
 }
 
 //------------------------------------------------------------------------------
+void ClipBox(vtkVolumeMapper* mapper, const glm::dvec3& origin, const glm::dvec3& spacing0,
+  const glm::vec3& rootLo, const glm::vec3& rootHi, glm::vec3& lo, glm::vec3& hi,
+  std::string& warning)
+{
+  lo = rootLo;
+  hi = rootHi;
+  if (!mapper->GetCropping())
+  {
+    return;
+  }
+  if (mapper->GetCroppingRegionFlags() != VTK_CROP_SUBVOLUME)
+  {
+    std::ostringstream message;
+    message << "cropping region flags 0x" << std::hex << mapper->GetCroppingRegionFlags()
+            << " are not supported (only VTK_CROP_SUBVOLUME, the central sub-volume): "
+               "cropping is ignored";
+    warning = message.str();
+    return;
+  }
+  const double* planes = mapper->GetCroppingRegionPlanes();
+  for (int a = 0; a < 3; ++a)
+  {
+    const double p0 = (std::min(planes[2 * a], planes[2 * a + 1]) - origin[a]) / spacing0[a];
+    const double p1 = (std::max(planes[2 * a], planes[2 * a + 1]) - origin[a]) / spacing0[a];
+    lo[a] = std::max(rootLo[a], static_cast<float>(p0));
+    hi[a] = std::max(lo[a], std::min(rootHi[a], static_cast<float>(p1)));
+  }
+}
+
+//------------------------------------------------------------------------------
 bool BuildPackedHierarchy(vtkOverlappingAMR* amr, const std::string& array, int component,
   int packLimit, PackedHierarchy& out, std::string& error)
 {

@@ -35,6 +35,7 @@ class vtkRenderWindow;
 class vtkRenderer;
 class vtkTextureObject;
 class vtkVolume;
+class vtkVolumeMapper;
 class vtkVolumeProperty;
 class vtkWindow;
 
@@ -50,6 +51,17 @@ std::string RequestedArray(vtkOverlappingAMR* amr, int accessMode, const char* n
 
 /// Column-major float copy of a row-major vtkMatrix4x4, as glUniformMatrix4fv expects.
 void ToColumnMajor(vtkMatrix4x4* m, float out[16]);
+
+/**
+ * The box the rays are integrated in, index units: the root box [rootLo, rootHi], intersected
+ * with vtkVolumeMapper's cropping planes (model coordinates) when cropping is on with the flags
+ * VTK_CROP_SUBVOLUME (the central sub-volume only). Other cropping flags are not supported:
+ * the root box is returned and `warning` names the flags (else it is left empty). An empty
+ * intersection gives a flat box (lo = hi on an axis: no ray integrates anything).
+ */
+void ClipBox(vtkVolumeMapper* mapper, const glm::dvec3& origin, const glm::dvec3& spacing0,
+  const glm::vec3& rootLo, const glm::vec3& rootHi, glm::vec3& lo, glm::vec3& hi,
+  std::string& warning);
 
 /**
  * The CPU side of the packing storage (paper, sections 4.1 and 5.1): the hierarchy's structure,

@@ -150,6 +150,7 @@ public:
 
   std::string FailedFragmentSource; // do not retry a program that failed to compile
   std::string LastError;
+  std::string CropWarning; // the unsupported-cropping warning last given (said once)
 
   /// CPU side: convert, build the tree, pack, and list the nodes' draws. Returns false with
   /// BuildError set on failure.
@@ -178,9 +179,12 @@ public:
 
   /// Clears the accumulation target and draws the ordered nodes into it, front to back. The
   /// program, its per-frame uniforms, the textures and the cube's vertex array are ready;
-  /// `steps` is the sampling distance D of each level in model units.
+  /// `steps` is the sampling distance D of each level in model units. Each node's box is
+  /// intersected with [clipLo, clipHi] (index units; the cropping sub-volume or the root box),
+  /// and nodes outside it are not drawn.
   void DrawNodes(vtkOpenGLState* state, vtkShaderProgram* program,
-    const utilities::ViewGeometry& view, const std::vector<float>& steps);
+    const utilities::ViewGeometry& view, const std::vector<float>& steps, const glm::vec3& clipLo,
+    const glm::vec3& clipHi);
 
   /// Composites the accumulation target over the current framebuffer's viewport with one
   /// full-screen quad (premultiplied "over": ONE, ONE_MINUS_SRC_ALPHA).
@@ -379,7 +383,8 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::EnsureAccumulation(
 
 //------------------------------------------------------------------------------
 void vtkMultiPassAMRVolumeMapper::vtkInternals::DrawNodes(vtkOpenGLState* state,
-  vtkShaderProgram* program, const utilities::ViewGeometry& view, const std::vector<float>& steps)
+  vtkShaderProgram* program, const utilities::ViewGeometry& view, const std::vector<float>& steps,
+  const glm::vec3& clipLo, const glm::vec3& clipHi)
 {
   // per-node uniforms are set directly through their locations (thousands per frame)
   const GLint nodeLo = program->FindUniform("amrspNodeLo");
@@ -426,8 +431,20 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::DrawNodes(vtkOpenGLState* state,
   for (const int32_t d : this->Order)
   {
     const NodeDraw& node = this->Draws[static_cast<std::size_t>(d)];
-    glUniform3fv(nodeLo, 1, node.Lo);
-    glUniform3fv(nodeHi, 1, node.Hi);
+    float lo[3], hi[3];
+    bool inside = true;
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = std::max(node.Lo[a], clipLo[a]);
+      hi[a] = std::min(node.Hi[a], clipHi[a]);
+      inside = inside && lo[a] < hi[a];
+    }
+    if (!inside)
+    {
+      continue;
+    }
+    glUniform3fv(nodeLo, 1, lo);
+    glUniform3fv(nodeHi, 1, hi);
     glUniform3fv(cellSize, 1, node.CellSize);
     glUniform1f(step, steps[static_cast<std::size_t>(node.Level)]);
     glUniform3iv(firstCell, 1, node.FirstCell);
@@ -811,7 +828,17 @@ void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   program->SetUniform3f("amrspAtlasSize", atlasSize);
 
   // ---- one draw per data node, front to back, into the accumulation target
-  in.DrawNodes(state, program, view, steps);
+  const amrsp::Box root = h.RootCells();
+  glm::vec3 clipLo, clipHi;
+  std::string cropWarning;
+  utilities::ClipBox(this, h.Origin, h.Spacing0, glm::vec3(root.Lo), glm::vec3(root.Hi), clipLo,
+    clipHi, cropWarning);
+  if (!cropWarning.empty() && cropWarning != in.CropWarning)
+  {
+    vtkWarningMacro(<< cropWarning);
+  }
+  in.CropWarning = cropWarning;
+  in.DrawNodes(state, program, view, steps, clipLo, clipHi);
   in.Atlas->Deactivate();
   in.Transfer.GetTexture()->Deactivate();
   if (useDepth)

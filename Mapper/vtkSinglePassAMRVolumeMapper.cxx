@@ -1131,6 +1131,16 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   program->SetUniform3f("amrspSpacing0", spacing);
   program->SetUniform3f("amrspRootLo", &in.RootLo.x);
   program->SetUniform3f("amrspRootHi", &in.RootHi.x);
+  glm::vec3 clipLo, clipHi;
+  std::string cropWarning;
+  vtkAMRRenderingUtilities::ClipBox(
+    this, in.Origin, in.Spacing0, in.RootLo, in.RootHi, clipLo, clipHi, cropWarning);
+  if (!cropWarning.empty())
+  {
+    warnOnce(cropWarning);
+  }
+  program->SetUniform3f("amrspClipLo", &clipLo.x);
+  program->SetUniform3f("amrspClipHi", &clipHi.x);
   program->SetUniform1iv("amrspRootLoFinest", 3, in.RootLoFinest);
   program->SetUniform1iv("amrspRootHiFinest", 3, in.RootHiFinest);
   program->SetUniform3fv("amrspLevelCellSize", levels, &cells[0].x);

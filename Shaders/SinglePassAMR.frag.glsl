@@ -78,6 +78,8 @@ uniform vec3 amrspOrigin;   // model position of level-0 index (0, 0, 0)
 uniform vec3 amrspSpacing0; // model size of a level-0 cell
 uniform vec3 amrspRootLo;   // root box, level-0 index units
 uniform vec3 amrspRootHi;
+uniform vec3 amrspClipLo;   // where rays are integrated, level-0 index units: the root box, or
+uniform vec3 amrspClipHi;   // its intersection with vtkVolumeMapper's cropping sub-volume
 uniform int amrspRootLoFinest[3]; // root box in cells of the finest level (exact integers)
 uniform int amrspRootHiFinest[3];
 uniform vec3 amrspLevelCellSize[AMRSP_LEVEL_COUNT];      // cell size, level-0 index units
@@ -599,13 +601,15 @@ void main()
   vec3 ro = (entry - amrspOrigin) / amrspSpacing0;
   vec3 rd = dirMC / amrspSpacing0;
 
-  float tEnter, tExit;
-  if (!amrspIntersectBox(amrspRootLo, amrspRootHi, ro, rd, tEnter, tExit))
+  float tEnter, tExit, clipEnter, clipExit;
+  if (!amrspIntersectBox(amrspRootLo, amrspRootHi, ro, rd, tEnter, tExit) ||
+      !amrspIntersectBox(amrspClipLo, amrspClipHi, ro, rd, clipEnter, clipExit))
   {
     discard;
   }
-  float t = max(tEnter, 0.0);
-  float tEnd = min(tExit, tMax);
+  // the traversal still starts from the root node: the clip box only bounds [t, tEnd)
+  float t = max(max(tEnter, clipEnter), 0.0);
+  float tEnd = min(min(tExit, clipExit), tMax);
   ivec3 rootLoF = ivec3(amrspRootLoFinest[0], amrspRootLoFinest[1], amrspRootLoFinest[2]);
   ivec3 rootHiF = ivec3(amrspRootHiFinest[0], amrspRootHiFinest[1], amrspRootHiFinest[2]);
 

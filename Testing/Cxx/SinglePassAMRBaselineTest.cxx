@@ -122,7 +122,7 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
   {
     std::vector<std::string> known = { "array", "centering", "size", "azimuth", "elevation",
       "zoom", "tf", "scale", "unit-distance", "sample-factor", "reference-sample-factor", "lod",
-      "blend", "opacity-threshold", "empty-space-skipping", "interpolation" };
+      "blend", "opacity-threshold", "empty-space-skipping", "interpolation", "crop" };
     known.insert(known.end(), LightingOptions.begin(), LightingOptions.end());
     const Arguments a = ParseArguments(static_cast<int>(args.size()), args.data(), 1, known, {});
     DatasetRequest request;

@@ -76,6 +76,30 @@ double Arguments::GetNumber(const std::string& key, double fallback) const
   throw UsageError{ "--" + key + " expects a number, got '" + it->second + "'" };
 }
 
+std::vector<double> Arguments::GetNumbers(const std::string& key, const std::string& fallback) const
+{
+  const std::string text = Get(key, fallback);
+  std::vector<double> out;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');)
+  {
+    try
+    {
+      std::size_t used = 0;
+      out.push_back(std::stod(item, &used));
+      if (used != item.size() || !std::isfinite(out.back()))
+      {
+        throw std::invalid_argument(item);
+      }
+    }
+    catch (const std::exception&)
+    {
+      throw UsageError{ "--" + key + " expects comma-separated numbers, got '" + text + "'" };
+    }
+  }
+  return out;
+}
+
 Arguments ParseArguments(int argc, char** argv, int first,
   const std::vector<std::string>& valueOptions, const std::vector<std::string>& flags)
 {
@@ -140,7 +164,7 @@ const std::vector<std::string> AtlasOptions = { "packer", "max-3d-texture-size",
 const std::vector<std::string> ViewOptions = { "size", "azimuth", "elevation", "zoom", "tf",
   "scale", "unit-distance", "sample-factor", "reference-sample-factor", "lod", "threads", "blend",
   "view-json", "opacity-threshold", "empty-space-skipping", "interpolation", "shade", "iso",
-  "shadows", "light" };
+  "shadows", "light", "crop" };
 
 std::vector<std::string> Concat(std::initializer_list<std::vector<std::string>> lists)
 {
@@ -243,7 +267,9 @@ const char* const ViewHelp =
   "  --iso F[,F...]              with --blend iso: iso-values as fractions of the transfer\n"
   "                              function's range, at most 8 (default 0.5)\n"
   "  --shadows STEP              shadow rays, step in world units (default 0 = off)\n"
-  "  --light X,Y,Z               a point light at this world position (default: headlight)\n";
+  "  --light X,Y,Z               a point light at this world position (default: headlight)\n"
+  "  --crop X0,X1,Y0,Y1,Z0,Z1    integrate the rays inside this world box only\n"
+  "                              (vtkVolumeMapper's cropping of the central sub-volume)\n";
 
 LoadedDataset Load(const Arguments& a, bool needValues, bool needVTK)
 {
@@ -575,6 +601,17 @@ RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range)
     throw UsageError{ "--interpolation must be nearest or smooth" };
   }
   s.SmoothCellData = interpolation == "smooth";
+  if (a.Has("crop"))
+  {
+    const std::vector<double> c = a.GetNumbers("crop", "");
+    if (c.size() != 6 || c[0] > c[1] || c[2] > c[3] || c[4] > c[5])
+    {
+      throw UsageError{ "--crop expects X0,X1,Y0,Y1,Z0,Z1 with X0 <= X1, Y0 <= Y1, Z0 <= Z1" };
+    }
+    s.Clip = true;
+    s.ClipLo = glm::dvec3(c[0], c[2], c[4]);
+    s.ClipHi = glm::dvec3(c[1], c[3], c[5]);
+  }
   return s;
 }
 

@@ -29,6 +29,8 @@ struct Arguments
   bool Has(const std::string& key) const { return Options.count(key) != 0; }
   std::string Get(const std::string& key, const std::string& fallback) const;
   double GetNumber(const std::string& key, double fallback) const;
+  /// Comma-separated numbers (`fallback` when the option is absent). Throws UsageError.
+  std::vector<double> GetNumbers(const std::string& key, const std::string& fallback) const;
 };
 
 /// Thrown for bad command-line usage; what() is one line.

@@ -159,6 +159,13 @@ GpuRenderer::GpuRenderer(const std::string& method, vtkVolumeMapper* mapper, con
       break;
   }
   ApplyLighting(s, I->Property, I->Mapper, I->Renderer);
+  if (s.Clip)
+  {
+    I->Mapper->SetCropping(1);
+    I->Mapper->SetCroppingRegionFlagsToSubVolume();
+    I->Mapper->SetCroppingRegionPlanes(
+      s.ClipLo.x, s.ClipHi.x, s.ClipLo.y, s.ClipHi.y, s.ClipLo.z, s.ClipHi.z);
+  }
   I->Volume->SetMapper(I->Mapper);
   I->Volume->SetProperty(I->Property);
 

@@ -19,33 +19,6 @@ namespace tool
 
 const std::vector<std::string> LightingOptions = { "shade", "iso", "shadows", "light" };
 
-
-namespace
-{
-std::vector<double> Numbers(const std::string& text, const std::string& option)
-{
-  std::vector<double> out;
-  std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');)
-  {
-    try
-    {
-      std::size_t used = 0;
-      out.push_back(std::stod(item, &used));
-      if (used != item.size())
-      {
-        throw std::invalid_argument(item);
-      }
-    }
-    catch (const std::exception&)
-    {
-      throw UsageError{ "--" + option + " expects comma-separated numbers, got '" + text + "'" };
-    }
-  }
-  return out;
-}
-} // namespace
-
 void ApplyLightingOptions(RenderSettings& s, const Arguments& a, double lo, double hi)
 {
   const std::string shade = a.Get("shade", "off");
@@ -62,7 +35,7 @@ void ApplyLightingOptions(RenderSettings& s, const Arguments& a, double lo, doub
   s.Light.Shadows = s.Light.ShadowStep > 0.0;
   if (a.Has("light"))
   {
-    const std::vector<double> p = Numbers(a.Get("light", ""), "light");
+    const std::vector<double> p = a.GetNumbers("light", "");
     if (p.size() != 3)
     {
       throw UsageError{ "--light expects X,Y,Z" };
@@ -78,7 +51,7 @@ void ApplyLightingOptions(RenderSettings& s, const Arguments& a, double lo, doub
   }
   if (s.Blend == BlendMode::IsoSurface)
   {
-    const std::vector<double> f = Numbers(a.Get("iso", "0.5"), "iso");
+    const std::vector<double> f = a.GetNumbers("iso", "0.5");
     if (f.empty() || f.size() > static_cast<std::size_t>(MaxIsoValues))
     {
       throw UsageError{ "--iso takes 1 to 8 values" };
