@@ -269,7 +269,7 @@ vtkSmartPointer<vtkOverlappingAMR> vtkSinglePassAMRRegionSplit::SplitByRegion(
           continue;
         }
         const amrsp::Box cells = CellsOf(local->GetAMRBox(l, i));
-        const amrsp::Box piece = amrsp::ClipToRegion(boxes, cells, static_cast<int>(l), region);
+        const amrsp::Box piece = amrsp::GhostedPiece(boxes, cells, static_cast<int>(l), region);
         if (piece.Empty())
         {
           continue;

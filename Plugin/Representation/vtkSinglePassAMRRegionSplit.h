@@ -25,12 +25,16 @@ namespace vtkSinglePassAMRRegionSplit
 /**
  * Collective over all ranks of `controller` (every rank calls it, in the same order with respect
  * to other collective calls). Returns a new hierarchy with the same levels, origin, spacings and
- * refinement ratios as `local`, holding every block clipped to this rank's region (cells on
- * level-0 cell planes, so no cell is split), with all of the block's cell and point arrays; a
- * block loaded on several ranks is taken from the lowest one. `regionBounds` receives the region
- * in world coordinates; the ranks' regions tile the root box. A region may hold no block where
- * the level-0 grids leave gaps. Memory: each rank holds its region's part of the hierarchy,
- * plus, during the exchange, the pieces it sends.
+ * refinement ratios as `local`, holding every block cut to this rank's region grown by ghost
+ * cells (amrsp::GhostedPiece: two cells of the next coarser level on each side; region faces
+ * lie on level-0 cell planes, so no cell is split), with all of the block's cell and point
+ * arrays; a block loaded on several ranks is taken from the lowest one. `regionBounds` receives
+ * the region (without ghosts) in world coordinates; the ranks' regions tile the root box. The
+ * rank renders its region only (cropping to `regionBounds`): the ghost cells serve smooth
+ * interpolation and gradients at the region's faces, so that the ranks' images join without a
+ * seam. A region may hold no block where the level-0 grids leave gaps. Memory: each rank holds
+ * its region's part of the hierarchy and its ghost cells, plus, during the exchange, the pieces
+ * it sends.
  *
  * Returns null on every rank (and sets `error` to one line naming the problem) when the ranks'
  * metadata differ, a rank has none (`local` null), or the hierarchy cannot be split (no blocks,

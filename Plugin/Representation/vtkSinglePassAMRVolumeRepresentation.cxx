@@ -181,6 +181,19 @@ int vtkSinglePassAMRVolumeRepresentation::RequestData(
     }
   }
 
+  // A rank of a region split integrates its rays inside its region only: the ghost cells around
+  // it serve smooth interpolation and gradients at the faces, and the next rank draws them.
+  for (vtkVolumeMapper* mapper :
+    { static_cast<vtkVolumeMapper*>(this->VolumeMapper), static_cast<vtkVolumeMapper*>(this->MultiPassMapper) })
+  {
+    mapper->SetCropping(haveRegion ? 1 : 0);
+    if (haveRegion)
+    {
+      mapper->SetCroppingRegionFlagsToSubVolume();
+      mapper->SetCroppingRegionPlanes(regionBounds);
+    }
+  }
+
   if (cache)
   {
     this->Cache = cache;
