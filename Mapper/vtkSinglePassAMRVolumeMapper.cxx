@@ -134,6 +134,7 @@ public:
   std::vector<GLuint64> ResidentHandles;
   vtkSmartPointer<vtkTextureObject> Depth;
   vtkSmartPointer<vtkTextureObject> Ranges;        // RG32F, indexed like the data nodes
+  vtkSmartPointer<vtkTextureObject> BrickBoxes;    // RG32UI, per brick and axis: grid cells lo, hi
   vtkSmartPointer<vtkTextureObject> OpacityPrefix; // R32F, TransferTableSize x 1
   vtkMTimeType PrefixTableTime = 0;                // the transfer table it was counted from
   long long TransparentDataNodes = 0;
@@ -520,6 +521,27 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Upload(vtkOpenGLRenderWindow* r
   }
   if (ok)
   {
+    // grid boxes for the smooth reconstruction: texel 3 g + axis holds grid g's (lo, hi) cells
+    // on that axis, signed values bit for bit
+    amrsp::UIntTexture3D boxes;
+    boxes.Dims = amrsp::TextureDimsFor(3 * this->Data.Grids.size());
+    boxes.Texels.assign(
+      static_cast<std::size_t>(boxes.Dims.x) * boxes.Dims.y * boxes.Dims.z, glm::uvec2(0u));
+    for (std::size_t g = 0; g < this->Data.Grids.size(); ++g)
+    {
+      const amrsp::Box& box = this->Data.Grids[g].Cells;
+      for (int a = 0; a < 3; ++a)
+      {
+        boxes.Texels[3 * g + a] =
+          glm::uvec2(static_cast<uint32_t>(static_cast<int32_t>(box.Lo[a])),
+            static_cast<uint32_t>(static_cast<int32_t>(box.Hi[a])));
+      }
+    }
+    this->BrickBoxes = MakeIntegerTexture(renWin, boxes);
+    ok = this->BrickBoxes != nullptr;
+  }
+  if (ok)
+  {
     // value ranges, texel i at the data node's own texel (unused texels: empty range)
     const glm::ivec3 dims = this->BindlessDataNodeTexels.Dims; // the same for both encodings
     std::vector<glm::vec2> ranges(static_cast<std::size_t>(dims.x) * dims.y * dims.z,
@@ -554,6 +576,7 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Upload(vtkOpenGLRenderWindow* r
     this->DataNodesTexture = nullptr;
     this->Atlas = nullptr;
     this->Ranges = nullptr;
+    this->BrickBoxes = nullptr;
     return false;
   }
   this->FreePendingData();
@@ -623,7 +646,7 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWin
   this->UploadedStorage = -1;
   for (vtkSmartPointer<vtkTextureObject>* t :
     { &this->Tree, &this->DataNodesTexture, &this->Atlas, &this->HandlesTexture, &this->Depth,
-      &this->Ranges, &this->OpacityPrefix })
+      &this->Ranges, &this->BrickBoxes, &this->OpacityPrefix })
   {
     if (*t)
     {
@@ -1112,6 +1135,12 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   program->SetUniformi(bindless ? "amrspHandles" : "amrspAtlas", gridData->GetTextureUnit());
   program->SetUniformi("amrspTransfer", in.Transfer.GetTexture()->GetTextureUnit());
   program->SetUniformf("amrspOpacityThreshold", static_cast<float>(this->OpacityThreshold));
+  const bool smoothCells = this->CellInterpolation == SMOOTH_CELL && !in.VertexCentred;
+  if (smoothCells)
+  {
+    in.BrickBoxes->Activate();
+    program->SetUniformi("amrspBrickBoxes", in.BrickBoxes->GetTextureUnit());
+  }
   if (skipEmpty)
   {
     in.Ranges->Activate();
@@ -1266,6 +1295,10 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   in.DataNodesTexture->Deactivate();
   gridData->Deactivate();
   in.Transfer.GetTexture()->Deactivate();
+  if (smoothCells)
+  {
+    in.BrickBoxes->Deactivate();
+  }
   if (skipEmpty)
   {
     in.Ranges->Deactivate();

@@ -27,8 +27,9 @@
 //   AMRSP_SKIP_EMPTY    empty-space skipping (composite only): data segments whose node's value
 //                       range has zero opacity in the transfer table are not sampled
 //   AMRSP_SMOOTH_CELLS  smooth reconstruction of cell data (with AMRSP_CELL_CENTRED): trilinear in
-//                       the sample level's dual cell, corners looked up through the tree at the
-//                       finest level there (as amrsp::RenderSettings::SmoothCellData); the
+//                       the sample level's dual cell, corners from the sample's grid (covered
+//                       cells too) or, outside it, looked up through the tree (a coarser level's
+//                       trilinear value there), as amrsp::RenderSettings::SmoothCellData; the
 //                       gradient's neighbours (AMRSP_SHADE) are reconstructed the same way
 //AMRSP::Defines
 
@@ -66,6 +67,11 @@ uniform vec3 amrspAtlasSize;       // atlas dimensions, texels
 uniform usampler3D amrspHandles;   // RG32UI, one texel per brick: its 64-bit handle (low, high)
 #endif
 uniform sampler2D amrspTransfer;   // RGBA32F, 1 row: colour and unit-distance opacity
+#ifdef AMRSP_SMOOTH_CELLS
+// RG32UI, three texels per brick (3 b + axis): its grid's cells lo, hi (exclusive) on that axis,
+// in cells of the grid's level (signed integers stored bit for bit)
+uniform usampler3D amrspBrickBoxes;
+#endif
 #ifdef AMRSP_USE_DEPTH
 uniform sampler2D amrspDepth;      // depth of the opaque geometry, viewport-sized
 #endif
@@ -219,6 +225,48 @@ float amrspSampleDataNode(uvec2 dataNode, vec3 p, vec3 cellSize, ivec3 firstCell
 #endif
 }
 
+#ifdef AMRSP_SMOOTH_CELLS
+// Cell `cell` of the data node's grid (any of its cells, covered or not; cells of its level),
+// addressed from the node's lower-corner cell firstCell: texel offset + (cell - firstCell).
+float amrspFetchGridCell(uvec2 dataNode, ivec3 cell, ivec3 firstCell)
+{
+  ivec3 texel = amrspDataOffset(dataNode) + (cell - firstCell);
+#ifdef AMRSP_PACKING
+  return texelFetch(amrspAtlas, texel, 0).r;
+#else
+  uvec2 handle = texelFetch(amrspHandles, amrspTexelOf(amrspDataBrick(dataNode)), 0).rg;
+#ifdef AMRSP_WATERFALL
+  float value = 0.0;
+  for (;;)
+  {
+    uvec2 first = readFirstInvocationARB(handle);
+    if (first == handle)
+    {
+      value = amrspReadBrick(first, texel, vec3(0.0));
+      break;
+    }
+  }
+  return value;
+#else
+  return amrspReadBrick(handle, texel, vec3(0.0));
+#endif
+#endif
+}
+
+// Whether `cell` (cells of the grid's level) is a cell of the data node's grid.
+bool amrspGridHasCell(uvec2 dataNode, ivec3 cell)
+{
+  uint b = 3u * amrspDataBrick(dataNode);
+  bool has = true;
+  for (int a = 0; a < 3; ++a)
+  {
+    uvec2 box = texelFetch(amrspBrickBoxes, amrspTexelOf(b + uint(a)), 0).rg;
+    has = has && cell[a] >= int(box.x) && cell[a] < int(box.y);
+  }
+  return has;
+}
+#endif
+
 // Finest-level cells per cell of `level`, per axis.
 ivec3 amrspToFinest(int level)
 {
@@ -283,11 +331,68 @@ uint amrspLocateDataNode(vec3 p, out ivec3 loF, out ivec3 hiF)
 #endif
 
 #ifdef AMRSP_SMOOTH_CELLS
+// A corner of the smooth reconstruction's dual cell that is no cell of the sample's grid: x, a
+// cell centre of `level`. The leaf containing x, of level m: for m >= level its nearest cell at
+// x; for a coarser leaf the trilinear value of level m at x, its corners the cells of the leaf's
+// grid (covered or not) or, where that grid has no such cell, the nearest cell of the leaf
+// there; `fallback` outside every leaf. As the core's SmoothCornerKdTree.
+float amrspSmoothCorner(vec3 x, int level, float fallback)
+{
+  ivec3 loF, hiF;
+  uint data = amrspLocateDataNode(x, loF, hiF);
+  if (data == 0u)
+  {
+    return fallback;
+  }
+  uvec2 node = amrspFetchDataNode(data);
+  int m = int(amrspDataLevel(node));
+  ivec3 first, last;
+  amrspLeafCells(m, loF, hiF, first, last);
+  vec3 cellSize = amrspLevelCellSize[m];
+  float vx = amrspSampleDataNode(node, x, cellSize, first, last);
+  if (m >= level)
+  {
+    return vx;
+  }
+  vec3 q = x / cellSize - 0.5;
+  vec3 base = floor(q);
+  vec3 w = q - base;
+  float sum = 0.0;
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    vec3 o = vec3(float(corner & 1), float((corner >> 1) & 1), float((corner >> 2) & 1));
+    ivec3 cell = ivec3(base + o);
+    float v = vx;
+    if (amrspGridHasCell(node, cell))
+    {
+      v = amrspFetchGridCell(node, cell, first);
+    }
+    else
+    {
+      vec3 y = (base + o + 0.5) * cellSize;
+      ivec3 yLoF, yHiF;
+      uint yData = amrspLocateDataNode(y, yLoF, yHiF);
+      if (yData != 0u)
+      {
+        uvec2 yNode = amrspFetchDataNode(yData);
+        int l = int(amrspDataLevel(yNode));
+        ivec3 yFirst, yLast;
+        amrspLeafCells(l, yLoF, yHiF, yFirst, yLast);
+        v = amrspSampleDataNode(yNode, y, amrspLevelCellSize[l], yFirst, yLast);
+      }
+    }
+    vec3 f = mix(vec3(1.0) - w, w, o);
+    sum += f.x * f.y * f.z * v;
+  }
+  return sum;
+}
+
 // Smooth value at p for a sample of data level `level` in the node (dataNode, box loF..hiF in
-// finest cells, cells firstCell..lastCell): trilinear in the level's dual cell around p, each of
-// the 8 corners (level cell centres) the nearest value of the finest cell containing it;
-// `nearest` (the nearest-cell value at p) for corners outside every grid. Corners whose cells lie
-// wholly inside the current node are read from it directly (point location would find it).
+// finest cells, cells firstCell..lastCell): trilinear in the level's dual cell around p; a corner
+// that is a cell of the node's grid (covered by finer grids or not) takes that cell's value, any
+// other corner amrspSmoothCorner's; `nearest` (the nearest-cell value at p) for corners outside
+// every grid. Linear-exact across level boundaries when every cell, covered ones included,
+// holds the field at its centre. As the core's SmoothKdTree.
 float amrspSampleSmooth(vec3 p, int level, uvec2 dataNode, ivec3 loF, ivec3 hiF, ivec3 firstCell,
   ivec3 lastCell, float nearest)
 {
@@ -297,29 +402,21 @@ float amrspSampleSmooth(vec3 p, int level, uvec2 dataNode, ivec3 loF, ivec3 hiF,
   vec3 w = q - base;
   ivec3 toData = amrspToFinest(level);
   ivec3 b = ivec3(base);
+  // the dual cell's corner cells all in the node (so in its grid): no box test needed
   bool inside = all(greaterThanEqual(b * toData, loF)) && all(lessThanEqual((b + 2) * toData, hiF));
   float sum = 0.0;
   for (int corner = 0; corner < 8; ++corner)
   {
     vec3 o = vec3(float(corner & 1), float((corner >> 1) & 1), float((corner >> 2) & 1));
-    vec3 x = (base + o + 0.5) * cellSize;
-    float v = nearest;
-    if (inside)
+    ivec3 cell = b + ivec3(o);
+    float v;
+    if (inside || amrspGridHasCell(dataNode, cell))
     {
-      v = amrspSampleDataNode(dataNode, x, cellSize, firstCell, lastCell);
+      v = amrspFetchGridCell(dataNode, cell, firstCell);
     }
     else
     {
-      ivec3 cLoF, cHiF;
-      uint data = amrspLocateDataNode(x, cLoF, cHiF);
-      if (data != 0u)
-      {
-        uvec2 node = amrspFetchDataNode(data);
-        int l = int(amrspDataLevel(node));
-        ivec3 first, last;
-        amrspLeafCells(l, cLoF, cHiF, first, last);
-        v = amrspSampleDataNode(node, x, amrspLevelCellSize[l], first, last);
-      }
+      v = amrspSmoothCorner((base + o + 0.5) * cellSize, level, nearest);
     }
     vec3 f = mix(vec3(1.0) - w, w, o);
     sum += f.x * f.y * f.z * v;

@@ -514,12 +514,103 @@ float NodeCellValue(const Hierarchy& h, const EncodedKdTree& tree, const BrickAt
     h, static_cast<int32_t>(amrspDataBrick(dn)), glm::i64vec3(glm::floor(p / cellSize)));
 }
 
-/// Smooth reconstruction (RenderSettings::SmoothCellData) at p for a sample of level `level`:
-/// trilinear in the level's dual cell, each corner the finest cell containing it; `fallback`
-/// for corners outside every grid.
-float SmoothKdTree(const Hierarchy& h, const EncodedKdTree& tree, const BrickAtlas* atlas,
-  const glm::vec3& p, int level, float fallback)
+/// Whether `cell` (cells of the grid's level) is one of grid g's cells, covered or not.
+bool GridHasCell(const Hierarchy& h, int32_t g, const glm::i64vec3& cell)
 {
+  const Box& box = h.Grids[g].Cells;
+  return glm::all(glm::greaterThanEqual(cell, box.Lo)) && glm::all(glm::lessThan(cell, box.Hi));
+}
+
+/// Cell `cell` (any cell of the data node's grid, cells of its level) read through the data node
+/// (box lo, hi): from the grid, or from the atlas at the node's offset + (cell - first cell), as
+/// the shader's amrspFetchGridCell reads it.
+float NodeGridCell(const Hierarchy& h, const EncodedKdTree& tree, const BrickAtlas* atlas,
+  uint32_t data, const glm::vec3& lo, const glm::ivec3& cell)
+{
+  using namespace layout;
+  const uvec2 dn = tree.DataNodes.Texels[data];
+  if (atlas)
+  {
+    const glm::ivec3 first =
+      glm::ivec3(glm::floor(lo / tree.LevelCellSize[amrspDataLevel(dn)]));
+    return atlas->At(amrspDataOffset(dn) + cell - first);
+  }
+  return CellValue(h, static_cast<int32_t>(amrspDataBrick(dn)), glm::i64vec3(cell));
+}
+
+/// The trilinear weight of dual-cell corner o at fractional position w.
+template <typename V>
+typename V::value_type CornerWeight(const V& o, const V& w)
+{
+  using T = typename V::value_type;
+  return (o.x > T(0) ? w.x : T(1) - w.x) * (o.y > T(0) ? w.y : T(1) - w.y) *
+    (o.z > T(0) ? w.z : T(1) - w.z);
+}
+
+/// A corner of the smooth reconstruction's dual cell that is no cell of the sample's grid: x, a
+/// cell centre of level `level`. The leaf containing x, of level m: for m >= level its nearest
+/// cell at x; for a coarser leaf (x lies outside the sample's level) the trilinear value of
+/// level m at x, its corners the cells of the leaf's grid (covered or not) or, where that grid
+/// has no such cell, the nearest cell of the leaf there. `fallback` outside every leaf.
+float SmoothCornerKdTree(const Hierarchy& h, const EncodedKdTree& tree, const BrickAtlas* atlas,
+  const glm::vec3& x, int level, float fallback)
+{
+  using namespace layout;
+  glm::vec3 lo, hi;
+  const uint32_t data = LocateDataNode(tree, x, lo, hi);
+  if (data == 0)
+  {
+    return fallback;
+  }
+  const uvec2 dn = tree.DataNodes.Texels[data];
+  const int m = static_cast<int>(amrspDataLevel(dn));
+  const float vx = NodeCellValue(h, tree, atlas, data, lo, hi, x);
+  if (m >= level)
+  {
+    return vx;
+  }
+  const int32_t g = static_cast<int32_t>(amrspDataBrick(dn));
+  const glm::vec3 cellSize = tree.LevelCellSize[m];
+  const glm::vec3 q = x / cellSize - 0.5f;
+  const glm::vec3 base = glm::floor(q);
+  const glm::vec3 w = q - base;
+  float sum = 0.0f;
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const glm::vec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+    const glm::ivec3 cell = glm::ivec3(base + o);
+    float v = vx;
+    if (GridHasCell(h, g, glm::i64vec3(cell)))
+    {
+      v = NodeGridCell(h, tree, atlas, data, lo, cell);
+    }
+    else
+    {
+      const glm::vec3 y = (base + o + 0.5f) * cellSize;
+      glm::vec3 ylo, yhi;
+      const uint32_t ydata = LocateDataNode(tree, y, ylo, yhi);
+      if (ydata != 0)
+      {
+        v = NodeCellValue(h, tree, atlas, ydata, ylo, yhi, y);
+      }
+    }
+    sum += CornerWeight(o, w) * v;
+  }
+  return sum;
+}
+
+/// Smooth reconstruction (RenderSettings::SmoothCellData) at p for a sample of the data node
+/// `data` (box lo, hi): trilinear in the dual cell of the node's level around p; a corner that is
+/// a cell of the node's grid (covered by finer grids or not) takes that cell's value, any other
+/// corner SmoothCornerKdTree's. Linear-exact across level boundaries where every grid's cells,
+/// covered ones included, hold the field at their centres (see README, "Smooth cells").
+float SmoothKdTree(const Hierarchy& h, const EncodedKdTree& tree, const BrickAtlas* atlas,
+  const glm::vec3& p, uint32_t data, const glm::vec3& lo, float fallback)
+{
+  using namespace layout;
+  const uvec2 dn = tree.DataNodes.Texels[data];
+  const int level = static_cast<int>(amrspDataLevel(dn));
+  const int32_t g = static_cast<int32_t>(amrspDataBrick(dn));
   const glm::vec3 cellSize = tree.LevelCellSize[level];
   const glm::vec3 q = p / cellSize - 0.5f;
   const glm::vec3 base = glm::floor(q);
@@ -528,13 +619,11 @@ float SmoothKdTree(const Hierarchy& h, const EncodedKdTree& tree, const BrickAtl
   for (int corner = 0; corner < 8; ++corner)
   {
     const glm::vec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
-    const glm::vec3 x = (base + o + 0.5f) * cellSize;
-    glm::vec3 lo, hi;
-    const uint32_t data = LocateDataNode(tree, x, lo, hi);
-    const float v = data != 0 ? NodeCellValue(h, tree, atlas, data, lo, hi, x) : fallback;
-    const float weight =
-      (o.x > 0.0f ? w.x : 1.0f - w.x) * (o.y > 0.0f ? w.y : 1.0f - w.y) * (o.z > 0.0f ? w.z : 1.0f - w.z);
-    sum += weight * v;
+    const glm::ivec3 cell = glm::ivec3(base + o);
+    const float v = GridHasCell(h, g, glm::i64vec3(cell))
+      ? NodeGridCell(h, tree, atlas, data, lo, cell)
+      : SmoothCornerKdTree(h, tree, atlas, (base + o + 0.5f) * cellSize, level, fallback);
+    sum += CornerWeight(o, w) * v;
   }
   return sum;
 }
@@ -555,7 +644,7 @@ float SampleCellsKdTree(const Hierarchy& h, const EncodedKdTree& tree, const Bri
   const int level = static_cast<int>(amrspDataLevel(tree.DataNodes.Texels[data]));
   cellSize = tree.LevelCellSize[level];
   const float v = NodeCellValue(h, tree, atlas, data, lo, hi, p);
-  return smooth ? SmoothKdTree(h, tree, atlas, p, level, v) : v;
+  return smooth ? SmoothKdTree(h, tree, atlas, p, data, lo, v) : v;
 }
 
 /// Per-row counters added to RenderSettings::Stats under a lock.
@@ -866,7 +955,7 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
           }
           if (s.SmoothCellData && !h.VertexCentred)
           {
-            v = SmoothKdTree(h, tree, atlas, p, seg.Level, v);
+            v = SmoothKdTree(h, tree, atlas, p, seg.Data, seg.NodeLo, v);
           }
           ++rowStats.Samples;
           if (s.Blend == BlendMode::IsoSurface)
@@ -933,11 +1022,57 @@ PointLookup KdTreePointLookup(const Hierarchy& h, const EncodedKdTree& tree, boo
 
 namespace
 {
-/// The reference's smooth reconstruction at p (level-0 index units) for a sample whose finest
-/// grid is of `level`: the same dual-cell rule, corners found by the tree-free locator.
-double SmoothReference(const Hierarchy& h, const FinestCellLocator& locator, const glm::dvec3& p,
-  int level, double fallback)
+/// The reference's corner rule (SmoothCornerKdTree's, with the tree-free locator): x, a cell
+/// centre of level `level` that is no cell of the sample's grid.
+double SmoothCornerReference(const Hierarchy& h, const FinestCellLocator& locator,
+  const glm::dvec3& x, int level, double fallback)
 {
+  glm::i64vec3 xcell;
+  const int32_t g = locator.Find(x, xcell);
+  if (g < 0)
+  {
+    return fallback;
+  }
+  const int m = h.Grids[g].Level;
+  const double vx = CellValue(h, g, xcell);
+  if (m >= level)
+  {
+    return vx;
+  }
+  const glm::dvec3 cellSize = h.CellSize(m);
+  const glm::dvec3 q = x / cellSize - 0.5;
+  const glm::dvec3 base = glm::floor(q);
+  const glm::dvec3 w = q - base;
+  double sum = 0.0;
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const glm::dvec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+    const glm::i64vec3 cell = glm::i64vec3(base + o);
+    double v = vx;
+    if (GridHasCell(h, g, cell))
+    {
+      v = CellValue(h, g, cell);
+    }
+    else
+    {
+      glm::i64vec3 ycell;
+      const int32_t yg = locator.Find((base + o + 0.5) * cellSize, ycell);
+      if (yg >= 0)
+      {
+        v = CellValue(h, yg, ycell);
+      }
+    }
+    sum += CornerWeight(o, w) * v;
+  }
+  return sum;
+}
+
+/// The reference's smooth reconstruction at p (level-0 index units) for a sample of grid g (the
+/// finest grid there): SmoothKdTree's rule, corners found by the tree-free locator.
+double SmoothReference(const Hierarchy& h, const FinestCellLocator& locator, const glm::dvec3& p,
+  int32_t g, double fallback)
+{
+  const int level = h.Grids[g].Level;
   const glm::dvec3 cellSize = h.CellSize(level);
   const glm::dvec3 q = p / cellSize - 0.5;
   const glm::dvec3 base = glm::floor(q);
@@ -946,11 +1081,11 @@ double SmoothReference(const Hierarchy& h, const FinestCellLocator& locator, con
   for (int corner = 0; corner < 8; ++corner)
   {
     const glm::dvec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
-    glm::i64vec3 cell;
-    const int32_t g = locator.Find((base + o + 0.5) * cellSize, cell);
-    const double v = g >= 0 ? static_cast<double>(CellValue(h, g, cell)) : fallback;
-    sum += (o.x > 0.0 ? w.x : 1.0 - w.x) * (o.y > 0.0 ? w.y : 1.0 - w.y) *
-      (o.z > 0.0 ? w.z : 1.0 - w.z) * v;
+    const glm::i64vec3 cell = glm::i64vec3(base + o);
+    const double v = GridHasCell(h, g, cell)
+      ? static_cast<double>(CellValue(h, g, cell))
+      : SmoothCornerReference(h, locator, (base + o + 0.5) * cellSize, level, fallback);
+    sum += CornerWeight(o, w) * v;
   }
   return sum;
 }
@@ -972,7 +1107,7 @@ PointLookup ReferencePointLookup(const Hierarchy& h, const FinestCellLocator& lo
     const glm::dvec3 ratio(h.CumulativeRatio(level));
     cellSize = 1.0 / ratio;
     const double v = SampleGrid(h, g, q, ratio);
-    return smoothCells ? SmoothReference(h, locator, q, level, v) : v;
+    return smoothCells ? SmoothReference(h, locator, q, g, v) : v;
   };
 }
 
@@ -1080,7 +1215,7 @@ Image RenderReference(const Hierarchy& h, const RenderSettings& s)
           double v = SampleGrid(h, g, p, ratio);
           if (s.SmoothCellData && !h.VertexCentred)
           {
-            v = SmoothReference(h, locator, p, h.Grids[g].Level, v);
+            v = SmoothReference(h, locator, p, g, v);
           }
           ++rowStats.Samples;
           if (s.Blend == BlendMode::IsoSurface)
