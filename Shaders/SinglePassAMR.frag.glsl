@@ -451,7 +451,9 @@ bool amrspDataNodeTransparent(uint dataIndex)
 // The scalar at point p (level-0 index units) from the kD-tree leaf containing p: a descent from
 // the root as kd-restart's, choosing the child by the point (lower when p[axis] < the split
 // plane). False outside the root box, in a leaf without data, or where the sample is NaN.
-// cellSize: the leaf's data-level cell size. Mirrors amrsp::SampleKdTreeAtPoint.
+// cellSize: the leaf's data-level cell size. With AMRSP_SMOOTH_CELLS the smooth reconstruction at
+// the leaf's level (iso-surface bisection and shadow rays then see the field the samples see).
+// Mirrors the core's KdTreePointLookup (smooth with AMRSP_SMOOTH_CELLS).
 bool amrspSampleAtPoint(vec3 p, out float value, out vec3 cellSize)
 {
   value = 0.0;
@@ -468,6 +470,9 @@ bool amrspSampleAtPoint(vec3 p, out float value, out vec3 cellSize)
   amrspLeafCells(level, loF, hiF, firstCell, lastCell);
   cellSize = amrspLevelCellSize[level];
   value = amrspSampleDataNode(dataNode, p, cellSize, firstCell, lastCell);
+#ifdef AMRSP_SMOOTH_CELLS
+  value = amrspSampleSmooth(p, level, dataNode, loF, hiF, firstCell, lastCell, value);
+#endif
   return !isnan(value);
 }
 

@@ -5,6 +5,7 @@
 // reconstruction at the neighbours (ShadingContext::Neighbours), as the sample itself does; with
 // nearest-cell data they read cell values. Both lookups (the kD-tree's and the reference's) are
 // measured near the level boundary and inside a level, and checked against each other.
+#include "amrsp/BrickAtlas.h"
 #include "amrsp/KdTree.h"
 #include "amrsp/KdTreeEncoding.h"
 #include "amrsp/Render.h"
@@ -245,6 +246,40 @@ TEST(LevelSeams, KdTreeGradientMatchesReference)
   }
   std::cout << "kD vs reference smooth gradient: largest relative difference " << worst << "\n";
   EXPECT_LT(worst, 1e-4);
+}
+
+/// Smooth iso-surfaces and shadow rays: bisection and shadow steps read the smooth
+/// reconstruction (the integrators' point lookup under SmoothCellData), the same rule in the
+/// kD-tree integrator (grids or packed atlas) and the reference. A sphere of the paraboloid
+/// crossing the patch's faces, shaded, with shadows from a point light.
+TEST(LevelSeams, SmoothIsoSurfaceAndShadowsMatchReference)
+{
+  const Hierarchy h = LevelPatch(2, Finest, Quadratic);
+  const KdTree kd = BuildKdTree(h);
+  const BrickAtlas atlas = BuildBrickAtlas(h, Packer::Best, glm::ivec3(2048, 2048, 1024));
+  const EncodedKdTree plain = EncodeKdTree(h, kd);
+  const EncodedKdTree packed = EncodeKdTree(h, kd, &atlas.Layout.Origins);
+  RenderSettings s = SmallView(h);
+  s.Transfer = TransferFunction::Preset("default", 0.0, 0.2, 0.05);
+  s.SampleDistanceFactor = 0.5;
+  s.ReferenceSampleFactor = 0.5;
+  s.SmoothCellData = true;
+  s.Blend = BlendMode::IsoSurface;
+  s.IsoValues = { 0.09 }; // radius 0.3 about the centre; the patch's faces lie 0.25 from it
+  s.Light.Shade = true;
+  s.Light.Headlight = false;
+  s.Light.Positional = true;
+  s.Light.Position = glm::dvec3(1.5, 2.0, 1.5);
+  s.Light.Shadows = true;
+  s.Light.ShadowStep = 0.02;
+  const Image tree = RenderKdTree(h, plain, s);
+  const Image reference = RenderReference(h, s);
+  const double rmse = Rmse(tree, reference);
+  std::cout << "smooth shaded iso-surface with shadows: kD vs reference RMSE " << rmse << "\n";
+  EXPECT_LT(rmse, 1.0);
+  EXPECT_EQ(Rmse(tree, RenderKdTree(h, packed, s, &atlas)), 0.0);
+  s.Light.Shadows = false;
+  EXPECT_GT(Rmse(tree, RenderKdTree(h, plain, s)), 1.0); // the shadows show
 }
 
 } // namespace

@@ -864,10 +864,14 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
   const bool shaded = s.Light.Shade || s.Light.Shadows;
   ShadingContext shading = MakeShadingContext(s.Light, s.Transfer, h.Origin, h.Spacing0,
     glm::dvec3(tree.RootLo), glm::dvec3(tree.RootHi), s.View.Position, s.View.FocalPoint);
-  const PointLookup lookup = KdTreePointLookup(h, tree, false);
-  if (s.SmoothCellData && !h.VertexCentred)
+  // iso-surface bisection and shadow rays read what the samples read (nearest or smooth); the
+  // gradient's neighbours likewise
+  const bool smoothCells = s.SmoothCellData && !h.VertexCentred;
+  const PointLookup lookup =
+    smoothCells ? KdTreePointLookup(h, tree, true, atlas) : KdTreePointLookup(h, tree, false);
+  if (smoothCells)
   {
-    shading.Neighbours = KdTreePointLookup(h, tree, true, atlas);
+    shading.Neighbours = lookup;
   }
 
   ForEachRow(s.Height, s.Threads, [&](int j) {
@@ -1133,10 +1137,12 @@ Image RenderReference(const Hierarchy& h, const RenderSettings& s)
   ShadingContext shading = MakeShadingContext(
     s.Light, s.Transfer, h.Origin, h.Spacing0, lo, hi, s.View.Position, s.View.FocalPoint);
   // the reference's point lookup: the finest grid containing the point, from the boxes
-  const PointLookup lookup = ReferencePointLookup(h, locator, false);
-  if (s.SmoothCellData && !h.VertexCentred)
+  // (nearest or smooth, as the samples), also for iso-surface bisection and shadow rays
+  const bool smoothCells = s.SmoothCellData && !h.VertexCentred;
+  const PointLookup lookup = ReferencePointLookup(h, locator, smoothCells);
+  if (smoothCells)
   {
-    shading.Neighbours = ReferencePointLookup(h, locator, true);
+    shading.Neighbours = lookup;
   }
 
   StatsSink sink;

@@ -147,13 +147,16 @@ struct RenderSettings
   /// Smooth reconstruction of cell-centred data (all three integrators; vertex-centred data is
   /// trilinear anyway). A sample at p whose level is d (the segment's data level; the reference:
   /// the finest grid at p) is the trilinear interpolation, in the dual cell of level d that
-  /// contains p, of its 8 corners: the level-d cell centres around p, each looked up as the
-  /// finest cell containing it (kD integrators: by point location in the tree; reference:
-  /// straight from the grids). A corner outside every grid takes the nearest-cell value at p.
-  /// Continuous inside a level and across same-level grids; across level boundaries the
-  /// remaining jump is bounded by the field's change over one cell of the finer level.
-  /// With shading, the gradient's central differences read the same reconstruction at the
-  /// neighbours (each at the level of the finest data there): ShadingContext::Neighbours.
+  /// contains p, of its 8 corners: the level-d cell centres x around p. A corner that is a cell
+  /// of the sample's grid (covered by finer grids or not) takes that cell; any other the leaf at
+  /// x (kD integrators: point location in the tree; reference: straight from the grids): its
+  /// nearest cell when the leaf's level m >= d, else the trilinear value of level m at x from
+  /// the leaf's grid's cells (or, where that grid has none, the nearest cell of the leaf there).
+  /// A corner outside every grid takes the nearest-cell value at p. Linear-exact across level
+  /// boundaries where covered cells hold the field at their centres (README, "Smooth cell-centred
+  /// data"). With shading, the gradient's central differences, iso-surface bisection and shadow
+  /// rays read the same reconstruction (each at the level of the finest data there):
+  /// ShadingContext::Neighbours and the integrators' point lookup.
   bool SmoothCellData = false;
   /// Gradient shading and shadow rays (composite and iso-surface blending; amrsp/Shading.h).
   Lighting Light;
