@@ -547,6 +547,25 @@ typename V::value_type CornerWeight(const V& o, const V& w)
     (o.z > T(0) ? w.z : T(1) - w.z);
 }
 
+/// Trilinear interpolation at p in the dual cell of cells of size `cellSize` (cell c centred at
+/// (c + 0.5) * cellSize): the sum over its 8 corners o of CornerWeight(o, w) * value(base + o),
+/// base the corner cell with the lowest index (as floating-point integers).
+template <typename V, typename F>
+typename V::value_type DualCellInterpolate(const V& p, const V& cellSize, F value)
+{
+  using T = typename V::value_type;
+  const V q = p / cellSize - T(0.5);
+  const V base = glm::floor(q);
+  const V w = q - base;
+  T sum = T(0);
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const V o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+    sum += CornerWeight(o, w) * value(base + o);
+  }
+  return sum;
+}
+
 /// A corner of the smooth reconstruction's dual cell that is no cell of the sample's grid: x, a
 /// cell centre of level `level`. The leaf containing x, of level m: for m >= level its nearest
 /// cell at x; for a coarser leaf (x lies outside the sample's level) the trilinear value of
@@ -571,32 +590,17 @@ float SmoothCornerKdTree(const Hierarchy& h, const EncodedKdTree& tree, const Br
   }
   const int32_t g = static_cast<int32_t>(amrspDataBrick(dn));
   const glm::vec3 cellSize = tree.LevelCellSize[m];
-  const glm::vec3 q = x / cellSize - 0.5f;
-  const glm::vec3 base = glm::floor(q);
-  const glm::vec3 w = q - base;
-  float sum = 0.0f;
-  for (int corner = 0; corner < 8; ++corner)
-  {
-    const glm::vec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
-    const glm::ivec3 cell = glm::ivec3(base + o);
-    float v = vx;
+  return DualCellInterpolate(x, cellSize, [&](const glm::vec3& c) {
+    const glm::ivec3 cell = glm::ivec3(c);
     if (GridHasCell(h, g, glm::i64vec3(cell)))
     {
-      v = NodeGridCell(h, tree, atlas, data, lo, cell);
+      return NodeGridCell(h, tree, atlas, data, lo, cell);
     }
-    else
-    {
-      const glm::vec3 y = (base + o + 0.5f) * cellSize;
-      glm::vec3 ylo, yhi;
-      const uint32_t ydata = LocateDataNode(tree, y, ylo, yhi);
-      if (ydata != 0)
-      {
-        v = NodeCellValue(h, tree, atlas, ydata, ylo, yhi, y);
-      }
-    }
-    sum += CornerWeight(o, w) * v;
-  }
-  return sum;
+    const glm::vec3 y = (c + 0.5f) * cellSize;
+    glm::vec3 ylo, yhi;
+    const uint32_t ydata = LocateDataNode(tree, y, ylo, yhi);
+    return ydata != 0 ? NodeCellValue(h, tree, atlas, ydata, ylo, yhi, y) : vx;
+  });
 }
 
 /// Smooth reconstruction (RenderSettings::SmoothCellData) at p for a sample of the data node
@@ -612,20 +616,12 @@ float SmoothKdTree(const Hierarchy& h, const EncodedKdTree& tree, const BrickAtl
   const int level = static_cast<int>(amrspDataLevel(dn));
   const int32_t g = static_cast<int32_t>(amrspDataBrick(dn));
   const glm::vec3 cellSize = tree.LevelCellSize[level];
-  const glm::vec3 q = p / cellSize - 0.5f;
-  const glm::vec3 base = glm::floor(q);
-  const glm::vec3 w = q - base;
-  float sum = 0.0f;
-  for (int corner = 0; corner < 8; ++corner)
-  {
-    const glm::vec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
-    const glm::ivec3 cell = glm::ivec3(base + o);
-    const float v = GridHasCell(h, g, glm::i64vec3(cell))
+  return DualCellInterpolate(p, cellSize, [&](const glm::vec3& c) {
+    const glm::ivec3 cell = glm::ivec3(c);
+    return GridHasCell(h, g, glm::i64vec3(cell))
       ? NodeGridCell(h, tree, atlas, data, lo, cell)
-      : SmoothCornerKdTree(h, tree, atlas, (base + o + 0.5f) * cellSize, level, fallback);
-    sum += CornerWeight(o, w) * v;
-  }
-  return sum;
+      : SmoothCornerKdTree(h, tree, atlas, (c + 0.5f) * cellSize, level, fallback);
+  });
 }
 
 /// The cell-centred value the kD-tree integrator samples at p: point location, then the leaf's
@@ -1044,31 +1040,16 @@ double SmoothCornerReference(const Hierarchy& h, const FinestCellLocator& locato
     return vx;
   }
   const glm::dvec3 cellSize = h.CellSize(m);
-  const glm::dvec3 q = x / cellSize - 0.5;
-  const glm::dvec3 base = glm::floor(q);
-  const glm::dvec3 w = q - base;
-  double sum = 0.0;
-  for (int corner = 0; corner < 8; ++corner)
-  {
-    const glm::dvec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
-    const glm::i64vec3 cell = glm::i64vec3(base + o);
-    double v = vx;
+  return DualCellInterpolate(x, cellSize, [&](const glm::dvec3& c) {
+    const glm::i64vec3 cell = glm::i64vec3(c);
     if (GridHasCell(h, g, cell))
     {
-      v = CellValue(h, g, cell);
+      return static_cast<double>(CellValue(h, g, cell));
     }
-    else
-    {
-      glm::i64vec3 ycell;
-      const int32_t yg = locator.Find((base + o + 0.5) * cellSize, ycell);
-      if (yg >= 0)
-      {
-        v = CellValue(h, yg, ycell);
-      }
-    }
-    sum += CornerWeight(o, w) * v;
-  }
-  return sum;
+    glm::i64vec3 ycell;
+    const int32_t yg = locator.Find((c + 0.5) * cellSize, ycell);
+    return yg >= 0 ? static_cast<double>(CellValue(h, yg, ycell)) : vx;
+  });
 }
 
 /// The reference's smooth reconstruction at p (level-0 index units) for a sample of grid g (the
@@ -1078,20 +1059,12 @@ double SmoothReference(const Hierarchy& h, const FinestCellLocator& locator, con
 {
   const int level = h.Grids[g].Level;
   const glm::dvec3 cellSize = h.CellSize(level);
-  const glm::dvec3 q = p / cellSize - 0.5;
-  const glm::dvec3 base = glm::floor(q);
-  const glm::dvec3 w = q - base;
-  double sum = 0.0;
-  for (int corner = 0; corner < 8; ++corner)
-  {
-    const glm::dvec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
-    const glm::i64vec3 cell = glm::i64vec3(base + o);
-    const double v = GridHasCell(h, g, cell)
+  return DualCellInterpolate(p, cellSize, [&](const glm::dvec3& c) {
+    const glm::i64vec3 cell = glm::i64vec3(c);
+    return GridHasCell(h, g, cell)
       ? static_cast<double>(CellValue(h, g, cell))
-      : SmoothCornerReference(h, locator, (base + o + 0.5) * cellSize, level, fallback);
-    sum += CornerWeight(o, w) * v;
-  }
-  return sum;
+      : SmoothCornerReference(h, locator, (c + 0.5) * cellSize, level, fallback);
+  });
 }
 } // namespace
 
