@@ -738,17 +738,40 @@ void main()
   ivec3 restartLoF = rootLoF;
   ivec3 restartHiF = rootHiF;
   uvec2 restartTexel = amrspFetchNode(0u);
+  // Far child of the deepest split plane the last descent crossed, and where the ray leaves it
+  // (farEnd). The leaf that descent found ends on that plane, so the next leaf lies in this child
+  // and the next descent starts there: a one-entry short stack, used where push-down is.
+  bool haveFar = false;
+  uint farNode = 0u;
+  vec3 farLo = vec3(0.0);
+  vec3 farHi = vec3(0.0);
+  ivec3 farLoF = ivec3(0);
+  ivec3 farHiF = ivec3(0);
+  float farEnd = 0.0;
   for (int iteration = 0; t < tEnd && iteration < amrspMaxSegments; ++iteration)
   {
-    // kd-restart: descend from the restart node to the node containing the ray at t.
-    uint node = restartNode;
-    vec3 lo = restartLo;
-    vec3 hi = restartHi;
-    ivec3 loF = restartLoF; // the same box in exact finest-level cells
-    ivec3 hiF = restartHiF;
-    float tLeave = tEnd;
-    uvec2 texel = restartTexel;
-    bool pushDown = canPushDown;
+    // An empty far interval (planes meeting where the leaf ends) is left to the restart.
+    bool fromFar = haveFar && farEnd > t;
+    haveFar = false;
+    if (fromFar && farEnd >= tEnd)
+    {
+      restartNode = farNode; // the far child holds the rest of the ray
+      restartLo = farLo;
+      restartHi = farHi;
+      restartLoF = farLoF;
+      restartHiF = farHiF;
+      restartTexel = amrspFetchNode(farNode);
+    }
+    // kd-restart: descend from the far child or the restart node to the node containing the ray
+    // at t.
+    uint node = fromFar ? farNode : restartNode;
+    vec3 lo = fromFar ? farLo : restartLo;
+    vec3 hi = fromFar ? farHi : restartHi;
+    ivec3 loF = fromFar ? farLoF : restartLoF; // the same box in exact finest-level cells
+    ivec3 hiF = fromFar ? farHiF : restartHiF;
+    float tLeave = fromFar ? farEnd : tEnd;
+    uvec2 texel = fromFar ? amrspFetchNode(farNode) : restartTexel;
+    bool pushDown = canPushDown && (!fromFar || farEnd >= tEnd);
     for (;;)
     {
       uint child = amrspNodeFirstChild(texel);
@@ -790,6 +813,26 @@ void main()
       else
       {
         lower = originBelow;
+        if (canPushDown)
+        {
+          haveFar = true;
+          farNode = lower ? child + 1u : child;
+          farLo = lo;
+          farHi = hi;
+          farLoF = loF;
+          farHiF = hiF;
+          if (lower)
+          {
+            farLo[axis] = plane;
+            farLoF[axis] = planeF;
+          }
+          else
+          {
+            farHi[axis] = plane;
+            farHiF[axis] = planeF;
+          }
+          farEnd = tLeave;
+        }
         tLeave = tSplit;
         pushDown = false;
       }

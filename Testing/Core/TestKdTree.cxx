@@ -247,8 +247,9 @@ TEST(Traversal, SegmentsAreOrderedContiguousAndInsideTheirNodes)
 
 TEST(Traversal, PushDownGivesTheSegmentsOfRestartsFromTheRoot)
 {
-  // Push-down must be invisible: bit-identical segments (t, node, box) to the paper's restart
-  // from the root, on random hierarchies, with and without a parallel-projection LOD cut-off.
+  // Push-down and the far-child shortcut must be invisible: bit-identical segments (t, node,
+  // box) to the paper's restart from the root, on random hierarchies, with and without a
+  // parallel-projection LOD cut-off.
   std::mt19937_64 rng(17);
   std::size_t segments = 0;
   for (int trial = 0; trial < 30; ++trial)
@@ -287,7 +288,8 @@ TEST(Traversal, PushDownGivesTheSegmentsOfRestartsFromTheRoot)
 TEST(Traversal, PushDownShortensDescentsOnADeepHierarchy)
 {
   // The paper's dataset-3 shape (13 levels, 39,061 grids): tree levels descended per segment,
-  // push-down against restarts from the root, on rays through the root box's centre region.
+  // push-down with the far-child shortcut against restarts from the root, on rays through the
+  // root box's centre region (measured: 7.1 against 16.4; push-down alone gave 13.6).
   const Hierarchy h = amrsp::test::PaperDataset3Boxes();
   const EncodedKdTree enc = EncodeKdTree(h, BuildKdTree(h));
   std::mt19937_64 rng(3);
@@ -313,7 +315,7 @@ TEST(Traversal, PushDownShortensDescentsOnADeepHierarchy)
             << double(rootSteps) / double(segments) << ", with push-down "
             << double(pushedSteps) / double(segments) << "\n";
   EXPECT_GT(segments, 1000u);
-  EXPECT_LT(pushedSteps, rootSteps);
+  EXPECT_LT(2 * pushedSteps, rootSteps);
 }
 
 TEST(Encoding, LimitsGiveClearErrors)

@@ -54,22 +54,39 @@ void TraverseKdTree(const EncodedKdTree& tree, const glm::vec3& origin, const gl
   // bounded by the number of nodes; the guard only protects against corrupt textures.
   const int64_t guard = 4 * tree.NodeCount + 16;
   // kd-restart with push-down, as the shader: each restart descends from the deepest node
-  // reached without a choice between two children (its box holds the rest of the ray), which
-  // visits the same leaves with the same planes as a descent from the root. Perspective
-  // level-of-detail cut-offs depend on t, so there every restart is from the root.
+  // reached without a choice between two children (its box holds the rest of the ray), or from
+  // the far child of the last split crossed, which visits the same leaves with the same planes
+  // as a descent from the root. Perspective level-of-detail cut-offs depend on t, so there every
+  // restart is from the root.
   const bool canPushDown =
     !restartFromRoot && (lod.ThresholdPixels <= 0.0f || lod.ParallelPixelSize > 0.0f);
   uint restartNode = 0;
   glm::vec3 restartLo = tree.RootLo;
   glm::vec3 restartHi = tree.RootHi;
+  // Far child of the deepest split plane the last descent crossed, and where the ray leaves it.
+  // The leaf found by that descent ends on that plane, so the next leaf lies in this child: the
+  // next descent starts there (a one-entry short stack, under the same condition as push-down).
+  bool haveFar = false;
+  uint farNode = 0;
+  glm::vec3 farLo(0.0f), farHi(0.0f);
+  float farEnd = 0.0f;
   for (int64_t iteration = 0; t < tEnd && iteration < guard; ++iteration)
   {
-    uint node = restartNode;
-    glm::vec3 lo = restartLo;
-    glm::vec3 hi = restartHi;
-    float tLeave = tEnd;
+    // An empty far interval (planes meeting where the leaf ends) is left to the restart.
+    const bool fromFar = haveFar && farEnd > t;
+    haveFar = false;
+    if (fromFar && farEnd >= tEnd)
+    {
+      restartNode = farNode; // the far child holds the rest of the ray
+      restartLo = farLo;
+      restartHi = farHi;
+    }
+    uint node = fromFar ? farNode : restartNode;
+    glm::vec3 lo = fromFar ? farLo : restartLo;
+    glm::vec3 hi = fromFar ? farHi : restartHi;
+    float tLeave = fromFar ? farEnd : tEnd;
     uvec2 texel = tree.Tree.Texels[node];
-    bool pushDown = canPushDown;
+    bool pushDown = canPushDown && (!fromFar || farEnd >= tEnd);
     uint32_t descent = 0;
     for (;;)
     {
@@ -111,6 +128,15 @@ void TraverseKdTree(const EncodedKdTree& tree, const glm::vec3& origin, const gl
       else
       {
         lower = originBelow;
+        if (canPushDown)
+        {
+          haveFar = true;
+          farNode = lower ? child + 1u : child;
+          farLo = lo;
+          farHi = hi;
+          (lower ? farLo : farHi)[axis] = plane;
+          farEnd = tLeave;
+        }
         tLeave = tSplit;
         pushDown = false;
       }

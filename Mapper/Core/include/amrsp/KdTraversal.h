@@ -41,8 +41,9 @@ struct LevelOfDetail
 /// Ray: origin + t * direction in level-0 index units. When direction is a unit world direction
 /// divided by the level-0 spacing, t is the world distance. Appends the segments of [tMin, tMax]
 /// that lie inside the root box; empty-space segments are included (Data == 0).
-/// Each restart descends from the deepest node whose box holds the rest of the ray (push-down,
-/// as the shader); restartFromRoot = true descends from the root every time (the paper's plain
+/// Each restart descends from the far child of the deepest split plane the previous descent
+/// crossed, or else from the deepest node whose box holds the rest of the ray (push-down), as the
+/// shader; restartFromRoot = true descends from the root every time (the paper's plain
 /// kd-restart), which gives the same segments and is kept for comparison.
 void TraverseKdTree(const EncodedKdTree& tree, const glm::vec3& origin, const glm::vec3& direction,
   float tMin, float tMax, const LevelOfDetail& lod, std::vector<RaySegment>& segments,
