@@ -31,6 +31,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -1063,7 +1064,14 @@ int RunImageCommand(int argc, char** argv, bool reference)
       statsReport << "stats: rays " << stats.Rays << ", samples " << stats.Samples
                   << ", data segments " << stats.DataSegments << ", skipped segments "
                   << stats.SkippedSegments << " (" << stats.SkippedSamples
-                  << " samples), rays terminated early " << stats.TerminatedRays << "\n";
+                  << " samples), rays terminated early " << stats.TerminatedRays;
+      if (stats.Segments > 0)
+      {
+        statsReport << ", traversal segments " << stats.Segments << " (tree levels descended "
+                    << "per segment " << double(stats.DescentLevels) / double(stats.Segments)
+                    << ")";
+      }
+      statsReport << "\n";
     }
     s.Stats = nullptr;
     s.DataNodeRanges = nullptr;
@@ -1288,6 +1296,16 @@ int RunBench(int argc, char** argv)
     if (a.Has("save-images") && (scaling || o.ImageFolder.empty()))
     {
       throw UsageError{ "--save-images needs a folder and does not apply to --scaling" };
+    }
+    if (!o.ImageFolder.empty())
+    {
+      std::error_code error; // created before the (possibly long) run, so a bad path fails now
+      std::filesystem::create_directories(o.ImageFolder, error);
+      if (error)
+      {
+        throw std::runtime_error(
+          "cannot create the --save-images folder '" + o.ImageFolder + "': " + error.message());
+      }
     }
     o.View = ViewOf(a);
     o.Methods = SplitList(a.Get("methods", scaling ? "packing,multipass" : DefaultBenchMethods));

@@ -662,6 +662,8 @@ struct StatsSink
     Target->SkippedSegments += r.SkippedSegments;
     Target->SkippedSamples += r.SkippedSamples;
     Target->TerminatedRays += r.TerminatedRays;
+    Target->Segments += r.Segments;
+    Target->DescentLevels += r.DescentLevels;
   }
 };
 
@@ -895,6 +897,11 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
           static_cast<float>(std::min(static_cast<double>(tMax), clip1)), lod, segments);
       }
       rowStats.Rays += segments.empty() ? 0 : 1;
+      rowStats.Segments += static_cast<long long>(segments.size());
+      for (const RaySegment& seg : segments)
+      {
+        rowStats.DescentLevels += seg.Descent;
+      }
       Accumulator<float> acc(s.Blend);
       IsoSurfaceTracker iso(shading, lookup, isoValues, -wd);
       glm::dvec3 isoColour(0.0);

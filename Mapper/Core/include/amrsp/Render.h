@@ -111,6 +111,8 @@ struct RenderStats
   long long SkippedSegments = 0;  ///< ... of which skipped as transparent (empty-space skipping)
   long long SkippedSamples = 0;   ///< samples those skipped segments would have taken
   long long TerminatedRays = 0;   ///< rays stopped early at the opacity threshold
+  long long Segments = 0;         ///< kD-tree integrator: all traversal segments, empty included
+  long long DescentLevels = 0;    ///< ... and the tree levels their descents went down in all
 };
 
 struct RenderSettings
