@@ -328,6 +328,21 @@ uint amrspLocateDataNode(vec3 p, out ivec3 loF, out ivec3 hiF)
   }
   return amrspNodeData(texel);
 }
+
+// The nearest-cell value at p (level-0 index units) in the leaf containing it, with the leaf's
+// data node, data level and cells (amrspLeafCells); false outside every leaf with data.
+bool amrspLocateSample(vec3 p, out uvec2 dataNode, out int level, out ivec3 loF, out ivec3 hiF,
+  out ivec3 firstCell, out ivec3 lastCell, out float value)
+{
+  uint data = amrspLocateDataNode(p, loF, hiF);
+  dataNode = amrspFetchDataNode(data);
+  level = int(amrspDataLevel(dataNode));
+  amrspLeafCells(level, loF, hiF, firstCell, lastCell);
+  value = data != 0u
+    ? amrspSampleDataNode(dataNode, p, amrspLevelCellSize[level], firstCell, lastCell)
+    : 0.0;
+  return data != 0u;
+}
 #endif
 
 #ifdef AMRSP_SMOOTH_CELLS
@@ -338,22 +353,19 @@ uint amrspLocateDataNode(vec3 p, out ivec3 loF, out ivec3 hiF)
 // there; `fallback` outside every leaf. As the core's SmoothCornerKdTree.
 float amrspSmoothCorner(vec3 x, int level, float fallback)
 {
-  ivec3 loF, hiF;
-  uint data = amrspLocateDataNode(x, loF, hiF);
-  if (data == 0u)
+  uvec2 node;
+  int m;
+  ivec3 loF, hiF, first, last;
+  float vx;
+  if (!amrspLocateSample(x, node, m, loF, hiF, first, last, vx))
   {
     return fallback;
   }
-  uvec2 node = amrspFetchDataNode(data);
-  int m = int(amrspDataLevel(node));
-  ivec3 first, last;
-  amrspLeafCells(m, loF, hiF, first, last);
-  vec3 cellSize = amrspLevelCellSize[m];
-  float vx = amrspSampleDataNode(node, x, cellSize, first, last);
   if (m >= level)
   {
     return vx;
   }
+  vec3 cellSize = amrspLevelCellSize[m];
   vec3 q = x / cellSize - 0.5;
   vec3 base = floor(q);
   vec3 w = q - base;
@@ -369,16 +381,13 @@ float amrspSmoothCorner(vec3 x, int level, float fallback)
     }
     else
     {
-      vec3 y = (base + o + 0.5) * cellSize;
-      ivec3 yLoF, yHiF;
-      uint yData = amrspLocateDataNode(y, yLoF, yHiF);
-      if (yData != 0u)
+      uvec2 yNode;
+      int l;
+      ivec3 yLoF, yHiF, yFirst, yLast;
+      float vy;
+      if (amrspLocateSample((base + o + 0.5) * cellSize, yNode, l, yLoF, yHiF, yFirst, yLast, vy))
       {
-        uvec2 yNode = amrspFetchDataNode(yData);
-        int l = int(amrspDataLevel(yNode));
-        ivec3 yFirst, yLast;
-        amrspLeafCells(l, yLoF, yHiF, yFirst, yLast);
-        v = amrspSampleDataNode(yNode, y, amrspLevelCellSize[l], yFirst, yLast);
+        v = vy;
       }
     }
     vec3 f = mix(vec3(1.0) - w, w, o);
@@ -456,20 +465,15 @@ bool amrspDataNodeTransparent(uint dataIndex)
 // Mirrors the core's KdTreePointLookup (smooth with AMRSP_SMOOTH_CELLS).
 bool amrspSampleAtPoint(vec3 p, out float value, out vec3 cellSize)
 {
-  value = 0.0;
   cellSize = vec3(1.0);
-  ivec3 loF, hiF;
-  uint data = amrspLocateDataNode(p, loF, hiF);
-  if (data == 0u)
+  uvec2 dataNode;
+  int level;
+  ivec3 loF, hiF, firstCell, lastCell;
+  if (!amrspLocateSample(p, dataNode, level, loF, hiF, firstCell, lastCell, value))
   {
     return false;
   }
-  uvec2 dataNode = amrspFetchDataNode(data);
-  int level = int(amrspDataLevel(dataNode));
-  ivec3 firstCell, lastCell;
-  amrspLeafCells(level, loF, hiF, firstCell, lastCell);
   cellSize = amrspLevelCellSize[level];
-  value = amrspSampleDataNode(dataNode, p, cellSize, firstCell, lastCell);
 #ifdef AMRSP_SMOOTH_CELLS
   value = amrspSampleSmooth(p, level, dataNode, loF, hiF, firstCell, lastCell, value);
 #endif
