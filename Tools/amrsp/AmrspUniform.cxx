@@ -10,6 +10,7 @@
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkCellData.h"
 #include "vtkPointData.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -61,13 +62,13 @@ UniformGpuRenderer::UniformGpuRenderer(
   I->ResampleSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   I->Dims = u.Dims;
 
-  // point data at voxel centres (vtkImageData points), nearest interpolation: every sample
-  // shows the finest cell the resampling found there; outside every grid, transparent
+  // cell data (the mapper's cell-data path: the volume spans the cells' whole extent), nearest
+  // interpolation: every sample shows the finest cell the resampling found there; outside every
+  // grid, transparent
   const double below = s.Transfer.Opacity.empty() ? 0.0 : s.Transfer.Opacity.front().X - 1.0;
-  I->Image->SetDimensions(u.Dims.x, u.Dims.y, u.Dims.z);
+  I->Image->SetDimensions(u.Dims.x + 1, u.Dims.y + 1, u.Dims.z + 1);
   I->Image->SetSpacing(u.Spacing.x, u.Spacing.y, u.Spacing.z);
-  I->Image->SetOrigin(u.Origin.x + 0.5 * u.Spacing.x, u.Origin.y + 0.5 * u.Spacing.y,
-    u.Origin.z + 0.5 * u.Spacing.z);
+  I->Image->SetOrigin(u.Origin.x, u.Origin.y, u.Origin.z);
   vtkNew<vtkFloatArray> values;
   values->SetName("values");
   values->SetNumberOfTuples(static_cast<vtkIdType>(u.Values.size()));
@@ -76,7 +77,7 @@ UniformGpuRenderer::UniformGpuRenderer(
     values->SetValue(static_cast<vtkIdType>(i),
       std::isnan(u.Values[i]) ? static_cast<float>(below) : u.Values[i]);
   }
-  I->Image->GetPointData()->SetScalars(values);
+  I->Image->GetCellData()->SetScalars(values);
 
   for (const TransferFunction::ColorPoint& p : s.Transfer.Color)
   {
