@@ -285,6 +285,23 @@ void amrspLeafCells(int level, ivec3 loF, ivec3 hiF, out ivec3 firstCell, out iv
                amrspCeilDiv(hiF.z, toData.z)) - 1;
 }
 
+// Narrows a node box (level-0 index units lo..hi, exact finest-level cells loF..hiF) to its lower
+// (below the split plane on `axis`) or upper child's box.
+void amrspChildBox(inout vec3 lo, inout vec3 hi, inout ivec3 loF, inout ivec3 hiF, int axis,
+  float plane, int planeF, bool lower)
+{
+  if (lower)
+  {
+    hi[axis] = plane;
+    hiF[axis] = planeF;
+  }
+  else
+  {
+    lo[axis] = plane;
+    loF[axis] = planeF;
+  }
+}
+
 #if defined(AMRSP_SMOOTH_CELLS) || defined(AMRSP_SHADE) || defined(AMRSP_SHADOWS) || \
   AMRSP_BLEND_MODE == 4
 // Point location, as the core's LocateDataNode: from the root to the leaf containing p (level-0
@@ -313,18 +330,9 @@ uint amrspLocateDataNode(vec3 p, out ivec3 loF, out ivec3 hiF)
     uint split = amrspNodeSplit(texel);
     float plane = lo[axis] + float(split) * amrspLevelCellSize[level][axis];
     int planeF = loF[axis] + int(split) * amrspLevelToFinest[3 * int(level) + axis];
-    if (p[axis] < plane)
-    {
-      hi[axis] = plane;
-      hiF[axis] = planeF;
-      texel = amrspFetchNode(child);
-    }
-    else
-    {
-      lo[axis] = plane;
-      loF[axis] = planeF;
-      texel = amrspFetchNode(child + 1u);
-    }
+    bool lower = p[axis] < plane;
+    amrspChildBox(lo, hi, loF, hiF, axis, plane, planeF, lower);
+    texel = amrspFetchNode(lower ? child : child + 1u);
   }
   return amrspNodeData(texel);
 }
@@ -825,33 +833,14 @@ void main()
           farHi = hi;
           farLoF = loF;
           farHiF = hiF;
-          if (lower)
-          {
-            farLo[axis] = plane;
-            farLoF[axis] = planeF;
-          }
-          else
-          {
-            farHi[axis] = plane;
-            farHiF[axis] = planeF;
-          }
+          amrspChildBox(farLo, farHi, farLoF, farHiF, axis, plane, planeF, !lower);
           farEnd = tLeave;
         }
         tLeave = tSplit;
         pushDown = false;
       }
-      if (lower)
-      {
-        hi[axis] = plane;
-        hiF[axis] = planeF;
-        node = child;
-      }
-      else
-      {
-        lo[axis] = plane;
-        loF[axis] = planeF;
-        node = child + 1u;
-      }
+      amrspChildBox(lo, hi, loF, hiF, axis, plane, planeF, lower);
+      node = lower ? child : child + 1u;
       texel = amrspFetchNode(node);
       if (pushDown)
       {
