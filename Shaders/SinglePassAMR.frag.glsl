@@ -177,6 +177,29 @@ float amrspReadBrick(uvec2 handle, ivec3 texel, vec3 where)
   return texelFetch(brick, texel, 0).r;
 #endif
 }
+
+// amrspReadBrick on the brick of data node `dataNode`, its handle looked up in amrspHandles.
+float amrspReadDataNodeBrick(uvec2 dataNode, ivec3 texel, vec3 where)
+{
+  uvec2 handle = texelFetch(amrspHandles, amrspTexelOf(amrspDataBrick(dataNode)), 0).rg;
+#ifdef AMRSP_WATERFALL
+  // Each pass serves the invocations holding the first active invocation's handle, which is
+  // dynamically uniform among them; the others loop again (at most one pass per distinct handle).
+  float value = 0.0;
+  for (;;)
+  {
+    uvec2 first = readFirstInvocationARB(handle);
+    if (first == handle)
+    {
+      value = amrspReadBrick(first, texel, where);
+      break;
+    }
+  }
+  return value;
+#else
+  return amrspReadBrick(handle, texel, where);
+#endif
+}
 #endif
 
 // The scalar at point p (level-0 index units) inside the kD node whose data node is `dataNode`:
@@ -204,24 +227,7 @@ float amrspSampleDataNode(uvec2 dataNode, vec3 p, vec3 cellSize, ivec3 firstCell
   return texelFetch(amrspAtlas, texel, 0).r;
 #endif
 #else
-  uvec2 handle = texelFetch(amrspHandles, amrspTexelOf(amrspDataBrick(dataNode)), 0).rg;
-#ifdef AMRSP_WATERFALL
-  // Each pass serves the invocations holding the first active invocation's handle, which is
-  // dynamically uniform among them; the others loop again (at most one pass per distinct handle).
-  float value = 0.0;
-  for (;;)
-  {
-    uvec2 first = readFirstInvocationARB(handle);
-    if (first == handle)
-    {
-      value = amrspReadBrick(first, texel, where);
-      break;
-    }
-  }
-  return value;
-#else
-  return amrspReadBrick(handle, texel, where);
-#endif
+  return amrspReadDataNodeBrick(dataNode, texel, where);
 #endif
 }
 
@@ -234,22 +240,7 @@ float amrspFetchGridCell(uvec2 dataNode, ivec3 cell, ivec3 firstCell)
 #ifdef AMRSP_PACKING
   return texelFetch(amrspAtlas, texel, 0).r;
 #else
-  uvec2 handle = texelFetch(amrspHandles, amrspTexelOf(amrspDataBrick(dataNode)), 0).rg;
-#ifdef AMRSP_WATERFALL
-  float value = 0.0;
-  for (;;)
-  {
-    uvec2 first = readFirstInvocationARB(handle);
-    if (first == handle)
-    {
-      value = amrspReadBrick(first, texel, vec3(0.0));
-      break;
-    }
-  }
-  return value;
-#else
-  return amrspReadBrick(handle, texel, vec3(0.0));
-#endif
+  return amrspReadDataNodeBrick(dataNode, texel, vec3(0.0));
 #endif
 }
 
