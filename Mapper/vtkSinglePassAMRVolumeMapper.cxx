@@ -96,6 +96,8 @@ public:
   int RootHiFinest[3] = { 0, 0, 0 };
   std::vector<glm::vec3> LevelCellSize;
   std::vector<int> LevelToFinest;   // 3 per level
+  // base-2 logarithms of LevelToFinest; empty unless every entry is a power of two
+  std::vector<int> LevelToFinestLog2;
   std::vector<double> LevelMinEdge; // smallest model-space edge of a cell of each level
   double Bounds[6] = { 0, -1, 0, -1, 0, -1 };
   double ScalarRange[2] = { 0.0, 1.0 };
@@ -133,10 +135,11 @@ public:
   std::vector<vtkSmartPointer<vtkTextureObject>> Bricks;
   std::vector<GLuint64> ResidentHandles;
   vtkSmartPointer<vtkTextureObject> Depth;
-  vtkSmartPointer<vtkTextureObject> Ranges;        // RG32F, indexed like the data nodes
-  vtkSmartPointer<vtkTextureObject> BrickBoxes;    // RG32UI, per brick and axis: grid cells lo, hi
-  vtkSmartPointer<vtkTextureObject> OpacityPrefix; // R32F, TransferTableSize x 1
-  vtkMTimeType PrefixTableTime = 0;                // the transfer table it was counted from
+  vtkSmartPointer<vtkTextureObject> BrickBoxes; // RG32UI, per brick and axis: grid cells lo, hi
+  // empty-space skipping: R8, indexed like the data nodes, 255 where the node's value range is
+  // transparent under the transfer table of FlagsTableTime (recomputed when it is re-tabulated)
+  vtkSmartPointer<vtkTextureObject> TransparentFlags;
+  vtkMTimeType FlagsTableTime = 0;
   long long TransparentDataNodes = 0;
   vtkNew<vtkOpenGLBufferObject> BoxBuffer;
   vtkNew<vtkOpenGLVertexArrayObject> BoxArray;
@@ -335,6 +338,7 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
       this->RootHiFinest[a] = static_cast<int>(root.Hi[a]);
     }
     this->LevelToFinest.clear();
+    this->LevelToFinestLog2.clear();
     this->LevelMinEdge.clear();
     for (int l = 0; l < h.NumberOfLevels(); ++l)
     {
@@ -343,6 +347,20 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
       this->LevelToFinest.push_back(static_cast<int>(r.y));
       this->LevelToFinest.push_back(static_cast<int>(r.z));
       this->LevelMinEdge.push_back(MinEdge(h.Spacing0 * h.CellSize(l)));
+    }
+    for (int ratio : this->LevelToFinest)
+    {
+      int log2 = 0;
+      while ((1 << log2) < ratio)
+      {
+        ++log2;
+      }
+      if ((1 << log2) != ratio)
+      {
+        this->LevelToFinestLog2.clear();
+        break;
+      }
+      this->LevelToFinestLog2.push_back(log2);
     }
     this->LevelCellSize = enc.LevelCellSize;
     this->RootLo = enc.RootLo;
@@ -377,9 +395,8 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
     }
     this->ScalarRange[0] = vmin <= vmax ? vmin : 0.0;
     this->ScalarRange[1] = vmin <= vmax ? vmax : 1.0;
-    // tree textures: tree, data nodes and the data nodes' value ranges (RG32F, same layout)
-    const long long treeBytes = static_cast<long long>(enc.Tree.Bytes() +
-      2 * this->BindlessDataNodeTexels.Bytes());
+    const long long treeBytes =
+      static_cast<long long>(amrsp::KdTreeTextureBytes(enc.Tree, this->BindlessDataNodeTexels));
     this->BindlessBytes = treeBytes +
       static_cast<long long>(amrsp::SeparateBrickBytes(h) + amrsp::HandleTextureBytes(h.Grids.size()));
     this->PackedBytes = this->PackingError.empty()
@@ -496,6 +513,7 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Upload(vtkOpenGLRenderWindow* r
   this->ResidentHandles.clear();
   this->HandlesTexture = nullptr;
   this->Atlas = nullptr;
+  this->TransparentFlags = nullptr; // the data nodes may have changed: flagged again per frame
   this->UploadedStorage = -1;
   while (glGetError() != GL_NO_ERROR)
   {
@@ -540,25 +558,6 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Upload(vtkOpenGLRenderWindow* r
     this->BrickBoxes = MakeIntegerTexture(renWin, boxes);
     ok = this->BrickBoxes != nullptr;
   }
-  if (ok)
-  {
-    // value ranges, texel i at the data node's own texel (unused texels: empty range)
-    const glm::ivec3 dims = this->BindlessDataNodeTexels.Dims; // the same for both encodings
-    std::vector<glm::vec2> ranges(static_cast<std::size_t>(dims.x) * dims.y * dims.z,
-      glm::vec2(FLT_MAX, -FLT_MAX));
-    std::copy(this->NodeRanges.begin(),
-      this->NodeRanges.begin() + std::min(this->NodeRanges.size(), ranges.size()), ranges.begin());
-    this->Ranges = vtkSmartPointer<vtkTextureObject>::New();
-    this->Ranges->SetContext(renWin);
-    this->Ranges->SetInternalFormat(GL_RG32F);
-    this->Ranges->SetFormat(GL_RG);
-    this->Ranges->SetDataType(GL_FLOAT);
-    this->Ranges->SetMinificationFilter(vtkTextureObject::Nearest);
-    this->Ranges->SetMagnificationFilter(vtkTextureObject::Nearest);
-    ok = this->Ranges->Create3DFromRaw(static_cast<unsigned int>(dims.x),
-      static_cast<unsigned int>(dims.y), static_cast<unsigned int>(dims.z), 2, VTK_FLOAT,
-      &ranges[0].x);
-  }
   const GLenum glError = glGetError();
   if (!ok || glError != GL_NO_ERROR)
   {
@@ -575,7 +574,6 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Upload(vtkOpenGLRenderWindow* r
     this->Tree = nullptr;
     this->DataNodesTexture = nullptr;
     this->Atlas = nullptr;
-    this->Ranges = nullptr;
     this->BrickBoxes = nullptr;
     return false;
   }
@@ -646,7 +644,7 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWin
   this->UploadedStorage = -1;
   for (vtkSmartPointer<vtkTextureObject>* t :
     { &this->Tree, &this->DataNodesTexture, &this->Atlas, &this->HandlesTexture, &this->Depth,
-      &this->Ranges, &this->BrickBoxes, &this->OpacityPrefix })
+      &this->BrickBoxes, &this->TransparentFlags })
   {
     if (*t)
     {
@@ -960,6 +958,11 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     defines += "#define AMRSP_USE_DEPTH 1\n";
   }
+  const bool powerOfTwoRefinement = !in.LevelToFinestLog2.empty();
+  if (powerOfTwoRefinement)
+  {
+    defines += "#define AMRSP_POWER_OF_TWO_REFINEMENT 1\n";
+  }
   defines += "#define AMRSP_BLEND_MODE " + std::to_string(blend) + "\n";
   const bool skipEmpty = this->EmptySpaceSkipping && blend == 0;
   if (skipEmpty)
@@ -1063,46 +1066,49 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     vtkAMRRenderingUtilities::CopyDepthBuffer(renWin, view, in.Depth);
   }
 
-  // ---- empty-space skipping: prefix count of the table's non-zero opacities, recounted when
-  // the transfer table was re-tabulated (the node ranges never change with it)
+  // ---- empty-space skipping: one flag per data node, whether its value range is transparent
+  // under the tabulated transfer function (amrsp::TableRangeTransparent on the table the shader
+  // samples); recomputed when the table is re-tabulated (the node ranges never change with it)
   if (!skipEmpty)
   {
     in.TransparentDataNodes = 0;
   }
-  else
+  else if (!in.TransparentFlags || in.TransparentFlags->GetContext() != renWin ||
+    in.FlagsTableTime != in.Transfer.GetTableTime())
   {
-    if (!in.OpacityPrefix || in.OpacityPrefix->GetContext() != renWin ||
-      in.PrefixTableTime != in.Transfer.GetTableTime())
+    const std::vector<float> prefix = amrsp::OpacityPrefixCounts(in.Transfer.GetOpacityTable());
+    float tableRange[2];
+    in.Transfer.GetShaderRange(tableRange);
+    // texel k at the data node's own texel; texel 0 and padding texels are never read
+    const glm::ivec3 dims = amrsp::TextureDimsFor(in.NodeRanges.size());
+    std::vector<unsigned char> flags(static_cast<std::size_t>(dims.x) * dims.y * dims.z, 0);
+    in.TransparentDataNodes = 0;
+    for (std::size_t k = 1; k < in.NodeRanges.size(); ++k)
     {
-      const std::vector<float> prefix = amrsp::OpacityPrefixCounts(in.Transfer.GetOpacityTable());
-      if (!in.OpacityPrefix || in.OpacityPrefix->GetContext() != renWin)
+      if (amrsp::TableRangeTransparent(
+            prefix, tableRange, in.NodeRanges[k].x, in.NodeRanges[k].y))
       {
-        in.OpacityPrefix = vtkSmartPointer<vtkTextureObject>::New();
-        in.OpacityPrefix->SetContext(renWin);
-        in.OpacityPrefix->SetInternalFormat(GL_R32F);
-        in.OpacityPrefix->SetFormat(GL_RED);
-        in.OpacityPrefix->SetDataType(GL_FLOAT);
-        in.OpacityPrefix->SetMinificationFilter(vtkTextureObject::Nearest);
-        in.OpacityPrefix->SetMagnificationFilter(vtkTextureObject::Nearest);
-      }
-      if (prefix.empty() ||
-        !in.OpacityPrefix->Create2DFromRaw(static_cast<unsigned int>(prefix.size()), 1, 1,
-          VTK_FLOAT, const_cast<float*>(prefix.data())))
-      {
-        fail("uploading the empty-space skipping table failed");
-        return;
-      }
-      in.PrefixTableTime = in.Transfer.GetTableTime();
-      // the diagnostic: the shader's own test on the CPU
-      float tableRange[2];
-      in.Transfer.GetShaderRange(tableRange);
-      in.TransparentDataNodes = 0;
-      for (std::size_t k = 1; k < in.NodeRanges.size(); ++k)
-      {
-        in.TransparentDataNodes += amrsp::TableRangeTransparent(
-          prefix, tableRange, in.NodeRanges[k].x, in.NodeRanges[k].y) ? 1 : 0;
+        flags[k] = 255;
+        ++in.TransparentDataNodes;
       }
     }
+    // R8 rows need no unpack padding: a texture row is 256 texels, or the only row
+    in.TransparentFlags = vtkSmartPointer<vtkTextureObject>::New();
+    in.TransparentFlags->SetContext(renWin);
+    in.TransparentFlags->SetInternalFormat(GL_R8);
+    in.TransparentFlags->SetFormat(GL_RED);
+    in.TransparentFlags->SetDataType(GL_UNSIGNED_BYTE);
+    in.TransparentFlags->SetMinificationFilter(vtkTextureObject::Nearest);
+    in.TransparentFlags->SetMagnificationFilter(vtkTextureObject::Nearest);
+    if (!in.TransparentFlags->Create3DFromRaw(static_cast<unsigned int>(dims.x),
+          static_cast<unsigned int>(dims.y), static_cast<unsigned int>(dims.z), 1,
+          VTK_UNSIGNED_CHAR, flags.data()))
+    {
+      in.TransparentFlags = nullptr;
+      fail("uploading the empty-space skipping flags failed");
+      return;
+    }
+    in.FlagsTableTime = in.Transfer.GetTableTime();
   }
 
   // ---- uniforms
@@ -1143,10 +1149,8 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   if (skipEmpty)
   {
-    in.Ranges->Activate();
-    in.OpacityPrefix->Activate();
-    program->SetUniformi("amrspDataNodeRanges", in.Ranges->GetTextureUnit());
-    program->SetUniformi("amrspOpacityPrefix", in.OpacityPrefix->GetTextureUnit());
+    in.TransparentFlags->Activate();
+    program->SetUniformi("amrspTransparentFlags", in.TransparentFlags->GetTextureUnit());
   }
   if (useDepth)
   {
@@ -1174,6 +1178,10 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   program->SetUniform1iv("amrspRootHiFinest", 3, in.RootHiFinest);
   program->SetUniform3fv("amrspLevelCellSize", levels, &cells[0].x);
   program->SetUniform1iv("amrspLevelToFinest", 3 * levels, in.LevelToFinest.data());
+  if (powerOfTwoRefinement)
+  {
+    program->SetUniform1iv("amrspLevelToFinestLog2", 3 * levels, in.LevelToFinestLog2.data());
+  }
   program->SetUniform1fv("amrspLevelStep", levels, steps.data());
   const long long guard = 4 * in.KdNodes + 16;
   program->SetUniformi("amrspMaxSegments", static_cast<int>(std::min<long long>(guard, 1 << 30)));
@@ -1301,8 +1309,7 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   if (skipEmpty)
   {
-    in.Ranges->Deactivate();
-    in.OpacityPrefix->Deactivate();
+    in.TransparentFlags->Deactivate();
   }
   if (useDepth)
   {

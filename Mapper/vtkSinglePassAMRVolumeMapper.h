@@ -237,12 +237,11 @@ public:
   ///@{
   /**
    * Empty-space skipping (composite blending; default on): the minimum and maximum scalar of
-   * every data node's block are stored in a small RG32F texture indexed like the data nodes
-   * (built with the data, 8 bytes per data node); per frame the shader skips a ray segment
-   * whose node's range has zero opacity anywhere in the tabulated transfer function (a prefix
-   * count of the table's non-zero opacities, re-tabulated with the transfer function: a
-   * transfer-function change never rebuilds the tree or the ranges). Skipped samples would have
-   * had zero opacity, so the image does not change.
+   * every data node's block are kept on the CPU (built with the data, 8 bytes per data node);
+   * whenever the transfer function is re-tabulated, the nodes whose range has zero opacity
+   * anywhere in the table are flagged in a small R8 texture indexed like the data nodes, and
+   * the shader skips their ray segments (a transfer-function change never rebuilds the tree or
+   * the ranges). Skipped samples would have had zero opacity, so the image does not change.
    */
   vtkSetMacro(EmptySpaceSkipping, bool);
   vtkGetMacro(EmptySpaceSkipping, bool);

@@ -17,6 +17,8 @@
 //                       handles stored in the amrspHandles texture (index: the data node's brick)
 //   AMRSP_WATERFALL     (bindless) serve one distinct handle at a time with GL_ARB_shader_ballot,
 //                       for drivers that require dynamically uniform handles
+//   AMRSP_POWER_OF_TWO_REFINEMENT every level's finest cells per cell is a power of two per axis
+//                       (amrspLevelToFinestLog2 holds the exponents)
 //   AMRSP_CELL_CENTRED  nearest-cell sampling of cell bricks
 //   AMRSP_VERTEX_CENTRED trilinear sampling of vertex bricks (one texel larger per axis)
 //   AMRSP_USE_DEPTH     clip rays at the depth of the opaque geometry already drawn
@@ -90,6 +92,9 @@ uniform int amrspRootLoFinest[3]; // root box in cells of the finest level (exac
 uniform int amrspRootHiFinest[3];
 uniform vec3 amrspLevelCellSize[AMRSP_LEVEL_COUNT];      // cell size, level-0 index units
 uniform int amrspLevelToFinest[3 * AMRSP_LEVEL_COUNT];   // finest cells per cell of a level
+#ifdef AMRSP_POWER_OF_TWO_REFINEMENT
+uniform int amrspLevelToFinestLog2[3 * AMRSP_LEVEL_COUNT]; // their base-2 logarithms
+#endif
 uniform float amrspLevelStep[AMRSP_LEVEL_COUNT];         // sampling distance D, model units
 uniform int amrspMaxSegments;                             // guard against corrupt textures
 
@@ -99,8 +104,9 @@ uniform float amrspUnitDistance; // vtkVolumeProperty::ScalarOpacityUnitDistance
 // Early ray termination: a composite ray stops once its opacity reaches this (1: never early).
 uniform float amrspOpacityThreshold;
 #ifdef AMRSP_SKIP_EMPTY
-uniform sampler3D amrspDataNodeRanges; // RG32F, indexed like amrspDataNodes: min, max scalar
-uniform sampler2D amrspOpacityPrefix;  // R32F, 1 row: table entries 0..i with opacity > 0
+// R8, indexed like amrspDataNodes: 1 where the node's value range has zero opacity in the
+// transfer table (amrsp::TableRangeTransparent, evaluated by the mapper per table)
+uniform sampler3D amrspTransparentFlags;
 #endif
 
 // Level of detail at type (a) nodes, as amrsp::LevelOfDetail: stop descending when one cell of
@@ -269,11 +275,19 @@ ivec3 amrspToFinest(int level)
 // finest-level cells): the cells a segment in that node samples.
 void amrspLeafCells(int level, ivec3 loF, ivec3 hiF, out ivec3 firstCell, out ivec3 lastCell)
 {
+#ifdef AMRSP_POWER_OF_TWO_REFINEMENT
+  // arithmetic shifts floor the quotient (integer division per lane is slow on SIMD drivers)
+  ivec3 shift = ivec3(amrspLevelToFinestLog2[3 * level], amrspLevelToFinestLog2[3 * level + 1],
+    amrspLevelToFinestLog2[3 * level + 2]);
+  firstCell = loF >> shift;
+  lastCell = -((-hiF) >> shift) - 1;
+#else
   ivec3 toData = amrspToFinest(level);
   firstCell = ivec3(amrspFloorDiv(loF.x, toData.x), amrspFloorDiv(loF.y, toData.y),
     amrspFloorDiv(loF.z, toData.z));
   lastCell = ivec3(amrspCeilDiv(hiF.x, toData.x), amrspCeilDiv(hiF.y, toData.y),
                amrspCeilDiv(hiF.z, toData.z)) - 1;
+#endif
 }
 
 // Narrows a node box (level-0 index units lo..hi, exact finest-level cells loF..hiF) to its lower
@@ -434,24 +448,10 @@ float amrspSampleSmooth(vec3 p, int level, uvec2 dataNode, ivec3 loF, ivec3 hiF,
 #endif
 
 #ifdef AMRSP_SKIP_EMPTY
-// Whether every scalar of a data node's value range (min, max) has zero opacity in the transfer
-// table, with linear filtering between entries: no entry from one below the range's first
-// position to one above its last has opacity (as amrsp::TableRangeTransparent). An empty range
-// (min > max: the node holds only NaN) is transparent.
+// Whether the data node's block is empty space under the current transfer function.
 bool amrspDataNodeTransparent(uint dataIndex)
 {
-  vec2 range = texelFetch(amrspDataNodeRanges, amrspTexelOf(dataIndex), 0).rg;
-  if (range.x > range.y)
-  {
-    return true;
-  }
-  float last = amrspTransferSize - 1.0;
-  float u0 = clamp((range.x - amrspTransferRange.x) * amrspTransferRange.y, 0.0, 1.0) * last;
-  float u1 = clamp((range.y - amrspTransferRange.x) * amrspTransferRange.y, 0.0, 1.0) * last;
-  int i0 = max(0, int(floor(u0)) - 1);
-  int i1 = min(int(last), int(ceil(u1)) + 1);
-  float below = i0 > 0 ? texelFetch(amrspOpacityPrefix, ivec2(i0 - 1, 0), 0).r : 0.0;
-  return texelFetch(amrspOpacityPrefix, ivec2(i1, 0), 0).r - below == 0.0;
+  return texelFetch(amrspTransparentFlags, amrspTexelOf(dataIndex), 0).r > 0.5;
 }
 #endif
 
@@ -756,14 +756,19 @@ void main()
     // An empty far interval (planes meeting where the leaf ends) is left to the restart.
     bool fromFar = haveFar && farEnd > t;
     haveFar = false;
-    if (fromFar && farEnd >= tEnd)
+    uvec2 texel = restartTexel;
+    if (fromFar)
     {
-      restartNode = farNode; // the far child holds the rest of the ray
-      restartLo = farLo;
-      restartHi = farHi;
-      restartLoF = farLoF;
-      restartHiF = farHiF;
-      restartTexel = amrspFetchNode(farNode);
+      texel = amrspFetchNode(farNode);
+      if (farEnd >= tEnd)
+      {
+        restartNode = farNode; // the far child holds the rest of the ray
+        restartLo = farLo;
+        restartHi = farHi;
+        restartLoF = farLoF;
+        restartHiF = farHiF;
+        restartTexel = texel;
+      }
     }
     // kd-restart: descend from the far child or the restart node to the node containing the ray
     // at t.
@@ -773,7 +778,6 @@ void main()
     ivec3 loF = fromFar ? farLoF : restartLoF; // the same box in exact finest-level cells
     ivec3 hiF = fromFar ? farHiF : restartHiF;
     float tLeave = fromFar ? farEnd : tEnd;
-    uvec2 texel = fromFar ? amrspFetchNode(farNode) : restartTexel;
     bool pushDown = canPushDown && (!fromFar || farEnd >= tEnd);
     for (;;)
     {
@@ -783,7 +787,7 @@ void main()
         break;
       }
       uint lodData = amrspNodeData(texel);
-      if (lodData != 0u && amrspLodThreshold > 0.0)
+      if (amrspLodThreshold > 0.0 && lodData != 0u)
       {
         uint dataLevel = amrspDataLevel(amrspFetchDataNode(lodData));
         vec3 cell = amrspLevelCellSize[dataLevel] * amrspSpacing0;

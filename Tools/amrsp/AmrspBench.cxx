@@ -269,8 +269,7 @@ Json DatasetStatistics(const Hierarchy& h)
   const KdTreeStatistics st = tree.Statistics();
   j["kd_nodes"] = st.Nodes;
   j["kd_data_nodes"] = st.DataNodes;
-  // tree, data nodes and the data nodes' value ranges (RG32F, as large as the data nodes)
-  j["tree_texture_bytes"] = enc.Tree.Bytes() + 2 * enc.DataNodes.Bytes();
+  j["tree_texture_bytes"] = KdTreeTextureBytes(enc.Tree, enc.DataNodes);
   double pack_s = 0.0;
   try
   {

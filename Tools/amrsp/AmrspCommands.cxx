@@ -777,8 +777,7 @@ int RunInspect(int argc, char** argv)
     j["atlas"] = atlas;
     {
       // the paper's Table 2 "GPU memory": tree textures + grid data, for either storage
-      // tree, data nodes, and the data nodes' value ranges (RG32F, as large as the data nodes)
-      const std::size_t treeBytes = enc.Tree.Bytes() + 2 * enc.DataNodes.Bytes();
+      const std::size_t treeBytes = KdTreeTextureBytes(enc.Tree, enc.DataNodes);
       std::size_t brickBytes = 0;
       for (const glm::ivec3& e : extents)
       {

@@ -17,6 +17,11 @@ glm::ivec3 TextureDimsFor(std::size_t texels)
     static_cast<int>((rows + row - 1) / row));
 }
 
+std::size_t KdTreeTextureBytes(const UIntTexture3D& tree, const UIntTexture3D& dataNodes)
+{
+  return tree.Bytes() + dataNodes.Bytes() + dataNodes.Texels.size();
+}
+
 namespace
 {
 void Require(bool ok, const std::string& what)

@@ -49,6 +49,10 @@ public:
 /// Linear texel count -> 3D texture dimensions with rows of AMRSP_TEXTURE_ROW texels.
 glm::ivec3 TextureDimsFor(std::size_t texels);
 
+/// GPU bytes of the single-pass mapper's tree textures: the tree, the data nodes, and the data
+/// nodes' empty-space flags (R8, one byte per data-node texel, same layout).
+std::size_t KdTreeTextureBytes(const UIntTexture3D& tree, const UIntTexture3D& dataNodes);
+
 /// Encodes the tree. `brickOrigins`, when given (one per grid), is the texel of each grid's first
 /// cell inside the packed atlas; every data node then stores the atlas texel holding its own
 /// lower corner. Without it the offsets are 0 (storage not decided yet).
