@@ -66,7 +66,8 @@ inline amrsp::RenderSettings Settings(amrsp::Hierarchy& h, std::vector<std::stri
   }
   const amrsp::tool::Arguments a = amrsp::tool::ParseArguments(static_cast<int>(argv.size()),
     argv.data(), 1,
-    { "size", "azimuth", "elevation", "zoom", "tf", "scale", "unit-distance", "sample-factor" },
+    { "size", "azimuth", "elevation", "zoom", "tf", "scale", "unit-distance", "sample-factor",
+      "reference-sample-factor" },
     {});
   return amrsp::tool::MakeSettings(h, a);
 }
