@@ -98,6 +98,8 @@ public:
   std::vector<int> LevelToFinest;   // 3 per level
   // base-2 logarithms of LevelToFinest; empty unless every entry is a power of two
   std::vector<int> LevelToFinestLog2;
+  // k > 0 when every level refines the one above by 2^k on every axis (else 0)
+  int UniformRefinementLog2 = 0;
   std::vector<double> LevelMinEdge; // smallest model-space edge of a cell of each level
   double Bounds[6] = { 0, -1, 0, -1, 0, -1 };
   double ScalarRange[2] = { 0.0, 1.0 };
@@ -361,6 +363,22 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
         break;
       }
       this->LevelToFinestLog2.push_back(log2);
+    }
+    // uniform: level l has k (L - 1 - l) on every axis; one level counts as k = 1
+    const int levelCount = h.NumberOfLevels();
+    this->UniformRefinementLog2 = 0;
+    if (!this->LevelToFinestLog2.empty())
+    {
+      const int k = levelCount > 1 ? this->LevelToFinestLog2[0] / (levelCount - 1) : 1;
+      bool uniform = k > 0 && k * (levelCount - 1) < 31;
+      for (int l = 0; uniform && l < levelCount; ++l)
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          uniform = uniform && this->LevelToFinestLog2[3 * l + a] == k * (levelCount - 1 - l);
+        }
+      }
+      this->UniformRefinementLog2 = uniform ? k : 0;
     }
     this->LevelCellSize = enc.LevelCellSize;
     this->RootLo = enc.RootLo;
@@ -963,6 +981,10 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     defines += "#define AMRSP_POWER_OF_TWO_REFINEMENT 1\n";
   }
+  if (in.UniformRefinementLog2 > 0)
+  {
+    defines += "#define AMRSP_UNIFORM_REFINEMENT_LOG2 " + std::to_string(in.UniformRefinementLog2) + "\n";
+  }
   defines += "#define AMRSP_BLEND_MODE " + std::to_string(blend) + "\n";
   const bool skipEmpty = this->EmptySpaceSkipping && blend == 0;
   if (skipEmpty)
@@ -1176,9 +1198,20 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   program->SetUniform3f("amrspClipHi", &clipHi.x);
   program->SetUniform1iv("amrspRootLoFinest", 3, in.RootLoFinest);
   program->SetUniform1iv("amrspRootHiFinest", 3, in.RootHiFinest);
-  program->SetUniform3fv("amrspLevelCellSize", levels, &cells[0].x);
-  program->SetUniform1iv("amrspLevelToFinest", 3 * levels, in.LevelToFinest.data());
-  if (powerOfTwoRefinement)
+  // (with uniform power-of-two refinement the shader computes these from the level)
+  if (program->IsUniformUsed("amrspLevelCellSize"))
+  {
+    program->SetUniform3fv("amrspLevelCellSize", levels, &cells[0].x);
+  }
+  if (program->IsUniformUsed("amrspLevelToFinest"))
+  {
+    program->SetUniform1iv("amrspLevelToFinest", 3 * levels, in.LevelToFinest.data());
+  }
+  if (in.UniformRefinementLog2 > 0)
+  {
+    program->SetUniformf("amrspFinestCellSize", cells.back().x);
+  }
+  else if (powerOfTwoRefinement)
   {
     program->SetUniform1iv("amrspLevelToFinestLog2", 3 * levels, in.LevelToFinestLog2.data());
   }

@@ -19,6 +19,9 @@
 //                       for drivers that require dynamically uniform handles
 //   AMRSP_POWER_OF_TWO_REFINEMENT every level's finest cells per cell is a power of two per axis
 //                       (amrspLevelToFinestLog2 holds the exponents)
+//   AMRSP_UNIFORM_REFINEMENT_LOG2 k: every level refines the one above by 2^k on every axis (with
+//                       AMRSP_POWER_OF_TWO_REFINEMENT); the per-level constants are then computed
+//                       from the level instead of read from the per-level uniform arrays
 //   AMRSP_CELL_CENTRED  nearest-cell sampling of cell bricks
 //   AMRSP_VERTEX_CENTRED trilinear sampling of vertex bricks (one texel larger per axis)
 //   AMRSP_USE_DEPTH     clip rays at the depth of the opaque geometry already drawn
@@ -95,6 +98,9 @@ uniform int amrspLevelToFinest[3 * AMRSP_LEVEL_COUNT];   // finest cells per cel
 #ifdef AMRSP_POWER_OF_TWO_REFINEMENT
 uniform int amrspLevelToFinestLog2[3 * AMRSP_LEVEL_COUNT]; // their base-2 logarithms
 #endif
+#ifdef AMRSP_UNIFORM_REFINEMENT_LOG2
+uniform float amrspFinestCellSize; // cell size of the finest level, level-0 index units (2^-k(L-1))
+#endif
 uniform float amrspLevelStep[AMRSP_LEVEL_COUNT];         // sampling distance D, model units
 uniform int amrspMaxSegments;                             // guard against corrupt textures
 
@@ -146,6 +152,70 @@ uvec2 amrspFetchNode(uint index)
 uvec2 amrspFetchDataNode(uint index)
 {
   return texelFetch(amrspDataNodes, amrspTexelOf(index), 0).rg;
+}
+
+// ---- Per-level constants. A level comes from a texel, so it differs between fragments, and
+// indexing a uniform array with it is a gather, lane by lane, on SIMD drivers. With uniform
+// power-of-two refinement the constants are exact powers of two computed from the level.
+
+#ifdef AMRSP_UNIFORM_REFINEMENT_LOG2
+// Base-2 logarithm of the finest-level cells per cell of `level` (the same on every axis).
+int amrspToFinestLog2Uniform(int level)
+{
+  return AMRSP_UNIFORM_REFINEMENT_LOG2 * (AMRSP_LEVEL_COUNT - 1 - level);
+}
+#endif
+
+// Finest-level cells per cell of `level` on `axis`.
+int amrspToFinestOnAxis(int level, int axis)
+{
+#ifdef AMRSP_UNIFORM_REFINEMENT_LOG2
+  return 1 << amrspToFinestLog2Uniform(level);
+#else
+  return amrspLevelToFinest[3 * level + axis];
+#endif
+}
+
+// Finest-level cells per cell of `level`, per axis.
+ivec3 amrspToFinest(int level)
+{
+#ifdef AMRSP_UNIFORM_REFINEMENT_LOG2
+  return ivec3(1 << amrspToFinestLog2Uniform(level));
+#else
+  return ivec3(amrspLevelToFinest[3 * level], amrspLevelToFinest[3 * level + 1],
+    amrspLevelToFinest[3 * level + 2]);
+#endif
+}
+
+// Cell size of `level` on `axis`, level-0 index units (exactly amrspLevelCellSize[level][axis]).
+float amrspCellSizeOnAxis(int level, int axis)
+{
+#ifdef AMRSP_UNIFORM_REFINEMENT_LOG2
+  return float(amrspToFinestOnAxis(level, axis)) * amrspFinestCellSize; // powers of two: exact
+#else
+  return amrspLevelCellSize[level][axis];
+#endif
+}
+
+// Cell size of `level`, level-0 index units (exactly amrspLevelCellSize[level]).
+vec3 amrspCellSize(int level)
+{
+#ifdef AMRSP_UNIFORM_REFINEMENT_LOG2
+  return vec3(amrspCellSizeOnAxis(level, 0));
+#else
+  return amrspLevelCellSize[level];
+#endif
+}
+
+// Sampling distance D of `level`, model units (exactly amrspLevelStep[level]: the steps of a
+// uniform power-of-two refinement differ by powers of two).
+float amrspStep(int level)
+{
+#ifdef AMRSP_UNIFORM_REFINEMENT_LOG2
+  return amrspLevelStep[0] * amrspCellSizeOnAxis(level, 0);
+#else
+  return amrspLevelStep[level];
+#endif
 }
 
 // Integer division rounding towards minus infinity (b > 0), and its ceiling counterpart.
@@ -264,12 +334,6 @@ bool amrspGridHasCell(uvec2 dataNode, ivec3 cell)
 }
 #endif
 
-// Finest-level cells per cell of `level`, per axis.
-ivec3 amrspToFinest(int level)
-{
-  return ivec3(amrspLevelToFinest[3 * level], amrspLevelToFinest[3 * level + 1],
-    amrspLevelToFinest[3 * level + 2]);
-}
 
 // The cells firstCell..lastCell of data level `level` that cover the node box loF..hiF (exact
 // finest-level cells): the cells a segment in that node samples.
@@ -277,8 +341,12 @@ void amrspLeafCells(int level, ivec3 loF, ivec3 hiF, out ivec3 firstCell, out iv
 {
 #ifdef AMRSP_POWER_OF_TWO_REFINEMENT
   // arithmetic shifts floor the quotient (integer division per lane is slow on SIMD drivers)
+#ifdef AMRSP_UNIFORM_REFINEMENT_LOG2
+  ivec3 shift = ivec3(amrspToFinestLog2Uniform(level));
+#else
   ivec3 shift = ivec3(amrspLevelToFinestLog2[3 * level], amrspLevelToFinestLog2[3 * level + 1],
     amrspLevelToFinestLog2[3 * level + 2]);
+#endif
   firstCell = loF >> shift;
   lastCell = -((-hiF) >> shift) - 1;
 #else
@@ -333,8 +401,8 @@ uint amrspLocateDataNode(vec3 p, out ivec3 loF, out ivec3 hiF)
     int axis = int(amrspNodeAxis(texel));
     uint level = amrspNodeLevel(texel);
     uint split = amrspNodeSplit(texel);
-    float plane = lo[axis] + float(split) * amrspLevelCellSize[level][axis];
-    int planeF = loF[axis] + int(split) * amrspLevelToFinest[3 * int(level) + axis];
+    float plane = lo[axis] + float(split) * amrspCellSizeOnAxis(int(level), axis);
+    int planeF = loF[axis] + int(split) * amrspToFinestOnAxis(int(level), axis);
     bool lower = p[axis] < plane;
     amrspChildBox(lo, hi, loF, hiF, axis, plane, planeF, lower);
     texel = amrspFetchNode(lower ? child : child + 1u);
@@ -352,7 +420,7 @@ bool amrspLocateSample(vec3 p, out uvec2 dataNode, out int level, out ivec3 loF,
   level = int(amrspDataLevel(dataNode));
   amrspLeafCells(level, loF, hiF, firstCell, lastCell);
   value = data != 0u
-    ? amrspSampleDataNode(dataNode, p, amrspLevelCellSize[level], firstCell, lastCell)
+    ? amrspSampleDataNode(dataNode, p, amrspCellSize(level), firstCell, lastCell)
     : 0.0;
   return data != 0u;
 }
@@ -378,7 +446,7 @@ float amrspSmoothCorner(vec3 x, int level, float fallback)
   {
     return vx;
   }
-  vec3 cellSize = amrspLevelCellSize[m];
+  vec3 cellSize = amrspCellSize(m);
   vec3 q = x / cellSize - 0.5;
   vec3 base = floor(q);
   vec3 w = q - base;
@@ -418,7 +486,7 @@ float amrspSmoothCorner(vec3 x, int level, float fallback)
 float amrspSampleSmooth(vec3 p, int level, uvec2 dataNode, ivec3 loF, ivec3 hiF, ivec3 firstCell,
   ivec3 lastCell, float nearest)
 {
-  vec3 cellSize = amrspLevelCellSize[level];
+  vec3 cellSize = amrspCellSize(level);
   vec3 q = p / cellSize - 0.5;
   vec3 base = floor(q);
   vec3 w = q - base;
@@ -472,7 +540,7 @@ bool amrspSampleAtPoint(vec3 p, out float value, out vec3 cellSize)
   {
     return false;
   }
-  cellSize = amrspLevelCellSize[level];
+  cellSize = amrspCellSize(level);
 #ifdef AMRSP_SMOOTH_CELLS
   value = amrspSampleSmooth(p, level, dataNode, loF, hiF, firstCell, lastCell, value);
 #endif
@@ -518,7 +586,7 @@ bool amrspSampleNear(vec3 q, out float value)
     amrspLeafCells(int(amrspDataLevel(dataNode)), loF, hiF, firstCell, lastCell);
   }
   int level = int(amrspDataLevel(dataNode));
-  value = amrspSampleDataNode(dataNode, q, amrspLevelCellSize[level], firstCell, lastCell);
+  value = amrspSampleDataNode(dataNode, q, amrspCellSize(level), firstCell, lastCell);
 #ifdef AMRSP_SMOOTH_CELLS
   value = amrspSampleSmooth(q, level, dataNode, loF, hiF, firstCell, lastCell, value);
 #endif
@@ -790,7 +858,7 @@ void main()
       if (amrspLodThreshold > 0.0 && lodData != 0u)
       {
         uint dataLevel = amrspDataLevel(amrspFetchDataNode(lodData));
-        vec3 cell = amrspLevelCellSize[dataLevel] * amrspSpacing0;
+        vec3 cell = amrspCellSize(int(dataLevel)) * amrspSpacing0;
         float cellWorld = max(cell.x, max(cell.y, cell.z));
         float pixel = amrspParallelPixelSize > 0.0 ? amrspParallelPixelSize
                                                    : t * amrspPixelSizePerDistance;
@@ -802,8 +870,8 @@ void main()
       int axis = int(amrspNodeAxis(texel));
       uint level = amrspNodeLevel(texel);
       uint split = amrspNodeSplit(texel);
-      float plane = lo[axis] + float(split) * amrspLevelCellSize[level][axis];
-      int planeF = loF[axis] + int(split) * amrspLevelToFinest[3 * int(level) + axis];
+      float plane = lo[axis] + float(split) * amrspCellSizeOnAxis(int(level), axis);
+      int planeF = loF[axis] + int(split) * amrspToFinestOnAxis(int(level), axis);
       float o = ro[axis];
       float d = rd[axis];
       bool originBelow = o < plane || (o == plane && d > 0.0);
@@ -861,10 +929,10 @@ void main()
       int level = int(amrspDataLevel(dataNode));
       ivec3 firstCell, lastCell;
       amrspLeafCells(level, loF, hiF, firstCell, lastCell);
-      vec3 cellSize = amrspLevelCellSize[level];
+      vec3 cellSize = amrspCellSize(level);
       // Sampling rule: n = max(1, ceil(length / D)) equal steps, samples at their midpoints.
       float segmentLength = tLeave - t;
-      int n = max(1, int(ceil(segmentLength / amrspLevelStep[level])));
+      int n = max(1, int(ceil(segmentLength / amrspStep(level))));
       float dt = segmentLength / float(n);
       float exponent = dt / amrspUnitDistance;
       for (int k = 0; k < n; ++k)

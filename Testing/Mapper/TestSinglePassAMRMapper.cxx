@@ -14,7 +14,8 @@
 // Further checks: the textures are built once across camera and transfer-function changes; a
 // camera inside the volume; parallel projection; a translated volume (vtkProp3D matrix); opaque
 // geometry in front of and inside the volume (depth buffer);
-// refinement ratios that are not powers of two (3, and 3 x 2 x 3: the integer-division path);
+// hand-made hierarchies for the shader's three ways to the per-level constants (refinement
+// ratios 3 x 2 x 3 and 3; 2 x 4 x 2 and 4; 4 and 4);
 // a missing array and an atlas over the size limit report an error and draw nothing.
 //
 // Exit code 125 (CTest SKIP) with "SKIPPED: ..." when no suitable OpenGL context can be created
@@ -384,23 +385,23 @@ void FillSmoothField(Hierarchy& h, const std::function<bool(const Grid&, const g
   }
 }
 
-/// Refinement ratios that are not powers of two (3, and anisotropic 3 x 2 x 3): the shader then
-/// finds a leaf's cells by integer division instead of shifts. Three levels, so leaves of levels
-/// 0 and 1 have 9 x 6 x 9 and 3 x 3 x 3 finest cells per cell.
-void TestNonPowerOfTwoRefinement()
+/// A hand-made three-level hierarchy with the given refinement ratios and grids, rendered against
+/// both CPU integrators. The shader has three ways to the per-level constants: computed from the
+/// level (every level refines by the same 2^k on every axis, as in every dataset of the other
+/// tests), read from the per-level arrays with leaf cells by shifts (powers of two that differ
+/// by level or axis), or with leaf cells by integer division (other ratios).
+void TestRefinementRatios(const std::string& what, const std::vector<glm::ivec3>& ratios,
+  const std::vector<Grid>& grids)
 {
-  std::cout << "hand-made hierarchy: refinement ratios 3 x 2 x 3 and 3\n";
+  std::cout << "hand-made hierarchy: refinement ratios " << what << "\n";
   Hierarchy h;
-  h.RefinementRatio = { glm::ivec3(1), glm::ivec3(3, 2, 3), glm::ivec3(3) };
-  h.Grids = { Grid{ 0, Box{ glm::i64vec3(0), glm::i64vec3(6) } },
-    Grid{ 1, Box{ glm::i64vec3(3, 2, 3), glm::i64vec3(12, 8, 12) } },
-    Grid{ 1, Box{ glm::i64vec3(12, 6, 3), glm::i64vec3(15, 10, 9) } },
-    Grid{ 2, Box{ glm::i64vec3(15, 9, 15), glm::i64vec3(27, 21, 30) } } };
+  h.RefinementRatio = ratios;
+  h.Grids = grids;
   FillSmoothField(h, [](const Grid&, const glm::dvec3&) { return false; });
   // Level-0 cells are a sixth of the volume: at the default sampling (one sample per cell, the
   // reference two per finest cell) and opacity, the step alone puts the kD-tree integrator 7.6
   // RMSE from the reference on a single 6^3 grid. Finer steps and a thinner medium measure the
-  // cells instead (GPU vs reference 0.92, GPU vs kD-tree 0.06).
+  // cells instead (GPU vs reference 0.92, GPU vs kD-tree 0.06 with ratios 3 x 2 x 3 and 3).
   const RenderSettings s = Settings(h, { "--size", "96x96", "--scale", "linear", "--sample-factor",
     "0.25", "--reference-sample-factor", "0.125", "--unit-distance", "2" });
   const EncodedKdTree enc = EncodeKdTree(h, BuildKdTree(h));
@@ -415,6 +416,27 @@ void TestNonPowerOfTwoRefinement()
     "GPU vs CPU reference: RMSE " + Fixed(vsRef) + " < " + Fixed(BoundVsReference));
   Check(vsKd < BoundVsKdTree,
     "GPU vs CPU kD-tree integrator: RMSE " + Fixed(vsKd) + " < " + Fixed(BoundVsKdTree));
+}
+
+void TestRefinementRatios()
+{
+  using B = Box;
+  using V = glm::i64vec3;
+  // 3 x 2 x 3, then 3: leaves of levels 0 and 1 have 9 x 6 x 9 and 3 x 3 x 3 finest cells per cell
+  TestRefinementRatios("3 x 2 x 3 and 3 (integer division)",
+    { glm::ivec3(1), glm::ivec3(3, 2, 3), glm::ivec3(3) },
+    { Grid{ 0, B{ V(0), V(6) } }, Grid{ 1, B{ V(3, 2, 3), V(12, 8, 12) } },
+      Grid{ 1, B{ V(12, 6, 3), V(15, 10, 9) } }, Grid{ 2, B{ V(15, 9, 15), V(27, 21, 30) } } });
+  // 2 x 4 x 2, then 4: powers of two, different per axis and level (shifts, per-level arrays)
+  TestRefinementRatios("2 x 4 x 2 and 4 (shifts)",
+    { glm::ivec3(1), glm::ivec3(2, 4, 2), glm::ivec3(4) },
+    { Grid{ 0, B{ V(0), V(6) } }, Grid{ 1, B{ V(2, 4, 2), V(8, 16, 8) } },
+      Grid{ 1, B{ V(8, 12, 2), V(10, 20, 6) } }, Grid{ 2, B{ V(12, 24, 12), V(24, 48, 28) } } });
+  // 4, then 4: the uniform refinement the shader computes from the level
+  TestRefinementRatios("4 and 4 (computed from the level)",
+    { glm::ivec3(1), glm::ivec3(4), glm::ivec3(4) },
+    { Grid{ 0, B{ V(0), V(6) } }, Grid{ 1, B{ V(4), V(16) } },
+      Grid{ 1, B{ V(16, 8, 4), V(20, 16, 12) } }, Grid{ 2, B{ V(24), V(48, 40, 56) } } });
 }
 
 /// A root grid refined everywhere by two finer grids: its root is a type (a) node, so level of
@@ -567,7 +589,7 @@ int main()
   {
     TestDataset("synthetic:cosmo:grids=60,levels=3,cells=200k,seed=3");
     TestLevelOfDetailAndNaN();
-    TestNonPowerOfTwoRefinement();
+    TestRefinementRatios();
     TestTwoRenderersAndDataChanges();
     TestVertexCentred("synthetic:cosmo:grids=40,levels=3,cells=100k,seed=5");
     const std::string enzo =
