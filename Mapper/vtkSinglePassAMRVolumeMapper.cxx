@@ -59,6 +59,54 @@ namespace
 {
 
 
+/// Base-2 logarithms of `ratios` (all > 0); empty unless every one is a power of two.
+std::vector<int> PowerOfTwoExponents(const std::vector<int>& ratios)
+{
+  std::vector<int> exponents;
+  for (int ratio : ratios)
+  {
+    int e = 0;
+    while ((1 << e) < ratio)
+    {
+      ++e;
+    }
+    if ((1 << e) != ratio)
+    {
+      return {};
+    }
+    exponents.push_back(e);
+  }
+  return exponents;
+}
+
+/// k > 0 when `toFinestLog2` (3 per level, as LevelToFinestLog2) says every level refines the one
+/// above by 2^k on every axis, i.e. level l has k (L - 1 - l) on every axis (one level: k = 1);
+/// else 0.
+int UniformRefinementExponent(const std::vector<int>& toFinestLog2)
+{
+  const int levels = static_cast<int>(toFinestLog2.size() / 3);
+  if (levels == 0)
+  {
+    return 0;
+  }
+  const int k = levels > 1 ? toFinestLog2[0] / (levels - 1) : 1;
+  if (k <= 0 || k * (levels - 1) >= 31)
+  {
+    return 0;
+  }
+  for (int l = 0; l < levels; ++l)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      if (toFinestLog2[3 * l + a] != k * (levels - 1 - l))
+      {
+        return 0;
+      }
+    }
+  }
+  return k;
+}
+
 double MinEdge(const glm::dvec3& v)
 {
   return std::min(v.x, std::min(v.y, v.z));
@@ -340,7 +388,6 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
       this->RootHiFinest[a] = static_cast<int>(root.Hi[a]);
     }
     this->LevelToFinest.clear();
-    this->LevelToFinestLog2.clear();
     this->LevelMinEdge.clear();
     for (int l = 0; l < h.NumberOfLevels(); ++l)
     {
@@ -350,36 +397,8 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
       this->LevelToFinest.push_back(static_cast<int>(r.z));
       this->LevelMinEdge.push_back(MinEdge(h.Spacing0 * h.CellSize(l)));
     }
-    for (int ratio : this->LevelToFinest)
-    {
-      int log2 = 0;
-      while ((1 << log2) < ratio)
-      {
-        ++log2;
-      }
-      if ((1 << log2) != ratio)
-      {
-        this->LevelToFinestLog2.clear();
-        break;
-      }
-      this->LevelToFinestLog2.push_back(log2);
-    }
-    // uniform: level l has k (L - 1 - l) on every axis; one level counts as k = 1
-    const int levelCount = h.NumberOfLevels();
-    this->UniformRefinementLog2 = 0;
-    if (!this->LevelToFinestLog2.empty())
-    {
-      const int k = levelCount > 1 ? this->LevelToFinestLog2[0] / (levelCount - 1) : 1;
-      bool uniform = k > 0 && k * (levelCount - 1) < 31;
-      for (int l = 0; uniform && l < levelCount; ++l)
-      {
-        for (int a = 0; a < 3; ++a)
-        {
-          uniform = uniform && this->LevelToFinestLog2[3 * l + a] == k * (levelCount - 1 - l);
-        }
-      }
-      this->UniformRefinementLog2 = uniform ? k : 0;
-    }
+    this->LevelToFinestLog2 = PowerOfTwoExponents(this->LevelToFinest);
+    this->UniformRefinementLog2 = UniformRefinementExponent(this->LevelToFinestLog2);
     this->LevelCellSize = enc.LevelCellSize;
     this->RootLo = enc.RootLo;
     this->RootHi = enc.RootHi;

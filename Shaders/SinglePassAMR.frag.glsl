@@ -166,6 +166,19 @@ int amrspToFinestLog2Uniform(int level)
 }
 #endif
 
+#ifdef AMRSP_POWER_OF_TWO_REFINEMENT
+// Base-2 logarithms of the finest-level cells per cell of `level`, per axis.
+ivec3 amrspToFinestLog2(int level)
+{
+#ifdef AMRSP_UNIFORM_REFINEMENT_LOG2
+  return ivec3(amrspToFinestLog2Uniform(level));
+#else
+  return ivec3(amrspLevelToFinestLog2[3 * level], amrspLevelToFinestLog2[3 * level + 1],
+    amrspLevelToFinestLog2[3 * level + 2]);
+#endif
+}
+#endif
+
 // Finest-level cells per cell of `level` on `axis`.
 int amrspToFinestOnAxis(int level, int axis)
 {
@@ -334,19 +347,13 @@ bool amrspGridHasCell(uvec2 dataNode, ivec3 cell)
 }
 #endif
 
-
 // The cells firstCell..lastCell of data level `level` that cover the node box loF..hiF (exact
 // finest-level cells): the cells a segment in that node samples.
 void amrspLeafCells(int level, ivec3 loF, ivec3 hiF, out ivec3 firstCell, out ivec3 lastCell)
 {
 #ifdef AMRSP_POWER_OF_TWO_REFINEMENT
   // arithmetic shifts floor the quotient (integer division per lane is slow on SIMD drivers)
-#ifdef AMRSP_UNIFORM_REFINEMENT_LOG2
-  ivec3 shift = ivec3(amrspToFinestLog2Uniform(level));
-#else
-  ivec3 shift = ivec3(amrspLevelToFinestLog2[3 * level], amrspLevelToFinestLog2[3 * level + 1],
-    amrspLevelToFinestLog2[3 * level + 2]);
-#endif
+  ivec3 shift = amrspToFinestLog2(level);
   firstCell = loF >> shift;
   lastCell = -((-hiF) >> shift) - 1;
 #else
@@ -855,7 +862,7 @@ void main()
         break;
       }
       uint lodData = amrspNodeData(texel);
-      if (amrspLodThreshold > 0.0 && lodData != 0u)
+      if (lodData != 0u && amrspLodThreshold > 0.0)
       {
         uint dataLevel = amrspDataLevel(amrspFetchDataNode(lodData));
         vec3 cell = amrspCellSize(int(dataLevel)) * amrspSpacing0;

@@ -128,7 +128,7 @@ bool TableRangeTransparent(const std::vector<float>& prefix, const float range[2
   {
     return true;
   }
-  // the same float expressions as the shader's amrspTransferFunction and amrspRangeTransparent
+  // the table positions in the same float expressions as the shader's amrspTransferFunction
   const float last = static_cast<float>(n - 1);
   const float u0 = std::min(1.0f, std::max(0.0f, (lo - range[0]) * range[1])) * last;
   const float u1 = std::min(1.0f, std::max(0.0f, (hi - range[0]) * range[1])) * last;

@@ -32,13 +32,14 @@ std::vector<glm::vec2> ComputeDataNodeRanges(const Hierarchy& h, const EncodedKd
 bool TransparentRange(const TransferFunction& tf, double lo, double hi);
 
 /**
- * The GPU's form of the test, on the tabulated transfer function the shader samples: `prefix[i]`
+ * The test on the tabulated transfer function the shader samples: `prefix[i]`
  * is the number of table entries 0..i with opacity > 0 (OpacityPrefixCounts). Table entry i
  * stands for the scalar first + i / (n - 1) * (last - first), with linear filtering between
  * entries and clamping beyond; `range` is the shader's (first, 1 / (last - first)).
  * A range is transparent when no entry from the one below lo's position to the one above hi's
  * position (one entry of margin on each side, against filtering round-off) has opacity.
- * Mirrors amrspRangeTransparent in Shaders/SinglePassAMR.frag.glsl.
+ * vtkSinglePassAMRVolumeMapper evaluates it for every data node whenever the table changes and
+ * gives the shader the verdicts (one flag per data node).
  */
 std::vector<float> OpacityPrefixCounts(const std::vector<float>& opacity);
 bool TableRangeTransparent(const std::vector<float>& prefix, const float range[2], float lo,
