@@ -19,7 +19,7 @@
 #include "vtkVolume.h"
 #include "vtkVolumeMapper.h"
 #include "vtkVolumeProperty.h"
-#include "vtk_glew.h"
+#include "vtkAMROpenGL.h"
 
 #include <algorithm>
 #include <cmath>

@@ -25,7 +25,7 @@
 #include "vtkTextureObject.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
-#include "vtk_glew.h"
+#include "vtkAMROpenGL.h"
 
 // GLSL embedded at build time (vtk_encode_string)
 #include "amrsp_MultiPassAMRComposite_frag_glsl.h"

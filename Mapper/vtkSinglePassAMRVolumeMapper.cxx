@@ -36,7 +36,7 @@
 #include "vtkTextureObject.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
-#include "vtk_glew.h"
+#include "vtkAMROpenGL.h"
 
 // GLSL embedded at build time (vtk_encode_string)
 #include "amrsp_KdTreeLayout_glsl.h"
@@ -236,9 +236,9 @@ public:
       return;
     }
     renWin->MakeCurrent();
-    this->HasBindless = glewIsSupported("GL_ARB_bindless_texture") != 0;
-    this->HasNVShader5 = glewIsSupported("GL_NV_gpu_shader5") != 0;
-    this->HasBallot = glewIsSupported("GL_ARB_shader_ballot") != 0;
+    this->HasBindless = vtkAMROpenGL::HasExtension("GL_ARB_bindless_texture");
+    this->HasNVShader5 = vtkAMROpenGL::HasExtension("GL_NV_gpu_shader5");
+    this->HasBallot = vtkAMROpenGL::HasExtension("GL_ARB_shader_ballot");
     const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     this->MaxBindlessTextures =
       renderer && std::string(renderer).find("zink") != std::string::npos ? 1023 : -1;

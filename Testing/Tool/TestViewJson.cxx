@@ -2,13 +2,15 @@
 // amrsp --view-json: a camera and transfer functions given explicitly (as the ParaView tests write
 // them) must give exactly the settings, and the image, that the conventions give when the file
 // holds the conventions' own camera and preset.
+// first: see AmrspJson.h
+#include "AmrspJson.h"
+
 #include "AmrspCommands.h"
 #include "AmrspDataset.h"
 
 #include "amrsp/Render.h"
 
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <fstream>

@@ -1,7 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
+// first: see AmrspJson.h
+#include "AmrspJson.h"
+
 #include "AmrspBench.h"
 
 #include "AmrspAmrResample.h"
+#include "AmrspDriver.h"
 #include "AmrspMultipass.h"
 #include "AmrspPacking.h"
 #include "AmrspUniform.h"
@@ -421,6 +425,7 @@ Json RunBenchMethods(const Hierarchy& h, const RenderSettings& s, const Image& r
         }
         r["gpu_bytes"] = gpu->TextureBytes();
         r["device"] = gpu->Device();
+        r["backend"] = gpu->Backend();
         if (m == "packing" || m == "bindless" || m == "multipass")
         {
           r["atlas"] = m == "bindless" ? std::string("none (one texture per grid)")
@@ -656,6 +661,15 @@ std::string BenchMarkdown(const Json& bench)
   if (bench.contains("device") && !bench["device"].get<std::string>().empty())
   {
     md << ", " << bench["device"].get<std::string>();
+  }
+  if (bench.contains("backend"))
+  {
+    md << " through " << bench["backend"].get<std::string>();
+  }
+  if (bench.contains("vtk_version"))
+  {
+    md << " (VTK " << bench["vtk_version"].get<std::string>() << ", ParaView "
+       << bench["paraview_version"].get<std::string>() << ")";
   }
   md << (paper ? ", the size of the paper's dataset " + std::to_string(paper) +
              " (the hierarchy is the project's synthetic one, not the paper's data)"

@@ -9,7 +9,7 @@
 #include "amrsp/Hierarchy.h"
 #include "amrsp/Render.h"
 
-#include <nlohmann/json.hpp>
+#include "AmrspJson.h"
 
 #include <string>
 #include <vector>

@@ -1,4 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
+// first: see AmrspJson.h
+#include "AmrspJson.h"
+
 #include "AmrspBenchPlot.h"
 
 #include "vtkImageData.h"

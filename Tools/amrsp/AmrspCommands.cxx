@@ -1,4 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
+// first: see AmrspJson.h
+#include "AmrspJson.h"
+
 #include "AmrspCommands.h"
 
 #include "AmrspBench.h"
@@ -26,7 +29,6 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtkPointData.h"
 
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -882,6 +884,7 @@ int RunImageCommand(int argc, char** argv, bool reference)
       valueOptions.push_back("method");
       valueOptions.push_back("bindless-access");
       valueOptions.push_back("driver");
+      valueOptions.push_back("backend");
     }
     const Arguments a = ParseArguments(argc, argv, 1, valueOptions,
       reference ? std::vector<std::string>{ "stats" }
@@ -920,6 +923,7 @@ int RunImageCommand(int argc, char** argv, bool reference)
     if (!reference)
     {
       SelectDriver(a.Get("driver", "default"));
+      SelectBackend(a.Get("backend", "auto"));
     }
     if (!reference && method == "auto")
     {
@@ -1011,6 +1015,8 @@ int RunImageCommand(int argc, char** argv, bool reference)
                   << singlePass->BindlessBytes() / (1024.0 * 1024.0) << " MiB\n";
       }
       gpuReport << "device: " << r.Device() << "\n"
+                << "backend: " << r.Backend() << " (VTK " << VtkVersion() << ", ParaView "
+                << ParaViewVersion() << ")\n"
                 << "atlas: "
                 << (singlePass && method == "bindless" ? "not used (bindless)"
                                                        : r.AtlasDimensions() + " texels")
@@ -1251,7 +1257,7 @@ int RunBench(int argc, char** argv)
     const Arguments a = ParseArguments(argc, argv, 1,
       Concat({ DatasetOptions, ViewOptions,
         { "frames", "methods", "json", "plot", "plot-size", "scaling-sizes", "seed",
-          "save-images", "driver", "rounds" } }),
+          "save-images", "driver", "backend", "rounds" } }),
       { "scaling" });
     if (WantsHelp(a))
     {
@@ -1260,6 +1266,7 @@ int RunBench(int argc, char** argv)
     }
     // every method of the run renders in contexts of this driver (comparable timings)
     SelectDriver(a.Get("driver", "default"));
+    SelectBackend(a.Get("backend", "auto"));
     const bool scaling = a.Has("scaling");
     if (scaling && a.Positional.size() > 1)
     {
@@ -1446,6 +1453,20 @@ int RunBench(int argc, char** argv)
         }
       }
     }
+    // where the run rendered: the window system of the GPU methods and the library versions
+    if (!scaling)
+    {
+      for (const auto& m : j["methods"].items())
+      {
+        if (m.value().contains("backend"))
+        {
+          j["backend"] = m.value()["backend"];
+          break;
+        }
+      }
+    }
+    j["vtk_version"] = VtkVersion();
+    j["paraview_version"] = ParaViewVersion();
     if (a.Has("plot"))
     {
       WriteBenchPlot(j, plot, plotWidth, plotHeight);

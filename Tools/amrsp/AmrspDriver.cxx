@@ -1,10 +1,21 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "AmrspDriver.h"
 
+#include "vtkRenderWindow.h"
+#include "vtkRenderingOpenGLConfigure.h"
+#include "vtkVersion.h"
+#include "vtkVersionMacros.h"
+
+#include <cctype>
 #include <cstdlib>
+#include <cstring>
+#include <dlfcn.h>
 #include <stdexcept>
 #include <sys/stat.h>
 #include <unistd.h>
+
+// VTK 9.4 and later build every window class on Linux and choose one at run time
+#define AMRSP_RUNTIME_WINDOW_CHOICE (VTK_MAJOR_VERSION > 9 || (VTK_MAJOR_VERSION == 9 && VTK_MINOR_VERSION >= 4))
 
 namespace amrsp
 {
@@ -14,7 +25,11 @@ namespace tool
 const char* const DriverHelp =
   "  --driver D                  default (the system's OpenGL driver) or zink (Mesa's zink on\n"
   "                              the Vulkan device; with Mesa 25 it offers bindless textures\n"
-  "                              even on the CPU, through lavapipe)\n";
+  "                              even on the CPU, through lavapipe)\n"
+  "  --backend B                 the window system: auto (default), glx (an X server), egl\n"
+  "                              (no X server needed) or osmesa (libOSMesa, no X server);\n"
+  "                              egl and osmesa need VTK >= 9.4 (auto picks egl when DISPLAY\n"
+  "                              is unset there)\n";
 
 void SelectDriver(const std::string& name)
 {
@@ -40,6 +55,97 @@ void SelectDriver(const std::string& name)
     throw std::invalid_argument("--driver zink: cannot create the runtime folder " + folder);
   }
   setenv("XDG_RUNTIME_DIR", folder.c_str(), 1);
+}
+
+std::string AvailableBackends()
+{
+#if AMRSP_RUNTIME_WINDOW_CHOICE
+  return "GLX, EGL, OSMesa";
+#elif defined(VTK_OPENGL_HAS_OSMESA)
+  return "OSMesa";
+#elif defined(VTK_OPENGL_HAS_EGL)
+  return "EGL";
+#else
+  return "GLX";
+#endif
+}
+
+void SelectBackend(const std::string& name)
+{
+  if (name != "auto" && name != "glx" && name != "egl" && name != "osmesa")
+  {
+    throw std::invalid_argument("unknown --backend '" + name + "' (auto, glx, egl or osmesa)");
+  }
+#if AMRSP_RUNTIME_WINDOW_CHOICE
+  const char* display = std::getenv("DISPLAY");
+  const bool haveDisplay = display && *display;
+  if (name == "auto")
+  {
+    const char* chosen = std::getenv("VTK_DEFAULT_OPENGL_WINDOW");
+    if ((!chosen || !*chosen) && !haveDisplay)
+    {
+      setenv("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow", 1);
+    }
+    return;
+  }
+  if (name == "glx" && !haveDisplay)
+  {
+    throw std::invalid_argument("--backend glx needs an X server, and DISPLAY is not set");
+  }
+  if (name == "osmesa" && !dlopen("libOSMesa.so.8", RTLD_LAZY | RTLD_GLOBAL))
+  {
+    throw std::invalid_argument("--backend osmesa: libOSMesa.so.8 cannot be loaded (Debian 13's "
+                                "libosmesa6 provides it; or set LD_LIBRARY_PATH to its folder)");
+  }
+  setenv("VTK_DEFAULT_OPENGL_WINDOW",
+    name == "glx" ? "vtkXOpenGLRenderWindow"
+                  : (name == "egl" ? "vtkEGLRenderWindow" : "vtkOSOpenGLRenderWindow"),
+    1);
+#else
+  std::string only = AvailableBackends();
+  for (char& c : only)
+  {
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  if (name != "auto" && name != only)
+  {
+    throw std::invalid_argument("--backend " + name + ": VTK " + VtkVersion() +
+      " chooses its window system when it is built, and this one renders through " +
+      AvailableBackends() + " only (VTK >= 9.4 can choose at run time)");
+  }
+#endif
+}
+
+std::string BackendOf(vtkRenderWindow* window)
+{
+  const std::string name = window ? window->GetClassName() : "";
+  if (name == "vtkXOpenGLRenderWindow")
+  {
+    return "GLX";
+  }
+  if (name == "vtkEGLRenderWindow")
+  {
+    return "EGL";
+  }
+  if (name == "vtkOSOpenGLRenderWindow")
+  {
+    return "OSMesa";
+  }
+  return name;
+}
+
+std::string VtkVersion()
+{
+  return vtkVersion::GetVTKVersion();
+}
+
+std::string ParaViewVersion()
+{
+#ifdef AMRSP_PARAVIEW_VERSION
+  return AMRSP_PARAVIEW_VERSION;
+#else
+  return "none";
+#endif
 }
 
 } // namespace tool

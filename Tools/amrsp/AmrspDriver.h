@@ -1,10 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
-/// `--driver`: which Mesa driver the tool's OpenGL contexts use. Must be applied before the first
-/// context is created (Mesa reads its environment when it loads the driver).
+/// `--driver` and `--backend`: which Mesa driver and which window system the tool's OpenGL
+/// contexts use, and where a frame was rendered. Both selections must be applied before the first
+/// context is created (Mesa reads its environment when it loads the driver; VTK >= 9.4 reads
+/// VTK_DEFAULT_OPENGL_WINDOW when it creates a render window).
 
 #include <string>
+
+class vtkRenderWindow;
 
 namespace amrsp
 {
@@ -19,7 +23,29 @@ namespace tool
 /// @throws std::invalid_argument for another name or when the runtime folder cannot be made.
 void SelectDriver(const std::string& name);
 
-/// The option's help line.
+/// "auto", "glx", "egl" or "osmesa". VTK >= 9.4 chooses its window class at run time: the named
+/// backend sets VTK_DEFAULT_OPENGL_WINDOW (vtkXOpenGLRenderWindow, vtkEGLRenderWindow,
+/// vtkOSOpenGLRenderWindow); "auto" keeps a VTK_DEFAULT_OPENGL_WINDOW the user set, and
+/// otherwise picks EGL when DISPLAY is unset or empty (VTK would first try X and print "bad X
+/// server connection" on stderr). Older VTKs have the one backend they were built with; naming
+/// another is an error. "osmesa" checks that libOSMesa.so.8 can be loaded (VTK would fall back to
+/// an OpenGL 2 context that cannot run the mappers).
+/// @throws std::invalid_argument with one line saying why the backend cannot be used.
+void SelectBackend(const std::string& name);
+
+/// "GLX", "EGL" or "OSMesa": the window system of a render window (its class), or the class name
+/// for any other.
+std::string BackendOf(vtkRenderWindow* window);
+
+/// The backends this VTK build can render through ("GLX", or "GLX, EGL, OSMesa" for VTK >= 9.4).
+std::string AvailableBackends();
+
+/// "9.6.2": the VTK the tool runs with.
+std::string VtkVersion();
+/// "6.1.1": the ParaView whose VTK the tool was built against, or "none" (plain VTK).
+std::string ParaViewVersion();
+
+/// The options' help lines.
 extern const char* const DriverHelp;
 
 } // namespace tool

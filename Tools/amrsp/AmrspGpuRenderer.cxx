@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "AmrspGpuRenderer.h"
 
+#include "AmrspDriver.h"
 #include "AmrspLighting.h"
 
 #include "vtkAMRCoreConversion.h"
@@ -54,6 +55,7 @@ struct GpuRenderer::Internals
   int Width = 0;
   int Height = 0;
   std::string Device;
+  std::string Backend;
 };
 
 namespace
@@ -245,6 +247,7 @@ Image GpuRenderer::RenderAsIs(double& milliseconds)
         I->Device = line.substr(line.find_first_not_of(' ', key.size()));
       }
     }
+    I->Backend = BackendOf(I->Window);
   }
 
   vtkNew<vtkWindowToImageFilter> grab;
@@ -304,6 +307,11 @@ const std::string& GpuRenderer::Method() const
 std::string GpuRenderer::Device() const
 {
   return I->Device;
+}
+
+std::string GpuRenderer::Backend() const
+{
+  return I->Backend;
 }
 
 } // namespace tool
