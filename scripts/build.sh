@@ -1,20 +1,31 @@
 #!/usr/bin/env bash
 # Configures and builds one configuration of the project (idempotent; reuses the build folder).
-#   scripts/build.sh paraview   -> build/paraview : against ParaView 5.11 (VTK 9.2), with the plugin
-#   scripts/build.sh vtk        -> build/vtk      : against Debian's plain VTK 9.1 (private prefix)
+#   scripts/build.sh CONFIG   -> build/CONFIG
+# CONFIG (scripts/configs.sh): paraview, vtk (Debian 12), trixie-paraview (Debian 13), forky-paraview,
+# forky-vtk (Debian testing). On a Debian 12 host a trixie-/forky- configuration is built inside that
+# release's root (scripts/debian-root.sh; create it with `scripts/debian-root.sh SUITE ensure`).
 set -Eeuo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-config=${1:?usage: scripts/build.sh paraview|vtk}
+. "$repo/scripts/configs.sh"
+config=${1:?usage: scripts/build.sh CONFIG ($AMRSP_ALL_CONFIGS)}
+suite=$(amrsp_config_suite "$config") \
+  || { echo "scripts/build.sh: unknown configuration '$config' ($AMRSP_ALL_CONFIGS)" >&2; exit 2; }
+host=$(amrsp_host_suite)
+if [ "$suite" != "$host" ]; then
+  [ "$host" = bookworm ] \
+    || { echo "scripts/build.sh: $config is built on Debian $suite or in a root on Debian 12; this is $host" >&2; exit 2; }
+  exec "$repo/scripts/debian-root.sh" "$suite" run scripts/build.sh "$config"
+fi
 jobs=${AMRSP_JOBS:-$(nproc)}
 multiarch=$(dpkg-architecture -qDEB_HOST_MULTIARCH 2>/dev/null || echo x86_64-linux-gnu)
 case "$config" in
-  paraview)
+  *paraview)
     args=(-DAMRSP_WITH_PARAVIEW=ON) ;;
   vtk)
     prefix=${AMRSP_VTK91_PREFIX:-/opt/amrsp/vtk-9.1}
     args=(-DAMRSP_WITH_PARAVIEW=OFF "-DVTK_DIR=$prefix/usr/lib/$multiarch/cmake/vtk-9.1") ;;
-  *)
-    echo "scripts/build.sh: unknown configuration '$config' (paraview or vtk)" >&2; exit 2 ;;
+  forky-vtk)
+    args=(-DAMRSP_WITH_PARAVIEW=OFF) ;;  # the system VTK 9.6, which ParaView 6.1 uses too
 esac
 build="$repo/build/$config"
 mkdir -p "$repo/build"

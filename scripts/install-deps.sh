@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # shellcheck disable=SC1091,SC2015,SC2016  # os-release sourced on purpose; '$ORIGIN' is literal on purpose
 # Install everything this project needs on Debian 12 (bookworm). Run as root; idempotent; no prompts.
+# On Debian 13 (trixie) or Debian testing (forky) it runs scripts/install-deps-newer.sh instead.
 #
 #   scripts/install-deps.sh            # install / check (a second run only checks: a few seconds)
 #   scripts/install-deps.sh --verify   # also build and run the tiny CMake projects (VTK 9.1 and ParaView 5.11)
@@ -40,7 +41,12 @@ trap 'on_err $? $LINENO "$BASH_COMMAND"' ERR
 
 [ "$(id -u)" = 0 ] || die "must run as root (it uses apt-get and writes ${AMRSP_VTK91_PREFIX:-/opt/amrsp/vtk-9.1})"
 . /etc/os-release
-[ "${VERSION_CODENAME:-}" = bookworm ] || die "written for Debian 12 bookworm, this is '${PRETTY_NAME:-unknown}'"
+case "${VERSION_CODENAME:-}" in
+  bookworm) ;;
+  # Debian 13 and testing have their own package lists (ParaView 5.13; ParaView 6.1 on VTK 9.6)
+  trixie|forky) exec "$SCRIPT_DIR/install-deps-newer.sh" "$@" ;;
+  *) die "this is '${PRETTY_NAME:-unknown}'; supported: Debian 12 bookworm, Debian 13 trixie, Debian testing forky" ;;
+esac
 case "$(dpkg --print-architecture)" in
   amd64) MULTIARCH=x86_64-linux-gnu ;;
   arm64) MULTIARCH=aarch64-linux-gnu ;;
@@ -64,6 +70,8 @@ T_START=$SECONDS
 # ---------------------------------------------------------------------------------------------------- packages
 # Build and test tools.
 PKGS_BUILD=(cmake g++ make ninja-build pkg-config patchelf libgtest-dev libgmock-dev libglm-dev nlohmann-json3-dev)
+# The Debian 13 and testing roots of scripts/debian-root.sh (configurations trixie-*, forky-*).
+PKGS_BUILD+=(debootstrap)
 # Headless GLX rendering.
 PKGS_X=(xvfb xauth x11-utils mesa-utils)
 # ParaView 5.11 (with its own VTK 9.2); mpi-default-bin gives mpiexec for pvbatch (a Recommends of paraview).

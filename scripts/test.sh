@@ -1,19 +1,85 @@
 #!/usr/bin/env bash
-# README command 2: installs what is missing, starts Xvfb if needed, configures and builds both
-# configurations (ParaView 5.11 and plain VTK 9.1) and runs every test of both.
+# README command 2: installs what is missing, builds every configuration and runs every test of each,
+# then prints one summary line per configuration and backend (scripts/configs.sh lists them).
+#
+# On Debian 12 that is all five configurations: paraview and vtk on the host (GLX, Xvfb), and, in
+# Debian roots that scripts/debian-root.sh creates or reuses under /var/cache/amrsp/roots,
+# trixie-paraview (ParaView 5.13, GLX) and forky-paraview / forky-vtk (ParaView 6.1 and plain VTK 9.6,
+# with no X server: EGL, then OSMesa). On Debian 13 or testing: that release's configurations.
+#   AMRSP_CONFIGS="paraview forky-vtk" scripts/test.sh     # a subset, for a quicker local run
+#   AMRSP_JOBS=N                                           # parallel build and ctest jobs
 set -Eeuo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+. "$repo/scripts/configs.sh"
+t_start=$SECONDS
+host=$(amrsp_host_suite)
+default=$(amrsp_default_configs) || { echo "[test] $(amrsp_unsupported)" >&2; exit 1; }
+read -r -a configs <<<"${AMRSP_CONFIGS:-$default}"
+roots=()
+for config in "${configs[@]}"; do
+  suite=$(amrsp_config_suite "$config") \
+    || { echo "[test] unknown configuration '$config' (AMRSP_CONFIGS; known: $AMRSP_ALL_CONFIGS)" >&2; exit 2; }
+  if [ "$suite" != "$host" ]; then
+    [ "$host" = bookworm ] || { echo "[test] $config needs Debian $suite (or a Debian 12 host with roots)" >&2; exit 2; }
+    case " ${roots[*]} " in *" $suite "*) ;; *) roots+=("$suite") ;; esac
+  fi
+done
+
 echo "[test] installing dependencies (log: /tmp/amrsp-install-deps.log)"
 "$repo/scripts/install-deps.sh" >/tmp/amrsp-install-deps.log 2>&1 \
   || { tail -n 40 /tmp/amrsp-install-deps.log; echo "[test] installing dependencies failed" >&2; exit 1; }
-. "$repo/scripts/start-xvfb.sh"
-status=0
-for config in paraview vtk; do
-  "$repo/scripts/build.sh" "$config"
-  echo "[test] ctest: $config configuration"
-  if ! (cd "$repo/build/$config" && ctest --output-on-failure -j "${AMRSP_JOBS:-$(nproc)}"); then
-    status=1
-  fi
+
+# The roots are prepared in the background while the host's configurations build and run.
+mkdir -p "$repo/build"
+declare -A root_pid
+for suite in "${roots[@]}"; do
+  echo "[test] preparing the Debian $suite root in the background (log: build/root-$suite.log)"
+  "$repo/scripts/debian-root.sh" "$suite" ensure >"$repo/build/root-$suite.log" 2>&1 &
+  root_pid[$suite]=$!
 done
-if [ "$status" = 0 ]; then echo "[test] all tests of both configurations passed"; else echo "[test] FAILED" >&2; fi
+wait_for_root() {  # $1 = suite
+  local pid=${root_pid[$1]:-}
+  [ -n "$pid" ] || return 0
+  if ! wait "$pid"; then
+    tail -n 40 "$repo/build/root-$1.log" >&2
+    echo "[test] preparing the Debian $1 root failed" >&2
+    return 1
+  fi
+  root_pid[$1]=
+  sed -n 's/^/[test] /p' "$repo/build/root-$1.log" | tail -n 4
+}
+
+rm -f "$repo/build/test-summary.txt"
+status=0
+builds=()
+for config in "${configs[@]}"; do
+  suite=$(amrsp_config_suite "$config")
+  if ! wait_for_root "$suite"; then
+    echo "[summary] $config: not built (the $suite root could not be prepared)" >>"$repo/build/test-summary.txt"
+    status=1
+    continue
+  fi
+  t0=$SECONDS
+  if ! "$repo/scripts/build.sh" "$config" >"$repo/build/build-$config.log" 2>&1; then
+    tail -n 60 "$repo/build/build-$config.log"
+    echo "[summary] $config: build FAILED (log: build/build-$config.log)" >>"$repo/build/test-summary.txt"
+    status=1
+    continue
+  fi
+  builds+=("$config $((SECONDS - t0)) s")
+  "$repo/scripts/run-tests.sh" "$config" || status=1
+done
+for suite in "${roots[@]}"; do wait_for_root "$suite" >/dev/null 2>&1 || true; done
+
+echo "[test] build times: $(IFS=,; echo "${builds[*]}")"
+echo "[test] summary ($(( (SECONDS - t_start) / 60 )) min in all):"
+cat "$repo/build/test-summary.txt"
+if [ "$status" = 0 ]; then
+  echo "[test] every test of ${#configs[@]} configurations passed"
+else
+  echo "[test] FAILED" >&2
+fi
+# the closing line: every ctest pass of every configuration added up
+sed -nE 's/.*: ([0-9]+) passed, ([0-9]+) failed, ([0-9]+) skipped of .*/\1 \2 \3/p' "$repo/build/test-summary.txt" \
+  | awk '{p += $1; f += $2; s += $3} END {printf "tests: %d passed, %d failed, %d skipped\n", p, f, s}'
 exit $status

@@ -1,0 +1,75 @@
+# shellcheck shell=bash
+# The project's build configurations, sourced by build.sh, run-tests.sh and test.sh.
+#
+#   config           Debian release (suite)   ParaView / VTK                       backends tested
+#   paraview         12 bookworm (this host)  ParaView 5.11, its bundled VTK 9.2   GLX (Xvfb)
+#   vtk              12 bookworm (this host)  plain VTK 9.1 (private prefix)       GLX (Xvfb)
+#   trixie-paraview  13 trixie                ParaView 5.13, its bundled VTK 9.3   GLX (Xvfb)
+#   forky-paraview   testing forky            ParaView 6.1 on the system VTK 9.6   EGL, OSMesa (no X server)
+#   forky-vtk        testing forky            plain VTK 9.6 (the same VTK)         EGL, OSMesa (no X server)
+#
+# A configuration whose suite is not the running system's is built and tested inside a Debian root
+# of that suite (scripts/debian-root.sh), on a Debian 12 host only.
+
+AMRSP_ALL_CONFIGS="paraview vtk trixie-paraview forky-paraview forky-vtk"
+
+# The running system's codename (bookworm, trixie, forky), or what os-release says.
+amrsp_host_suite() {
+  local codename
+  codename=$(. /etc/os-release 2>/dev/null && echo "${VERSION_CODENAME:-unknown}")
+  printf '%s\n' "$codename"
+}
+
+amrsp_config_suite() {  # $1 = config
+  case "$1" in
+    paraview|vtk) echo bookworm ;;
+    trixie-*) echo trixie ;;
+    forky-*) echo forky ;;
+    *) return 1 ;;
+  esac
+}
+
+# The configurations this system runs by default: on Debian 12 all of them (the newer ones in
+# roots), on Debian 13 or testing those of that release.
+amrsp_default_configs() {
+  case "$(amrsp_host_suite)" in
+    bookworm) echo "$AMRSP_ALL_CONFIGS" ;;
+    trixie) echo "trixie-paraview" ;;
+    forky) echo "forky-paraview forky-vtk" ;;
+    *) return 1 ;;
+  esac
+}
+
+# The one line for an unsupported system.
+amrsp_unsupported() {
+  echo "this is '$(. /etc/os-release 2>/dev/null && echo "${PRETTY_NAME:-unknown}")'; supported: Debian 12" \
+    "bookworm (all configurations), Debian 13 trixie (ParaView 5.13), Debian testing forky (ParaView 6.1," \
+    "VTK 9.6)"
+}
+
+# The window-system backends whose ctest passes a configuration runs, the first being the full suite.
+amrsp_config_backends() {  # $1 = config
+  case "$1" in
+    forky-*) echo "egl osmesa" ;;
+    *) echo "glx" ;;
+  esac
+}
+
+# The tests of one backend pass: "REGEX|EXCLUDE" for ctest -R / -E (empty: all tests). The first
+# backend of a configuration runs the whole suite; OSMesa (a second way to render with no X server)
+# runs the mapper and baseline-image tests, the tool's render tests and one pvbatch test. Mesa's
+# OSMesa is llvmpipe only: the zink (bindless) tests belong to the EGL pass.
+amrsp_backend_tests() {  # $1 = config, $2 = backend
+  case "$2" in
+    osmesa)
+      case "$1" in
+        *paraview) echo '^Plugin\.MPI\.np2\.enzo$|^Plugin\.Representation\.enzo$|Bindless|Zink' ;;
+        *) echo '^AMRSP::SinglePassAMRCxx-|^Mapper\.|^Tool\.CLI\.Render|Bindless|Zink' ;;
+      esac ;;
+    *) echo "" ;;
+  esac
+}
+
+# Where the OSMesa library lives inside a forky root or on Debian testing: Debian 13's libosmesa6
+# (Mesa 25.0, the last Mesa with OSMesa) unpacked by install-deps.sh into a private prefix.
+AMRSP_OSMESA_PREFIX=${AMRSP_OSMESA_PREFIX:-/opt/amrsp/osmesa}

@@ -1,0 +1,114 @@
+#!/usr/bin/env bash
+# A Debian root of a newer release (trixie = Debian 13, forky = Debian testing) on a Debian 12 machine,
+# for building and testing the project against that release's ParaView and VTK. Run as root.
+#
+#   scripts/debian-root.sh SUITE ensure        # create the root (debootstrap) or reuse it, then run
+#                                              # scripts/install-deps.sh inside it (idempotent)
+#   scripts/debian-root.sh SUITE run CMD ...   # run CMD inside the root, in the repository
+#   scripts/debian-root.sh SUITE path          # print the root's folder
+#
+# SUITE: trixie or forky. The root lives in $AMRSP_ROOTS_DIR/SUITE (default /var/cache/amrsp/roots);
+# delete that folder to start over. Inside a root the repository is mounted at /amrsp/src and
+# ../shared at /amrsp/shared (so the repository's ../shared is the same data), /tmp/.X11-unix is the
+# host's (the X server of scripts/start-xvfb.sh serves GLX-only ParaView builds), and /proc, /sys, /dev
+# are the host's. The mounts live in a private mount namespace (unshare): they disappear when the
+# command ends, whatever way it ends; nothing is left mounted on the host.
+# The mirror is the one apt already uses on this machine (its sources), so no other host is contacted.
+set -Eeuo pipefail
+repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+suite=${1:?usage: scripts/debian-root.sh trixie|forky ensure|run CMD...|path}
+action=${2:?usage: scripts/debian-root.sh SUITE ensure|run CMD...|path}
+shift 2
+case "$suite" in
+  trixie|forky) ;;
+  *) echo "debian-root: unknown suite '$suite' (trixie or forky)" >&2; exit 2 ;;
+esac
+roots=${AMRSP_ROOTS_DIR:-/var/cache/amrsp/roots}
+root=$roots/$suite
+log() { printf '[root %s] %s\n' "$suite" "$*"; }
+die() { printf '[root %s] ERROR: %s\n' "$suite" "$*" >&2; exit 1; }
+
+# The Debian mirror apt uses here: the first "debian" URI of the deb822 or one-line sources.
+host_mirror() {
+  local uri
+  uri=$(cat /etc/apt/sources.list.d/*.sources 2>/dev/null \
+        | awk '/^URIs:/{u=$2} /^Suites:/{ if ($0 ~ /bookworm( |$)/ && u != "") {print u; exit} }')
+  if [ -z "$uri" ]; then
+    uri=$(cat /etc/apt/sources.list /etc/apt/sources.list.d/*.list 2>/dev/null \
+          | awk '$1 == "deb" && $3 ~ /^bookworm$/ {print $2; exit}')
+  fi
+  [ -n "$uri" ] || die "no Debian mirror for bookworm found in /etc/apt/sources.list{,.d}"
+  printf '%s\n' "${uri%/}"
+}
+
+# run_in_root CMD...: CMD inside the root, with the mounts described above, in a clean environment
+# that keeps only the variables the project's scripts read.
+run_in_root() {
+  [ -x "$root/bin/bash" ] || die "no root at $root (run: scripts/debian-root.sh $suite ensure)"
+  local keep=() v
+  for v in $(compgen -e); do
+    case "$v" in
+      AMRSP_*|CI|TERM|DEBIAN_FRONTEND) keep+=("$v=${!v}") ;;
+    esac
+  done
+  local shared
+  shared=$(cd "$repo/.." && pwd)/shared
+  # shellcheck disable=SC2016  # expanded by the inner shell
+  unshare --mount --propagation private -- /bin/bash -c '
+    set -e
+    root=$1 repo=$2 shared=$3; shift 3
+    mkdir -p "$root/amrsp/src" "$root/amrsp/shared" "$root/tmp/.X11-unix"
+    mount -t proc proc "$root/proc"
+    mount --rbind /sys "$root/sys"
+    mount --rbind /dev "$root/dev"
+    mount --bind "$repo" "$root/amrsp/src"
+    if [ -d "$shared" ]; then mount --bind "$shared" "$root/amrsp/shared"; fi
+    if [ -d /tmp/.X11-unix ]; then mount --bind /tmp/.X11-unix "$root/tmp/.X11-unix"; fi
+    cp -L /etc/resolv.conf "$root/etc/resolv.conf" 2>/dev/null || true
+    exec chroot "$root" "$@"
+  ' amrsp-root "$root" "$repo" "$shared" \
+    /usr/bin/env -i HOME=/root PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
+      LANG=C.UTF-8 "${keep[@]}" /bin/bash -c 'cd /amrsp/src && exec "$@"' amrsp-cmd "$@"
+}
+
+ensure_root() {
+  local t0=$SECONDS mirror
+  mirror=$(host_mirror)
+  if [ ! -f "$root/.amrsp-root" ]; then
+    command -v debootstrap >/dev/null || die "debootstrap is missing (scripts/install-deps.sh installs it)"
+    # bookworm's debootstrap has no script named forky; the sid script bootstraps any recent suite
+    local script=/usr/share/debootstrap/scripts/sid
+    rm -rf "$root.tmp"
+    mkdir -p "$roots"
+    log "debootstrap $suite from $mirror into $root (about 1 min)"
+    if ! debootstrap --variant=minbase "$suite" "$root.tmp" "$mirror" "$script" \
+        >"$roots/$suite-debootstrap.log" 2>&1; then
+      tail -n 20 "$roots/$suite-debootstrap.log" >&2
+      die "debootstrap failed (log: $roots/$suite-debootstrap.log)"
+    fi
+    printf 'deb %s %s main\n' "$mirror" "$suite" >"$root.tmp/etc/apt/sources.list"
+    # The mirror may serve a frozen snapshot whose Release files are past their Valid-Until date.
+    echo 'Acquire::Check-Valid-Until "false";' >"$root.tmp/etc/apt/apt.conf.d/99amrsp-mirror"
+    # A root is a cache that can be made again: dpkg need not sync every file (much faster unpacking).
+    echo force-unsafe-io >"$root.tmp/etc/dpkg/dpkg.cfg.d/amrsp-unsafe-io"
+    printf 'suite=%s\nmirror=%s\n' "$suite" "$mirror" >"$root.tmp/.amrsp-root"
+    rm -rf "$root"
+    mv "$root.tmp" "$root"
+  else
+    log "reusing $root"
+  fi
+  log "installing $suite's packages inside the root (log: $root/tmp/amrsp-install-deps.log)"
+  if ! run_in_root scripts/install-deps.sh >"$root/tmp/amrsp-install-deps.log" 2>&1; then
+    tail -n 40 "$root/tmp/amrsp-install-deps.log" >&2
+    die "installing the packages inside the root failed"
+  fi
+  grep -E '^\[install-deps\] (all done|ParaView|VTK)' "$root/tmp/amrsp-install-deps.log" | sed "s/^/[root $suite] /" || true
+  log "ready in $((SECONDS - t0)) s ($(du -sh "$root" 2>/dev/null | cut -f1))"
+}
+
+case "$action" in
+  ensure) ensure_root ;;
+  run) [ "$#" -gt 0 ] || die "run needs a command"; run_in_root "$@" ;;
+  path) printf '%s\n' "$root" ;;
+  *) die "unknown action '$action' (ensure, run or path)" ;;
+esac

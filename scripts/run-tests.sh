@@ -1,0 +1,98 @@
+#!/usr/bin/env bash
+# Runs the tests of one built configuration, once per window-system backend, and prints one summary
+# line per backend:  [summary] CONFIG BACKEND: P passed, F failed, S skipped of T tests in N s
+#   scripts/run-tests.sh CONFIG [BACKEND...]     (default: the configuration's backends, configs.sh)
+# Backends: glx (an X server: scripts/start-xvfb.sh), egl (DISPLAY unset, VTK's vtkEGLRenderWindow),
+# osmesa (DISPLAY unset, vtkOSOpenGLRenderWindow with Debian 13's libOSMesa). The summary lines are
+# also appended to build/test-summary.txt. With CI=true a skipped test fails the run: in CI every
+# test has what it needs, so a skip means something is missing.
+set -Eeuo pipefail
+repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+. "$repo/scripts/configs.sh"
+config=${1:?usage: scripts/run-tests.sh CONFIG [BACKEND...]}
+shift
+suite=$(amrsp_config_suite "$config") \
+  || { echo "scripts/run-tests.sh: unknown configuration '$config' ($AMRSP_ALL_CONFIGS)" >&2; exit 2; }
+host=$(amrsp_host_suite)
+if [ "$suite" != "$host" ]; then
+  [ "$host" = bookworm ] \
+    || { echo "scripts/run-tests.sh: $config runs on Debian $suite or in a root on Debian 12; this is $host" >&2; exit 2; }
+  exec "$repo/scripts/debian-root.sh" "$suite" run scripts/run-tests.sh "$config" "$@"
+fi
+build=$repo/build/$config
+[ -f "$build/CTestTestfile.cmake" ] || { echo "[test] $config is not built (scripts/build.sh $config)" >&2; exit 1; }
+backends=("$@")
+[ "${#backends[@]}" -gt 0 ] || read -r -a backends <<<"$(amrsp_config_backends "$config")"
+jobs=${AMRSP_JOBS:-$(nproc)}
+status=0
+for backend in "${backends[@]}"; do
+  log="$build/ctest-$backend.log"
+  IFS='|' read -r -a tests <<<"$(amrsp_backend_tests "$config" "$backend")"
+  select=()
+  if [ "${#tests[@]}" -gt 0 ]; then
+    include=() exclude=()
+    for t in "${tests[@]}"; do
+      case "$t" in ^*) include+=("$t") ;; *) exclude+=("$t") ;; esac
+    done
+    select=(-R "$(IFS='|'; echo "${include[*]}")")
+    [ "${#exclude[@]}" = 0 ] || select+=(-E "$(IFS='|'; echo "${exclude[*]}")")
+  fi
+  echo "[test] ctest: $config, backend $backend (log: $log)"
+  t0=$SECONDS
+  set +e
+  (
+    case "$backend" in
+      glx)
+        unset VTK_DEFAULT_OPENGL_WINDOW
+        . "$repo/scripts/start-xvfb.sh" >/dev/null || exit 1 ;;
+      egl)
+        # the ParaView GUI is an X application: its smoke test alone gets an X server
+        if [ -n "$(command -v paraview)" ] && . "$repo/scripts/start-xvfb.sh" >/dev/null; then
+          export AMRSP_GUI_DISPLAY=$DISPLAY
+        fi
+        unset DISPLAY
+        export VTK_DEFAULT_OPENGL_WINDOW=vtkEGLRenderWindow ;;
+      osmesa)
+        unset DISPLAY
+        export VTK_DEFAULT_OPENGL_WINDOW=vtkOSOpenGLRenderWindow
+        lib=$AMRSP_OSMESA_PREFIX/usr/lib/$(dpkg-architecture -qDEB_HOST_MULTIARCH 2>/dev/null || echo x86_64-linux-gnu)
+        [ -e "$lib/libOSMesa.so.8" ] || { echo "FAIL: no libOSMesa.so.8 in $lib (scripts/install-deps.sh unpacks it)"; exit 1; }
+        export LD_LIBRARY_PATH="$lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" ;;
+      *) echo "unknown backend $backend"; exit 2 ;;
+    esac
+    # where this pass renders, as the tool reports it: the backend must be the one asked for
+    check=$("$build/Tools/amrsp/amrsp" render --size 16x16 --method packing -o "$build/backend-check.png" 2>&1) \
+      || { echo "$check"; echo "FAIL: amrsp render could not render through $backend"; exit 1; }
+    seen=$(printf '%s\n' "$check" | sed -n 's/^backend: //p')
+    echo "backend check: $seen; $(printf '%s\n' "$check" | grep '^device: ')"
+    case "$backend:$seen" in
+      glx:GLX*|egl:EGL*|osmesa:OSMesa*) ;;
+      *) echo "FAIL: asked for $backend, the tool rendered through '$seen'"; exit 1 ;;
+    esac
+    cd "$build" && ctest --output-on-failure -j "$jobs" "${select[@]}"
+  ) >"$log" 2>&1
+  rc=$?
+  set -e
+  seconds=$((SECONDS - t0))
+  total=$(sed -nE 's/.*tests? failed out of ([0-9]+).*/\1/p' "$log" | tail -n 1)
+  failed=$(sed -nE 's/.* ([0-9]+) tests? failed out of.*/\1/p' "$log" | tail -n 1)
+  skipped=$(grep -cE '^ *[0-9]+ - .*\(Skipped\)' "$log" || true)
+  total=${total:-0} failed=${failed:-0}
+  passed=$((total - failed - skipped))
+  line="[summary] $config $backend: $passed passed, $failed failed, $skipped skipped of $total tests in $seconds s"
+  device=$(sed -n 's/^backend check: //p' "$log" | head -n 1)
+  [ -z "$device" ] || line="$line ($device)"
+  if [ "$rc" != 0 ] || [ "$total" = 0 ]; then
+    tail -n 60 "$log"
+    status=1
+  elif [ "$skipped" != 0 ]; then
+    grep -E '\(Skipped\)|SKIPPED' "$log" | head -n 40
+    if [ "${CI:-}" = true ]; then
+      line="$line (CI: a skip is a failure)"
+      status=1
+    fi
+  fi
+  echo "$line"
+  echo "$line" >>"$repo/build/test-summary.txt"
+done
+exit $status
