@@ -10,6 +10,7 @@
 # rank 0 receives every block and renders alone. Then compares the two screenshots: the
 # parallel one must equal the serial one within the bounds below.
 # Exit codes: 0 pass, 1 fail, 125 skipped (a run skipped: no display, no data).
+import glob
 import os
 import re
 import subprocess
@@ -44,11 +45,26 @@ REGION_LINE = re.compile(r"AMR single-pass: rank (\d+) renders region \[(\S+), (
                          r"(\d+) cells")
 
 
+# Each rank's stderr (ParaView's log, where the representation names its region) goes to a file
+# of its own, LOG.rankN: ranks writing one shared stream interleave the pieces of their log lines
+# (seen with ParaView 5.13, whose logger writes a line in several parts).
+RANK_STDERR = 'exec "$@" 2>>"$0.rank${OMPI_COMM_WORLD_RANK:-${PMI_RANK:-unknown}}"'
+
+
+def read_log_and_rank_logs(log_path):
+    import glob
+
+    parts = []
+    for path in [log_path] + sorted(glob.glob(log_path + ".rank*")):
+        with open(path, errors="replace") as f:
+            parts.append(f.read())
+    return "\n".join(parts)
+
+
 def check_regions(log_path, ranks, mode):
     """The ranks' regions from the representation's log lines: one per rank, each holding
     blocks, disjoint and filling their bounding box (regions mode); none when gathering."""
-    with open(log_path) as f:
-        text = f.read()
+    text = read_log_and_rank_logs(log_path)
     if "cannot split the AMR hierarchy" in text:
         print("FAIL: the representation could not split the hierarchy into regions (log %s)"
               % log_path)
@@ -124,8 +140,7 @@ def call_with_hang_detector(command, log):
 def run(command, log_path):
     with open(log_path, "w") as log:
         code = call_with_hang_detector(command, log)
-    with open(log_path) as f:
-        text = f.read()
+    text = read_log_and_rank_logs(log_path)
     lines = [l for l in text.splitlines() if l.startswith(("parallel:", "texture builds", "rmse",
                                                            "screenshot", "SKIPPED", "FAIL",
                                                            "PASS"))]
@@ -157,6 +172,9 @@ def main():
         mpi.append("--allow-run-as-root")  # OpenMPI refuses root without it
     mpi.append("--oversubscribe")  # more ranks than cores on small machines
     mpi_log = os.path.join(outdir, "%s-mpi%s.log" % (dataset, ranks))
+    for stale in glob.glob(mpi_log + ".rank*"):
+        os.remove(stale)
+    mpi += ["sh", "-c", RANK_STDERR, mpi_log]
     run(mpi + pvbatch_args + MPI_PVBATCH_OPTIONS + script + ["--parallel-mode", mode], mpi_log)
     check_regions(mpi_log, int(ranks), mode)
 
