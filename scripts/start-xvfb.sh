@@ -10,9 +10,10 @@
 # The caller's shell options are not touched (no `set`); the helper names are unset before returning.
 
 _amrsp_xvfb_probe() {
-  # Does the X display "$1" answer? Plain GL env so a zink setting in the caller cannot make the probe fail.
+  # Does the X display "$1" answer, with the GLX extension VTK's windows need? Plain GL env so a zink
+  # setting in the caller cannot make the probe fail.
   if command -v xdpyinfo >/dev/null 2>&1; then
-    DISPLAY="$1" xdpyinfo >/dev/null 2>&1 && return 0
+    DISPLAY="$1" xdpyinfo 2>/dev/null | grep -qE '^[[:space:]]+GLX$' && return 0
   fi
   if command -v glxinfo >/dev/null 2>&1; then
     DISPLAY="$1" env -u MESA_LOADER_DRIVER_OVERRIDE -u LIBGL_ALWAYS_SOFTWARE glxinfo -B >/dev/null 2>&1 && return 0

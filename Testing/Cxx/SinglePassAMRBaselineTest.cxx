@@ -5,6 +5,7 @@
 #include "AmrspDataset.h"
 #include "AmrspLighting.h"
 #include "AmrspPacking.h"
+#include "MapperTestHelpers.h"
 
 #include "amrsp/KdTree.h"
 #include "amrsp/KdTreeEncoding.h"
@@ -93,8 +94,7 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
   std::string why;
   if (!PackingRenderer::Available(why))
   {
-    std::cout << "SKIPPED: " << why << "\n";
-    return VTK_SKIP_RETURN_CODE;
+    return mappertest::SkipOrFail(why);
   }
   std::string spec = c.Dataset;
   if (!c.Data && spec.rfind("data:", 0) == 0)
@@ -106,8 +106,7 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
     }
     else
     {
-      std::cout << "SKIPPED: " << spec << " not found (set AMRSP_DATA_DIR)\n";
-      return VTK_SKIP_RETURN_CODE;
+      return mappertest::SkipOrFail(spec + " not found (set AMRSP_DATA_DIR)");
     }
   }
 

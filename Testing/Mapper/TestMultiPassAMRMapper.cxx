@@ -437,8 +437,7 @@ int main()
   std::string why;
   if (!GpuRenderer::Available(why))
   {
-    std::cout << "SKIPPED: " << why << "\n";
-    return 125;
+    return mappertest::SkipOrFail(why);
   }
   try
   {

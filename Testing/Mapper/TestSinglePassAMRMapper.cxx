@@ -582,8 +582,7 @@ int main()
   std::string why;
   if (!PackingRenderer::Available(why))
   {
-    std::cout << "SKIPPED: " << why << "\n";
-    return 125;
+    return mappertest::SkipOrFail(why);
   }
   try
   {

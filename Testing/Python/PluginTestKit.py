@@ -44,8 +44,32 @@ sys.excepthook = _fail_on_uncaught_exception
 
 
 def skip(message):
+    """Reports a test that cannot run here as skipped (CTest's skip code). With AMRSP_REQUIRE_GPU=1
+    (scripts/run-tests.sh sets it in CI, where everything a test needs is installed) the same
+    condition is a failure that names what is missing."""
+    if os.environ.get("AMRSP_REQUIRE_GPU") == "1":
+        fail("required here (AMRSP_REQUIRE_GPU=1) but missing: " + message)
     print("SKIPPED: " + message)
     leave(SKIP)
+
+
+# What the mapper's render-support probe (vtkAMRRenderingUtilities::IsRenderSupported) says when the
+# OpenGL context cannot run it at all. Only these make a test skip; any other render error, even
+# one that mentions OpenGL or the context (an upload that failed, a texture limit), is a failure.
+UNSUPPORTED_CONTEXT = (
+    "the OpenGL context cannot be created or is older than VTK's minimum (3.2 core)",
+    "lacks GLSL 1.50 integer textures (3.2 core needed)",
+    "the render window is not an OpenGL render window",
+)
+
+
+def check_render_error(error, what="the representation"):
+    """Skips on the render-support probe's own messages, fails on any other error."""
+    if not error:
+        return
+    if any(message in error for message in UNSUPPORTED_CONTEXT):
+        skip("the mapper cannot render in this context: %s" % error)
+    fail("%s reported an error: %s" % (what, error))
 
 
 def density_quantiles(source, fractions):

@@ -16,7 +16,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from PluginTestKit import fail, leave, skip  # noqa: E402
+from PluginTestKit import check_render_error, fail, leave, skip  # noqa: E402
 
 MIN_COVERAGE = 0.05  # share of the checked pixels that must show the volume (measured 12.6 %)
 
@@ -88,10 +88,7 @@ def main():
         fail("the GUI does not offer the representation type")
     if status.get("representation") != "AMR Single-Pass Volume":
         fail("the representation was not selected")
-    if status.get("render_error"):
-        if "OpenGL" in status["render_error"] or "context" in status["render_error"]:
-            skip("the mapper cannot render in the GUI's context: %s" % status["render_error"])
-        fail("the mapper reported: %s" % status["render_error"])
+    check_render_error(status.get("render_error"), "the mapper in the GUI")
     if status.get("texture_builds") != 1:
         fail("the mapper built its textures %s times (expected once)" % status.get("texture_builds"))
 

@@ -16,7 +16,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from PluginTestKit import fail, leave, show_density_volume, skip  # noqa: E402
+from PluginTestKit import check_render_error, fail, leave, show_density_volume, skip  # noqa: E402
 
 MULTIPASS_RMSE_BOUND = 1.0
 
@@ -42,10 +42,7 @@ def main():
         path = os.path.join(outdir, "datachange-%s.png" % name)
         simple.SaveScreenshot(path, view, ImageResolution=[120, 120], TransparentBackground=0)
         error = info_property(display, "SinglePassRenderError")
-        if error:
-            if "OpenGL" in error or "context" in error:
-                skip("the mapper cannot render in this context: %s" % error)
-            fail("%s: the representation reported an error: %s" % (name, error))
+        check_render_error(error, "%s: the representation" % name)
         builds = info_property(display, "SinglePassTextureBuilds")
         pixels = read_png(path)[2]
         shots[name] = pixels

@@ -146,6 +146,9 @@ def run(command, log_path):
                                                            "PASS"))]
     print("$ %s\n  %s" % (" ".join(command), "\n  ".join(lines)))
     if "SKIPPED:" in text:
+        if os.environ.get("AMRSP_REQUIRE_GPU") == "1":
+            print("FAIL: a run was skipped although AMRSP_REQUIRE_GPU=1 (log %s)" % log_path)
+            sys.exit(1)
         print("SKIPPED: a run was skipped (log %s)" % log_path)
         sys.exit(SKIP)
     if code != 0 or "\nPASS" not in text:

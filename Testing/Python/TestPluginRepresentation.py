@@ -30,7 +30,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from PluginTestKit import BEFORE_FAIL, BEFORE_LEAVE, fail, leave, skip  # noqa: E402
+from PluginTestKit import BEFORE_FAIL, BEFORE_LEAVE, check_render_error, fail, leave, skip  # noqa: E402
 
 SERVER = []  # the pvservers this test started (one; more after a failed start); ended with it
 SERVER_LOGS = []  # their log files, in the same order
@@ -385,10 +385,7 @@ def main():
     simple.Render(view)
     server_died(server)
     error = info_property(display, "SinglePassRenderError")
-    if error:
-        if "OpenGL" in error or "context" in error:
-            skip("the mapper cannot render in this context: %s" % error)
-        fail("the representation reported an error: %s" % error)
+    check_render_error(error)
     builds = info_property(display, "SinglePassTextureBuilds")
     view.CameraPosition = [bounds[1] * 3.0, bounds[3] * 2.0, bounds[5] * 4.0]
     lut.RGBPoints = [v for point in rgb[::-1] for v in point]

@@ -5,7 +5,8 @@
 #   AMR_VOLUME  ON when the build has vtkAMRVolumeMapper (vtk-amr-resample must run), OFF when
 #               it must be listed with its error
 # A GPU method that cannot get an OpenGL context here makes the test print "SKIPPED: why" (CTest's
-# SKIP_REGULAR_EXPRESSION); any other deviation is a FATAL_ERROR naming the field.
+# SKIP_REGULAR_EXPRESSION), or fail with AMRSP_REQUIRE_GPU=1 (CI); any other deviation is a
+# FATAL_ERROR naming the field.
 cmake_minimum_required(VERSION 3.19)
 file(MAKE_DIRECTORY "${WORK}")
 set(dataset "synthetic:cosmo:grids=20,levels=2,cells=50k")
@@ -45,6 +46,9 @@ endfunction ()
 macro (skip_without_gpu var)
   string(JSON skip_error ERROR_VARIABLE skip_none GET "${${var}}" packing error)
   if (NOT skip_none AND skip_error MATCHES "cannot render here")
+    if ("$ENV{AMRSP_REQUIRE_GPU}" STREQUAL "1")
+      fail("FAIL: required here (AMRSP_REQUIRE_GPU=1) but missing: ${skip_error}")
+    endif ()
     message("SKIPPED: ${skip_error}")
     return()
   endif ()
@@ -159,6 +163,9 @@ elseif (MODE STREQUAL "uniform")
   # grid given as cell data spans the cells' whole extent (measured RMSE 5.3 at 96x96 on Chombo;
   # as point data at the cell centres, half a cell short on every face, it was 17.7)
   if (NOT EXISTS "${DATASET}")
+    if ("$ENV{AMRSP_REQUIRE_GPU}" STREQUAL "1")
+      fail("FAIL: required here (AMRSP_REQUIRE_GPU=1) but missing: ${DATASET} (AMRSP_DATA_DIR)")
+    endif ()
     message("SKIPPED: the dataset ${DATASET} is missing (AMRSP_DATA_DIR)")
     return()
   endif ()
