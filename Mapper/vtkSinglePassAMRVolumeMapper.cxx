@@ -190,7 +190,8 @@ public:
   // transparent under the transfer table of FlagsTableTime (recomputed when it is re-tabulated)
   vtkSmartPointer<vtkTextureObject> TransparentFlags;
   vtkMTimeType FlagsTableTime = 0;
-  long long TransparentDataNodes = 0;
+  long long FlaggedDataNodes = 0;     // data nodes flagged in TransparentFlags
+  long long TransparentDataNodes = 0; // ... that the last frame skipped (0 with skipping off)
   vtkNew<vtkOpenGLBufferObject> BoxBuffer;
   vtkNew<vtkOpenGLVertexArrayObject> BoxArray;
   vtkShaderProgram* BoxArrayProgram = nullptr;
@@ -1022,6 +1023,10 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     defines += "#define AMRSP_SHADOWS 1\n";
   }
+  if (this->WorkCountersOutput)
+  {
+    defines += "#define AMRSP_WORK_COUNTERS 1\n";
+  }
   std::string fragment = amrsp_SinglePassAMR_frag_glsl;
   vtkShaderProgram::Substitute(fragment, "//AMRSP::Defines", defines);
   vtkShaderProgram::Substitute(fragment, "//AMRSP::KdTreeLayout", amrsp_KdTreeLayout_glsl);
@@ -1110,12 +1115,9 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   // ---- empty-space skipping: one flag per data node, whether its value range is transparent
   // under the tabulated transfer function (amrsp::TableRangeTransparent on the table the shader
   // samples); recomputed when the table is re-tabulated (the node ranges never change with it)
-  if (!skipEmpty)
-  {
-    in.TransparentDataNodes = 0;
-  }
-  else if (!in.TransparentFlags || in.TransparentFlags->GetContext() != renWin ||
-    in.FlagsTableTime != in.Transfer.GetTableTime())
+  if (skipEmpty &&
+    (!in.TransparentFlags || in.TransparentFlags->GetContext() != renWin ||
+      in.FlagsTableTime != in.Transfer.GetTableTime()))
   {
     const std::vector<float> prefix = amrsp::OpacityPrefixCounts(in.Transfer.GetOpacityTable());
     float tableRange[2];
@@ -1123,14 +1125,14 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     // texel k at the data node's own texel; texel 0 and padding texels are never read
     const glm::ivec3 dims = amrsp::TextureDimsFor(in.NodeRanges.size());
     std::vector<unsigned char> flags(static_cast<std::size_t>(dims.x) * dims.y * dims.z, 0);
-    in.TransparentDataNodes = 0;
+    in.FlaggedDataNodes = 0;
     for (std::size_t k = 1; k < in.NodeRanges.size(); ++k)
     {
       if (amrsp::TableRangeTransparent(
             prefix, tableRange, in.NodeRanges[k].x, in.NodeRanges[k].y))
       {
         flags[k] = 255;
-        ++in.TransparentDataNodes;
+        ++in.FlaggedDataNodes;
       }
     }
     // R8 rows need no unpack padding: a texture row is 256 texels, or the only row
@@ -1151,6 +1153,8 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     }
     in.FlagsTableTime = in.Transfer.GetTableTime();
   }
+  // the flags stay valid while skipping is switched off: switching it on again reuses them
+  in.TransparentDataNodes = skipEmpty ? in.FlaggedDataNodes : 0;
 
   // ---- uniforms
   const std::vector<glm::vec3>& cells = in.LevelCellSize;
@@ -1530,6 +1534,7 @@ void vtkSinglePassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
      << ", LastBindlessAccess: " << GetBindlessAccessName(in.LastAccess) << "\n";
   os << indent << "OpacityThreshold: " << this->OpacityThreshold << "\n";
   os << indent << "EmptySpaceSkipping: " << (this->EmptySpaceSkipping ? "on" : "off") << "\n";
+  os << indent << "WorkCountersOutput: " << (this->WorkCountersOutput ? "on" : "off") << "\n";
   os << indent << "CellInterpolation: "
      << (this->CellInterpolation == SMOOTH_CELL ? "smooth" : "nearest") << "\n";
   os << indent << "TransparentDataNodes: " << in.TransparentDataNodes << "\n";

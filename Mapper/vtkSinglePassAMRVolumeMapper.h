@@ -250,6 +250,23 @@ public:
 
   ///@{
   /**
+   * Diagnostic output (default off): instead of colours, every pixel of the volume is written
+   * opaque with the shader's own work counts for its ray, each an exact 8-bit value (counts above
+   * 255 saturate): red = data segments skipped as empty space, green = 255 when the ray stopped
+   * early at the opacity threshold (composite blending with a threshold below 1, as
+   * amrsp::RenderStats counts it) and 0 otherwise, blue = data segments the ray reached (skipped
+   * ones included). Summed over the image these equal the CPU kD-tree integrator's
+   * SkippedSegments, TerminatedRays and DataSegments for the same view, which is how the tests
+   * show that the accelerations really happen on the GPU. Pixels the volume does not cover keep
+   * the background.
+   */
+  vtkSetMacro(WorkCountersOutput, bool);
+  vtkGetMacro(WorkCountersOutput, bool);
+  vtkBooleanMacro(WorkCountersOutput, bool);
+  ///@}
+
+  ///@{
+  /**
    * Reconstruction of cell-centred data. NEAREST_CELL (the default, the paper's): the value of
    * the cell containing the sample. SMOOTH_CELL: trilinear interpolation in the dual cell of the
    * sample's level (the 8 surrounding cell centres of that level), each corner the nearest value
@@ -312,6 +329,7 @@ protected:
   double AutoBindlessWaste = 0.25;
   double OpacityThreshold = 0.999;
   bool EmptySpaceSkipping = true;
+  bool WorkCountersOutput = false;
   int CellInterpolation = NEAREST_CELL;
   bool Shadows = false;
   double ShadowSampleDistance = 0.0;

@@ -36,6 +36,9 @@
 //                       cells too) or, outside it, looked up through the tree (a coarser level's
 //                       trilinear value there), as amrsp::RenderSettings::SmoothCellData; the
 //                       gradient's neighbours (AMRSP_SHADE) are reconstructed the same way
+//   AMRSP_WORK_COUNTERS diagnostic output: the ray's work counts instead of its colour (opaque,
+//                       8-bit exact): red skipped data segments, green 1 when the ray stopped
+//                       early, blue data segments reached; counted as amrsp::RenderStats counts
 //AMRSP::Defines
 
 #ifndef AMRSP_LEVEL_COUNT
@@ -795,6 +798,10 @@ void main()
 
   vec3 colour = vec3(0.0);
   float alpha = 0.0;
+#ifdef AMRSP_WORK_COUNTERS
+  int workDataSegments = 0;    // data segments reached (skipped ones included)
+  int workSampledSegments = 0; // of which sampled (the others were skipped as empty space)
+#endif
   // maximum/minimum/average intensity: the scalar kept, or the length-weighted sum and length
   float kept = 0.0;
   bool anySample = false;
@@ -924,6 +931,9 @@ void main()
     }
 
     uint data = amrspNodeData(texel);
+#ifdef AMRSP_WORK_COUNTERS
+    workDataSegments += data != 0u ? 1 : 0;
+#endif
 #ifdef AMRSP_SKIP_EMPTY
     if (data != 0u && amrspDataNodeTransparent(data))
     {
@@ -932,6 +942,9 @@ void main()
 #endif
     if (data != 0u)
     {
+#ifdef AMRSP_WORK_COUNTERS
+      ++workSampledSegments; // skipped = reached - sampled: counted where sampling really starts
+#endif
       uvec2 dataNode = amrspFetchDataNode(data);
       int level = int(amrspDataLevel(dataNode));
       ivec3 firstCell, lastCell;
@@ -1030,6 +1043,15 @@ void main()
   vec4 keptTF = amrspTransferFunction(kept);
   alpha = min(keptTF.a, 1.0);
   colour = keptTF.rgb * alpha;
+#endif
+#ifdef AMRSP_WORK_COUNTERS
+  // as amrsp::RenderStats: a ray terminated early is a composite ray that reached a threshold < 1
+  bool workTerminated = AMRSP_BLEND_MODE == 0 && amrspOpacityThreshold < 1.0 &&
+    alpha >= amrspOpacityThreshold;
+  gl_FragData[0] = vec4(float(min(workDataSegments - workSampledSegments, 255)) / 255.0,
+    workTerminated ? 1.0 : 0.0,
+    float(min(workDataSegments, 255)) / 255.0, 1.0);
+  return;
 #endif
   if (alpha <= 0.0)
   {

@@ -23,7 +23,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
+#include <string>
 
 namespace amrsp
 {
@@ -85,6 +87,87 @@ bool HitSquares(const std::vector<BaselineCase::Square>& squares, const glm::dve
     }
   }
   return any;
+}
+} // namespace
+
+namespace
+{
+/// The shader's work counts summed over a frame rendered with WorkCountersOutput (exact 8-bit
+/// channels: red skipped segments, green 255 per terminated ray, blue data segments).
+struct WorkCounts
+{
+  long long Skipped = 0;
+  long long Terminated = 0;
+  long long DataSegments = 0;
+};
+
+WorkCounts RenderWorkCounts(tool::PackingRenderer& gpu)
+{
+  vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
+  mapper->WorkCountersOutputOn();
+  double ms = 0.0;
+  const Image counts = gpu.RenderAsIs(ms);
+  mapper->WorkCountersOutputOff();
+  WorkCounts w;
+  for (const glm::vec4& p : counts.Pixels)
+  {
+    w.Skipped += std::lround(p.r * 255.0f);
+    w.Terminated += p.g > 0.5f ? 1 : 0;
+    w.DataSegments += std::lround(p.b * 255.0f);
+  }
+  return w;
+}
+
+bool Agree(long long gpu, long long cpu)
+{
+  return std::llabs(gpu - cpu) <= 2 + cpu / 100;
+}
+
+bool CompareWorkCounters(
+  tool::PackingRenderer& gpu, const RenderStats& cpu, const BaselineCase& c, std::ostream& log)
+{
+  vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
+  const WorkCounts w = RenderWorkCounts(gpu);
+  bool ok = true;
+  auto report = [&](bool pass, const std::string& what) {
+    log << (pass ? "ok" : "FAILED") << ": " << what << "\n";
+    ok = ok && pass;
+  };
+  report(Agree(w.DataSegments, cpu.DataSegments),
+    "shader counts " + std::to_string(w.DataSegments) + " data segments, the CPU mirror " +
+      std::to_string(cpu.DataSegments));
+  report(Agree(w.Skipped, cpu.SkippedSegments),
+    "shader skips " + std::to_string(w.Skipped) + " segments as empty space, the CPU mirror " +
+      std::to_string(cpu.SkippedSegments));
+  report(Agree(w.Terminated, cpu.TerminatedRays),
+    "shader stops " + std::to_string(w.Terminated) + " rays early, the CPU mirror " +
+      std::to_string(cpu.TerminatedRays));
+  if (c.ExpectSkipped)
+  {
+    report(w.Skipped > 0, "the shader skips segments (" + std::to_string(w.Skipped) + ")");
+    mapper->EmptySpaceSkippingOff();
+    const WorkCounts off = RenderWorkCounts(gpu);
+    mapper->EmptySpaceSkippingOn();
+    report(off.Skipped == 0 && off.DataSegments == w.DataSegments,
+      "with skipping off the shader skips " + std::to_string(off.Skipped) +
+        " segments and reaches " + std::to_string(off.DataSegments));
+  }
+  if (c.ExpectTerminated)
+  {
+    report(w.Terminated > 0, "the shader stops rays early (" + std::to_string(w.Terminated) + ")");
+    const double threshold = mapper->GetOpacityThreshold();
+    mapper->SetOpacityThreshold(1.0);
+    const WorkCounts off = RenderWorkCounts(gpu);
+    mapper->SetOpacityThreshold(threshold);
+    report(off.Terminated == 0 && off.DataSegments >= w.DataSegments,
+      "with threshold 1 the shader stops " + std::to_string(off.Terminated) +
+        " rays early and reaches " + std::to_string(off.DataSegments) + " data segments");
+  }
+  // one ordinary frame, so that the mapper's per-frame state (e.g. its transparent data nodes)
+  // is that of the test's own settings again
+  double ms = 0.0;
+  gpu.RenderAsIs(ms);
+  return ok;
 }
 } // namespace
 
@@ -173,8 +256,11 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
     RenderSettings ref = s;
     ref.View = gpu.LastCamera();
     const double rmse = Rmse(image, RenderReference(d.Data, ref));
+    RenderStats mirrorStats;
+    RenderSettings mirrorSettings = ref;
+    mirrorSettings.Stats = &mirrorStats;
     const double mirror =
-      Rmse(image, RenderKdTree(d.Data, EncodeKdTree(d.Data, BuildKdTree(d.Data)), ref));
+      Rmse(image, RenderKdTree(d.Data, EncodeKdTree(d.Data, BuildKdTree(d.Data)), mirrorSettings));
     bool agrees = rmse < c.ReferenceBound && mirror < c.MirrorBound;
     std::cout << (rmse < c.ReferenceBound ? "ok" : "FAILED")
               << ": GPU image vs CPU reference RMSE " << rmse << " (bound " << c.ReferenceBound
@@ -183,6 +269,10 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
               << ": GPU image vs CPU kD-tree integrator RMSE " << mirror << " (bound "
               << c.MirrorBound << ")\n";
 
+    if (c.CheckWorkCounters)
+    {
+      agrees = CompareWorkCounters(gpu, mirrorStats, c, std::cout) && agrees;
+    }
     if (c.Check)
     {
       agrees = c.Check(gpu, image, ref, std::cout) && agrees;

@@ -66,6 +66,16 @@ struct BaselineCase
   std::function<bool(tool::PackingRenderer& gpu, const Image& image,
     const RenderSettings& settings, std::ostream& log)>
     Check;
+
+  /// Compare the shader's own work counts (vtkSinglePassAMRVolumeMapper::WorkCountersOutput,
+  /// summed over the frame) with the CPU kD-tree integrator's RenderStats of the same view: data
+  /// segments reached, segments skipped as empty space, rays terminated early. Each must agree to
+  /// within 1 % (+ 2). With ExpectSkipped / ExpectTerminated that count must also be positive, and
+  /// zero again with the feature switched off (EmptySpaceSkipping off; OpacityThreshold 1), so a
+  /// shader that ignored the feature fails.
+  bool CheckWorkCounters = false;
+  bool ExpectSkipped = false;
+  bool ExpectTerminated = false;
 };
 
 /// Runs the test; returns the test driver's exit code (0 pass, 1 fail, 125 skipped).

@@ -35,6 +35,9 @@ int TestSinglePassAMREarlyTermination(int argc, char* argv[])
   c.Options = { "--array", "Y(H2)", "--size", "200x200", "--unit-distance", "0.0002",
     "--opacity-threshold", "0.95" };
   c.ReferenceBound = 3.0;
+  // the shader's own counts against the CPU mirror's, and zero with the feature off
+  c.CheckWorkCounters = true;
+  c.ExpectTerminated = true;
   c.Check = [](amrsp::tool::PackingRenderer& gpu, const amrsp::Image& image,
     const amrsp::RenderSettings&, std::ostream& log) {
     vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();

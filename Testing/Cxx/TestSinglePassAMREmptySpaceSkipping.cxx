@@ -25,6 +25,9 @@ int TestSinglePassAMREmptySpaceSkipping(int argc, char* argv[])
   // measured 2.4 (llvmpipe): the noisy particle-deposited field at one sample per cell against
   // the reference's two
   c.ReferenceBound = 3.5;
+  // the shader's own counts against the CPU mirror's, and zero with the feature off
+  c.CheckWorkCounters = true;
+  c.ExpectSkipped = true;
   c.Check = [](amrsp::tool::PackingRenderer& gpu, const amrsp::Image& image,
     const amrsp::RenderSettings&, std::ostream& log) {
     vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
