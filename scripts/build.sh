@@ -8,14 +8,7 @@ set -Eeuo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 . "$repo/scripts/configs.sh"
 config=${1:?usage: scripts/build.sh CONFIG ($AMRSP_ALL_CONFIGS)}
-suite=$(amrsp_config_suite "$config") \
-  || { echo "scripts/build.sh: unknown configuration '$config' ($AMRSP_ALL_CONFIGS)" >&2; exit 2; }
-host=$(amrsp_host_suite)
-if [ "$suite" != "$host" ]; then
-  [ "$host" = bookworm ] \
-    || { echo "scripts/build.sh: $config is built on Debian $suite or in a root on Debian 12; this is $host" >&2; exit 2; }
-  exec "$repo/scripts/debian-root.sh" "$suite" run scripts/build.sh "$config"
-fi
+amrsp_run_where_config_belongs scripts/build.sh "$config"
 jobs=${AMRSP_JOBS:-$(nproc)}
 multiarch=$(dpkg-architecture -qDEB_HOST_MULTIARCH 2>/dev/null || echo x86_64-linux-gnu)
 case "$config" in

@@ -73,3 +73,20 @@ amrsp_backend_tests() {  # $1 = config, $2 = backend
 # Where the OSMesa library lives inside a forky root or on Debian testing: Debian 13's libosmesa6
 # (Mesa 25.0, the last Mesa with OSMesa) unpacked by install-deps.sh into a private prefix.
 AMRSP_OSMESA_PREFIX=${AMRSP_OSMESA_PREFIX:-/opt/amrsp/osmesa}
+
+# Makes SCRIPT (relative to the repository) run where CONFIG belongs: returns when CONFIG's suite
+# is this system's; otherwise, on a Debian 12 host, runs `SCRIPT CONFIG ARGS...` inside that suite's
+# root (scripts/debian-root.sh) in place of the caller (exec). Exits 2 for an unknown configuration
+# or a system that can neither build it nor host its root.
+amrsp_run_where_config_belongs() {  # $1 = script, $2 = config, rest = its other arguments
+  local script=$1 config=$2 suite host repo
+  suite=$(amrsp_config_suite "$config") \
+    || { echo "$script: unknown configuration '$config' ($AMRSP_ALL_CONFIGS)" >&2; exit 2; }
+  host=$(amrsp_host_suite)
+  [ "$suite" != "$host" ] || return 0
+  [ "$host" = bookworm ] \
+    || { echo "$script: $config needs Debian $suite, or a root of it on Debian 12; this is $host" >&2; exit 2; }
+  repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+  shift 2
+  exec "$repo/scripts/debian-root.sh" "$suite" run "$script" "$config" "$@"
+}

@@ -11,14 +11,7 @@ repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 . "$repo/scripts/configs.sh"
 config=${1:?usage: scripts/run-tests.sh CONFIG [BACKEND...]}
 shift
-suite=$(amrsp_config_suite "$config") \
-  || { echo "scripts/run-tests.sh: unknown configuration '$config' ($AMRSP_ALL_CONFIGS)" >&2; exit 2; }
-host=$(amrsp_host_suite)
-if [ "$suite" != "$host" ]; then
-  [ "$host" = bookworm ] \
-    || { echo "scripts/run-tests.sh: $config runs on Debian $suite or in a root on Debian 12; this is $host" >&2; exit 2; }
-  exec "$repo/scripts/debian-root.sh" "$suite" run scripts/run-tests.sh "$config" "$@"
-fi
+amrsp_run_where_config_belongs scripts/run-tests.sh "$config" "$@"
 build=$repo/build/$config
 [ -f "$build/CTestTestfile.cmake" ] || { echo "[test] $config is not built (scripts/build.sh $config)" >&2; exit 1; }
 backends=("$@")
