@@ -119,3 +119,37 @@ def show_density_volume(source, size, before_show=None):
     view.GetActiveCamera().Azimuth(30.0)
     view.GetActiveCamera().Elevation(20.0)
     return view, display, q
+
+
+def write_view_json(view, display, array, path):
+    """Writes what `amrsp reference --view-json` needs to render the view as ParaView shows it:
+    the camera, the colour map and opacity function of `array` (the reference's are linear
+    between points, so every opacity point must have midpoint 0.5 and sharpness 0), the unit
+    distance and the background."""
+    import json
+    from paraview import simple
+
+    lut = simple.GetColorTransferFunction(array)
+    pwf = simple.GetOpacityTransferFunction(array)
+    for i in range(0, len(pwf.Points), 4):
+        if abs(pwf.Points[i + 2] - 0.5) > 1e-12 or abs(pwf.Points[i + 3]) > 1e-12:
+            fail("opacity point %d is not linear (midpoint/sharpness)" % (i // 4))
+    cam = view.GetActiveCamera()
+    view_json = {
+        "camera": {
+            "position": list(cam.GetPosition()),
+            "focal_point": list(cam.GetFocalPoint()),
+            "view_up": list(cam.GetViewUp()),
+            "view_angle": cam.GetViewAngle(),
+            "parallel_projection": bool(cam.GetParallelProjection()),
+            "parallel_scale": cam.GetParallelScale(),
+        },
+        "transfer_function": {
+            "rgb_points": [list(lut.RGBPoints[i:i + 4]) for i in range(0, len(lut.RGBPoints), 4)],
+            "opacity_points": [list(pwf.Points[i:i + 2]) for i in range(0, len(pwf.Points), 4)],
+            "unit_distance": display.ScalarOpacityUnitDistance,
+        },
+        "background": list(view.Background),
+    }
+    with open(path, "w") as f:
+        json.dump(view_json, f, indent=2)

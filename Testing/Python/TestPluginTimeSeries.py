@@ -1,6 +1,6 @@
 # pvpython test of the representation on a time series:
 #
-#   pvpython --force-offscreen-rendering TestPluginTimeSeries.py PLUGIN OUTDIR
+#   pvpython --force-offscreen-rendering TestPluginTimeSeries.py PLUGIN AMRSP OUTDIR
 #
 # Writes three time steps of the plugin's synthetic AMR source (seeds 3, 4, 5: different grids and
 # densities) as VTK XML AMR files (.vthb) into OUTDIR, opens them as one file series (ParaView
@@ -9,18 +9,30 @@
 #   and the image changes;
 # - re-rendering, camera and colour-map changes at one time step never rebuild them;
 # - going back to the first step rebuilds once more (ParaView does not cache the old step) and
-#   renders the first image again (RMSE below 0.5, under 0.1 % of the pixels off by more than 2).
+#   renders the first image again (RMSE below 0.5, under 0.1 % of the pixels off by more than 2);
+# - the image of every time step matches the CPU reference (`amrsp reference --view-json`) of
+#   that step's file, and not that of another step: showing the wrong step fails.
 # Exit codes: 0 pass, 1 fail, 125 skipped (no X display or no usable OpenGL context).
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from PluginTestKit import check_render_error, fail, leave, show_density_volume, skip  # noqa: E402
+from PluginTestKit import (check_render_error, fail, leave, show_density_volume, skip,  # noqa: E402
+                           write_view_json)
+
+
+# Each step's image against the CPU reference of its file (whole 120x120 frame, the volume on
+# half of it; measured 2.03 to 2.28 on llvmpipe: the reference samples four times per finest cell,
+# the mapper twice per cell of each level, and against its CPU mirror it is 0.06), and the least an
+# image must differ from the reference of a wrong step (measured 43 to 56).
+REFERENCE_RMSE_BOUND = 3.5
+WRONG_STEP_RMSE = 20.0
 
 
 def main():
-    plugin, outdir = sys.argv[1:3]
-    from TestPluginRepresentation import coverage, info_property, read_png, require_display, rmse
+    plugin, amrsp, outdir = sys.argv[1:4]
+    from TestPluginRepresentation import (coverage, info_property, read_png, require_display, rmse,
+                                          run_amrsp)
 
     require_display()
     os.makedirs(outdir, exist_ok=True)
@@ -54,7 +66,27 @@ def main():
     view, display, q = show_density_volume(reader, 120, first_step)
     scene = simple.GetAnimationScene()
     lut = simple.GetColorTransferFunction("Density")
+    lut.ColorSpace = "RGB"  # the reference interpolates colours in RGB
+    # Maps on [q0, q3] (q3: the 99 % quantile; denser cells clamp to the last point): the mapper's
+    # 4096-entry table resolves them (the default maps reach the maximum, 1500 times the median,
+    # and put three points into the table's first two entries: RMSE 10.5 against the exact
+    # reference for that reason alone)
+    lut.RGBPoints = [q[0], 0.2, 0.4, 1.0, q[2], 1.0, 1.0, 1.0, q[3], 1.0, 0.2, 0.1]
+    simple.GetOpacityTransferFunction("Density").Points = [
+        q[0], 0.0, 0.5, 0.0, q[1], 0.1, 0.5, 0.0, q[2], 0.5, 0.5, 0.0, q[3], 0.8, 0.5, 0.0]
     colours = list(lut.RGBPoints)
+    # two samples per cell, as the representation test (the reference samples at least as finely)
+    display.SampleDistanceFactor = 0.5
+    references = {}  # time step -> (view json, CPU reference pixels of that step's file)
+
+    def reference(step, name):
+        """The CPU reference of `step`'s file in the current view."""
+        json_path = os.path.join(outdir, "timeseries-%s-view.json" % name)
+        write_view_json(view, display, "Density", json_path)
+        image = os.path.join(outdir, "timeseries-%s-reference-of-step%d.png" % (name, step))
+        run_amrsp([amrsp, "reference", files[step], "--array", "Density", "--size", "120x120",
+                   "--view-json", json_path, "--reference-sample-factor", "0.25", "-o", image])
+        return read_png(image)[2]
 
     def shot(name, expected_builds):
         path = os.path.join(outdir, "timeseries-%s.png" % name)
@@ -94,7 +126,22 @@ def main():
     scene.AnimationTime = times[0]
     back = shot("step0-back", 4)
 
-    checks = [
+    # every step against the CPU reference of its own file, and of the other steps' files (the
+    # camera of step0-camera and step 1 is the same; steps 2 and 0-back share it too)
+    reference_checks = []
+    for name, step, pixels in (("step0-back", 0, back), ("step1", 1, second), ("step2", 2, third)):
+        own = rmse(pixels, reference(step, name))
+        others = [rmse(pixels, reference(other, name)) for other in range(3) if other != step]
+        print("%-16s rmse (0-255) vs the CPU reference of its step %.2f (bound %.1f), of the "
+              "other steps %s (must exceed %.1f)" % (name, own, REFERENCE_RMSE_BOUND,
+                                                    ", ".join("%.2f" % o for o in others),
+                                                    WRONG_STEP_RMSE))
+        reference_checks.append(("%s matches its step's CPU reference" % name,
+                                 own < REFERENCE_RMSE_BOUND))
+        reference_checks.append(("%s differs from the other steps' references" % name,
+                                 min(others) > WRONG_STEP_RMSE))
+
+    checks = reference_checks + [
         ("step 1 differs from step 0", rmse(second, first_turned) > 3.0),
         ("step 2 differs from step 1", rmse(third, second) > 3.0),
         ("step 2 differs from step 0", rmse(third, first_turned) > 3.0),
@@ -115,7 +162,7 @@ def main():
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        print("usage: TestPluginTimeSeries.py PLUGIN OUTDIR")
+    if len(sys.argv) != 4:
+        print("usage: TestPluginTimeSeries.py PLUGIN AMRSP OUTDIR")
         leave(2)
     main()
