@@ -10,7 +10,7 @@ repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 config=${1:?usage: scripts/build.sh CONFIG ($AMRSP_ALL_CONFIGS)}
 amrsp_run_where_config_belongs scripts/build.sh "$config"
 jobs=${AMRSP_JOBS:-$(nproc)}
-multiarch=$(dpkg-architecture -qDEB_HOST_MULTIARCH 2>/dev/null || echo x86_64-linux-gnu)
+multiarch=$(amrsp_multiarch)
 case "$config" in
   *paraview)
     args=(-DAMRSP_WITH_PARAVIEW=ON) ;;

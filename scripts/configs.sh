@@ -20,6 +20,11 @@ amrsp_host_suite() {
   printf '%s\n' "$codename"
 }
 
+# The multiarch library folder name (x86_64-linux-gnu on amd64).
+amrsp_multiarch() {
+  dpkg-architecture -qDEB_HOST_MULTIARCH 2>/dev/null || echo x86_64-linux-gnu
+}
+
 amrsp_config_suite() {  # $1 = config
   case "$1" in
     paraview|vtk) echo bookworm ;;

@@ -52,7 +52,7 @@ for backend in "${backends[@]}"; do
       osmesa)
         unset DISPLAY
         export VTK_DEFAULT_OPENGL_WINDOW=vtkOSOpenGLRenderWindow
-        lib=$AMRSP_OSMESA_PREFIX/usr/lib/$(dpkg-architecture -qDEB_HOST_MULTIARCH 2>/dev/null || echo x86_64-linux-gnu)
+        lib=$AMRSP_OSMESA_PREFIX/usr/lib/$(amrsp_multiarch)
         [ -e "$lib/libOSMesa.so.8" ] || { echo "FAIL: no libOSMesa.so.8 in $lib (scripts/install-deps.sh unpacks it)"; exit 1; }
         export LD_LIBRARY_PATH="$lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" ;;
       *) echo "unknown backend $backend"; exit 2 ;;

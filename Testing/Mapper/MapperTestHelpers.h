@@ -18,13 +18,19 @@
 namespace mappertest
 {
 
+/// Whether everything a test needs must be here (AMRSP_REQUIRE_GPU=1, set in CI).
+inline bool EverythingRequired()
+{
+  const char* require = std::getenv("AMRSP_REQUIRE_GPU");
+  return require && std::string(require) == "1";
+}
+
 /// For a test that cannot run here: prints "SKIPPED: why" and returns CTest's skip code 125. With
 /// AMRSP_REQUIRE_GPU=1 (scripts/run-tests.sh sets it in CI, where everything a test needs is
 /// installed) the same condition fails the test (returns 1) and names what is missing.
 inline int SkipOrFail(const std::string& why)
 {
-  const char* require = std::getenv("AMRSP_REQUIRE_GPU");
-  if (require && std::string(require) == "1")
+  if (EverythingRequired())
   {
     std::cout << "FAIL: required here (AMRSP_REQUIRE_GPU=1) but missing: " << why << "\n";
     return 1;

@@ -603,8 +603,7 @@ int main()
     else
     {
       // by hand the Enzo half is left out and said; in CI (AMRSP_REQUIRE_GPU=1) it must run
-      const char* require = std::getenv("AMRSP_REQUIRE_GPU");
-      const bool required = require && std::string(require) == "1";
+      const bool required = mappertest::EverythingRequired();
       Check(!required, "the Enzo dataset " + enzo + " is " +
           (required ? "missing (required here: AMRSP_REQUIRE_GPU=1)" : "missing: left out"));
     }

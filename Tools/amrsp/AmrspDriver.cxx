@@ -2,9 +2,7 @@
 #include "AmrspDriver.h"
 
 #include "vtkRenderWindow.h"
-#include "vtkRenderingOpenGLConfigure.h"
 #include "vtkVersion.h"
-#include "vtkVersionMacros.h"
 
 #include <cctype>
 #include <cstdlib>
@@ -13,9 +11,6 @@
 #include <stdexcept>
 #include <sys/stat.h>
 #include <unistd.h>
-
-// VTK 9.4 and later build every window class on Linux and choose one at run time
-#define AMRSP_RUNTIME_WINDOW_CHOICE (VTK_MAJOR_VERSION > 9 || (VTK_MAJOR_VERSION == 9 && VTK_MINOR_VERSION >= 4))
 
 namespace amrsp
 {
@@ -60,7 +55,14 @@ void SelectDriver(const std::string& name)
 std::string AvailableBackends()
 {
 #if AMRSP_RUNTIME_WINDOW_CHOICE
-  return "GLX, EGL, OSMesa";
+  std::string backends;
+#ifdef VTK_USE_X
+  backends += "GLX, ";
+#endif
+#ifdef VTK_OPENGL_HAS_EGL
+  backends += "EGL, ";
+#endif
+  return backends + "OSMesa";
 #elif defined(VTK_OPENGL_HAS_OSMESA)
   return "OSMesa";
 #elif defined(VTK_OPENGL_HAS_EGL)

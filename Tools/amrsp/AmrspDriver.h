@@ -6,9 +6,26 @@
 /// context is created (Mesa reads its environment when it loads the driver; VTK >= 9.4 reads
 /// VTK_DEFAULT_OPENGL_WINDOW when it creates a render window).
 
+#include "vtkRenderingOpenGLConfigure.h"
+#include "vtkVersionMacros.h"
+
 #include <string>
 
 class vtkRenderWindow;
+
+/// 1 when this VTK chooses its window class at run time (VTK 9.4 and later: GLX where built with
+/// X, EGL where built with it, OSMesa through a libOSMesa loaded at run time).
+#define AMRSP_RUNTIME_WINDOW_CHOICE                                                                \
+  (VTK_MAJOR_VERSION > 9 || (VTK_MAJOR_VERSION == 9 && VTK_MINOR_VERSION >= 4))
+
+/// 1 when this VTK renders through GLX only (its windows abort the process when no X display
+/// answers, so the tool probes the display first).
+#if !AMRSP_RUNTIME_WINDOW_CHOICE && defined(VTK_USE_X) && !defined(VTK_OPENGL_HAS_EGL) &&         \
+  !defined(VTK_OPENGL_HAS_OSMESA)
+#define AMRSP_GLX_ONLY 1
+#else
+#define AMRSP_GLX_ONLY 0
+#endif
 
 namespace amrsp
 {

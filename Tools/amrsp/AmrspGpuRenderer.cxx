@@ -18,14 +18,12 @@
 #include "vtkPointData.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
-#include "vtkRenderingOpenGLConfigure.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 #include "vtkWindowToImageFilter.h"
 
-#if defined(VTK_USE_X) && !defined(VTK_OPENGL_HAS_EGL) && !defined(VTK_OPENGL_HAS_OSMESA)
-#define AMRSP_GLX_ONLY 1
+#if AMRSP_GLX_ONLY
 #include <X11/Xlib.h>
 #endif
 
@@ -74,7 +72,7 @@ void Level0Bounds(const Hierarchy& h, double bounds[6])
 
 bool GpuRenderer::Available(std::string& why)
 {
-#ifdef AMRSP_GLX_ONLY
+#if AMRSP_GLX_ONLY
   // VTK's GLX window aborts the process when it cannot open the display: probe first
   const char* display = std::getenv("DISPLAY");
   if (!display || !*display)
