@@ -95,3 +95,18 @@ amrsp_run_where_config_belongs() {  # $1 = script, $2 = config, rest = its other
   shift 2
   exec "$repo/scripts/debian-root.sh" "$suite" run "$script" "$config" "$@"
 }
+
+# Prints the recorded output of every test the ctest log lists as failed (the last 80 lines of
+# each), so that a CI log that keeps only stdout still says why a test failed.
+amrsp_print_failed_output() {  # $1 = build directory, $2 = ctest log
+  local last="$1/Testing/Temporary/LastTest.log" name
+  [ -f "$last" ] || return 0
+  sed -nE 's/^[[:space:]]*[0-9]+ - ([^ ]+) \((Failed|Timeout|.*Exception.*|Not Run)\).*/\1/p' "$2" |
+    while read -r name; do
+      echo "[test] ---- output of $name ----"
+      awk -v name="$name" '
+        $0 ~ ("Testing: " name "$") { on = 1 }
+        on { print }
+        on && index($0, "\"" name "\" end time") { exit }' "$last" | tail -n 80
+    done
+}

@@ -81,6 +81,7 @@ for backend in "${backends[@]}"; do
   [ -z "$device" ] || line="$line ($device)"
   if [ "$rc" != 0 ] || [ "$total" = 0 ]; then
     tail -n 60 "$log"
+    amrsp_print_failed_output "$build" "$log"
     status=1
   elif [ "$skipped" != 0 ]; then
     grep -E '\(Skipped\)|SKIPPED' "$log" | head -n 40

@@ -116,19 +116,13 @@ def stop_servers():
 
 
 def report_servers():
-    # What happened inside our pvserver shows only in its log: repeat an X refusal line here,
-    # where RetryOnXFailure.py (which reruns a test the X server refused) can see it, and the end
-    # of the log of a pvserver that is gone (its exit code says whether it crashed).
+    # The end of the log of a pvserver that is gone (its exit code says whether it crashed).
     for server, path in zip(SERVER, SERVER_LOGS):
         try:
             with open(path, errors="replace") as f:
                 lines = f.readlines()
         except OSError:
             continue
-        for line in lines:
-            if "bad X server connection" in line:
-                print("pvserver log: " + line.rstrip())
-                break
         if server.poll() is not None:
             print("pvserver ended with exit code %s; its log (%s) ends:\n%s"
                   % (server.returncode, path, "".join(lines[-15:])))
@@ -232,16 +226,37 @@ def free_port():
         return s.getsockname()[1]
 
 
+def copy_server_output(server, log_path):
+    """Copies the pvserver's output into its log as it comes. VTK's X abort line (the X server
+    refused the pvserver's window) is also repeated on this test's output at once, where
+    RetryOnXFailure.py sees it: the client often crashes when its server aborts, before any
+    report could be printed."""
+    import threading
+
+    def copy():
+        with open(log_path, "a", errors="replace") as log:
+            for raw in iter(server.stdout.readline, b""):
+                line = raw.decode(errors="replace")
+                log.write(line)
+                log.flush()
+                if "bad X server connection" in line:
+                    sys.stdout.write("pvserver: " + line.strip() + "\n")
+                    sys.stdout.flush()
+
+    threading.Thread(target=copy, daemon=True).start()
+
+
 def start_server(pvserver, log_path):
     """Starts our own pvserver on a free loopback port and connects to it."""
     from paraview import simple
 
     for attempt in range(3):
         port = free_port()
-        log = open(log_path, "w")
+        open(log_path, "w").close()
         server = subprocess.Popen([pvserver, "--force-offscreen-rendering",
-                                   "--server-port=%d" % port], stdout=log,
+                                   "--server-port=%d" % port], stdout=subprocess.PIPE,
                                   stderr=subprocess.STDOUT)
+        copy_server_output(server, log_path)
         SERVER.append(server)
         SERVER_LOGS.append(log_path)
         deadline = time.time() + 60.0
