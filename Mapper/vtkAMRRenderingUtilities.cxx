@@ -11,7 +11,9 @@
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkOpenGLCamera.h"
+#include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
 #include "vtkOverlappingAMR.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkRenderer.h"
@@ -377,24 +379,82 @@ bool ComputeViewGeometry(vtkRenderer* ren, vtkVolume* vol, ViewGeometry& view, s
 }
 
 //------------------------------------------------------------------------------
-void CopyDepthBuffer(
-  vtkOpenGLRenderWindow* renWin, const ViewGeometry& view, vtkSmartPointer<vtkTextureObject>& depth)
+namespace
 {
-  if (!depth || depth->GetContext() != renWin ||
-    depth->GetWidth() != static_cast<unsigned int>(view.Width) ||
-    depth->GetHeight() != static_cast<unsigned int>(view.Height))
+/// The vtkTextureObject depth format of the bound read framebuffer's depth buffer. A depth blit
+/// needs the same format on both sides; a multisampled framebuffer (vtkRenderWindow's default of
+/// 8 samples) often has a 24-bit one where a single-sampled one has 32-bit floats.
+int ReadFramebufferDepthFormat()
+{
+  GLint type = GL_NONE, bits = 0;
+  glGetFramebufferAttachmentParameteriv(GL_READ_FRAMEBUFFER, GL_DEPTH_ATTACHMENT,
+    GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE, &type);
+  glGetFramebufferAttachmentParameteriv(
+    GL_READ_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE, &bits);
+  while (glGetError() != GL_NO_ERROR)
   {
-    depth = vtkSmartPointer<vtkTextureObject>::New();
-    depth->SetContext(renWin);
-    depth->SetMinificationFilter(vtkTextureObject::Nearest);
-    depth->SetMagnificationFilter(vtkTextureObject::Nearest);
-    depth->SetWrapS(vtkTextureObject::ClampToEdge);
-    depth->SetWrapT(vtkTextureObject::ClampToEdge);
-    depth->AllocateDepth(static_cast<unsigned int>(view.Width),
-      static_cast<unsigned int>(view.Height), vtkTextureObject::Float32);
+    // the default framebuffer names its depth differently: keep the float format
+    type = GL_FLOAT;
   }
-  depth->Activate();
-  depth->CopyFromFrameBuffer(view.X0, view.Y0, 0, 0, view.Width, view.Height);
+  if (type == GL_FLOAT)
+  {
+    return vtkTextureObject::Float32;
+  }
+  return bits <= 16 ? vtkTextureObject::Fixed16
+                    : (bits <= 24 ? vtkTextureObject::Fixed24 : vtkTextureObject::Fixed32);
+}
+} // namespace
+
+void DepthCopy::ReleaseGraphicsResources(vtkWindow* window)
+{
+  if (this->Framebuffer)
+  {
+    this->Framebuffer->ReleaseGraphicsResources(window);
+  }
+  for (vtkTextureObject* t : { this->Depth.Get(), this->Colour.Get() })
+  {
+    if (t)
+    {
+      t->ReleaseGraphicsResources(window);
+    }
+  }
+  *this = DepthCopy();
+}
+
+void CopyDepthBuffer(vtkOpenGLRenderWindow* renWin, const ViewGeometry& view, DepthCopy& copy)
+{
+  const int format = ReadFramebufferDepthFormat();
+  const unsigned int width = static_cast<unsigned int>(view.Width);
+  const unsigned int height = static_cast<unsigned int>(view.Height);
+  vtkOpenGLState* state = renWin->GetState();
+  if (!copy.Depth || copy.Depth->GetContext() != renWin || copy.Depth->GetWidth() != width ||
+    copy.Depth->GetHeight() != height || copy.Format != format)
+  {
+    copy.Format = format;
+    copy.Depth = vtkSmartPointer<vtkTextureObject>::New();
+    copy.Depth->SetContext(renWin);
+    copy.Depth->SetMinificationFilter(vtkTextureObject::Nearest);
+    copy.Depth->SetMagnificationFilter(vtkTextureObject::Nearest);
+    copy.Depth->SetWrapS(vtkTextureObject::ClampToEdge);
+    copy.Depth->SetWrapT(vtkTextureObject::ClampToEdge);
+    copy.Depth->AllocateDepth(width, height, format);
+    copy.Colour = vtkSmartPointer<vtkTextureObject>::New();
+    copy.Colour->SetContext(renWin);
+    copy.Colour->Allocate2D(width, height, 4, VTK_UNSIGNED_CHAR);
+    copy.Framebuffer = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
+    copy.Framebuffer->SetContext(renWin);
+    state->PushDrawFramebufferBinding();
+    copy.Framebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+    copy.Framebuffer->AddDepthAttachment(copy.Depth);
+    copy.Framebuffer->AddColorAttachment(0U, copy.Colour);
+    state->PopDrawFramebufferBinding();
+  }
+  state->PushDrawFramebufferBinding();
+  copy.Framebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+  state->vtkglBlitFramebuffer(view.X0, view.Y0, view.X0 + view.Width, view.Y0 + view.Height, 0, 0,
+    view.Width, view.Height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+  state->PopDrawFramebufferBinding();
+  copy.Depth->Activate();
 }
 
 //------------------------------------------------------------------------------

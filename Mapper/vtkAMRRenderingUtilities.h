@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+class vtkOpenGLFramebufferObject;
 class vtkOpenGLRenderWindow;
 class vtkMatrix4x4;
 class vtkOverlappingAMR;
@@ -164,10 +165,23 @@ struct ViewGeometry
 /// `error` for a renderer without an OpenGL camera or with an empty viewport.
 bool ComputeViewGeometry(vtkRenderer* ren, vtkVolume* vol, ViewGeometry& view, std::string& error);
 
-/// Copies the depth buffer of the viewport (opaque geometry drawn so far) into `depth`, which is
-/// (re)created when missing, of another context or of another size. Leaves `depth` active.
-void CopyDepthBuffer(vtkOpenGLRenderWindow* renWin, const ViewGeometry& view,
-  vtkSmartPointer<vtkTextureObject>& depth);
+/// The depth of the opaque geometry drawn so far, copied for the ray caster: a depth texture of
+/// the viewport's size and of the framebuffer's depth format (a depth blit needs the same format
+/// on both sides), and the framebuffer object the blit writes into (multisampled windows, VTK's
+/// default, can be read only by a blit, which resolves them).
+struct DepthCopy
+{
+  vtkSmartPointer<vtkTextureObject> Depth;
+  vtkSmartPointer<vtkTextureObject> Colour; // completes the framebuffer object; never read
+  vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffer;
+  int Format = -1; // vtkTextureObject's depth format enum
+
+  void ReleaseGraphicsResources(vtkWindow* window);
+};
+
+/// Copies the depth buffer of the viewport into `copy.Depth`, (re)creating the textures when
+/// missing, of another context or size, or of another depth format. Leaves `copy.Depth` active.
+void CopyDepthBuffer(vtkOpenGLRenderWindow* renWin, const ViewGeometry& view, DepthCopy& copy);
 
 /// Whether `window` offers an OpenGL 3.2 core context (integer and float textures, GLSL 1.50,
 /// float colour attachments, depth clamping). When it does not, `why` says what is missing.

@@ -139,7 +139,7 @@ public:
   int UploadLimit = 0; // MaximumAtlasSize of the last upload attempt
   vtkTimeStamp UploadTime;
   vtkSmartPointer<vtkTextureObject> Atlas;
-  vtkSmartPointer<vtkTextureObject> Depth;
+  vtkAMRRenderingUtilities::DepthCopy Depth;
   vtkSmartPointer<vtkTextureObject> Accumulation; // RGBA32F, viewport-sized
   vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffer;
   utilities::TransferFunctionTable Transfer;
@@ -487,7 +487,8 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::CompositeOver(vtkOpenGLRenderWin
 //------------------------------------------------------------------------------
 void vtkMultiPassAMRVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWindow* window)
 {
-  for (vtkSmartPointer<vtkTextureObject>* t : { &this->Atlas, &this->Depth, &this->Accumulation })
+  this->Depth.ReleaseGraphicsResources(window);
+  for (vtkSmartPointer<vtkTextureObject>* t : { &this->Atlas, &this->Accumulation })
   {
     if (*t)
     {
@@ -813,7 +814,7 @@ void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   program->SetUniformi("amrspTransfer", in.Transfer.GetTexture()->GetTextureUnit());
   if (useDepth)
   {
-    program->SetUniformi("amrspDepth", in.Depth->GetTextureUnit());
+    program->SetUniformi("amrspDepth", in.Depth.Depth->GetTextureUnit());
   }
   program->SetUniformMatrix4x4("amrspMCDCMatrix", view.MCDC);
   program->SetUniformMatrix4x4("amrspDCMCMatrix", view.DCMC);
@@ -843,7 +844,7 @@ void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   in.Transfer.GetTexture()->Deactivate();
   if (useDepth)
   {
-    in.Depth->Deactivate();
+    in.Depth.Depth->Deactivate();
   }
 
   // ---- composite the accumulated image over the renderer's framebuffer (premultiplied "over")

@@ -26,6 +26,7 @@
 #include "vtkOpenGLError.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLShaderProperty.h"
 #include "vtkOpenGLState.h"
 #include "vtkOpenGLVertexArrayObject.h"
 #include "vtkOverlappingAMR.h"
@@ -184,7 +185,7 @@ public:
   vtkSmartPointer<vtkTextureObject> HandlesTexture; // bindless: RG32UI, one handle per brick
   std::vector<vtkSmartPointer<vtkTextureObject>> Bricks;
   std::vector<GLuint64> ResidentHandles;
-  vtkSmartPointer<vtkTextureObject> Depth;
+  vtkAMRRenderingUtilities::DepthCopy Depth;
   vtkSmartPointer<vtkTextureObject> BrickBoxes; // RG32UI, per brick and axis: grid cells lo, hi
   // empty-space skipping: R8, indexed like the data nodes, 255 where the node's value range is
   // transparent under the transfer table of FlagsTableTime (recomputed when it is re-tabulated)
@@ -430,6 +431,13 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
           vmax = std::max(vmax, static_cast<double>(v));
         }
       }
+    }
+    if (vmin > vmax && !h.Grids.empty())
+    {
+      this->BuildError = "the array '" + h.ArrayName +
+        "' holds no finite value (NaN or +-Inf in every cell): nothing to render";
+      this->FreePendingData();
+      return false;
     }
     this->ScalarRange[0] = vmin <= vmax ? vmin : 0.0;
     this->ScalarRange[1] = vmin <= vmax ? vmax : 1.0;
@@ -681,7 +689,7 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWin
   this->ResidentHandles.clear();
   this->UploadedStorage = -1;
   for (vtkSmartPointer<vtkTextureObject>* t :
-    { &this->Tree, &this->DataNodesTexture, &this->Atlas, &this->HandlesTexture, &this->Depth,
+    { &this->Tree, &this->DataNodesTexture, &this->Atlas, &this->HandlesTexture,
       &this->BrickBoxes, &this->TransparentFlags })
   {
     if (*t)
@@ -690,6 +698,7 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWin
       *t = nullptr;
     }
   }
+  this->Depth.ReleaseGraphicsResources(window);
   this->Transfer.ReleaseGraphicsResources(window);
   this->BoxBuffer->ReleaseGraphicsResources();
   this->BoxArray->ReleaseGraphicsResources();
@@ -1027,10 +1036,31 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     defines += "#define AMRSP_WORK_COUNTERS 1\n";
   }
+  // the volume's vtkShaderProperty fragment replacements, as VTK's own mappers apply them: those
+  // marked "replace first" before the mapper's substitutions, the others after
+  vtkOpenGLShaderProperty* shaderProperty =
+    vtkOpenGLShaderProperty::SafeDownCast(vol->GetShaderProperty());
+  auto applyUserReplacements = [&](std::string& code, bool first)
+  {
+    if (!shaderProperty)
+    {
+      return;
+    }
+    for (const auto& r : shaderProperty->GetAllShaderReplacements())
+    {
+      if (r.first.ShaderType == vtkShader::Fragment && r.first.ReplaceFirst == first)
+      {
+        vtkShaderProgram::Substitute(
+          code, r.first.OriginalValue, r.second.Replacement, r.second.ReplaceAll);
+      }
+    }
+  };
   std::string fragment = amrsp_SinglePassAMR_frag_glsl;
+  applyUserReplacements(fragment, true);
   vtkShaderProgram::Substitute(fragment, "//AMRSP::Defines", defines);
   vtkShaderProgram::Substitute(fragment, "//AMRSP::KdTreeLayout", amrsp_KdTreeLayout_glsl);
   vtkShaderProgram::Substitute(fragment, "//AMRSP::RayCommon", amrsp_RayCommon_glsl);
+  applyUserReplacements(fragment, false);
   if (fragment == in.FailedFragmentSource)
   {
     fail("the single-pass AMR shader failed to compile or link (see the earlier error)");
@@ -1199,7 +1229,7 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   if (useDepth)
   {
-    program->SetUniformi("amrspDepth", in.Depth->GetTextureUnit());
+    program->SetUniformi("amrspDepth", in.Depth.Depth->GetTextureUnit());
   }
   program->SetUniformMatrix4x4("amrspMCDCMatrix", view.MCDC);
   program->SetUniformMatrix4x4("amrspDCMCMatrix", view.DCMC);
@@ -1369,7 +1399,7 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   if (useDepth)
   {
-    in.Depth->Deactivate();
+    in.Depth.Depth->Deactivate();
   }
   in.LastStorage = storage;
   in.LastAccess = bindless ? access : -1;

@@ -1,0 +1,384 @@
+// SPDX-License-Identifier: BSD-3-Clause
+//
+// Bad and unusual input to vtkSinglePassAMRVolumeMapper, built as VTK data by hand: each case
+// must end with one clear error from GetLastError() naming the problem (and draw nothing), or
+// render what the data holds; never a crash, a hang or a silent black image. After each error
+// the mapper must render the good input again.
+//
+//   - an input that is not vtkOverlappingAMR (vtkImageData);
+//   - an array that is NaN everywhere, or +Inf everywhere; NaN and Inf in some cells;
+//   - a level without blocks between two levels with blocks; a last level without blocks;
+//   - a refinement ratio of 1 (a level as coarse as the one below it);
+//   - 1 to 8 iso-values (rendered) and 9 (an error);
+//   - a fragment-shader replacement (vtkShaderProperty) that does not compile: one error, and
+//     the image back once it is removed.
+//
+// Exit code 125 (CTest SKIP) with "SKIPPED: ..." when no OpenGL context can be created, unless
+// AMRSP_REQUIRE_GPU=1, which turns that into a failure.
+
+#include "MapperTestHelpers.h"
+
+#include "vtkSinglePassAMRVolumeMapper.h"
+
+#include "vtkAMRBox.h"
+#include "vtkCellData.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkContourValues.h"
+#include "vtkDoubleArray.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkOpenGLShaderProperty.h"
+#include "vtkOverlappingAMR.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkUniformGrid.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include <cmath>
+#include <functional>
+#include <iostream>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace
+{
+using mappertest::Check;
+using mappertest::Failures;
+
+/// One block: level, lower corner and cell counts in that level's cells.
+struct Block
+{
+  int Level;
+  int Lo[3];
+  int Cells[3];
+};
+
+using Field = std::function<double(double, double, double)>;
+
+/// A vtkOverlappingAMR on the unit cube with `blocks` (cell array "Density": `value(level, x, y,
+/// z)` at the cell centre) and level spacings 1/n0 * prod(ratios): `ratios[l]` refines level l - 1
+/// into l.
+vtkSmartPointer<vtkOverlappingAMR> MakeAMR(int n0, const std::vector<int>& ratios,
+  const std::vector<Block>& blocks, const std::function<double(int, double, double, double)>& value)
+{
+  const int levels = static_cast<int>(ratios.size());
+  std::vector<int> perLevel(levels, 0);
+  for (const Block& b : blocks)
+  {
+    ++perLevel[b.Level];
+  }
+  auto amr = vtkSmartPointer<vtkOverlappingAMR>::New();
+  amr->Initialize(levels, perLevel.data());
+  const double origin[3] = { 0.0, 0.0, 0.0 };
+  amr->SetOrigin(origin);
+  std::vector<double> h(levels);
+  for (int l = 0; l < levels; ++l)
+  {
+    h[l] = (l == 0 ? 1.0 / n0 : h[l - 1] / ratios[l]);
+    const double spacing[3] = { h[l], h[l], h[l] };
+    amr->SetSpacing(l, spacing);
+    if (l > 0)
+    {
+      amr->SetRefinementRatio(l - 1, ratios[l]);
+    }
+  }
+  std::vector<int> next(levels, 0);
+  for (const Block& b : blocks)
+  {
+    const double hl = h[b.Level];
+    vtkNew<vtkUniformGrid> grid;
+    grid->SetOrigin(b.Lo[0] * hl, b.Lo[1] * hl, b.Lo[2] * hl);
+    grid->SetSpacing(hl, hl, hl);
+    grid->SetDimensions(b.Cells[0] + 1, b.Cells[1] + 1, b.Cells[2] + 1);
+    vtkNew<vtkDoubleArray> density;
+    density->SetName("Density");
+    density->SetNumberOfTuples(static_cast<vtkIdType>(b.Cells[0]) * b.Cells[1] * b.Cells[2]);
+    vtkIdType id = 0;
+    for (int k = 0; k < b.Cells[2]; ++k)
+    {
+      for (int j = 0; j < b.Cells[1]; ++j)
+      {
+        for (int i = 0; i < b.Cells[0]; ++i)
+        {
+          density->SetValue(id++,
+            value(b.Level, (b.Lo[0] + i + 0.5) * hl, (b.Lo[1] + j + 0.5) * hl, (b.Lo[2] + k + 0.5) * hl));
+        }
+      }
+    }
+    grid->GetCellData()->AddArray(density);
+    const int hi[3] = { b.Lo[0] + b.Cells[0] - 1, b.Lo[1] + b.Cells[1] - 1,
+      b.Lo[2] + b.Cells[2] - 1 };
+    vtkAMRBox box(b.Lo, hi);
+    amr->SetAMRBox(b.Level, next[b.Level], box);
+    amr->SetDataSet(b.Level, next[b.Level]++, grid);
+  }
+  // no GenerateParentChildInformation(): VTK 9.2's crashes on a level without blocks, and the
+  // mapper does not use it
+  return amr;
+}
+
+vtkSmartPointer<vtkOverlappingAMR> MakeAMR(
+  int n0, const std::vector<int>& ratios, const std::vector<Block>& blocks, const Field& value)
+{
+  return MakeAMR(n0, ratios, blocks,
+    [&value](int, double x, double y, double z) { return value(x, y, z); });
+}
+
+double Blob(double x, double y, double z)
+{
+  const double r2 = (x - 0.5) * (x - 0.5) + (y - 0.45) * (y - 0.45) + (z - 0.5) * (z - 0.5);
+  return std::exp(-8.0 * r2);
+}
+
+/// A level-0 grid of 8^3 cells and one ratio-2 block over its middle.
+vtkSmartPointer<vtkOverlappingAMR> GoodAMR()
+{
+  return MakeAMR(8, { 1, 2 }, { { 0, { 0, 0, 0 }, { 8, 8, 8 } }, { 1, { 4, 4, 4 }, { 8, 8, 8 } } },
+    Blob);
+}
+
+/// The scene: an offscreen window, the mapper and a volume with a transfer function on [0, 1].
+struct Scene
+{
+  vtkNew<vtkRenderWindow> Window;
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkSinglePassAMRVolumeMapper> Mapper;
+  vtkNew<vtkVolume> Volume;
+
+  Scene()
+  {
+    Window->SetOffScreenRendering(1);
+    Window->SetSize(64, 64);
+    Window->AddRenderer(Renderer);
+    Renderer->SetBackground(0.0, 0.0, 0.0);
+    vtkNew<vtkColorTransferFunction> colours;
+    colours->AddRGBPoint(0.0, 0.2, 0.4, 1.0);
+    colours->AddRGBPoint(1.0, 1.0, 0.8, 0.2);
+    vtkNew<vtkPiecewiseFunction> opacity;
+    opacity->AddPoint(0.0, 0.0);
+    opacity->AddPoint(1.0, 0.8);
+    vtkNew<vtkVolumeProperty> property;
+    property->SetColor(colours);
+    property->SetScalarOpacity(opacity);
+    property->SetScalarOpacityUnitDistance(0.1);
+    Volume->SetProperty(property);
+    Volume->SetMapper(Mapper);
+    Mapper->SelectScalarArray("Density");
+    Mapper->SetScalarModeToUseCellFieldData();
+    Renderer->AddVolume(Volume);
+  }
+
+  /// Renders `data` and returns the share of pixels that are not black.
+  double Render(vtkDataObject* data)
+  {
+    Mapper->SetInputDataObject(0, data);
+    Renderer->ResetCamera();
+    Window->Render();
+    vtkNew<vtkUnsignedCharArray> pixels;
+    Window->GetPixelData(0, 0, 63, 63, 0, pixels);
+    int lit = 0;
+    for (vtkIdType i = 0; i < pixels->GetNumberOfTuples(); ++i)
+    {
+      lit += (pixels->GetValue(3 * i) > 2 || pixels->GetValue(3 * i + 1) > 2 ||
+               pixels->GetValue(3 * i + 2) > 2)
+        ? 1
+        : 0;
+    }
+    return static_cast<double>(lit) / pixels->GetNumberOfTuples();
+  }
+
+  std::string Error() const { return Mapper->GetLastError(); }
+
+  /// The last frame's RGB bytes.
+  std::vector<unsigned char> Pixels()
+  {
+    vtkNew<vtkUnsignedCharArray> pixels;
+    Window->GetPixelData(0, 0, 63, 63, 0, pixels);
+    const unsigned char* p = pixels->GetPointer(0);
+    return std::vector<unsigned char>(p, p + pixels->GetNumberOfValues());
+  }
+};
+
+double Rmse(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b)
+{
+  double sum = 0.0;
+  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i)
+  {
+    sum += (double(a[i]) - double(b[i])) * (double(a[i]) - double(b[i]));
+  }
+  return a.size() == b.size() && !a.empty() ? std::sqrt(sum / a.size()) : 1e9;
+}
+
+std::string Percent(double share)
+{
+  return std::to_string(static_cast<int>(std::lround(100.0 * share))) + " %";
+}
+
+/// An error naming `expected`, nothing drawn; then the good input renders again.
+void ExpectError(Scene& scene, vtkDataObject* data, const std::string& expected,
+  const std::string& what)
+{
+  const double shown = scene.Render(data);
+  const std::string error = scene.Error();
+  Check(error.find(expected) != std::string::npos && shown == 0.0,
+    what + ": error '" + error + "', " + Percent(shown) + " of the pixels drawn");
+  const double again = scene.Render(GoodAMR());
+  Check(scene.Error().empty() && again > 0.05,
+    what + ": the good input renders again afterwards (" + Percent(again) + ")");
+}
+
+/// No error; the volume shows on more than `least` of the pixels.
+void ExpectImage(Scene& scene, vtkDataObject* data, double least, const std::string& what)
+{
+  const double shown = scene.Render(data);
+  const std::string error = scene.Error();
+  Check(error.empty() && shown > least,
+    what + ": rendered on " + Percent(shown) + " of the pixels" +
+      (error.empty() ? std::string() : ", error '" + error + "'"));
+}
+
+void TestInputs(Scene& scene)
+{
+  ExpectImage(scene, GoodAMR(), 0.05, "the good hierarchy");
+
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(4, 4, 4);
+  ExpectError(scene, image, "not a vtkOverlappingAMR", "vtkImageData as input");
+
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::vector<Block> two = { { 0, { 0, 0, 0 }, { 8, 8, 8 } },
+    { 1, { 4, 4, 4 }, { 8, 8, 8 } } };
+  ExpectError(scene, MakeAMR(8, { 1, 2 }, two, [nan](double, double, double) { return nan; }),
+    "holds no finite value", "Density NaN everywhere");
+  ExpectError(scene, MakeAMR(8, { 1, 2 }, two, [inf](double, double, double) { return inf; }),
+    "holds no finite value", "Density +Inf everywhere");
+  // NaN and Inf in some cells: transparent there, the rest rendered with the finite range
+  ExpectImage(scene,
+    MakeAMR(8, { 1, 2 }, two,
+      [nan, inf](double x, double y, double z)
+      { return x < 0.25 ? nan : (y < 0.25 ? inf : (z < 0.2 ? -inf : Blob(x, y, z))); }),
+    0.05, "NaN and +-Inf in some cells");
+
+  // a level without blocks: between two levels with blocks, and at the end
+  ExpectImage(scene,
+    MakeAMR(8, { 1, 2, 2 }, { { 0, { 0, 0, 0 }, { 8, 8, 8 } }, { 2, { 12, 12, 12 }, { 8, 8, 8 } } },
+      Blob),
+    0.05, "level 1 without blocks, level 2 with one");
+  ExpectImage(scene,
+    MakeAMR(8, { 1, 2, 2 }, { { 0, { 0, 0, 0 }, { 8, 8, 8 } }, { 1, { 4, 4, 4 }, { 8, 8, 8 } } },
+      Blob),
+    0.05, "the last level without blocks");
+
+  // refinement ratio 1: level 1 has the spacing of level 0; its block (twice the field) replaces
+  // level 0 where it lies, so the image differs from level 0 alone
+  auto twiceInside = [](double x, double y, double z) { return 2.0 * Blob(x, y, z); };
+  scene.Mapper->SetSampleDistanceFactor(0.125); // the block's faces restart the samples
+  const double ratioOne = scene.Render(MakeAMR(8, { 1, 1 },
+    { { 0, { 0, 0, 0 }, { 8, 8, 8 } }, { 1, { 2, 2, 2 }, { 4, 4, 4 } } }, twiceInside));
+  const std::vector<unsigned char> withLevel1 = scene.Pixels();
+  const std::string ratioOneError = scene.Error();
+  scene.Render(MakeAMR(8, { 1 }, { { 0, { 0, 0, 0 }, { 8, 8, 8 } } }, twiceInside));
+  const std::vector<unsigned char> levelZero = scene.Pixels();
+  ExpectImage(scene, GoodAMR(), 0.05, "the good hierarchy after these");
+  // the same field sampled segment by segment (the block's faces split the rays)
+  const double same = Rmse(withLevel1, levelZero);
+  Check(ratioOneError.empty() && ratioOne > 0.05 && same < 0.8,
+    "a refinement ratio of 1 (the level-1 block holds the level-0 values): rendered on " +
+      Percent(ratioOne) + " of the pixels, RMSE " + std::to_string(same) +
+      " to level 0 alone (bound 0.8)" +
+      (ratioOneError.empty() ? std::string() : ", error '" + ratioOneError + "'"));
+  const double ratioOneChanged = scene.Render(MakeAMR(8, { 1, 1 },
+    { { 0, { 0, 0, 0 }, { 8, 8, 8 } }, { 1, { 2, 2, 2 }, { 4, 4, 4 } } },
+    [](int level, double x, double y, double z) { return level == 1 ? 0.0 : 2.0 * Blob(x, y, z); }));
+  const double changed = Rmse(scene.Pixels(), levelZero);
+  Check(scene.Error().empty() && changed > 5.0 && ratioOneChanged > 0.0,
+    "a refinement ratio of 1, the level-1 block empty (0): RMSE " + std::to_string(changed) +
+      " to level 0 alone (must exceed 5)");
+  scene.Mapper->SetSampleDistanceFactor(1.0);
+}
+
+void TestIsoValues(Scene& scene)
+{
+  vtkSmartPointer<vtkOverlappingAMR> amr = GoodAMR();
+  scene.Mapper->SetBlendModeToIsoSurface();
+  vtkContourValues* values = scene.Volume->GetProperty()->GetIsoSurfaceValues();
+  for (int count = 1; count <= 9; ++count)
+  {
+    values->SetNumberOfContours(count);
+    for (int i = 0; i < count; ++i)
+    {
+      values->SetValue(i, 0.15 + 0.8 * i / 9.0);
+    }
+    if (count <= 8)
+    {
+      ExpectImage(scene, amr, 0.02, std::to_string(count) + " iso-value(s)");
+    }
+    else
+    {
+      const double shown = scene.Render(amr);
+      const std::string error = scene.Error();
+      Check(error.find("1 to 8 values") != std::string::npos && shown == 0.0,
+        "9 iso-values: error '" + error + "', " + Percent(shown) + " of the pixels drawn");
+      values->SetNumberOfContours(8);
+      ExpectImage(scene, amr, 0.02, "back to 8 iso-values");
+    }
+  }
+  values->SetNumberOfContours(0);
+  scene.Mapper->SetBlendModeToComposite();
+}
+
+void TestShaderFailure(Scene& scene)
+{
+  vtkSmartPointer<vtkOverlappingAMR> amr = GoodAMR();
+  vtkOpenGLShaderProperty* shader =
+    vtkOpenGLShaderProperty::SafeDownCast(scene.Volume->GetShaderProperty());
+  if (!shader)
+  {
+    Check(false, "the volume has a vtkOpenGLShaderProperty");
+    return;
+  }
+  // a replacement that breaks the fragment shader's source
+  shader->AddFragmentShaderReplacement("//AMRSP::Defines", true, "this is not GLSL;", false);
+  for (int frame = 0; frame < 2; ++frame)
+  {
+    const double shown = scene.Render(amr);
+    const std::string error = scene.Error();
+    Check(error.find("failed to compile") != std::string::npos && shown == 0.0,
+      "a shader replacement that does not compile, frame " + std::to_string(frame + 1) +
+        ": error '" + error + "', " + Percent(shown) + " of the pixels drawn");
+  }
+  shader->ClearAllFragmentShaderReplacements();
+  ExpectImage(scene, amr, 0.05, "the replacement removed");
+  // a replacement that compiles (an added, unused definition) renders
+  shader->AddFragmentShaderReplacement("//AMRSP::Defines", true,
+    "//AMRSP::Defines\n#define AMRSP_USER_DEFINITION 1", false);
+  ExpectImage(scene, amr, 0.05, "a replacement that compiles");
+  shader->ClearAllFragmentShaderReplacements();
+}
+
+} // namespace
+
+int main()
+{
+  vtkNew<vtkRenderWindow> probe;
+  std::string why;
+  probe->SetOffScreenRendering(1);
+  if (!vtkSinglePassAMRVolumeMapper::IsRenderSupported(probe, &why))
+  {
+    return mappertest::SkipOrFail(why);
+  }
+  probe->Finalize();
+  Scene scene;
+  TestInputs(scene);
+  TestIsoValues(scene);
+  TestShaderFailure(scene);
+  scene.Window->Finalize();
+  std::cout << (Failures() == 0 ? "PASSED" : "FAILED: " + std::to_string(Failures()) + " check(s)")
+            << "\n";
+  return Failures() == 0 ? 0 : 1;
+}
