@@ -7,11 +7,16 @@
 #include "AmrspPacking.h"
 #include "MapperTestHelpers.h"
 
+#include "amrsp/ImageDifference.h"
 #include "amrsp/KdTree.h"
 #include "amrsp/KdTreeEncoding.h"
 #include "amrsp/Render.h"
 
 #include "vtkActor.h"
+#include "vtkImageData.h"
+#include "vtkPNGReader.h"
+#include "vtkPointData.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkPlaneSource.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
@@ -171,6 +176,132 @@ bool CompareWorkCounters(
 }
 } // namespace
 
+namespace
+{
+bool Report(std::ostream& log, const std::string& what, const ImageDifference& d,
+  const BaselineCase& c)
+{
+  const bool ok = d.Rmse <= c.ReferenceBound && d.OffShare <= c.ReferenceOffBound;
+  log << (ok ? "ok" : "FAILED") << ": " << what << ": " << d.Describe() << " (bounds "
+      << c.ReferenceBound << " and " << 100.0 * c.ReferenceOffBound << " %)\n";
+  return ok;
+}
+
+/// The grids of levels 0..last (a hierarchy of last + 1 levels).
+Hierarchy UpToLevel(const Hierarchy& h, int last)
+{
+  Hierarchy out = h;
+  out.Grids.clear();
+  out.Values.clear();
+  for (std::size_t g = 0; g < h.Grids.size(); ++g)
+  {
+    if (h.Grids[g].Level <= last)
+    {
+      out.Grids.push_back(h.Grids[g]);
+      if (!h.Values.empty())
+      {
+        out.Values.push_back(h.Values[g]);
+      }
+    }
+  }
+  out.RefinementRatio.resize(static_cast<std::size_t>(last) + 1);
+  return out;
+}
+
+/// A GPU image with a defect renders as the CPU kD-tree integrator (the shader's mirror) renders
+/// the scene with that defect: each such wrong image must fail the test's bounds against the
+/// reference or against the mirror of the right scene.
+bool RejectsWrongImages(const Hierarchy& h, const RenderSettings& settings, const Image& reference,
+  const Image& mirror, const BaselineCase& c, std::ostream& log)
+{
+  std::vector<BaselineCase::WrongImage> wrong = c.WrongImages;
+  const int levels = h.NumberOfLevels();
+  if (levels > 1)
+  {
+    wrong.push_back({ "level 0 alone (a renderer resampling to the coarse grid)", nullptr,
+      [](const Hierarchy& x) { return UpToLevel(x, 0); } });
+  }
+  bool ok = true;
+  for (const BaselineCase::WrongImage& w : wrong)
+  {
+    RenderSettings s = settings;
+    if (w.Settings)
+    {
+      w.Settings(s);
+    }
+    const Hierarchy data = w.Data ? w.Data(h) : h;
+    const Image image = RenderKdTree(data, EncodeKdTree(data, BuildKdTree(data)), s);
+    const ImageDifference toReference = Compare(image, reference);
+    const ImageDifference toMirror = Compare(image, mirror);
+    const bool rejected = toReference.Rmse > c.ReferenceBound ||
+      toReference.OffShare > c.ReferenceOffBound || toMirror.Rmse > c.MirrorBound;
+    log << (rejected ? "ok" : "FAILED") << ": the bounds reject the image with " << w.What
+        << ": against the reference " << toReference.Describe() << "; against the mirror RMSE "
+        << toMirror.Rmse << "\n";
+    ok = ok && rejected;
+  }
+  return ok;
+}
+
+/// 8-bit RGB rows bottom to top, as Image::Rgb8; empty when the file cannot be read.
+std::vector<std::uint8_t> ReadPng(const std::string& path, int width, int height)
+{
+  vtkNew<vtkPNGReader> reader;
+  if (!reader->CanReadFile(path.c_str()))
+  {
+    return {};
+  }
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkImageData* png = reader->GetOutput();
+  int dims[3];
+  png->GetDimensions(dims);
+  vtkUnsignedCharArray* pixels =
+    vtkUnsignedCharArray::SafeDownCast(png->GetPointData()->GetScalars());
+  if (!pixels || dims[0] != width || dims[1] != height || pixels->GetNumberOfComponents() < 3)
+  {
+    return {};
+  }
+  std::vector<std::uint8_t> rgb(static_cast<std::size_t>(width) * height * 3);
+  const int n = pixels->GetNumberOfComponents();
+  for (std::size_t i = 0; i < rgb.size() / 3; ++i)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      rgb[3 * i + k] = pixels->GetValue(static_cast<vtkIdType>(i) * n + k);
+    }
+  }
+  return rgb;
+}
+
+/// The stored baseline against the CPU reference (it must be a right image) and against the
+/// GPU image, with covered-pixel RMSE bounds; vtkRegressionTestImage compares them too.
+bool CompareWithStoredBaseline(int argc, char* argv[], const Image& image, const Image& reference,
+  const BaselineCase& c, std::ostream& log)
+{
+  vtkNew<vtkTesting> testing;
+  for (int i = 0; i < argc; ++i)
+  {
+    testing->AddArgument(argv[i]);
+  }
+  const char* valid = testing->GetValidImageFileName();
+  const std::string path = valid ? valid : "";
+  const std::vector<std::uint8_t> baseline = ReadPng(path, image.Width, image.Height);
+  if (baseline.empty())
+  {
+    log << "FAILED: no readable " << image.Width << "x" << image.Height << " baseline image '"
+        << path << "'\n";
+    return false;
+  }
+  bool ok = Report(log, "stored baseline vs CPU reference", CompareRgb8(baseline, reference.Rgb8()), c);
+  const ImageDifference d = CompareRgb8(image.Rgb8(), baseline);
+  const bool same = d.Rmse <= c.BaselineBound;
+  log << (same ? "ok" : "FAILED") << ": GPU image vs stored baseline: " << d.Describe()
+      << " (RMSE bound " << c.BaselineBound << ")\n";
+  return ok && same;
+}
+} // namespace
+
 int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
 {
   using namespace amrsp::tool;
@@ -255,19 +386,20 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
     // mirror of the shader (same segments, same level of detail)
     RenderSettings ref = s;
     ref.View = gpu.LastCamera();
-    const double rmse = Rmse(image, RenderReference(d.Data, ref));
+    const Image reference = RenderReference(d.Data, ref);
     RenderStats mirrorStats;
     RenderSettings mirrorSettings = ref;
     mirrorSettings.Stats = &mirrorStats;
-    const double mirror =
-      Rmse(image, RenderKdTree(d.Data, EncodeKdTree(d.Data, BuildKdTree(d.Data)), mirrorSettings));
-    bool agrees = rmse < c.ReferenceBound && mirror < c.MirrorBound;
-    std::cout << (rmse < c.ReferenceBound ? "ok" : "FAILED")
-              << ": GPU image vs CPU reference RMSE " << rmse << " (bound " << c.ReferenceBound
-              << ")\n"
-              << (mirror < c.MirrorBound ? "ok" : "FAILED")
-              << ": GPU image vs CPU kD-tree integrator RMSE " << mirror << " (bound "
-              << c.MirrorBound << ")\n";
+    const Image mirrorImage =
+      RenderKdTree(d.Data, EncodeKdTree(d.Data, BuildKdTree(d.Data)), mirrorSettings);
+    const ImageDifference mirror = Compare(image, mirrorImage);
+    bool agrees = Report(std::cout, "GPU image vs CPU reference", Compare(image, reference), c);
+    const bool mirrorAgrees = mirror.Rmse <= c.MirrorBound;
+    std::cout << (mirrorAgrees ? "ok" : "FAILED") << ": GPU image vs CPU kD-tree integrator: "
+              << mirror.Describe() << " (RMSE bound " << c.MirrorBound << ")\n";
+    agrees = mirrorAgrees && agrees;
+    agrees = RejectsWrongImages(d.Data, ref, reference, mirrorImage, c, std::cout) && agrees;
+    agrees = CompareWithStoredBaseline(argc, argv, image, reference, c, std::cout) && agrees;
 
     if (c.CheckWorkCounters)
     {

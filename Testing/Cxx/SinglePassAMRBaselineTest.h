@@ -37,10 +37,30 @@ struct BaselineCase
   /// Optional change of the settings after the amrsp options were applied (e.g. a transfer
   /// function written in the data's own values); used by the GPU and the CPU images alike.
   std::function<void(RenderSettings&)> Settings;
-  /// Largest RMSE (0-255 units) allowed between the GPU image and the CPU reference.
+  /// Largest RMSE (0-255 units) allowed between the GPU image and the CPU reference, over the
+  /// pixels the volume covers (amrsp::ImageDifference), and the largest share of those pixels
+  /// off by more than ImageDifference::OffLevels. Each about twice what is measured.
   double ReferenceBound = 2.0;
-  /// Largest RMSE allowed between the GPU image and the CPU kD-tree integrator (its mirror).
+  double ReferenceOffBound = 0.05;
+  /// Largest covered RMSE allowed between the GPU image and the CPU kD-tree integrator (its
+  /// mirror: same segments, same sample positions).
   double MirrorBound = 1.0;
+  /// Largest covered RMSE allowed between the GPU image and the stored baseline image (which
+  /// must also pass ReferenceBound against the CPU reference): llvmpipe of LLVM 15 to 21.
+  double BaselineBound = 1.0;
+
+  /// Wrong images the bounds must reject: the scene with one thing broken (the feature under
+  /// test switched off, the data changed), rendered by the CPU kD-tree integrator as a shader
+  /// with that defect would render it. Each must exceed ReferenceBound or ReferenceOffBound
+  /// against the reference, or MirrorBound against the mirror, in the test itself. The harness
+  /// adds one of its own: level 0 alone (what a renderer resampling to the coarse grid shows).
+  struct WrongImage
+  {
+    std::string What;
+    std::function<void(RenderSettings&)> Settings;  // optional
+    std::function<Hierarchy(const Hierarchy&)> Data; // optional
+  };
+  std::vector<WrongImage> WrongImages;
   /// Optional change of the scene before rendering (camera moves); the CPU reference uses the
   /// resulting VTK camera.
   std::function<void(vtkRenderer*)> Adjust;

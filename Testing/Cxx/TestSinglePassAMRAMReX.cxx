@@ -7,6 +7,12 @@ int TestSinglePassAMRAMReX(int argc, char* argv[])
   amrsp::test::BaselineCase c;
   c.Dataset = "data:amrex_plt1_Y";
   c.Options = { "--array", "Y(H2)", "--size", "200x200" };
-  c.ReferenceBound = 2.5; // measured 1.7 on llvmpipe: one sample per cell vs the finer reference
+  // covered-pixel bounds, about 1.5-2x what llvmpipe (LLVM 15) measures: reference 2.42, 1.62 % of
+  // the pixels off by more than 8 levels, mirror 0.25, stored baseline 0.05;
+  // one sample per cell against the reference's two
+  c.ReferenceBound = 3.7;
+  c.ReferenceOffBound = 0.032;
+  c.MirrorBound = 0.5;
+  c.BaselineBound = 0.3;
   return amrsp::test::RunBaselineTest(argc, argv, c);
 }

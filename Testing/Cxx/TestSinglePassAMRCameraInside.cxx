@@ -12,7 +12,12 @@ int TestSinglePassAMRCameraInside(int argc, char* argv[])
   // midpoint-rule difference between the GPU's rule and the reference's small
   c.Options = { "--size", "200x200", "--unit-distance", "0.02", "--sample-factor", "0.25",
     "--reference-sample-factor", "0.25" };
-  c.ReferenceBound = 3.0; // measured 2.3 (6.6 with the default factors 1 and 0.5)
+  // covered-pixel bounds, about 1.5-2x what llvmpipe (LLVM 15) measures: reference 2.31, 0.06 % of
+  // the pixels off by more than 8 levels, mirror 0.15, stored baseline 0.00
+  c.ReferenceBound = 3.5;
+  c.ReferenceOffBound = 0.005;
+  c.MirrorBound = 0.3;
+  c.BaselineBound = 0.3;
   c.Adjust = [](vtkRenderer* renderer) { renderer->GetActiveCamera()->Dolly(8.0); };
   return amrsp::test::RunBaselineTest(argc, argv, c);
 }

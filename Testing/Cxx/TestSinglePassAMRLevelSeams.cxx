@@ -54,9 +54,15 @@ int TestSinglePassAMRLevelSeams(int argc, char* argv[])
   c.Data = [] { return test::LevelPatch(2, Finest, Field); };
   c.Options = { "--size", "128x128", "--zoom", "2.5", "--sample-factor", "0.5", "--scale", "linear",
     "--shade", "on", "--interpolation", "smooth" };
+  // covered-pixel bounds, about 1.5-2x what llvmpipe (LLVM 15) measures: reference 0.49, 0.00 % of
+  // the pixels off by more than 8 levels, mirror 0.01, stored baseline 0.00
+  c.ReferenceBound = 0.8;
+  c.ReferenceOffBound = 0.005;
+  c.MirrorBound = 0.3;
+  c.BaselineBound = 0.3;
   c.Settings = Transfer;
-  c.ReferenceBound = 1.0; // measured 0.39 (earlier corner rule 0.43); nearest-cell neighbours: 1.68
-  c.MirrorBound = 1.0;    // measured 0.01; nearest-cell neighbours: 1.65
+  c.WrongImages.push_back({ "nearest-cell values",
+    [](RenderSettings& s) { s.SmoothCellData = false; }, nullptr });
   c.Check = [](tool::PackingRenderer& gpu, const Image& image, const RenderSettings& s,
               std::ostream& log) {
     const Hierarchy two = test::LevelPatch(2, Finest, Field);

@@ -7,8 +7,14 @@ int TestSinglePassAMRMaximumIntensity(int argc, char* argv[])
   amrsp::test::BaselineCase c;
   c.Dataset = "data:enzo_moving7/DD0010/moving7_0010.hierarchy";
   c.Options = { "--array", "Density", "--size", "200x200", "--blend", "maximum", "--tf", "grey-opaque" };
-  // measured 2.5: at one sample per cell the ray misses some of the maxima the reference's two
-  // samples per cell find
-  c.ReferenceBound = 3.0;
+  // covered-pixel bounds, about 1.5-2x what llvmpipe (LLVM 15) measures: reference 8.29, 4.45 % of
+  // the pixels off by more than 8 levels, mirror 0.12, stored baseline 0.13;
+  // one sample per cell misses maxima the reference's two find
+  c.ReferenceBound = 12.5;
+  c.ReferenceOffBound = 0.089;
+  c.MirrorBound = 0.3;
+  c.BaselineBound = 0.3;
+  c.WrongImages.push_back({ "composite blending",
+    [](amrsp::RenderSettings& s) { s.Blend = amrsp::BlendMode::Composite; }, nullptr });
   return amrsp::test::RunBaselineTest(argc, argv, c);
 }

@@ -6,6 +6,12 @@ int TestSinglePassAMRVertexCentred(int argc, char* argv[])
 {
   amrsp::test::BaselineCase c;
   c.Dataset = "data:enzo_moving7/DD0010/moving7_0010.hierarchy";
-  c.Options = { "--array", "Temperature", "--centering", "vertex", "--size", "200x200" };
+  c.Options = { "--array", "Density", "--centering", "vertex", "--size", "200x200" };
+  // covered-pixel bounds, about 1.5-2x what llvmpipe (LLVM 15) measures: reference 0.32, 0.00 % of
+  // the pixels off by more than 8 levels, mirror 0.02, stored baseline 0.00
+  c.ReferenceBound = 0.6;
+  c.ReferenceOffBound = 0.005;
+  c.MirrorBound = 0.3;
+  c.BaselineBound = 0.3;
   return amrsp::test::RunBaselineTest(argc, argv, c);
 }

@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "amrsp/ImageDifference.h"
+
+#include "amrsp/Render.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+
+namespace amrsp
+{
+
+std::string ImageDifference::Describe() const
+{
+  char text[200];
+  std::snprintf(text, sizeof(text),
+    "RMSE %.2f over the %.1f %% of the frame the volume covers, %.2f %% of those pixels off by "
+    "more than %d levels",
+    Rmse, 100.0 * Coverage(), 100.0 * OffShare, OffLevels);
+  return text;
+}
+
+ImageDifference CompareRgb8(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b,
+  const std::uint8_t background[3])
+{
+  if (a.size() != b.size() || a.empty() || a.size() % 3 != 0)
+  {
+    throw std::invalid_argument("images of different sizes cannot be compared");
+  }
+  static const std::uint8_t black[3] = { 0, 0, 0 };
+  const std::uint8_t* bg = background ? background : black;
+  auto isBackground = [bg](const std::uint8_t* p) {
+    for (int c = 0; c < 3; ++c)
+    {
+      if (std::abs(static_cast<int>(p[c]) - static_cast<int>(bg[c])) >
+        ImageDifference::BackgroundLevel)
+      {
+        return false;
+      }
+    }
+    return true;
+  };
+  ImageDifference d;
+  d.Pixels = a.size() / 3;
+  double sum = 0.0;
+  std::size_t off = 0;
+  for (std::size_t i = 0; i < a.size(); i += 3)
+  {
+    int largest = 0;
+    double squares = 0.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      const int delta = static_cast<int>(a[i + c]) - static_cast<int>(b[i + c]);
+      largest = std::max(largest, std::abs(delta));
+      squares += static_cast<double>(delta) * delta;
+    }
+    d.Largest = std::max(d.Largest, largest);
+    if (isBackground(&a[i]) && isBackground(&b[i]))
+    {
+      continue;
+    }
+    ++d.Covered;
+    sum += squares;
+    off += largest > ImageDifference::OffLevels ? 1 : 0;
+  }
+  if (d.Covered > 0)
+  {
+    d.Rmse = std::sqrt(sum / (3.0 * static_cast<double>(d.Covered)));
+    d.OffShare = static_cast<double>(off) / static_cast<double>(d.Covered);
+  }
+  return d;
+}
+
+ImageDifference Compare(const Image& a, const Image& b)
+{
+  return CompareRgb8(a.Rgb8(), b.Rgb8());
+}
+
+} // namespace amrsp
