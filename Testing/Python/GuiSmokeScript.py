@@ -1,14 +1,19 @@
 # Runs INSIDE the ParaView GUI: paraview --script=GuiSmokeScript.py --exit
 # (driven by TestGuiSmoke.py, which checks what this script writes).
 #
-# Environment: AMRSP_PLUGIN (the plugin library), AMRSP_DATA_DIR (the data folder) and
-# AMRSP_GUI_OUT (a folder for the outputs). Writes AMRSP_GUI_OUT/gui-smoke.png, a screenshot of the
-# active render view, and AMRSP_GUI_OUT/gui-smoke.json with what the GUI session reported.
+# Environment: AMRSP_PLUGIN (the plugin library), AMRSP_DATA_DIR (the data folder), AMRSP_GUI_OUT
+# (a folder for the outputs) and AMRSP_TEST_DIR (this folder). Writes AMRSP_GUI_OUT/gui-smoke.png,
+# a screenshot of the active render view, gui-smoke-view.json (the view for amrsp reference) and
+# gui-smoke.json with what the GUI session reported.
 import json
 import os
+import sys
 import traceback
 
 from paraview import simple
+
+sys.path.insert(0, os.environ["AMRSP_TEST_DIR"])
+from PluginTestKit import write_view_json  # noqa: E402
 
 out = os.environ["AMRSP_GUI_OUT"]
 status = {"ok": False}
@@ -19,21 +24,31 @@ try:
     reader = simple.EnzoReader(registrationName="moving7_0010.hierarchy", FileNames=[path])
     reader.Level = 30
     reader.CellArrayStatus = ["Density"]
+    reader.ConvertToCGS = 1  # as amrsp reads Enzo, for the reference
     view = simple.GetActiveViewOrCreate("RenderView")
     display = simple.Show(reader, view)
     status["representation_types"] = list(display.Representation.Available)
     display.Representation = "AMR Single-Pass Volume"
     simple.ColorBy(display, ("CELLS", "Density"))
     display.SetScalarBarVisibility(view, True)
-    # a colour map on the low decades of the density (linear scale), ParaView's own preset
+    # a colour map on the low decades of the density (linear scale; g/cm^3, the lowest density
+    # lo = 6.16e-28), ParaView's own preset interpolated in RGB as the reference does
+    lo = 6.16257e-28
     lut = simple.GetColorTransferFunction("Density")
     lut.ApplyPreset("Cool to Warm", True)
+    lut.ColorSpace = "RGB"
     lut.AutomaticRescaleRangeMode = "Never"
-    lut.RescaleTransferFunction(0.1, 80.0)
+    lut.RescaleTransferFunction(lo, 800.0 * lo)
     pwf = simple.GetOpacityTransferFunction("Density")
-    pwf.Points = [0.1, 0.0, 0.5, 0.0, 1.0, 0.02, 0.5, 0.0, 10.0, 0.2, 0.5, 0.0,
-                  100.0, 0.6, 0.5, 0.0, 1000.0, 0.9, 0.5, 0.0]
+    pwf.Points = [lo, 0.0, 0.5, 0.0, 10.0 * lo, 0.02, 0.5, 0.0, 100.0 * lo, 0.2, 0.5, 0.0,
+                  1000.0 * lo, 0.6, 0.5, 0.0, 10000.0 * lo, 0.9, 0.5, 0.0]
     display.ScalarOpacityUnitDistance = 0.0173
+    # a plain black background (the palette's may be a gradient), for the reference
+    if hasattr(view, "UseColorPaletteForBackground"):
+        view.UseColorPaletteForBackground = 0
+    if hasattr(view, "BackgroundColorMode"):
+        view.BackgroundColorMode = "Single Color"
+    view.Background = [0.0, 0.0, 0.0]
     display.SampleDistanceFactor = 0.5
     view.OrientationAxesVisibility = 1
     view.ResetCamera()
@@ -44,6 +59,7 @@ try:
     simple.Render(view)
     simple.SaveScreenshot(os.path.join(out, "gui-smoke.png"), view, ImageResolution=[300, 300],
         TransparentBackground=0)
+    write_view_json(view, display, "Density", os.path.join(out, "gui-smoke-view.json"))
     display.SMProxy.UpdatePropertyInformation()
     error = display.SMProxy.GetProperty("SinglePassRenderError")
     builds = display.SMProxy.GetProperty("SinglePassTextureBuilds")

@@ -121,11 +121,30 @@ def show_density_volume(source, size, before_show=None):
     return view, display, q
 
 
-def write_view_json(view, display, array, path):
+def first_light(view):
+    """The light the mapper shades with: the view renderer's first switched-on light (ParaView's
+    light kit: its key light), in world coordinates, colour = diffuse colour x intensity."""
+    lights = view.GetRenderer().GetLights()
+    lights.InitTraversal()
+    light = lights.GetNextItem()
+    while light is not None and not light.GetSwitch():
+        light = lights.GetNextItem()
+    if light is None:
+        return None
+    intensity = light.GetIntensity()
+    return {
+        "position": list(light.GetTransformedPosition()),
+        "focal_point": list(light.GetTransformedFocalPoint()),
+        "positional": bool(light.GetPositional()),
+        "colour": [c * intensity for c in light.GetDiffuseColor()],
+    }
+
+
+def write_view_json(view, display, array, path, iso_values=None):
     """Writes what `amrsp reference --view-json` needs to render the view as ParaView shows it:
     the camera, the colour map and opacity function of `array` (the reference's are linear
     between points, so every opacity point must have midpoint 0.5 and sharpness 0), the unit
-    distance and the background."""
+    distance, the background, the light and material of the shading, and `iso_values`."""
     import json
     from paraview import simple
 
@@ -150,6 +169,43 @@ def write_view_json(view, display, array, path):
             "unit_distance": display.ScalarOpacityUnitDistance,
         },
         "background": list(view.Background),
+        "material": {"ambient": display.Ambient, "diffuse": display.Diffuse,
+                     "specular": display.Specular, "specular_power": display.SpecularPower},
     }
+    # no switched-on light: the mapper shades with the ambient term alone
+    view_json["light"] = first_light(view) or {
+        "position": list(cam.GetPosition()), "focal_point": list(cam.GetFocalPoint()),
+        "positional": False, "colour": [0.0, 0.0, 0.0]}
+    if iso_values:
+        view_json["iso_values"] = list(iso_values)
     with open(path, "w") as f:
         json.dump(view_json, f, indent=2)
+
+
+# Image comparisons over the pixels the volume covers (either image not black background, as
+# amrsp::ImageDifference in C++): a frame's background agrees whatever the renderer does, so a
+# whole-frame RMSE shrinks with the volume's share of the frame. Pixels: N x 3 arrays, 0-255.
+BACKGROUND_LEVEL = 2
+OFF_LEVELS = 8
+
+
+def covered(a, b):
+    return (a.max(axis=1) > BACKGROUND_LEVEL) | (b.max(axis=1) > BACKGROUND_LEVEL)
+
+
+def rmse(a, b):
+    """RMSE of the RGB channels (0-255) over the covered pixels; 0 when none is covered."""
+    import numpy
+
+    mask = covered(a, b)
+    if not mask.any():
+        return 0.0
+    return float(numpy.sqrt(numpy.mean((a[mask] - b[mask]) ** 2)))
+
+
+def off_share(a, b, levels=OFF_LEVELS):
+    """Share (0-1) of the covered pixels whose largest channel difference exceeds `levels`."""
+    mask = covered(a, b)
+    if not mask.any():
+        return 0.0
+    return float((abs(a[mask] - b[mask]).max(axis=1) > levels).mean())

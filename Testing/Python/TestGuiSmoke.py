@@ -1,6 +1,6 @@
 # GUI smoke test of the plugin: runs the ParaView GUI on a script and checks what it produced.
 #
-#   pvpython TestGuiSmoke.py PARAVIEW PLUGIN OUTDIR      (AMRSP_DATA_DIR names the data folder)
+#   pvpython TestGuiSmoke.py PARAVIEW PLUGIN AMRSP OUTDIR      (AMRSP_DATA_DIR names the data folder)
 #
 # `paraview --dr --script=GuiSmokeScript.py --exit` loads the plugin in the GUI, opens the Enzo
 # hierarchy, switches it to "AMR Single-Pass Volume", colours it by Density and saves a screenshot
@@ -19,6 +19,13 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from PluginTestKit import check_render_error, fail, leave, skip  # noqa: E402
 
 MIN_COVERAGE = 0.05  # share of the checked pixels that must show the volume (measured 12.6 %)
+ENZO = "enzo_moving7/DD0010/moving7_0010.hierarchy"
+# The screenshot against `amrsp reference --view-json` of the GUI's view (written by the GUI
+# script), over the volume's pixels outside the axes and the scalar bar; about 1.5 times the RMSE
+# and twice the share off by more than 8 levels measured.
+# Measured: RMSE 1.55, 0.25 % off by more than 8 levels.
+REFERENCE_RMSE_BOUND = 2.4
+REFERENCE_OFF_BOUND = 0.005
 
 
 def display_answers():
@@ -42,7 +49,7 @@ def display_answers():
 
 
 def main():
-    paraview, plugin, outdir = sys.argv[1:4]
+    paraview, plugin, amrsp, outdir = sys.argv[1:5]
     data_dir = os.environ.get("AMRSP_DATA_DIR", "")
     if not os.path.exists(os.path.join(data_dir, "enzo_moving7/DD0010/moving7_0010.hierarchy")):
         skip("Enzo moving7 not found under %r" % data_dir)
@@ -61,7 +68,8 @@ def main():
             os.remove(os.path.join(outdir, name))
 
     script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "GuiSmokeScript.py")
-    env = dict(os.environ, AMRSP_PLUGIN=plugin, AMRSP_DATA_DIR=data_dir, AMRSP_GUI_OUT=outdir)
+    env = dict(os.environ, AMRSP_PLUGIN=plugin, AMRSP_DATA_DIR=data_dir, AMRSP_GUI_OUT=outdir,
+               AMRSP_TEST_DIR=os.path.dirname(os.path.abspath(__file__)))
     started = time.time()
     try:
         run = subprocess.run([paraview, "--dr", "--script=" + script, "--exit"], env=env,
@@ -110,11 +118,12 @@ def main():
     colours, counts = numpy.unique(border, axis=0, return_counts=True)
     background = colours[counts.argmax()]
     # the volume: pixels away from the background, not in the lower-left corner where the
-    # orientation axes sit, nor in the right-hand strip of the scalar bar
+    # orientation axes sit, nor in the right-hand strip and lower-right part of the scalar bar
     h, w = dims[1], dims[0]
     mask = numpy.ones((h, w), dtype=bool)
     mask[: h // 4, : w // 4] = False
     mask[:, int(w * 0.75):] = False
+    mask[: int(h * 0.7), int(w * 0.6):] = False  # the colour bar and its labels
     differs = (numpy.abs(image - background).max(axis=2) > 12.0) & mask
     covered = differs.sum() / float(mask.sum())
     distinct = len(numpy.unique(image[differs].round(-1), axis=0)) if differs.any() else 0
@@ -125,12 +134,56 @@ def main():
         fail("the GUI screenshot does not show the volume")
     if distinct < 10:
         fail("the volume is drawn in fewer than 10 colours: not a colour-mapped volume")
+
+    # the same view rendered by the CPU reference, compared where the volume is (outside the
+    # orientation axes and the scalar bar)
+    from PluginTestKit import off_share, rmse
+    checked = mask.reshape(-1)
+
+    def reference(view_json, name):
+        path = os.path.join(outdir, name)
+        ref_run = subprocess.run([amrsp, "reference", os.path.join(data_dir, ENZO), "--array",
+                                  "Density", "--size", "%dx%d" % (w, h), "--view-json", view_json,
+                                  "--reference-sample-factor", "0.25", "-o", path],
+                                 stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                 universal_newlines=True)
+        if ref_run.returncode != 0:
+            print(ref_run.stdout)
+            fail("amrsp reference failed")
+        reader.SetFileName(path)
+        reader.Modified()
+        reader.Update()
+        rgb = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3].astype(float)
+        return rgb[checked]
+
+    view_json = os.path.join(outdir, "gui-smoke-view.json")
+    ref_pixels = reference(view_json, "gui-smoke-reference.png")
+    difference = rmse(pixels[checked], ref_pixels)
+    off = off_share(pixels[checked], ref_pixels)
+    print("GUI screenshot vs the CPU reference, over the volume's pixels: rmse %.2f (bound %.1f), "
+          "%.2f %% off by more than 8 levels (bound %.1f %%)"
+          % (difference, REFERENCE_RMSE_BOUND, 100.0 * off, 100.0 * REFERENCE_OFF_BOUND))
+    if difference > REFERENCE_RMSE_BOUND or off > REFERENCE_OFF_BOUND:
+        fail("the GUI image differs from the CPU reference")
+    # the bounds reject a view whose opacity is wrong (the unit distance halved)
+    with open(view_json) as f:
+        wrong = json.load(f)
+    wrong["transfer_function"]["unit_distance"] *= 0.5
+    wrong_json = os.path.join(outdir, "gui-smoke-wrong-view.json")
+    with open(wrong_json, "w") as f:
+        json.dump(wrong, f)
+    wrong_pixels = reference(wrong_json, "gui-smoke-wrong-reference.png")
+    wrong_rmse, wrong_off = rmse(wrong_pixels, ref_pixels), off_share(wrong_pixels, ref_pixels)
+    print("the reference with the opacity unit distance halved: rmse %.2f, %.2f %% off"
+          % (wrong_rmse, 100.0 * wrong_off))
+    if wrong_rmse <= REFERENCE_RMSE_BOUND and wrong_off <= REFERENCE_OFF_BOUND:
+        fail("the bounds do not reject a view with the wrong opacity")
     print("PASS")
     return 0
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 4:
-        print("usage: TestGuiSmoke.py PARAVIEW PLUGIN OUTDIR")
+    if len(sys.argv) != 5:
+        print("usage: TestGuiSmoke.py PARAVIEW PLUGIN AMRSP OUTDIR")
         leave(2)
     main()

@@ -9,7 +9,7 @@
 #   and the image changes;
 # - re-rendering, camera and colour-map changes at one time step never rebuild them;
 # - going back to the first step rebuilds once more (ParaView does not cache the old step) and
-#   renders the first image again (RMSE below 0.5, under 0.1 % of the pixels off by more than 2);
+#   renders the first image again (RMSE below 0.8, under 0.1 % of the pixels off by more than 2);
 # - the image of every time step matches the CPU reference (`amrsp reference --view-json`) of
 #   that step's file, and not that of another step: showing the wrong step fails.
 # Exit codes: 0 pass, 1 fail, 125 skipped (no X display or no usable OpenGL context).
@@ -21,11 +21,11 @@ from PluginTestKit import (check_render_error, fail, leave, show_density_volume,
                            write_view_json)
 
 
-# Each step's image against the CPU reference of its file (whole 120x120 frame, the volume on
-# half of it; measured 2.03 to 2.28 on llvmpipe: the reference samples four times per finest cell,
-# the mapper twice per cell of each level, and against its CPU mirror it is 0.06), and the least an
-# image must differ from the reference of a wrong step (measured 43 to 56).
-REFERENCE_RMSE_BOUND = 3.5
+# Each step's image against the CPU reference of its file, over the pixels the volume covers
+# (about half of the 120x120 frame; measured 2.81 to 3.16 on llvmpipe: the reference samples four
+# times per finest cell, the mapper twice per cell of each level), and the least an image must
+# differ from the reference of a wrong step (measured 60 to 77).
+REFERENCE_RMSE_BOUND = 4.5
 WRONG_STEP_RMSE = 20.0
 
 
@@ -145,9 +145,10 @@ def main():
         ("step 1 differs from step 0", rmse(second, first_turned) > 3.0),
         ("step 2 differs from step 1", rmse(third, second) > 3.0),
         ("step 2 differs from step 0", rmse(third, first_turned) > 3.0),
-        # the same data and camera; a few silhouette pixels differ (measured: RMSE 0.09, 4 of
-        # 14400 pixels by up to 9 levels), as grazing rays do between ParaView's render paths
-        ("back at step 0: the same image", rmse(back, first_turned) < 0.5 and
+        # the same data and camera; a few silhouette pixels differ (measured over the volume's
+        # pixels: RMSE 0.43, 4 of 14400 pixels by up to 9 levels), as grazing rays do between
+        # ParaView's render paths
+        ("back at step 0: the same image", rmse(back, first_turned) < 0.8 and
          float((abs(back - first_turned).max(axis=1) > 2.0).mean()) < 0.001),
     ]
     print("rmse (0-255): step 1 vs 0 %.2f, step 2 vs 1 %.2f, step 2 vs 0 %.2f, step 0 again vs "

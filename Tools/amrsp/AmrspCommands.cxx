@@ -361,6 +361,16 @@ struct ExplicitView
   TransferFunction Transfer;
   bool HasBackground = false;
   glm::dvec3 Background{ 0.0 };
+  /// The light (world coordinates) and the material of the shading.
+  bool HasLight = false;
+  bool LightPositional = false;
+  glm::dvec3 LightPosition{ 0.0 };
+  glm::dvec3 LightFocalPoint{ 0.0 };
+  glm::dvec3 LightColour{ 1.0 };
+  bool HasMaterial = false;
+  double Ambient = 0.0, Diffuse = 0.0, Specular = 0.0, SpecularPower = 1.0;
+  /// Iso-values in the data's own values (--blend iso).
+  std::vector<double> IsoValues;
 };
 
 glm::dvec3 JsonVector3(const Json& j, const std::string& what)
@@ -377,7 +387,11 @@ glm::dvec3 JsonVector3(const Json& j, const std::string& what)
 ///                 "view_angle": degrees, "parallel_projection": false, "parallel_scale": s },
 ///     "transfer_function": { "rgb_points": [[x,r,g,b], ...], "opacity_points": [[x,a], ...],
 ///                            "unit_distance": u },
-///     "background": [r,g,b] }
+///     "background": [r,g,b],
+///     "light": { "position": [x,y,z], "focal_point": [x,y,z], "positional": false,
+///                "colour": [r,g,b] },                       (colour: diffuse colour x intensity)
+///     "material": { "ambient": a, "diffuse": d, "specular": s, "specular_power": p },
+///     "iso_values": [v, ...] }                               (with --blend iso; data values)
 /// Every part is optional. Points are sorted by x; the functions are piecewise linear in the
 /// scalar and clamp beyond their end points (vtkColorTransferFunction in RGB space,
 /// vtkPiecewiseFunction with midpoint 0.5 and sharpness 0).
@@ -455,6 +469,36 @@ ExplicitView ReadViewJson(const std::string& path)
         { return a.X < b.X; });
       v.Transfer.UnitDistance = t.value("unit_distance", 0.0); // 0: the usual default
     }
+    if (j.contains("light"))
+    {
+      const Json& l = j.at("light");
+      v.HasLight = true;
+      v.LightPosition = JsonVector3(l.at("position"), "light.position");
+      v.LightFocalPoint = JsonVector3(l.at("focal_point"), "light.focal_point");
+      v.LightPositional = l.value("positional", false);
+      v.LightColour = l.contains("colour") ? JsonVector3(l.at("colour"), "light.colour")
+                                           : glm::dvec3(1.0);
+    }
+    if (j.contains("material"))
+    {
+      const Json& m = j.at("material");
+      v.HasMaterial = true;
+      v.Ambient = m.at("ambient").get<double>();
+      v.Diffuse = m.at("diffuse").get<double>();
+      v.Specular = m.at("specular").get<double>();
+      v.SpecularPower = m.at("specular_power").get<double>();
+    }
+    if (j.contains("iso_values"))
+    {
+      for (const Json& x : j.at("iso_values"))
+      {
+        v.IsoValues.push_back(x.get<double>());
+      }
+      if (v.IsoValues.empty() || v.IsoValues.size() > static_cast<std::size_t>(MaxIsoValues))
+      {
+        throw UsageError{ "--view-json: iso_values takes 1 to 8 values" };
+      }
+    }
     if (j.contains("background"))
     {
       v.HasBackground = true;
@@ -466,6 +510,38 @@ ExplicitView ReadViewJson(const std::string& path)
     throw UsageError{ "--view-json: '" + path + "': " + e.what() };
   }
   return v;
+}
+
+/// The light, material and iso-values of a --view-json file override the conventions.
+void ApplyExplicitLighting(const ExplicitView& v, const Arguments& a, RenderSettings& s)
+{
+  if (v.HasLight)
+  {
+    if (a.Has("light"))
+    {
+      throw UsageError{ "--light cannot be combined with a --view-json light" };
+    }
+    s.Light.Headlight = false;
+    s.Light.Positional = v.LightPositional;
+    s.Light.Position = v.LightPosition;
+    s.Light.FocalPoint = v.LightFocalPoint;
+    s.Light.Colour = v.LightColour;
+  }
+  if (v.HasMaterial)
+  {
+    s.Light.Ambient = v.Ambient;
+    s.Light.Diffuse = v.Diffuse;
+    s.Light.Specular = v.Specular;
+    s.Light.SpecularPower = v.SpecularPower;
+  }
+  if (!v.IsoValues.empty())
+  {
+    if (s.Blend != BlendMode::IsoSurface || a.Has("iso"))
+    {
+      throw UsageError{ "--view-json iso_values need --blend iso and no --iso" };
+    }
+    s.IsoValues = v.IsoValues;
+  }
 }
 
 } // namespace
@@ -586,6 +662,7 @@ RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range)
     throw UsageError{ "--blend must be composite, maximum, minimum, average or iso" };
   }
   ApplyLightingOptions(s, a, vlo, vhi);
+  ApplyExplicitLighting(explicitView, a, s);
   s.Threads = static_cast<int>(a.GetNumber("threads", 0.0));
   s.OpacityThreshold = a.GetNumber("opacity-threshold", 0.999);
   if (!(s.OpacityThreshold >= 0.0 && s.OpacityThreshold <= 1.0))
