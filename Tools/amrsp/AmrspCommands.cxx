@@ -162,7 +162,9 @@ int Fail(const std::string& message)
   return 1;
 }
 
-const std::vector<std::string> DatasetOptions = { "array", "component", "centering" };
+const std::vector<std::string> DatasetOptions = { "array", "component", "centering",
+  "read-timeout" };
+const std::vector<std::string> DatasetFlags = { "allow-partial", "strict" };
 const std::vector<std::string> AtlasOptions = { "packer", "max-3d-texture-size", "atlas-budget-mb" };
 const std::vector<std::string> ViewOptions = { "size", "azimuth", "elevation", "zoom", "tf",
   "scale", "unit-distance", "sample-factor", "reference-sample-factor", "lod", "threads", "blend",
@@ -192,7 +194,12 @@ const char* const DatasetHelp =
   "  --component I               component of a vector array (default: magnitude)\n"
   "  --centering auto|cell|vertex  auto: cell data cell-centred (nearest cell), point data\n"
   "                              vertex-centred (trilinear); vertex: convert cell data to\n"
-  "                              vertices (continuous across grid and level interfaces)\n";
+  "                              vertices (continuous across grid and level interfaces)\n"
+  "  --strict                    (the default) a file that yields fewer blocks than the\n"
+  "                              dataset's own files describe is an error naming them\n"
+  "  --allow-partial             render the blocks that could be read, with a warning\n"
+  "  --read-timeout S            end with an error when VTK's reader is still busy after S\n"
+  "                              seconds (default 120; exit code 75)\n";
 
 const char* const AtlasHelp =
   "Atlas options (packed storage of the grid bricks):\n"
@@ -283,6 +290,16 @@ LoadedDataset Load(const Arguments& a, bool needValues, bool needVTK)
   r.Centering = a.Get("centering", "auto");
   r.NeedValues = needValues;
   r.NeedVTK = needVTK;
+  if (a.Has("allow-partial") && a.Has("strict"))
+  {
+    throw UsageError{ "--allow-partial and --strict contradict each other" };
+  }
+  r.AllowPartial = a.Has("allow-partial");
+  r.ReadTimeoutSeconds = a.GetNumber("read-timeout", 120.0);
+  if (!(r.ReadTimeoutSeconds > 0.0))
+  {
+    throw UsageError{ "--read-timeout must be a positive number of seconds" };
+  }
   return LoadDataset(r);
 }
 
@@ -769,7 +786,8 @@ int RunInspect(int argc, char** argv)
   try
   {
     const Arguments a = ParseArguments(
-      argc, argv, 1, Concat({ DatasetOptions, AtlasOptions }), { "json", "compare-packers" });
+      argc, argv, 1, Concat({ DatasetOptions, AtlasOptions }),
+      Concat({ DatasetFlags, { "json", "compare-packers" } }));
     if (WantsHelp(a))
     {
       std::cout << help << AtlasHelp << DatasetHelp;
@@ -964,8 +982,9 @@ int RunImageCommand(int argc, char** argv, bool reference)
       valueOptions.push_back("backend");
     }
     const Arguments a = ParseArguments(argc, argv, 1, valueOptions,
-      reference ? std::vector<std::string>{ "stats" }
-                : std::vector<std::string>{ "compare", "stats" });
+      Concat({ DatasetFlags,
+        reference ? std::vector<std::string>{ "stats" }
+                  : std::vector<std::string>{ "compare", "stats" } }));
     if (WantsHelp(a))
     {
       std::cout << help << "  -o, --output FILE           PNG to write (default " << name
@@ -1335,7 +1354,7 @@ int RunBench(int argc, char** argv)
       Concat({ DatasetOptions, ViewOptions,
         { "frames", "methods", "json", "plot", "plot-size", "scaling-sizes", "seed",
           "save-images", "driver", "backend", "rounds" } }),
-      { "scaling" });
+      Concat({ DatasetFlags, { "scaling" } }));
     if (WantsHelp(a))
     {
       std::cout << help.str() << ViewHelp << DriverHelp << DatasetHelp;

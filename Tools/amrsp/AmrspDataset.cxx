@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "AmrspDataset.h"
 
+#include "AmrspFileChecks.h"
+
 #include "amrsp/SyntheticCosmo.h"
 #include "amrsp/VertexData.h"
 #include "vtkAMRCoreConversion.h"
@@ -10,6 +12,8 @@
 #include "vtkAMRGaussianPulseSource.h"
 #include "vtkAMReXGridReader.h"
 #include "vtkAlgorithm.h"
+#include "vtkCellData.h"
+#include "vtkPointData.h"
 #include "vtkAMRCosmoSource.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -24,6 +28,7 @@
 #include "vtkXMLUniformGridAMRReader.h"
 
 #include <chrono>
+#include <condition_variable>
 #include <csignal>
 #include <cstdlib>
 #include <cstdio>
@@ -31,7 +36,11 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <mutex>
+#include <new>
+#include <set>
 #include <sstream>
+#include <thread>
 #include <unistd.h>
 
 namespace amrsp
@@ -88,14 +97,31 @@ private:
 };
 
 /// While alive, the readers' own diagnostics (HDF5's error stack, vtkLogger warnings) written
-/// straight to file descriptor 2 go to a temporary file instead of the user's terminal, and a
+/// straight to file descriptor 2 go to a temporary file instead of the user's terminal, a
 /// crash inside a reader ends the process with one line that names the reader and the file
-/// instead of a bare segmentation fault.
+/// instead of a bare segmentation fault (exit code 70), and a reader still busy after
+/// `timeoutSeconds` ends it with one line too (exit code 75): some of VTK's readers loop forever
+/// on damaged files.
 class ReaderGuard
 {
 public:
-  explicit ReaderGuard(const std::string& what)
+  explicit ReaderGuard(const std::string& what, double timeoutSeconds = 120.0)
   {
+    std::snprintf(TimeoutMessage, sizeof(TimeoutMessage),
+      "amrsp: error: %s did not finish within %g s: VTK's reader is stuck on this file (a "
+      "damaged or unusual file the reader loops on; --read-timeout changes the limit)\n",
+      what.c_str(), timeoutSeconds);
+    Watchdog = std::thread([this, timeoutSeconds] {
+      std::unique_lock<std::mutex> lock(Mutex);
+      if (!Finished.wait_for(lock, std::chrono::duration<double>(timeoutSeconds),
+            [this] { return Done; }))
+      {
+        const int fd = SavedStderr >= 0 ? SavedStderr : 2;
+        const ssize_t ignored = write(fd, TimeoutMessage, std::strlen(TimeoutMessage));
+        (void)ignored;
+        _exit(75);
+      }
+    });
     std::snprintf(Message, sizeof(Message),
       "amrsp: error: %s crashed inside VTK's reader (a reader bug, not ours)\n", what.c_str());
     std::fflush(stderr);
@@ -115,6 +141,12 @@ public:
   }
   ~ReaderGuard()
   {
+    {
+      std::lock_guard<std::mutex> lock(Mutex);
+      Done = true;
+    }
+    Finished.notify_all();
+    Watchdog.join();
     for (int i = 0; i < 4; ++i)
     {
       sigaction(Signals[i], &Previous[i], nullptr);
@@ -147,6 +179,11 @@ private:
   static int SavedStderr;
   std::FILE* Sink = nullptr;
   struct sigaction Previous[4];
+  char TimeoutMessage[1024];
+  std::mutex Mutex;
+  std::condition_variable Finished;
+  bool Done = false;
+  std::thread Watchdog;
 };
 char ReaderGuard::Message[1024];
 int ReaderGuard::SavedStderr = -1;
@@ -289,7 +326,7 @@ vtkSmartPointer<vtkOverlappingAMR> RunAlgorithm(
 }
 
 /// Enzo and AMReX readers share vtkAMRBaseReader: enable only the requested cell array.
-void SelectReaderArray(vtkAMRBaseReader* reader, const DatasetRequest& request,
+std::string SelectReaderArray(vtkAMRBaseReader* reader, const DatasetRequest& request,
   const std::string& what, CaptureVTKMessages& capture)
 {
   reader->SetMaxLevel(1000);
@@ -317,8 +354,98 @@ void SelectReaderArray(vtkAMRBaseReader* reader, const DatasetRequest& request,
   {
     reader->SetCellArrayStatus(reader->GetCellArrayName(i), 0);
   }
-  reader->SetCellArrayStatus(
-    request.Array.empty() ? reader->GetCellArrayName(0) : request.Array.c_str(), 1);
+  const std::string chosen = request.Array.empty() ? reader->GetCellArrayName(0) : request.Array;
+  reader->SetCellArrayStatus(chosen.c_str(), 1);
+  return chosen;
+}
+
+/// AMRSP_SKIP_FILE_CHECKS=1 hands the files to VTK's readers unchecked: the damage test uses it
+/// to show that the reader watchdog ends a reader that loops.
+bool FileChecksOn()
+{
+  const char* skip = std::getenv("AMRSP_SKIP_FILE_CHECKS");
+  return !(skip && std::string(skip) == "1");
+}
+
+/// `requested`, or the first cell (else point) array of the first block that has one.
+std::string FirstArrayName(vtkOverlappingAMR* amr, const std::string& requested)
+{
+  if (!requested.empty())
+  {
+    return requested;
+  }
+  for (unsigned int l = 0; l < amr->GetNumberOfLevels(); ++l)
+  {
+    for (unsigned int i = 0; i < amr->GetNumberOfDataSets(l); ++i)
+    {
+      if (vtkUniformGrid* grid = amr->GetDataSet(l, i))
+      {
+        for (vtkFieldData* fields : { static_cast<vtkFieldData*>(grid->GetCellData()),
+               static_cast<vtkFieldData*>(grid->GetPointData()) })
+        {
+          if (fields->GetNumberOfArrays() > 0 && fields->GetAbstractArray(0)->GetName())
+          {
+            return fields->GetAbstractArray(0)->GetName();
+          }
+        }
+      }
+    }
+  }
+  return "";
+}
+
+/// The blocks of `amr` that hold `array` (cell or point data) against those the files describe:
+/// fewer is an error naming the files of the missing blocks, or, with AllowPartial, a warning.
+void CheckBlocksRead(vtkOverlappingAMR* amr, const ExpectedBlocks& expected,
+  const std::string& array, const std::string& what, const std::string& capturedMessage,
+  bool allowPartial, bool exactOrder)
+{
+  std::size_t read = 0, flat = 0;
+  std::set<std::string> missingFiles;
+  for (unsigned int l = 0; l < amr->GetNumberOfLevels(); ++l)
+  {
+    for (unsigned int i = 0; i < amr->GetNumberOfDataSets(l); ++i, ++flat)
+    {
+      vtkUniformGrid* grid = amr->GetDataSet(l, i);
+      const bool has = grid &&
+        (grid->GetCellData()->GetAbstractArray(array.c_str()) ||
+          grid->GetPointData()->GetAbstractArray(array.c_str()));
+      read += has ? 1 : 0;
+      if (!has && exactOrder && flat < expected.Files.size())
+      {
+        missingFiles.insert(expected.Files[flat]);
+      }
+    }
+  }
+  if (read >= expected.Count())
+  {
+    return;
+  }
+  if (!exactOrder)
+  {
+    missingFiles.insert(expected.Files.begin(), expected.Files.end());
+  }
+  missingFiles.erase("");
+  std::string files;
+  int listed = 0;
+  for (const std::string& f : missingFiles)
+  {
+    if (listed++ == 3)
+    {
+      files += ", ...";
+      break;
+    }
+    files += (files.empty() ? "" : ", ") + f;
+  }
+  const std::string message = "read " + std::to_string(read) + " of the " +
+    std::to_string(expected.Count()) + " blocks " + what + " describes with '" + array + "'" +
+    (files.empty() ? std::string() : " (the others are in " + files + ")") +
+    (capturedMessage.empty() ? std::string() : "; the reader said: " + capturedMessage);
+  if (!allowPartial)
+  {
+    throw DatasetError(message + "; --allow-partial renders what was read");
+  }
+  std::fprintf(stderr, "amrsp: warning: %s; rendering them (--allow-partial)\n", message.c_str());
 }
 
 } // namespace
@@ -360,7 +487,9 @@ LoadedDataset LoadDataset(const DatasetRequest& request)
   return out;
 }
 
-LoadedDataset LoadDatasetAsStored(const DatasetRequest& request)
+namespace
+{
+LoadedDataset LoadStored(const DatasetRequest& request)
 {
   const auto start = std::chrono::steady_clock::now();
   LoadedDataset out;
@@ -446,36 +575,58 @@ LoadedDataset LoadDatasetAsStored(const DatasetRequest& request)
           " is a folder without an AMReX plotfile Header");
       }
       out.Format = "amrex";
-      ReaderGuard guard("reading the AMReX plotfile " + spec);
+      ReaderGuard guard("reading the AMReX plotfile " + spec, request.ReadTimeoutSeconds);
+      const ExpectedBlocks expected = FileChecksOn() ? CheckAMReXFiles(spec) : ExpectedBlocks();
       vtkNew<vtkAMReXGridReader> reader;
       reader->SetFileName(spec.c_str());
-      SelectReaderArray(reader, request, "the AMReX plotfile " + spec, capture);
+      const std::string array =
+        SelectReaderArray(reader, request, "the AMReX plotfile " + spec, capture);
       out.Amr = RunAlgorithm(reader, "reading the AMReX plotfile " + spec, capture);
+      CheckBlocksRead(out.Amr, expected, array, "the AMReX plotfile " + spec, capture.First(),
+        request.AllowPartial, true);
     }
     else if (ext == ".hierarchy")
     {
       out.Format = "enzo";
-      ReaderGuard guard("reading the Enzo hierarchy " + spec);
+      ReaderGuard guard("reading the Enzo hierarchy " + spec, request.ReadTimeoutSeconds);
+      const ExpectedBlocks expected = FileChecksOn() ? CheckEnzoFiles(spec) : ExpectedBlocks();
       vtkNew<vtkAMREnzoReader> reader;
       reader->SetFileName(spec.c_str());
-      SelectReaderArray(reader, request, "the Enzo hierarchy " + spec, capture);
+      const std::string array =
+        SelectReaderArray(reader, request, "the Enzo hierarchy " + spec, capture);
       out.Amr = RunAlgorithm(reader, "reading the Enzo hierarchy " + spec, capture);
+      // VTK's reader orders Enzo grids by level, not as the hierarchy lists them: the missing
+      // blocks' files are named as the set of grid files
+      CheckBlocksRead(out.Amr, expected, array, "the Enzo hierarchy " + spec, capture.First(),
+        request.AllowPartial, false);
     }
     else if ((ext == ".vthb" || ext == ".vth" || ext == ".vtm") && IsHierarchicalBoxV01(spec) &&
       !std::getenv("AMRSP_USE_VTK_XML_AMR_READER")) // the variable exists to test the crash guard
     {
       out.Format = "vtk-xml-hierarchical-box-0.1";
-      ReaderGuard guard("reading " + spec);
+      ReaderGuard guard("reading " + spec, request.ReadTimeoutSeconds);
       out.Amr = ReadHierarchicalBoxV01(spec);
     }
     else if (ext == ".vthb" || ext == ".vth" || ext == ".vtm")
     {
       out.Format = "vtk-xml-amr";
-      ReaderGuard guard("reading the VTK XML AMR file " + spec);
+      ReaderGuard guard("reading the VTK XML AMR file " + spec, request.ReadTimeoutSeconds);
+      ExpectedBlocks expected;
+      try
+      {
+        expected = FileChecksOn() ? CheckVTKXMLAMRFiles(spec) : ExpectedBlocks();
+      }
+      catch (const DatasetError& e)
+      {
+        const std::string why = capture.First(); // the XML parser's own message
+        throw DatasetError(std::string(e.what()) + (why.empty() ? "" : " (" + why + ")"));
+      }
       vtkNew<vtkXMLUniformGridAMRReader> reader;
       reader->SetFileName(spec.c_str());
       reader->SetMaximumLevelsToReadByDefault(0); // all levels
       out.Amr = RunAlgorithm(reader, "reading the VTK XML AMR file " + spec, capture);
+      CheckBlocksRead(out.Amr, expected, FirstArrayName(out.Amr, request.Array),
+        "the VTK XML AMR file " + spec, capture.First(), request.AllowPartial, true);
     }
     else
     {
@@ -501,6 +652,22 @@ LoadedDataset LoadDatasetAsStored(const DatasetRequest& request)
   out.LoadSeconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
+}
+} // namespace
+
+LoadedDataset LoadDatasetAsStored(const DatasetRequest& request)
+{
+  try
+  {
+    return LoadStored(request);
+  }
+  catch (const std::bad_alloc&)
+  {
+    // the checks of AmrspFileChecks.h test sizes against the files; a reader may still read one
+    // that no check knows of
+    throw DatasetError("ran out of memory reading " + request.Spec +
+      ": the data is larger than this machine's memory, or a size in a damaged file is wrong");
+  }
 }
 
 } // namespace tool

@@ -35,6 +35,12 @@ struct DatasetRequest
   std::string Centering = "auto";
   bool NeedValues = true;
   bool NeedVTK = true; ///< false: synthetic:cosmo may skip building a vtkOverlappingAMR
+  /// A file read that yields fewer blocks with the array than the dataset's own files describe
+  /// is an error unless this is set (then a warning on stderr says how many were read).
+  bool AllowPartial = false;
+  /// A VTK reader that has not finished after this many seconds ends the process with one line
+  /// (exit code 75): some readers loop forever on damaged files.
+  double ReadTimeoutSeconds = 120.0;
 };
 
 struct LoadedDataset
@@ -47,7 +53,9 @@ struct LoadedDataset
 };
 
 /// Loads the dataset. Throws DatasetError with one line naming the problem: missing path,
-/// unknown format, reader failure (with the reader's own message), missing array, no blocks.
+/// unknown format, a damaged, truncated or missing file (checked before VTK's reader opens the
+/// files: AmrspFileChecks.h), reader failure (with the reader's own message), missing array, no
+/// blocks, fewer blocks read than the files describe.
 LoadedDataset LoadDataset(const DatasetRequest& request);
 /// LoadDataset without applying DatasetRequest::Centering.
 LoadedDataset LoadDatasetAsStored(const DatasetRequest& request);

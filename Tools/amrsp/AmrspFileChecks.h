@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/// @file
+/// What a dataset's own files say should be there, checked before VTK's reader opens them:
+/// damaged or partial output (an interrupted copy, a missing processor file, a truncated write)
+/// must end in one line that names the file and what is wrong with it, not in a reader that
+/// loops, a bad_alloc, or a picture of part of the data. Each check throws DatasetError.
+
+#include <string>
+#include <vector>
+
+namespace amrsp
+{
+namespace tool
+{
+
+/// The blocks a dataset's files describe, in the reader's block order (level by level), with
+/// the file that holds each block's data, so that a block the reader could not load can be
+/// named with its file.
+struct ExpectedBlocks
+{
+  std::vector<std::string> Files;
+  std::size_t Count() const { return Files.size(); }
+};
+
+/// An Enzo .hierarchy file: every grid entry complete (the file is not cut inside one), every
+/// grid the entries point to described, and each grid's HDF5 file present, an HDF5 file, and as
+/// long as its superblock says.
+ExpectedBlocks CheckEnzoFiles(const std::string& hierarchy);
+
+/// An AMReX plotfile folder: the Header complete, each level's multifab header (Cell_H) present,
+/// agreeing with the Header on boxes and components, and each box's FAB in its Cell_D file
+/// with a FAB header and all the bytes its box and components need.
+ExpectedBlocks CheckAMReXFiles(const std::string& folder);
+
+/// A VTK XML AMR file (.vthb/.vth/.vtm, version 1.x): its XML parses, and every block's piece
+/// file exists. The blocks in level, then index, order.
+ExpectedBlocks CheckVTKXMLAMRFiles(const std::string& path);
+
+/// Whether the file at `path` is an HDF5 file whose length is at least the end-of-file address
+/// its superblock records; `why` says what is wrong otherwise.
+bool CheckHDF5File(const std::string& path, std::string& why);
+
+} // namespace tool
+} // namespace amrsp
