@@ -112,6 +112,23 @@ int vtkSinglePassAMRVolumeRepresentation::RequestData(
     ? vtkOverlappingAMR::GetData(inputVector[0], 0)
     : nullptr;
   vtkSmartPointer<vtkOverlappingAMR> cache;
+  this->InputProblem.clear();
+  vtkMultiProcessController* global = vtkMultiProcessController::GetGlobalController();
+  if (input && input->GetTotalNumberOfBlocks() == 0 &&
+    (!global || global->GetNumberOfProcesses() == 1))
+  {
+    // one process holds all of the data: none at all is an empty or failed read (with several
+    // ranks an empty local piece is normal)
+    this->InputProblem = "the AMR dataset holds no blocks (an empty or failed read): nothing to draw";
+  }
+  if (this->InputProblem != this->ReportedInputProblem)
+  {
+    this->ReportedInputProblem = this->InputProblem;
+    if (!this->InputProblem.empty())
+    {
+      vtkErrorMacro(<< this->InputProblem);
+    }
+  }
   if (input)
   {
     // A shallow copy: the pipeline may replace its output later, the copy stays what was
@@ -538,6 +555,10 @@ vtkMultiPassAMRVolumeMapper* vtkSinglePassAMRVolumeRepresentation::GetMultiPassM
 
 const char* vtkSinglePassAMRVolumeRepresentation::GetLastRenderError()
 {
+  if (!this->InputProblem.empty())
+  {
+    return this->InputProblem.c_str();
+  }
   return this->Method == METHOD_MULTI_PASS ? this->MultiPassMapper->GetLastError()
                                            : this->VolumeMapper->GetLastError();
 }

@@ -205,6 +205,10 @@ protected:
   /// False on the ranks other than 0 when gathering on rank 0: they draw nothing.
   bool RendersLocally = true;
   bool ReportedParallelRenderingOff = false;
+  // What is wrong with the delivered data itself (no blocks at all), said once per change in
+  // ParaView's output window and returned by GetLastRenderError before the mapper's error.
+  std::string InputProblem;
+  std::string ReportedInputProblem;
   std::string LastDataStorage; // GetLastDataStorage's text
 
 private:

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 # Runs a test command and runs it once more when it failed because the X server refused a
 # connection: VTK's GLX window then prints "bad X server connection. DISPLAY=... Aborting." and
-# aborts the process. That happens now and then on a busy shared Xvfb; it is not a result of the
-# code under test. Only that line counts (not any mention of X in a log the test repeats), only a
+# aborts the process. An X server that resets when its last client leaves (Xvfb without
+# -noreset, see scripts/start-xvfb.sh) drops connections that way; it is not a result of the code
+# under test. Only that line counts (not any mention of X in a log the test repeats), only a
 # failed run is repeated, at most once, and the repetition is said in the output. Any other
 # failure is reported as is.
 #
