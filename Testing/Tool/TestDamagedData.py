@@ -8,7 +8,9 @@
 # `amrsp render --method cpu-kdtree` must end within TIME_LIMIT seconds, without a signal, either
 # with an image identical to the intact dataset's (the damage touched nothing the render reads)
 # or with exactly one line on stderr, "amrsp: error: ...", naming the damaged file. Prints one
-# line per variant and the outcome counts. Exit code 0 pass, 1 fail, 125 skipped (no data).
+# line per variant and the outcome counts. Also: the AMReX plotfile rewritten as embedded-boundary
+# output (a vfrac variable, EB_WriteMultiLevelPlotfile's Header) must be read, or fail naming the
+# variables its Header lists; and the reader watchdog must end VTK's looping Enzo reader. Exit code 0 pass, 1 fail, 125 skipped (no data).
 import os
 import random
 import shutil
@@ -115,6 +117,68 @@ def variants(name, root):
     return v
 
 
+def make_eb_plotfile(source, target, version):
+    """A copy of the AMReX plotfile `source` as AMReX's EB_WriteMultiLevelPlotfile writes
+    embedded-boundary output: the variable "vfrac" (the volume fraction, here 1 everywhere)
+    after the others in the Header, in every FAB and in the Cell_H min/max tables, and one line
+    of the small-volume-fraction threshold per level at the Header's end; `version` on the first
+    line (HyperCLaw-V1.1, or CartGrid-V2.0 as older EB codes wrote)."""
+    import re
+    import struct
+
+    shutil.copytree(source, target)
+    for r, dirs, files in os.walk(target):
+        for x in dirs + files:
+            os.chmod(os.path.join(r, x), 0o755 if x in dirs else 0o644)
+    header = os.path.join(target, "Header")
+    with open(header) as f:
+        lines = f.read().rstrip("\n").split("\n")
+    count = int(lines[1])
+    lines[0] = version
+    lines[1] = str(count + 1)
+    lines.insert(2 + count, "vfrac")
+    finest = int(lines[2 + count + 1 + 2])  # after the names: dimension, time, finest level
+    with open(header, "w") as f:
+        f.write("\n".join(lines) + "\n" + "1.0e-6\n" * (finest + 1))
+    for level in range(finest + 1):
+        folder = os.path.join(target, "Level_%d" % level)
+        with open(os.path.join(folder, "Cell_H")) as f:
+            cell_h = f.read().split("\n")
+        cell_h[2] = str(int(cell_h[2]) + 1)
+        rewritten = {}  # data file -> new bytes
+        for i, line in enumerate(cell_h):
+            if not line.startswith("FabOnDisk:"):
+                m = re.match(r"^(\d+),(\d+)$", line)
+                if m:
+                    cell_h[i] = "%s,%d" % (m.group(1), int(m.group(2)) + 1)
+                elif re.match(r"^[-0-9.eE+]+(,[-0-9.eE+]+)*,$", line):
+                    cell_h[i] = line + "1.0000000000000000e+00,"
+                continue
+            _, name, offset = line.split()
+            with open(os.path.join(folder, name), "rb") as f:
+                data = f.read()
+            offset = int(offset)
+            end = data.index(b"\n", offset)
+            head = data[offset:end].decode()
+            bits = int(re.search(r"FAB \(\(\d+, \((\d+)", head).group(1))
+            corners = re.findall(r"\((-?\d+),(-?\d+),(-?\d+)\)", head)
+            cells = 1
+            for a in range(3):
+                cells *= int(corners[1][a]) - int(corners[0][a]) + 1
+            components = int(head.split()[-1])
+            body = data[end + 1:end + 1 + cells * components * bits // 8]
+            one = struct.pack("<d" if bits == 64 else "<f", 1.0)
+            out = rewritten.setdefault(name, bytearray())
+            cell_h[i] = "FabOnDisk: %s %d" % (name, len(out))
+            out += (head[:head.rfind(" ")] + " %d\n" % (components + 1)).encode() + body
+            out += one * cells
+        for name, data in rewritten.items():
+            with open(os.path.join(folder, name), "wb") as f:
+                f.write(bytes(data))
+        with open(os.path.join(folder, "Cell_H"), "w") as f:
+            f.write("\n".join(cell_h))
+
+
 ENTRY = {
     "enzo_moving7": "DD0010/moving7_0010.hierarchy",
     "amrex_plt1_Y": "",
@@ -198,6 +262,33 @@ def main():
                 if outcome == "FAIL":
                     failures.append("%s, %s: %s %s" % (name, what, command[1], detail))
             print("%-22s %-52s %s" % (name, what, "; ".join(results)))
+    # embedded-boundary plotfiles (valid, unusual): read, the usual variable giving the intact
+    # image and vfrac rendering, or one error line naming the variables the Header lists
+    if "amrex_plt1_Y" in present:
+        with open(os.path.join(work, "amrex_plt1_Y-intact.png"), "rb") as f:
+            intact_png = f.read()
+        for version in ("HyperCLaw-V1.1", "CartGrid-V2.0"):
+            copy = os.path.join(work, "amrex_plt1_Y-eb-" + version)
+            make_eb_plotfile(os.path.join(data, "amrex_plt1_Y"), copy, version)
+            results, ok = [], True
+            for array in (None, "vfrac"):
+                png = copy + "-%s.png" % (array or "default")
+                outcome, detail = run([amrsp, "render", copy, "--method", "cpu-kdtree", "--size",
+                                       "32x32", "-o", png] + (["--array", array] if array else []))
+                if outcome == "ok" and array is None:
+                    with open(png, "rb") as f:
+                        if f.read() != intact_png:
+                            outcome, detail = "FAIL", "the usual variable renders another image"
+                if outcome == "error" and not all(v in detail for v in ("Y(H2)", "vfrac")):
+                    outcome, detail = "FAIL", "the error does not list the variables: " + detail
+                ok = ok and outcome != "FAIL"
+                results.append("%s %s%s" % (array or "Y(H)", outcome, ": " + detail if detail
+                                            else ""))
+            print("%-22s %-52s %s" % ("amrex_plt1_Y", "EB plotfile (vfrac), version " + version,
+                                      "; ".join(results)))
+            if not ok:
+                failures.append("EB plotfile %s: %s" % (version, "; ".join(results)))
+
     # the reader watchdog: VTK's Enzo reader loops forever on a hierarchy cut inside a grid
     # entry; with the file checks off (AMRSP_SKIP_FILE_CHECKS=1) it must be ended after
     # --read-timeout seconds with one line and exit code 75

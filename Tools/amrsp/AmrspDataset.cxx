@@ -327,7 +327,8 @@ vtkSmartPointer<vtkOverlappingAMR> RunAlgorithm(
 
 /// Enzo and AMReX readers share vtkAMRBaseReader: enable only the requested cell array.
 std::string SelectReaderArray(vtkAMRBaseReader* reader, const DatasetRequest& request,
-  const std::string& what, CaptureVTKMessages& capture)
+  const std::string& what, CaptureVTKMessages& capture,
+  const std::vector<std::string>& listed = {})
 {
   reader->SetMaxLevel(1000);
   reader->UpdateInformation();
@@ -335,7 +336,16 @@ std::string SelectReaderArray(vtkAMRBaseReader* reader, const DatasetRequest& re
   if (n == 0)
   {
     const std::string why = capture.First();
-    throw DatasetError(what + (why.empty() ? " has no cell arrays" : " failed: " + why));
+    std::string variables;
+    for (const std::string& v : listed)
+    {
+      variables += (variables.empty() ? "" : ", ") + v;
+    }
+    throw DatasetError(what + (listed.empty()
+        ? (why.empty() ? std::string(" has no cell arrays") : " failed: " + why)
+        : ": VTK's reader finds no cell arrays although the files list " +
+          std::to_string(listed.size()) + " variables (" + variables + ")" +
+          (why.empty() ? std::string() : "; the reader said: " + why)));
   }
   std::string names;
   bool found = false;
@@ -579,8 +589,8 @@ LoadedDataset LoadStored(const DatasetRequest& request)
       const ExpectedBlocks expected = FileChecksOn() ? CheckAMReXFiles(spec) : ExpectedBlocks();
       vtkNew<vtkAMReXGridReader> reader;
       reader->SetFileName(spec.c_str());
-      const std::string array =
-        SelectReaderArray(reader, request, "the AMReX plotfile " + spec, capture);
+      const std::string array = SelectReaderArray(
+        reader, request, "the AMReX plotfile " + spec, capture, expected.Variables);
       out.Amr = RunAlgorithm(reader, "reading the AMReX plotfile " + spec, capture);
       CheckBlocksRead(out.Amr, expected, array, "the AMReX plotfile " + spec, capture.First(),
         request.AllowPartial, true);

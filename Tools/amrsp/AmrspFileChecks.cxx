@@ -437,6 +437,7 @@ ExpectedBlocks CheckAMReXFiles(const std::string& folder)
   h.Next<int>("the coordinate system");
   h.Next<int>("the boundary width");
   ExpectedBlocks expected;
+  expected.Variables = names;
   for (int l = 0; l <= finest; ++l)
   {
     const std::string level = "level " + std::to_string(l);

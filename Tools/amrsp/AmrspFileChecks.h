@@ -20,6 +20,8 @@ namespace tool
 struct ExpectedBlocks
 {
   std::vector<std::string> Files;
+  /// The variables the files list (AMReX Header), for a message when a reader finds none.
+  std::vector<std::string> Variables;
   std::size_t Count() const { return Files.size(); }
 };
 
