@@ -9,6 +9,7 @@
 //   - an array that is NaN everywhere, or +Inf everywhere; NaN and Inf in some cells;
 //   - a level without blocks between two levels with blocks; a last level without blocks;
 //   - a refinement ratio of 1 (a level as coarse as the one below it);
+//   - a hierarchy over the encoding limits (32 levels of ratio 2);
 //   - 1 to 8 iso-values (rendered) and 9 (an error);
 //   - a fragment-shader replacement (vtkShaderProperty) that does not compile: one error, and
 //     the image back once it is removed.
@@ -302,6 +303,20 @@ void TestInputs(Scene& scene)
   scene.Mapper->SetSampleDistanceFactor(1.0);
 }
 
+/// A hierarchy the layout cannot encode: 32 levels of ratio 2 over an 8-cell root make the root
+/// 2^34 finest cells wide, beyond the shader's 2^30.
+void TestEncodingLimit(Scene& scene)
+{
+  std::vector<int> ratios(32, 2);
+  ratios[0] = 1;
+  std::vector<Block> blocks = { { 0, { 0, 0, 0 }, { 8, 8, 8 } } };
+  for (int l = 1; l < 32; ++l)
+  {
+    blocks.push_back({ l, { 0, 0, 0 }, { 2, 2, 2 } });
+  }
+  ExpectError(scene, MakeAMR(8, ratios, blocks, Blob), "2^30", "32 levels of ratio 2");
+}
+
 void TestIsoValues(Scene& scene)
 {
   vtkSmartPointer<vtkOverlappingAMR> amr = GoodAMR();
@@ -375,6 +390,7 @@ int main()
   probe->Finalize();
   Scene scene;
   TestInputs(scene);
+  TestEncodingLimit(scene);
   TestIsoValues(scene);
   TestShaderFailure(scene);
   scene.Window->Finalize();
