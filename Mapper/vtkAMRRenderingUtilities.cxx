@@ -217,6 +217,9 @@ bool UploadAtlas(vtkOpenGLRenderWindow* renWin, const amrsp::BrickAtlas& atlas, 
     std::ostringstream msg;
     msg << "uploading the atlas texture (" << atlas.Bytes() / (1024.0 * 1024.0) << " MiB) failed"
         << (glError == GL_OUT_OF_MEMORY ? ": out of GPU memory" : "")
+        << (glError == GL_NO_ERROR ? ": the driver refused the texture allocation (out of GPU "
+                                     "memory, or over one of its limits)"
+                                   : "")
         << (glError != GL_NO_ERROR ? " (OpenGL error " + std::to_string(glError) + ")" : "");
     error = msg.str();
     texture = nullptr;

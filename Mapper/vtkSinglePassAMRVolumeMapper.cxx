@@ -613,6 +613,9 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Upload(vtkOpenGLRenderWindow* r
       msg << "uploading the kD-tree and " << (bindless ? "brick" : "atlas") << " textures ("
           << bytes / (1024.0 * 1024.0) << " MiB) failed"
           << (glError == GL_OUT_OF_MEMORY ? ": out of GPU memory" : "")
+          << (glError == GL_NO_ERROR ? ": the driver refused a texture allocation (out of GPU "
+                                       "memory, or over one of its limits)"
+                                     : "")
           << (glError != GL_NO_ERROR ? " (OpenGL error " + std::to_string(glError) + ")" : "");
       error = msg.str();
     }

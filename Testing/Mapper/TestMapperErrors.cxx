@@ -12,7 +12,9 @@
 //   - a hierarchy over the encoding limits (32 levels of ratio 2);
 //   - 1 to 8 iso-values (rendered) and 9 (an error);
 //   - a fragment-shader replacement (vtkShaderProperty) that does not compile: one error, and
-//     the image back once it is removed.
+//     the image back once it is removed;
+//   - a driver out of memory (RefuseLargeTextures.c, preloaded by CTest): one error, and the
+//     image back once the driver accepts the allocation again.
 //
 // Exit code 125 (CTest SKIP) with "SKIPPED: ..." when no OpenGL context can be created, unless
 // AMRSP_REQUIRE_GPU=1, which turns that into a failure.
@@ -38,7 +40,10 @@
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
+#include <dlfcn.h>
+
 #include <cmath>
+#include <cstdlib>
 #include <functional>
 #include <iostream>
 #include <limits>
@@ -347,6 +352,34 @@ void TestIsoValues(Scene& scene)
   scene.Mapper->SetBlendModeToComposite();
 }
 
+/// A driver that runs out of memory (RefuseLargeTextures.c, preloaded by CTest, refuses every 3D
+/// texture over AMRSP_REFUSE_TEXELS texels with GL_OUT_OF_MEMORY): one error, nothing drawn, and
+/// the same data renders once the driver has the memory again (the CPU data was kept).
+void TestOutOfMemory(Scene& scene)
+{
+  if (!dlsym(RTLD_DEFAULT, "amrsp_refuse_large_textures_loaded"))
+  {
+    const bool required = mappertest::EverythingRequired();
+    Check(!required, std::string("out of GPU memory: RefuseLargeTextures is not preloaded (") +
+        (required ? "required here: AMRSP_REQUIRE_GPU=1)" : "left out)"));
+    return;
+  }
+  vtkSmartPointer<vtkOverlappingAMR> amr = GoodAMR();
+  setenv("AMRSP_REFUSE_TEXELS", "600", 1); // the atlas (two 8^3 bricks), not the tree
+  for (int frame = 0; frame < 2; ++frame)
+  {
+    const double shown = scene.Render(amr);
+    const std::string error = scene.Error();
+    Check((error.find("out of GPU memory") != std::string::npos ||
+            error.find("refused") != std::string::npos) &&
+        shown == 0.0,
+      "the driver refuses the atlas, frame " + std::to_string(frame + 1) + ": error '" + error +
+        "', " + Percent(shown) + " of the pixels drawn");
+  }
+  unsetenv("AMRSP_REFUSE_TEXELS");
+  ExpectImage(scene, amr, 0.05, "the same data once the driver has the memory again");
+}
+
 void TestShaderFailure(Scene& scene)
 {
   vtkSmartPointer<vtkOverlappingAMR> amr = GoodAMR();
@@ -392,6 +425,7 @@ int main()
   TestInputs(scene);
   TestEncodingLimit(scene);
   TestIsoValues(scene);
+  TestOutOfMemory(scene);
   TestShaderFailure(scene);
   scene.Window->Finalize();
   std::cout << (Failures() == 0 ? "PASSED" : "FAILED: " + std::to_string(Failures()) + " check(s)")

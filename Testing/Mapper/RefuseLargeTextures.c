@@ -1,0 +1,95 @@
+/* SPDX-License-Identifier: BSD-3-Clause
+ *
+ * A driver that runs out of memory, for the tests: loaded with LD_PRELOAD, this library hands
+ * VTK (which loads OpenGL through glXGetProcAddress, eglGetProcAddress or OSMesaGetProcAddress)
+ * a glTexImage3D that refuses every 3D texture of more than AMRSP_REFUSE_TEXELS texels the way a
+ * driver refuses an allocation it cannot make: nothing is allocated and glGetError reports
+ * GL_OUT_OF_MEMORY (0x0505) once. Smaller textures and every other function are the driver's.
+ */
+#define _GNU_SOURCE
+#include <dlfcn.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef void (*Function)(void);
+typedef void (*TexImage3D)(unsigned int target, int level, int internalFormat, int width,
+  int height, int depth, int border, unsigned int format, unsigned int type, const void* pixels);
+typedef unsigned int (*GetError)(void);
+
+/* Tells a test that the library is loaded. */
+int amrsp_refuse_large_textures_loaded = 1;
+
+static TexImage3D RealTexImage3D;
+static GetError RealGetError;
+static unsigned int PendingError;
+static const unsigned int OutOfMemory = 0x0505;
+
+static void RefusingTexImage3D(unsigned int target, int level, int internalFormat, int width,
+  int height, int depth, int border, unsigned int format, unsigned int type, const void* pixels)
+{
+  const char* limit = getenv("AMRSP_REFUSE_TEXELS");
+  if (limit && (double)width * height * depth > atof(limit))
+  {
+    PendingError = OutOfMemory;
+    return;
+  }
+  RealTexImage3D(target, level, internalFormat, width, height, depth, border, format, type,
+    pixels);
+}
+
+static unsigned int ReportingGetError(void)
+{
+  if (PendingError)
+  {
+    const unsigned int error = PendingError;
+    PendingError = 0;
+    return error;
+  }
+  return RealGetError();
+}
+
+/* The function `name` as `real` (the driver's loader) returns it, or its refusing stand-in. */
+static Function Substitute(const char* name, Function real)
+{
+  if (!real || !name)
+  {
+    return real;
+  }
+  if (strcmp(name, "glTexImage3D") == 0)
+  {
+    RealTexImage3D = (TexImage3D)real;
+    return (Function)RefusingTexImage3D;
+  }
+  if (strcmp(name, "glGetError") == 0)
+  {
+    RealGetError = (GetError)real;
+    return (Function)ReportingGetError;
+  }
+  return real;
+}
+
+/* GLEW (VTK up to 9.2) links OpenGL 1.1 functions such as glGetError directly. */
+unsigned int glGetError(void)
+{
+  if (!RealGetError)
+  {
+    RealGetError = (GetError)dlsym(RTLD_NEXT, "glGetError");
+  }
+  return ReportingGetError();
+}
+
+#define AMRSP_WRAP_LOADER(loader)                                                                  \
+  Function loader(const char* name)                                                              \
+  {                                                                                              \
+    static Function (*real)(const char*);                                                        \
+    if (!real)                                                                                   \
+    {                                                                                            \
+      real = (Function(*)(const char*))dlsym(RTLD_NEXT, #loader);                               \
+    }                                                                                            \
+    return Substitute(name, real ? real(name) : 0);                                              \
+  }
+
+AMRSP_WRAP_LOADER(glXGetProcAddress)
+AMRSP_WRAP_LOADER(glXGetProcAddressARB)
+AMRSP_WRAP_LOADER(eglGetProcAddress)
+AMRSP_WRAP_LOADER(OSMesaGetProcAddress)
