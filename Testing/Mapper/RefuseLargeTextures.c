@@ -16,8 +16,10 @@ typedef void (*TexImage3D)(unsigned int target, int level, int internalFormat, i
   int height, int depth, int border, unsigned int format, unsigned int type, const void* pixels);
 typedef unsigned int (*GetError)(void);
 
-/* Tells a test that the library is loaded. */
+/* Tells a test that the library is loaded, and whether VTK took glTexImage3D from it (VTK
+ * loading OpenGL through dlsym, as its runtime OSMesa loader does, bypasses the preload). */
 int amrsp_refuse_large_textures_loaded = 1;
+int amrsp_refuse_large_textures_active = 0;
 
 static TexImage3D RealTexImage3D;
 static GetError RealGetError;
@@ -58,6 +60,7 @@ static Function Substitute(const char* name, Function real)
   if (strcmp(name, "glTexImage3D") == 0)
   {
     RealTexImage3D = (TexImage3D)real;
+    amrsp_refuse_large_textures_active = 1;
     return (Function)RefusingTexImage3D;
   }
   if (strcmp(name, "glGetError") == 0)

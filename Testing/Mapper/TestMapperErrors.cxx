@@ -364,6 +364,15 @@ void TestOutOfMemory(Scene& scene)
         (required ? "required here: AMRSP_REQUIRE_GPU=1)" : "left out)"));
     return;
   }
+  const int* active =
+    static_cast<const int*>(dlsym(RTLD_DEFAULT, "amrsp_refuse_large_textures_active"));
+  if (!active || !*active)
+  {
+    // VTK's runtime OSMesa loader resolves OpenGL with dlsym, past any preload
+    std::cout << "  note    out of GPU memory: not checked here, VTK did not load glTexImage3D "
+                 "through an interposable loader (OSMesa loaded at run time)\n";
+    return;
+  }
   vtkSmartPointer<vtkOverlappingAMR> amr = GoodAMR();
   setenv("AMRSP_REFUSE_TEXELS", "600", 1); // the atlas (two 8^3 bricks), not the tree
   for (int frame = 0; frame < 2; ++frame)
