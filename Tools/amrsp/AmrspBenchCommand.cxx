@@ -1,0 +1,365 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// first: see AmrspJson.h
+#include "AmrspCommandShared.h"
+
+#include "AmrspBench.h"
+#include "AmrspBenchPlot.h"
+#include "AmrspDriver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace amrsp
+{
+namespace tool
+{
+
+namespace
+{
+/// Parses "WxH" (both at least `minimum`); throws UsageError naming `option`.
+void ParseSize(const std::string& text, const std::string& option, int minimum, int& w, int& h)
+{
+  char x = 0;
+  std::istringstream in(text);
+  if (!(in >> w >> x >> h) || x != 'x' || !in.eof() || w < minimum || h < minimum)
+  {
+    throw UsageError{ "--" + option + " expects WxH with W, H >= " + std::to_string(minimum) +
+      ", got '" + text + "'" };
+  }
+}
+
+std::vector<std::string> SplitList(const std::string& text)
+{
+  std::vector<std::string> items;
+  std::stringstream list(text);
+  for (std::string item; std::getline(list, item, ',');)
+  {
+    if (!item.empty())
+    {
+      items.push_back(item);
+    }
+  }
+  return items;
+}
+
+/// --scaling-sizes "GRIDS:LEVELS:CELLS,..." to synthetic:cosmo specs.
+std::vector<std::string> ScalingDatasets(const std::string& text, const std::string& seed)
+{
+  std::vector<std::string> specs;
+  for (const std::string& item : SplitList(text))
+  {
+    std::vector<std::string> parts;
+    std::stringstream in(item);
+    for (std::string p; std::getline(in, p, ':');)
+    {
+      parts.push_back(p);
+    }
+    if (parts.size() != 3 || parts[0].empty() || parts[1].empty() || parts[2].empty())
+    {
+      throw UsageError{ "--scaling-sizes expects GRIDS:LEVELS:CELLS,... (e.g. 2666:4:19M), got '" +
+        item + "'" };
+    }
+    specs.push_back("synthetic:cosmo:grids=" + parts[0] + ",levels=" + parts[1] +
+      ",cells=" + parts[2] + ",seed=" + seed);
+  }
+  if (specs.empty())
+  {
+    throw UsageError{ "--scaling-sizes is empty" };
+  }
+  return specs;
+}
+
+const char* const DefaultScalingSizes = "200:4:1M,2666:4:19M,18528:4:33M,39061:13:140M";
+} // namespace
+
+int RunBench(int argc, char** argv)
+{
+  std::ostringstream help;
+  help
+    << "usage: amrsp bench [DATASET] [--size WxH] [--frames N] [--methods LIST] [--json FILE]\n"
+       "                   [--plot FILE.png [--plot-size WxH]] [--rounds R]\n"
+       "       amrsp bench --scaling [--scaling-sizes G:L:C,...] [--methods LIST] [--size WxH]\n"
+       "                   [--frames N] [--json FILE] [--rounds R]\n"
+       "Renders an orbit of N frames (default 8; --scaling: 2) per method in one process, after\n"
+       "one untimed warm-up frame per method (build, upload, shader compile: first_frame_ms),\n"
+       "each frame ending with glFinish before the clock is read. Prints Markdown: Table 1\n"
+       "(grids, levels, cells, kD nodes, kD data nodes) and Table 2 (GPU memory, preprocessing,\n"
+       "fps, RMSE/PSNR of frame 0 against the CPU reference) next to the paper's figures when the\n"
+       "dataset has one of the paper's sizes. --json FILE (- for stdout instead of Markdown)\n"
+       "writes {dataset, image, frames, statistics, methods: {NAME: {fps, ms_mean, ms_median,\n"
+       "rmse, psnr, gpu_bytes, preprocess_s: {...}, ...} or {error}}}. --plot writes bar charts\n"
+       "of fps, GPU memory and RMSE (--plot-size, default 900x600). --save-images DIR writes\n"
+       "frame 0 of every method (METHOD.png) and the CPU reference (reference.png) there.\n"
+       "--rounds R (default 1) keeps the GPU methods alive and renders R - 1 more orbits per\n"
+       "method, interleaved (order reversed every round), for ratios on a machine whose load\n"
+       "drifts: rounds_ms_mean, ms_rounds_median and fps_vs_packing (median of the per-round\n"
+       "ratios) per method, and a table of them.\n"
+       "--scaling runs synthetic:cosmo at each GRIDS:LEVELS:CELLS of --scaling-sizes (default "
+    << DefaultScalingSizes
+    << ",\n"
+       "the paper's datasets 1-3 and a small one; default size 128x128, methods packing,multipass)\n"
+       "and reports how preprocessing and frame time grow; a size that cannot run is a row with\n"
+       "its error.\n"
+       "Methods (default "
+    << DefaultBenchMethods << "):\n";
+  for (const auto& m : BenchMethodHelp())
+  {
+    help << "  " << std::left << std::setw(25) << m.first << m.second << "\n";
+  }
+  try
+  {
+    const Arguments a = ParseArguments(argc, argv, 1,
+      Concat({ DatasetOptions, ViewOptions,
+        { "frames", "methods", "json", "plot", "plot-size", "scaling-sizes", "seed",
+          "save-images", "driver", "backend", "rounds" } }),
+      Concat({ DatasetFlags, { "scaling" } }));
+    if (WantsHelp(a))
+    {
+      std::cout << help.str() << ViewHelp << DriverHelp << DatasetHelp;
+      return 0;
+    }
+    // every method of the run renders in contexts of this driver (comparable timings)
+    SelectDriver(a.Get("driver", "default"));
+    SelectBackend(a.Get("backend", "auto"));
+    const bool scaling = a.Has("scaling");
+    if (scaling && a.Positional.size() > 1)
+    {
+      throw UsageError{ "--scaling takes no DATASET (it generates synthetic:cosmo at "
+                        "--scaling-sizes)" };
+    }
+    if (!scaling && (a.Has("scaling-sizes") || a.Has("seed")))
+    {
+      throw UsageError{ "--scaling-sizes and --seed need --scaling" };
+    }
+    if (scaling && a.Has("plot"))
+    {
+      throw UsageError{ "--plot draws one dataset's methods; it does not apply to --scaling" };
+    }
+    if (a.Has("plot-size") && !a.Has("plot"))
+    {
+      throw UsageError{ "--plot-size needs --plot FILE.png" };
+    }
+    const double framesValue = a.GetNumber("frames", scaling ? 2 : 8);
+    if (framesValue < 1 || framesValue != std::floor(framesValue))
+    {
+      throw UsageError{ "--frames must be a whole number of at least 1" };
+    }
+    const double roundsValue = a.GetNumber("rounds", 1);
+    if (roundsValue < 1 || roundsValue > 1000 || roundsValue != std::floor(roundsValue))
+    {
+      throw UsageError{ "--rounds must be a whole number from 1 to 1000" };
+    }
+    BenchOptions o;
+    o.Frames = static_cast<int>(framesValue);
+    o.Rounds = static_cast<int>(roundsValue);
+    o.ImageFolder = a.Get("save-images", "");
+    if (a.Has("save-images") && (scaling || o.ImageFolder.empty()))
+    {
+      throw UsageError{ "--save-images needs a folder and does not apply to --scaling" };
+    }
+    if (!o.ImageFolder.empty())
+    {
+      std::error_code error; // created before the (possibly long) run, so a bad path fails now
+      std::filesystem::create_directories(o.ImageFolder, error);
+      if (error)
+      {
+        throw std::runtime_error(
+          "cannot create the --save-images folder '" + o.ImageFolder + "': " + error.message());
+      }
+    }
+    o.View = ViewOf(a);
+    o.Methods = SplitList(a.Get("methods", scaling ? "packing,multipass" : DefaultBenchMethods));
+    if (o.Methods.empty())
+    {
+      throw UsageError{ "--methods is empty" };
+    }
+    for (const std::string& m : o.Methods)
+    {
+      if (!IsBenchMethod(m))
+      {
+        throw UsageError{ "unknown method '" + m +
+          "' in --methods (cpu-kdtree, packing, bindless, multipass, uniform-gpu[:LEVEL], "
+          "vtk-amr-resample[:N|:finest])" };
+      }
+    }
+    int plotWidth = 900, plotHeight = 600;
+    if (a.Has("plot-size"))
+    {
+      ParseSize(a.Get("plot-size", ""), "plot-size", 1, plotWidth, plotHeight);
+      if (plotWidth < 300 || plotHeight < 200)
+      {
+        throw UsageError{ "--plot-size must be at least 300x200" };
+      }
+    }
+    const std::string plot = a.Get("plot", "");
+    if (a.Has("plot") && (plot.size() < 5 || plot.substr(plot.size() - 4) != ".png"))
+    {
+      throw UsageError{ "--plot expects a file name ending in .png, got '" + plot + "'" };
+    }
+    if (a.Has("plot") && !std::ofstream(plot, std::ios::app))
+    {
+      return Fail("cannot write the plot file '" + plot + "'");
+    }
+    const std::string jsonPath = a.Get("json", "");
+    if (a.Has("json") && jsonPath.empty())
+    {
+      throw UsageError{ "--json needs a file name (or - for stdout)" };
+    }
+    Arguments viewArgs = a;
+    if (!a.Has("size"))
+    {
+      viewArgs.Options["size"] = scaling ? "128x128" : "256x256";
+    }
+    std::string device;
+    {
+      std::string why;
+      device = GpuRenderer::Available(why) ? "" : "no OpenGL here: " + why;
+    }
+
+    Json j;
+    if (!scaling)
+    {
+      LoadedDataset d = Load(viewArgs, true, false);
+      RenderSettings s = MakeSettings(d.Data, viewArgs);
+      const Image reference = RenderReference(d.Data, s);
+      j["dataset"] = d.Spec;
+      j["image"] = { s.Width, s.Height };
+      j["frames"] = o.Frames;
+      j["statistics"] = DatasetStatistics(d.Data);
+      j["methods"] = RunBenchMethods(d.Data, s, reference, o, j["statistics"]);
+    }
+    else
+    {
+      j["dataset"] = "synthetic:cosmo (scaling)";
+      j["frames"] = o.Frames;
+      j["rows"] = Json::array();
+      // the table grows row by row on stdout (a size that exhausts memory may end the process)
+      const std::vector<std::string> specs =
+        ScalingDatasets(a.Get("scaling-sizes", DefaultScalingSizes), a.Get("seed", "7"));
+      int width = 0, height = 0; // checked before the first row (rows catch their own errors)
+      ParseSize(viewArgs.Get("size", ""), "size", 1, width, height);
+      const bool progressive = jsonPath != "-";
+      if (progressive)
+      {
+        std::string size = viewArgs.Get("size", "");
+        if (size.find('x') != std::string::npos)
+        {
+          size.replace(size.find('x'), 1, "×");
+        }
+        std::cout << ScalingMarkdownHeader(size, o.Frames) << std::flush;
+      }
+      for (const std::string& spec : specs)
+      {
+        Json row;
+        row["dataset"] = spec;
+        try
+        {
+          Arguments rowArgs = viewArgs;
+          rowArgs.Positional = { "bench", spec };
+          LoadedDataset d = Load(rowArgs, true, false);
+          RenderSettings s = MakeSettings(d.Data, rowArgs);
+          j["image"] = { s.Width, s.Height };
+          row["load_s"] = d.LoadSeconds;
+          row["statistics"] = DatasetStatistics(d.Data);
+          // timings only: no CPU reference image (the plain bench measures the RMSE)
+          BenchOptions timingOnly = o;
+          timingOnly.CompareImages = false;
+          row["methods"] = RunBenchMethods(d.Data, s, Image(), timingOnly, row["statistics"]);
+        }
+        catch (const std::exception& e)
+        {
+          row["error"] = e.what();
+        }
+        catch (const UsageError& e)
+        {
+          row["error"] = e.Message;
+        }
+        if (progressive)
+        {
+          std::cout << ScalingMarkdownRow(row) << std::flush;
+        }
+        j["rows"].push_back(row);
+      }
+      if (progressive)
+      {
+        for (const Json& row : j["rows"])
+        {
+          if (row.contains("methods") && !RoundsMarkdown(row["methods"]).empty())
+          {
+            std::cout << "\n`" << row["dataset"].get<std::string>() << "`:\n"
+                      << RoundsMarkdown(row["methods"]);
+          }
+        }
+      }
+    }
+    if (!device.empty())
+    {
+      j["device"] = device;
+    }
+    else if (!scaling)
+    {
+      for (const auto& m : j["methods"].items())
+      {
+        if (m.value().contains("device"))
+        {
+          j["device"] = m.value()["device"];
+          break;
+        }
+      }
+    }
+    // where the run rendered: the window system of the GPU methods and the library versions
+    if (!scaling)
+    {
+      for (const auto& m : j["methods"].items())
+      {
+        if (m.value().contains("backend"))
+        {
+          j["backend"] = m.value()["backend"];
+          break;
+        }
+      }
+    }
+    j["vtk_version"] = VtkVersion();
+    j["paraview_version"] = ParaViewVersion();
+    if (a.Has("plot"))
+    {
+      WriteBenchPlot(j, plot, plotWidth, plotHeight);
+    }
+    if (jsonPath == "-")
+    {
+      std::cout << j.dump(2) << "\n";
+    }
+    else
+    {
+      if (!jsonPath.empty())
+      {
+        std::ofstream out(jsonPath);
+        if (!(out << j.dump(2) << "\n"))
+        {
+          return Fail("cannot write the JSON file '" + jsonPath + "'");
+        }
+      }
+      if (!scaling)
+      {
+        std::cout << BenchMarkdown(j);
+      }
+    }
+    return 0;
+  }
+  catch (const UsageError& e)
+  {
+    return Fail(e.Message + " (see amrsp bench --help)");
+  }
+  catch (const std::exception& e)
+  {
+    return Fail(e.what());
+  }
+}
+
+} // namespace tool
+} // namespace amrsp

@@ -1,0 +1,311 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// first: see AmrspJson.h
+#include "AmrspCommandShared.h"
+
+#include "AmrspDriver.h"
+
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPNGWriter.h"
+#include "vtkPointData.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <stdexcept>
+
+namespace amrsp
+{
+namespace tool
+{
+
+const char* const DefaultDataset = "synthetic:cosmo:grids=200,levels=4,cells=1M,seed=7";
+
+
+std::string Arguments::Get(const std::string& key, const std::string& fallback) const
+{
+  const auto it = Options.find(key);
+  return it == Options.end() ? fallback : it->second;
+}
+
+double Arguments::GetNumber(const std::string& key, double fallback) const
+{
+  const auto it = Options.find(key);
+  if (it == Options.end())
+  {
+    return fallback;
+  }
+  try
+  {
+    std::size_t used = 0;
+    const double v = std::stod(it->second, &used);
+    if (used == it->second.size() && std::isfinite(v))
+    {
+      return v;
+    }
+  }
+  catch (const std::exception&)
+  {
+  }
+  throw UsageError{ "--" + key + " expects a number, got '" + it->second + "'" };
+}
+
+std::vector<double> Arguments::GetNumbers(const std::string& key, const std::string& fallback) const
+{
+  const std::string text = Get(key, fallback);
+  std::vector<double> out;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');)
+  {
+    try
+    {
+      std::size_t used = 0;
+      out.push_back(std::stod(item, &used));
+      if (used != item.size() || !std::isfinite(out.back()))
+      {
+        throw std::invalid_argument(item);
+      }
+    }
+    catch (const std::exception&)
+    {
+      throw UsageError{ "--" + key + " expects comma-separated numbers, got '" + text + "'" };
+    }
+  }
+  return out;
+}
+
+Arguments ParseArguments(int argc, char** argv, int first,
+  const std::vector<std::string>& valueOptions, const std::vector<std::string>& flags)
+{
+  Arguments a;
+  for (int i = first; i < argc; ++i)
+  {
+    std::string s = argv[i];
+    if (s == "-o")
+    {
+      s = "--output";
+    }
+    if (s.size() > 2 && s.compare(0, 2, "--") == 0)
+    {
+      std::string key = s.substr(2), value;
+      const std::size_t eq = key.find('=');
+      if (eq != std::string::npos)
+      {
+        value = key.substr(eq + 1);
+        key = key.substr(0, eq);
+      }
+      const bool takesValue =
+        std::find(valueOptions.begin(), valueOptions.end(), key) != valueOptions.end();
+      const bool isFlag = std::find(flags.begin(), flags.end(), key) != flags.end() || key == "help";
+      if (!takesValue && !isFlag)
+      {
+        throw UsageError{ "unknown option --" + key };
+      }
+      if (takesValue && eq == std::string::npos)
+      {
+        if (i + 1 >= argc)
+        {
+          throw UsageError{ "--" + key + " needs a value" };
+        }
+        value = argv[++i];
+      }
+      a.Options[key] = takesValue ? value : "1";
+    }
+    else
+    {
+      a.Positional.push_back(s);
+    }
+  }
+  return a;
+}
+
+
+double Seconds(Clock::time_point since)
+{
+  return std::chrono::duration<double>(Clock::now() - since).count();
+}
+
+int Fail(const std::string& message)
+{
+  std::cerr << "amrsp: error: " << message << "\n";
+  return 1;
+}
+
+const std::vector<std::string> DatasetOptions = { "array", "component", "centering",
+  "read-timeout" };
+const std::vector<std::string> DatasetFlags = { "allow-partial", "strict" };
+const std::vector<std::string> AtlasOptions = { "packer", "max-3d-texture-size", "atlas-budget-mb" };
+const std::vector<std::string> ViewOptions = { "size", "azimuth", "elevation", "zoom", "tf",
+  "scale", "unit-distance", "sample-factor", "reference-sample-factor", "lod", "threads", "blend",
+  "view-json", "opacity-threshold", "empty-space-skipping", "interpolation", "shade", "iso",
+  "shadows", "light", "crop" };
+
+std::vector<std::string> Concat(std::initializer_list<std::vector<std::string>> lists)
+{
+  std::vector<std::string> all;
+  for (const auto& l : lists)
+  {
+    all.insert(all.end(), l.begin(), l.end());
+  }
+  return all;
+}
+
+const char* const DatasetHelp =
+  "DATASET is one of\n"
+  "  PATH.hierarchy              an Enzo hierarchy (vtkAMREnzoReader)\n"
+  "  PLOTFILE_FOLDER             an AMReX/BoxLib plotfile (vtkAMReXGridReader)\n"
+  "  PATH.vthb | PATH.vth        VTK XML AMR (vtkXMLUniformGridAMRReader)\n"
+  "  synthetic:pulse             VTK's vtkAMRGaussianPulseSource\n"
+  "  synthetic:cosmo[:grids=N,levels=L,cells=C,seed=S]\n"
+  "                              the project's cosmology-like generator (N and C accept k/M)\n"
+  "Dataset options:\n"
+  "  --array NAME                cell array to use (default: the first cell array)\n"
+  "  --component I               component of a vector array (default: magnitude)\n"
+  "  --centering auto|cell|vertex  auto: cell data cell-centred (nearest cell), point data\n"
+  "                              vertex-centred (trilinear); vertex: convert cell data to\n"
+  "                              vertices (continuous across grid and level interfaces)\n"
+  "  --strict                    (the default) a file that yields fewer blocks than the\n"
+  "                              dataset's own files describe is an error naming them\n"
+  "  --allow-partial             render the blocks that could be read, with a warning\n"
+  "  --read-timeout S            end with an error when VTK's reader is still busy after S\n"
+  "                              seconds (default 120; exit code 75)\n";
+
+const char* const AtlasHelp =
+  "Atlas options (packed storage of the grid bricks):\n"
+  "  --packer nfdh|best          the paper's next-fit-decreasing-height, or the guillotine-bestfit\n"
+  "                              packer (default best)\n"
+  "  --max-3d-texture-size N     per-axis texture limit (default 2048, GL_MAX_3D_TEXTURE_SIZE)\n"
+  "  --atlas-budget-mb M         largest atlas in MiB of float texels (default: no limit)\n";
+
+AtlasRequest ParseAtlasRequest(const Arguments& a)
+{
+  AtlasRequest r;
+  try
+  {
+    r.Algorithm = ParsePacker(a.Get("packer", "best"));
+  }
+  catch (const std::invalid_argument& e)
+  {
+    throw UsageError{ e.what() };
+  }
+  const double size = a.GetNumber("max-3d-texture-size", 2048);
+  const double budget = a.GetNumber("atlas-budget-mb", 0);
+  if (size < 1 || budget < 0)
+  {
+    throw UsageError{ "--max-3d-texture-size and --atlas-budget-mb must be positive" };
+  }
+  r.MaxDims = AtlasLimits(static_cast<int>(size));
+  r.MaxBytes = static_cast<std::size_t>(budget * 1024.0 * 1024.0);
+  return r;
+}
+
+Json AtlasJson(const AtlasLayout& layout)
+{
+  return Json{ { "packer", layout.PackerName },
+    { "dims", { layout.Dims.x, layout.Dims.y, layout.Dims.z } },
+    { "used_texels", layout.UsedTexels }, { "total_texels", layout.TotalTexels },
+    { "efficiency", layout.Efficiency },
+    { "bytes", layout.TotalTexels * static_cast<int64_t>(AtlasTexelBytes) } };
+}
+
+const char* const ViewHelp =
+  "View options (conventions of VTK's vtkCamera/vtkVolumeProperty; see README):\n"
+  "  --size WxH                  image size (default 512x512)\n"
+  "  --azimuth A --elevation E   degrees, applied after ResetCamera (default 30, 20)\n"
+  "  --zoom Z                    vtkCamera::Zoom factor (default 1)\n"
+  "  --tf PRESET                 transfer function: default, grey, hot, grey-opaque, sparse\n"
+  "  --scale auto|linear|log     scalar mapping; auto = log10 when the data is positive and\n"
+  "                              spans more than 3 decades (default auto)\n"
+  "  --unit-distance D           ScalarOpacityUnitDistance in world units (default: diagonal/100)\n"
+  "  --sample-factor F           samples per cell of each segment's level = 1/F (default 1)\n"
+  "  --reference-sample-factor F step of the reference in finest-cell edges (default 0.5)\n"
+  "  --lod PIXELS                level-of-detail threshold in pixels (default 0 = off)\n"
+  "  --blend MODE                composite (default), maximum, minimum, average intensity or\n"
+  "                              iso (iso-surfaces)\n"
+  "  --threads N                 CPU threads (default: all cores)\n"
+  "  --opacity-threshold T       early ray termination: a composite ray stops at opacity T\n"
+  "                              (default 0.999; 1 = never early)\n"
+  "  --empty-space-skipping on|off  skip data nodes whose value range is transparent\n"
+  "                              (kD-tree methods, composite; default on; the reference never\n"
+  "                              skips)\n"
+  "  --interpolation nearest|smooth  cell-centred data: nearest cell (default) or the smooth\n"
+  "                              dual-cell reconstruction across grids and levels (packing,\n"
+  "                              CPU methods and the reference)\n"
+  "  --view-json FILE            camera, transfer function and background from a JSON file\n"
+  "                              (e.g. written from ParaView; see README) instead of the\n"
+  "                              conventions above; its transfer function implies --scale linear\n"
+  "  --shade on|off              gradient shading, vtkVolumeProperty's defaults (default off)\n"
+  "  --iso F[,F...]              with --blend iso: iso-values as fractions of the transfer\n"
+  "                              function's range, at most 8 (default 0.5)\n"
+  "  --shadows STEP              shadow rays, step in world units (default 0 = off)\n"
+  "  --light X,Y,Z               a point light at this world position (default: headlight)\n"
+  "  --crop X0,X1,Y0,Y1,Z0,Z1    integrate the rays inside this world box only\n"
+  "                              (vtkVolumeMapper's cropping of the central sub-volume)\n";
+
+LoadedDataset Load(const Arguments& a, bool needValues, bool needVTK)
+{
+  DatasetRequest r;
+  r.Spec = a.Positional.size() > 1 ? a.Positional[1] : DefaultDataset;
+  r.Array = a.Get("array", "");
+  r.Component = static_cast<int>(a.GetNumber("component", -1));
+  r.Centering = a.Get("centering", "auto");
+  r.NeedValues = needValues;
+  r.NeedVTK = needVTK;
+  if (a.Has("allow-partial") && a.Has("strict"))
+  {
+    throw UsageError{ "--allow-partial and --strict contradict each other" };
+  }
+  r.AllowPartial = a.Has("allow-partial");
+  r.ReadTimeoutSeconds = a.GetNumber("read-timeout", 120.0);
+  if (!(r.ReadTimeoutSeconds > 0.0))
+  {
+    throw UsageError{ "--read-timeout must be a positive number of seconds" };
+  }
+  return LoadDataset(r);
+}
+
+void Bounds(const Hierarchy& h, glm::dvec3& lo, glm::dvec3& hi)
+{
+  lo = h.WorldLo(h.RootCells(), 0);
+  hi = h.WorldHi(h.RootCells(), 0);
+}
+
+
+void WritePng(const Image& img, const std::string& path)
+{
+  vtkNew<vtkImageData> data;
+  data->SetDimensions(img.Width, img.Height, 1);
+  vtkNew<vtkUnsignedCharArray> rgb;
+  rgb->SetNumberOfComponents(3);
+  rgb->SetNumberOfTuples(static_cast<vtkIdType>(img.Width) * img.Height);
+  const std::vector<std::uint8_t> bytes = img.Rgb8();
+  std::copy(bytes.begin(), bytes.end(), rgb->GetPointer(0));
+  data->GetPointData()->SetScalars(rgb);
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetFileName(path.c_str());
+  writer->SetInputData(data);
+  writer->Write();
+  if (writer->GetErrorCode() != 0)
+  {
+    throw DatasetError("cannot write " + path);
+  }
+}
+
+Json BoxJson(const glm::dvec3& lo, const glm::dvec3& hi)
+{
+  return Json::array({ lo.x, hi.x, lo.y, hi.y, lo.z, hi.z });
+}
+
+Json TextureJson(const UIntTexture3D& t)
+{
+  return Json{ { "dims", { t.Dims.x, t.Dims.y, t.Dims.z } }, { "bytes", t.Bytes() } };
+}
+
+bool WantsHelp(const Arguments& a)
+{
+  return a.Has("help");
+}
+
+} // namespace tool
+} // namespace amrsp

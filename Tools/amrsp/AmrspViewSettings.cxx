@@ -1,0 +1,450 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// first: see AmrspJson.h
+#include "AmrspCommandShared.h"
+
+#include "AmrspLighting.h"
+
+#include "amrsp/VertexData.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+namespace amrsp
+{
+namespace tool
+{
+
+namespace
+{
+
+/// Maps the scalars for display (log10 when asked, or automatically for non-negative data whose
+/// positive values span more than 3 decades; zeros map to the smallest positive value) and
+/// returns their range.
+void PrepareScalars(Hierarchy& h, const std::string& scale, double& lo, double& hi)
+{
+  lo = std::numeric_limits<double>::max();
+  hi = -std::numeric_limits<double>::max();
+  double minPositive = std::numeric_limits<double>::max();
+  for (const GridValues& v : h.Values)
+  {
+    for (float x : v)
+    {
+      if (std::isfinite(x))
+      {
+        lo = std::min(lo, static_cast<double>(x));
+        hi = std::max(hi, static_cast<double>(x));
+        if (x > 0.0f)
+        {
+          minPositive = std::min(minPositive, static_cast<double>(x));
+        }
+      }
+    }
+  }
+  if (lo > hi)
+  {
+    throw DatasetError("the array '" + h.ArrayName + "' has no finite value");
+  }
+  bool useLog = scale == "log";
+  if (scale == "auto")
+  {
+    useLog = lo >= 0.0 && hi > 0.0 && hi / minPositive > 1e3;
+  }
+  else if (scale != "log" && scale != "linear")
+  {
+    throw UsageError{ "--scale must be auto, linear or log" };
+  }
+  if (!useLog)
+  {
+    return;
+  }
+  if (!(hi > 0.0))
+  {
+    throw DatasetError("--scale log needs positive values in '" + h.ArrayName + "'");
+  }
+  for (GridValues& v : h.Values)
+  {
+    for (float& x : v)
+    {
+      x = static_cast<float>(std::log10(std::max(static_cast<double>(x), minPositive)));
+    }
+  }
+  h.ArrayName = "log10(" + h.ArrayName + ")";
+  lo = std::log10(minPositive);
+  hi = std::log10(hi);
+  if (h.VertexCentred)
+  {
+    MakeVertexDataContinuous(h); // continuous in the displayed (logarithmic) scalar
+  }
+}
+
+/// A view described explicitly (--view-json). Absent parts keep the conventions.
+struct ExplicitView
+{
+  bool HasCamera = false;
+  Camera View;
+  bool HasTransfer = false;
+  TransferFunction Transfer;
+  bool HasBackground = false;
+  glm::dvec3 Background{ 0.0 };
+  /// The light (world coordinates) and the material of the shading.
+  bool HasLight = false;
+  bool LightPositional = false;
+  glm::dvec3 LightPosition{ 0.0 };
+  glm::dvec3 LightFocalPoint{ 0.0 };
+  glm::dvec3 LightColour{ 1.0 };
+  bool HasMaterial = false;
+  double Ambient = 0.0, Diffuse = 0.0, Specular = 0.0, SpecularPower = 1.0;
+  /// Iso-values in the data's own values (--blend iso).
+  std::vector<double> IsoValues;
+};
+
+glm::dvec3 JsonVector3(const Json& j, const std::string& what)
+{
+  if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() || !j[2].is_number())
+  {
+    throw UsageError{ "--view-json: '" + what + "' must be an array of 3 numbers" };
+  }
+  return glm::dvec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
+}
+
+/// Reads --view-json FILE:
+///   { "camera": { "position": [x,y,z], "focal_point": [x,y,z], "view_up": [x,y,z],
+///                 "view_angle": degrees, "parallel_projection": false, "parallel_scale": s },
+///     "transfer_function": { "rgb_points": [[x,r,g,b], ...], "opacity_points": [[x,a], ...],
+///                            "unit_distance": u },
+///     "background": [r,g,b],
+///     "light": { "position": [x,y,z], "focal_point": [x,y,z], "positional": false,
+///                "colour": [r,g,b] },                       (colour: diffuse colour x intensity)
+///     "material": { "ambient": a, "diffuse": d, "specular": s, "specular_power": p },
+///     "iso_values": [v, ...] }                               (with --blend iso; data values)
+/// Every part is optional. Points are sorted by x; the functions are piecewise linear in the
+/// scalar and clamp beyond their end points (vtkColorTransferFunction in RGB space,
+/// vtkPiecewiseFunction with midpoint 0.5 and sharpness 0).
+ExplicitView ReadViewJson(const std::string& path)
+{
+  std::ifstream in(path);
+  if (!in)
+  {
+    throw UsageError{ "--view-json: cannot open '" + path + "'" };
+  }
+  Json j;
+  try
+  {
+    j = Json::parse(in);
+  }
+  catch (const std::exception& e)
+  {
+    throw UsageError{ "--view-json: '" + path + "' is not valid JSON: " + e.what() };
+  }
+  if (!j.is_object())
+  {
+    throw UsageError{ "--view-json: '" + path + "' must hold a JSON object" };
+  }
+  ExplicitView v;
+  try
+  {
+    if (j.contains("camera"))
+    {
+      const Json& c = j.at("camera");
+      v.HasCamera = true;
+      v.View.Position = JsonVector3(c.at("position"), "camera.position");
+      v.View.FocalPoint = JsonVector3(c.at("focal_point"), "camera.focal_point");
+      v.View.ViewUp = JsonVector3(c.at("view_up"), "camera.view_up");
+      v.View.ViewAngle = c.value("view_angle", 30.0);
+      v.View.Parallel = c.value("parallel_projection", false);
+      v.View.ParallelScale = c.value("parallel_scale", 1.0);
+      if (!(glm::length(v.View.Position - v.View.FocalPoint) > 0.0) ||
+        !(glm::length(v.View.ViewUp) > 0.0) || !(v.View.ViewAngle > 0.0) ||
+        !(v.View.ViewAngle < 180.0) || !(v.View.ParallelScale > 0.0))
+      {
+        throw UsageError{ "--view-json: the camera is degenerate (position at the focal point, "
+                          "zero view-up, or a view angle or parallel scale out of range)" };
+      }
+    }
+    if (j.contains("transfer_function"))
+    {
+      const Json& t = j.at("transfer_function");
+      v.HasTransfer = true;
+      for (const Json& p : t.at("rgb_points"))
+      {
+        if (!p.is_array() || p.size() != 4)
+        {
+          throw UsageError{ "--view-json: every rgb_points entry must be [x, r, g, b]" };
+        }
+        v.Transfer.Color.push_back(
+          { p[0].get<double>(), { p[1].get<double>(), p[2].get<double>(), p[3].get<double>() } });
+      }
+      for (const Json& p : t.at("opacity_points"))
+      {
+        if (!p.is_array() || p.size() != 2)
+        {
+          throw UsageError{ "--view-json: every opacity_points entry must be [x, a]" };
+        }
+        v.Transfer.Opacity.push_back({ p[0].get<double>(), p[1].get<double>() });
+      }
+      if (v.Transfer.Color.empty() || v.Transfer.Opacity.empty())
+      {
+        throw UsageError{ "--view-json: rgb_points and opacity_points must not be empty" };
+      }
+      std::stable_sort(v.Transfer.Color.begin(), v.Transfer.Color.end(),
+        [](const TransferFunction::ColorPoint& a, const TransferFunction::ColorPoint& b)
+        { return a.X < b.X; });
+      std::stable_sort(v.Transfer.Opacity.begin(), v.Transfer.Opacity.end(),
+        [](const TransferFunction::OpacityPoint& a, const TransferFunction::OpacityPoint& b)
+        { return a.X < b.X; });
+      v.Transfer.UnitDistance = t.value("unit_distance", 0.0); // 0: the usual default
+    }
+    if (j.contains("light"))
+    {
+      const Json& l = j.at("light");
+      v.HasLight = true;
+      v.LightPosition = JsonVector3(l.at("position"), "light.position");
+      v.LightFocalPoint = JsonVector3(l.at("focal_point"), "light.focal_point");
+      v.LightPositional = l.value("positional", false);
+      v.LightColour = l.contains("colour") ? JsonVector3(l.at("colour"), "light.colour")
+                                           : glm::dvec3(1.0);
+    }
+    if (j.contains("material"))
+    {
+      const Json& m = j.at("material");
+      v.HasMaterial = true;
+      v.Ambient = m.at("ambient").get<double>();
+      v.Diffuse = m.at("diffuse").get<double>();
+      v.Specular = m.at("specular").get<double>();
+      v.SpecularPower = m.at("specular_power").get<double>();
+    }
+    if (j.contains("iso_values"))
+    {
+      for (const Json& x : j.at("iso_values"))
+      {
+        v.IsoValues.push_back(x.get<double>());
+      }
+      if (v.IsoValues.empty() || v.IsoValues.size() > static_cast<std::size_t>(MaxIsoValues))
+      {
+        throw UsageError{ "--view-json: iso_values takes 1 to 8 values" };
+      }
+    }
+    if (j.contains("background"))
+    {
+      v.HasBackground = true;
+      v.Background = JsonVector3(j.at("background"), "background");
+    }
+  }
+  catch (const Json::exception& e)
+  {
+    throw UsageError{ "--view-json: '" + path + "': " + e.what() };
+  }
+  return v;
+}
+
+/// The light, material and iso-values of a --view-json file override the conventions.
+void ApplyExplicitLighting(const ExplicitView& v, const Arguments& a, RenderSettings& s)
+{
+  if (v.HasLight)
+  {
+    if (a.Has("light"))
+    {
+      throw UsageError{ "--light cannot be combined with a --view-json light" };
+    }
+    s.Light.Headlight = false;
+    s.Light.Positional = v.LightPositional;
+    s.Light.Position = v.LightPosition;
+    s.Light.FocalPoint = v.LightFocalPoint;
+    s.Light.Colour = v.LightColour;
+  }
+  if (v.HasMaterial)
+  {
+    s.Light.Ambient = v.Ambient;
+    s.Light.Diffuse = v.Diffuse;
+    s.Light.Specular = v.Specular;
+    s.Light.SpecularPower = v.SpecularPower;
+  }
+  if (!v.IsoValues.empty())
+  {
+    if (s.Blend != BlendMode::IsoSurface || a.Has("iso"))
+    {
+      throw UsageError{ "--view-json iso_values need --blend iso and no --iso" };
+    }
+    s.IsoValues = v.IsoValues;
+  }
+}
+
+
+} // namespace
+
+RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range)
+{
+  ExplicitView explicitView;
+  if (a.Has("view-json"))
+  {
+    explicitView = ReadViewJson(a.Get("view-json", ""));
+    if (explicitView.HasCamera && (a.Has("azimuth") || a.Has("elevation") || a.Has("zoom")))
+    {
+      throw UsageError{ "--azimuth, --elevation and --zoom cannot change a --view-json camera" };
+    }
+    if (explicitView.HasTransfer && a.Has("tf"))
+    {
+      throw UsageError{ "--tf cannot be combined with a --view-json transfer function" };
+    }
+  }
+  RenderSettings s;
+  const std::string size = a.Get("size", "512x512");
+  const std::size_t x = size.find('x');
+  try
+  {
+    if (x == std::string::npos)
+    {
+      throw std::invalid_argument(size);
+    }
+    s.Width = std::stoi(size.substr(0, x));
+    s.Height = std::stoi(size.substr(x + 1));
+  }
+  catch (const std::exception&)
+  {
+    throw UsageError{ "--size expects WxH, got '" + size + "'" };
+  }
+  if (s.Width < 1 || s.Height < 1 || s.Width > 16384 || s.Height > 16384)
+  {
+    throw UsageError{ "--size must be between 1x1 and 16384x16384" };
+  }
+  glm::dvec3 lo, hi;
+  Bounds(h, lo, hi);
+  if (explicitView.HasCamera)
+  {
+    s.View = explicitView.View;
+  }
+  else
+  {
+    s.View = Camera::ResetTo(lo, hi);
+    s.View.Azimuth(a.GetNumber("azimuth", 30.0));
+    s.View.Elevation(a.GetNumber("elevation", 20.0));
+    s.View.OrthogonalizeViewUp();
+    s.View.Zoom(a.GetNumber("zoom", 1.0));
+  }
+  if (explicitView.HasBackground)
+  {
+    s.Background = explicitView.Background;
+  }
+  double vlo, vhi;
+  // an explicit transfer function is written in the data's own values
+  PrepareScalars(h, a.Get("scale", explicitView.HasTransfer ? "linear" : "auto"), vlo, vhi);
+  if (range)
+  {
+    *range = glm::dvec2(vlo, vhi);
+  }
+  const double fileUnit = explicitView.HasTransfer ? explicitView.Transfer.UnitDistance : 0.0;
+  const double unit =
+    a.GetNumber("unit-distance", fileUnit > 0.0 ? fileUnit : glm::length(hi - lo) / 100.0);
+  if (!(unit > 0.0))
+  {
+    throw UsageError{ "--unit-distance must be positive" };
+  }
+  if (explicitView.HasTransfer)
+  {
+    s.Transfer = explicitView.Transfer;
+    s.Transfer.UnitDistance = unit;
+  }
+  else
+  {
+    try
+    {
+      s.Transfer = TransferFunction::Preset(a.Get("tf", "default"), vlo, vhi, unit);
+    }
+    catch (const std::invalid_argument& e)
+    {
+      throw UsageError{ e.what() };
+    }
+  }
+  s.SampleDistanceFactor = a.GetNumber("sample-factor", 1.0);
+  s.ReferenceSampleFactor = a.GetNumber("reference-sample-factor", 0.5);
+  if (!(s.SampleDistanceFactor > 0.0) || !(s.ReferenceSampleFactor > 0.0))
+  {
+    throw UsageError{ "sample factors must be positive" };
+  }
+  s.LodThresholdPixels = static_cast<float>(a.GetNumber("lod", 0.0));
+  const std::string blend = a.Get("blend", "composite");
+  if (blend == "composite")
+  {
+    s.Blend = BlendMode::Composite;
+  }
+  else if (blend == "maximum")
+  {
+    s.Blend = BlendMode::Maximum;
+  }
+  else if (blend == "minimum")
+  {
+    s.Blend = BlendMode::Minimum;
+  }
+  else if (blend == "average")
+  {
+    s.Blend = BlendMode::Average;
+  }
+  else if (blend == "iso")
+  {
+    s.Blend = BlendMode::IsoSurface;
+  }
+  else
+  {
+    throw UsageError{ "--blend must be composite, maximum, minimum, average or iso" };
+  }
+  ApplyLightingOptions(s, a, vlo, vhi);
+  ApplyExplicitLighting(explicitView, a, s);
+  s.Threads = static_cast<int>(a.GetNumber("threads", 0.0));
+  s.OpacityThreshold = a.GetNumber("opacity-threshold", 0.999);
+  if (!(s.OpacityThreshold >= 0.0 && s.OpacityThreshold <= 1.0))
+  {
+    throw UsageError{ "--opacity-threshold must be between 0 and 1" };
+  }
+  const std::string skipping = a.Get("empty-space-skipping", "on");
+  if (skipping != "on" && skipping != "off")
+  {
+    throw UsageError{ "--empty-space-skipping must be on or off" };
+  }
+  s.SkipEmptySpace = skipping == "on";
+  const std::string interpolation = a.Get("interpolation", "nearest");
+  if (interpolation != "nearest" && interpolation != "smooth")
+  {
+    throw UsageError{ "--interpolation must be nearest or smooth" };
+  }
+  s.SmoothCellData = interpolation == "smooth";
+  if (a.Has("crop"))
+  {
+    const std::vector<double> c = a.GetNumbers("crop", "");
+    if (c.size() != 6 || c[0] > c[1] || c[2] > c[3] || c[4] > c[5])
+    {
+      throw UsageError{ "--crop expects X0,X1,Y0,Y1,Z0,Z1 with X0 <= X1, Y0 <= Y1, Z0 <= Z1" };
+    }
+    s.Clip = true;
+    s.ClipLo = glm::dvec3(c[0], c[2], c[4]);
+    s.ClipHi = glm::dvec3(c[1], c[3], c[5]);
+  }
+  return s;
+}
+
+ViewAngles ViewOf(const Arguments& a)
+{
+  ViewAngles v;
+  v.Azimuth = a.GetNumber("azimuth", 30.0);
+  v.Elevation = a.GetNumber("elevation", 20.0);
+  v.Zoom = a.GetNumber("zoom", 1.0);
+  // a --view-json camera is used as it is (MakeSettings checked that no angle changes it)
+  v.UseSettingsCamera = a.Has("view-json");
+  return v;
+}
+
+/// Largest difference between the VTK camera the mapper used and the tool's own camera, relative
+/// to the camera distance (the view angle in degrees / 180).
+double CameraDifference(const Camera& a, const Camera& b)
+{
+  const double scale = std::max(1e-300, glm::length(b.Position - b.FocalPoint));
+  double d = glm::length(a.Position - b.Position) / scale;
+  d = std::max(d, glm::length(a.FocalPoint - b.FocalPoint) / scale);
+  d = std::max(d, glm::length(glm::normalize(a.ViewUp) - glm::normalize(b.ViewUp)));
+  d = std::max(d, std::abs(a.ViewAngle - b.ViewAngle) / 180.0);
+  return d;
+}
+
+} // namespace tool
+} // namespace amrsp
