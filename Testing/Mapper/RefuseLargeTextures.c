@@ -16,8 +16,9 @@ typedef void (*TexImage3D)(unsigned int target, int level, int internalFormat, i
   int height, int depth, int border, unsigned int format, unsigned int type, const void* pixels);
 typedef unsigned int (*GetError)(void);
 
-/* Tells a test that the library is loaded, and whether VTK took glTexImage3D from it (VTK
- * loading OpenGL through dlsym, as its runtime OSMesa loader does, bypasses the preload). */
+/* Tells a test that the library is loaded, and whether VTK took glTexImage3D from it: VTK 9.1
+ * and 9.2 (GLEW) and 9.3 on GLX do; VTK's run-time EGL and OSMesa loaders (9.4 on) resolve
+ * OpenGL with dlsym, past the preload. */
 int amrsp_refuse_large_textures_loaded = 1;
 int amrsp_refuse_large_textures_active = 0;
 

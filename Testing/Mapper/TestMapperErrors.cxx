@@ -368,9 +368,10 @@ void TestOutOfMemory(Scene& scene)
     static_cast<const int*>(dlsym(RTLD_DEFAULT, "amrsp_refuse_large_textures_active"));
   if (!active || !*active)
   {
-    // VTK's runtime OSMesa loader resolves OpenGL with dlsym, past any preload
-    std::cout << "  note    out of GPU memory: not checked here, VTK did not load glTexImage3D "
-                 "through an interposable loader (OSMesa loaded at run time)\n";
+    // VTK's run-time loaders (EGL and OSMesa from VTK 9.4 on) resolve OpenGL with dlsym, past
+    // any preload; GLEW (VTK 9.1, 9.2) and glad on GLX (9.3) take it from glXGetProcAddress
+    std::cout << "  note    out of GPU memory: not checked here, VTK loaded glTexImage3D past the "
+                 "preload (its run-time EGL or OSMesa loader)\n";
     return;
   }
   vtkSmartPointer<vtkOverlappingAMR> amr = GoodAMR();
