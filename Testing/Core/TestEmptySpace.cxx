@@ -3,6 +3,7 @@
 // ranges, the transparency tests (exact and tabulated), images unchanged by skipping, bounded
 // by the threshold for early termination, and counters that show the work really went away.
 #include "amrsp/EmptySpace.h"
+#include "amrsp/ImageDifference.h"
 #include "amrsp/KdTree.h"
 #include "amrsp/KdTreeEncoding.h"
 #include "amrsp/KdTreeLayout.h"
@@ -273,13 +274,7 @@ TEST(EmptySpace, SkippingNeverChangesTheImageAndSkipsWork)
 /// Largest difference of one 8-bit channel.
 int MaxChannelDifference(const Image& a, const Image& b)
 {
-  const std::vector<std::uint8_t> x = a.Rgb8(), y = b.Rgb8();
-  int worst = 0;
-  for (std::size_t i = 0; i < x.size(); ++i)
-  {
-    worst = std::max(worst, std::abs(static_cast<int>(x[i]) - static_cast<int>(y[i])));
-  }
-  return worst;
+  return Compare(a, b).Largest;
 }
 
 TEST(EarlyRayTermination, BoundedByTheThresholdInBothIntegrators)

@@ -21,6 +21,8 @@
 
 #include "MapperTestHelpers.h"
 
+#include "amrsp/Render.h"
+
 #include "vtkSinglePassAMRVolumeMapper.h"
 
 #include "vtkAMRBox.h"
@@ -209,16 +211,6 @@ struct Scene
   }
 };
 
-double Rmse(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b)
-{
-  double sum = 0.0;
-  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i)
-  {
-    sum += (double(a[i]) - double(b[i])) * (double(a[i]) - double(b[i]));
-  }
-  return a.size() == b.size() && !a.empty() ? std::sqrt(sum / a.size()) : 1e9;
-}
-
 std::string Percent(double share)
 {
   return std::to_string(static_cast<int>(std::lround(100.0 * share))) + " %";
@@ -292,7 +284,7 @@ void TestInputs(Scene& scene)
   const std::vector<unsigned char> levelZero = scene.Pixels();
   ExpectImage(scene, GoodAMR(), 0.05, "the good hierarchy after these");
   // the same field sampled segment by segment (the block's faces split the rays)
-  const double same = Rmse(withLevel1, levelZero);
+  const double same = amrsp::Rmse8(withLevel1, levelZero);
   Check(ratioOneError.empty() && ratioOne > 0.05 && same < 0.8,
     "a refinement ratio of 1 (the level-1 block holds the level-0 values): rendered on " +
       Percent(ratioOne) + " of the pixels, RMSE " + std::to_string(same) +
@@ -301,7 +293,7 @@ void TestInputs(Scene& scene)
   const double ratioOneChanged = scene.Render(MakeAMR(8, { 1, 1 },
     { { 0, { 0, 0, 0 }, { 8, 8, 8 } }, { 1, { 2, 2, 2 }, { 4, 4, 4 } } },
     [](int level, double x, double y, double z) { return level == 1 ? 0.0 : 2.0 * Blob(x, y, z); }));
-  const double changed = Rmse(scene.Pixels(), levelZero);
+  const double changed = amrsp::Rmse8(scene.Pixels(), levelZero);
   Check(scene.Error().empty() && changed > 5.0 && ratioOneChanged > 0.0,
     "a refinement ratio of 1, the level-1 block empty (0): RMSE " + std::to_string(changed) +
       " to level 0 alone (must exceed 5)");
