@@ -377,28 +377,20 @@ bool FileChecksOn()
   return !(skip && std::string(skip) == "1");
 }
 
-/// `requested`, or the first cell (else point) array of the first block that has one.
+/// `requested`, or the array the conversion renders by default (vtkAMRCoreConversion: the
+/// first cell array, else the first point array; never vtkGhostType).
 std::string FirstArrayName(vtkOverlappingAMR* amr, const std::string& requested)
 {
   if (!requested.empty())
   {
     return requested;
   }
-  for (unsigned int l = 0; l < amr->GetNumberOfLevels(); ++l)
+  for (bool points : { false, true })
   {
-    for (unsigned int i = 0; i < amr->GetNumberOfDataSets(l); ++i)
+    const std::vector<std::string> names = vtkAMRCoreConversion::ArrayNames(amr, points);
+    if (!names.empty())
     {
-      if (vtkUniformGrid* grid = amr->GetDataSet(l, i))
-      {
-        for (vtkFieldData* fields : { static_cast<vtkFieldData*>(grid->GetCellData()),
-               static_cast<vtkFieldData*>(grid->GetPointData()) })
-        {
-          if (fields->GetNumberOfArrays() > 0 && fields->GetAbstractArray(0)->GetName())
-          {
-            return fields->GetAbstractArray(0)->GetName();
-          }
-        }
-      }
+      return names.front();
     }
   }
   return "";
