@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkMultiPassAMRVolumeMapper.h"
 
-#include "vtkAMRRenderingUtilities.h"
+#include "vtkSinglePassAMRRenderingUtilities.h"
 
 #include "amrsp/Hierarchy.h"
 #include "amrsp/KdTree.h"
@@ -25,7 +25,7 @@
 #include "vtkTextureObject.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
-#include "vtkAMROpenGL.h"
+#include "vtkSinglePassAMROpenGL.h"
 
 // GLSL embedded at build time (vtk_encode_string)
 #include "amrsp_MultiPassAMRComposite_frag_glsl.h"
@@ -40,7 +40,7 @@
 #include <string>
 #include <vector>
 
-namespace utilities = vtkAMRRenderingUtilities;
+namespace utilities = vtkSinglePassAMRRenderingUtilities;
 
 namespace
 {
@@ -139,7 +139,7 @@ public:
   int UploadLimit = 0; // MaximumAtlasSize of the last upload attempt
   vtkTimeStamp UploadTime;
   vtkSmartPointer<vtkTextureObject> Atlas;
-  vtkAMRRenderingUtilities::DepthCopy Depth;
+  vtkSinglePassAMRRenderingUtilities::DepthCopy Depth;
   vtkSmartPointer<vtkTextureObject> Accumulation; // RGBA32F, viewport-sized
   vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffer;
   utilities::TransferFunctionTable Transfer;

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSinglePassAMRVolumeMapper.h"
 
-#include "vtkAMRCoreConversion.h"
-#include "vtkAMRRenderingUtilities.h"
+#include "vtkSinglePassAMRConversion.h"
+#include "vtkSinglePassAMRRenderingUtilities.h"
 
 #include "amrsp/Hierarchy.h"
 #include "amrsp/BrickAtlas.h"
@@ -37,7 +37,7 @@
 #include "vtkTextureObject.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
-#include "vtkAMROpenGL.h"
+#include "vtkSinglePassAMROpenGL.h"
 
 // GLSL embedded at build time (vtk_encode_string)
 #include "amrsp_KdTreeLayout_glsl.h"
@@ -113,8 +113,8 @@ double MinEdge(const glm::dvec3& v)
   return std::min(v.x, std::min(v.y, v.z));
 }
 
-using vtkAMRRenderingUtilities::RequestedArray;
-using vtkAMRRenderingUtilities::TransferTableSize;
+using vtkSinglePassAMRRenderingUtilities::RequestedArray;
+using vtkSinglePassAMRRenderingUtilities::TransferTableSize;
 
 } // namespace
 
@@ -185,7 +185,7 @@ public:
   vtkSmartPointer<vtkTextureObject> HandlesTexture; // bindless: RG32UI, one handle per brick
   std::vector<vtkSmartPointer<vtkTextureObject>> Bricks;
   std::vector<GLuint64> ResidentHandles;
-  vtkAMRRenderingUtilities::DepthCopy Depth;
+  vtkSinglePassAMRRenderingUtilities::DepthCopy Depth;
   vtkSmartPointer<vtkTextureObject> BrickBoxes; // RG32UI, per brick and axis: grid cells lo, hi
   // empty-space skipping: R8, indexed like the data nodes, 255 where the node's value range is
   // transparent under the transfer table of FlagsTableTime (recomputed when it is re-tabulated)
@@ -203,7 +203,7 @@ public:
   int BuiltPackLimit = -1;
 
   // transfer function table
-  vtkAMRRenderingUtilities::TransferFunctionTable Transfer;
+  vtkSinglePassAMRRenderingUtilities::TransferFunctionTable Transfer;
 
   // shader
   std::string FailedFragmentSource; // do not retry a program that failed to compile
@@ -238,9 +238,9 @@ public:
       return;
     }
     renWin->MakeCurrent();
-    this->HasBindless = vtkAMROpenGL::HasExtension("GL_ARB_bindless_texture");
-    this->HasNVShader5 = vtkAMROpenGL::HasExtension("GL_NV_gpu_shader5");
-    this->HasBallot = vtkAMROpenGL::HasExtension("GL_ARB_shader_ballot");
+    this->HasBindless = vtkSinglePassAMROpenGL::HasExtension("GL_ARB_bindless_texture");
+    this->HasNVShader5 = vtkSinglePassAMROpenGL::HasExtension("GL_NV_gpu_shader5");
+    this->HasBallot = vtkSinglePassAMROpenGL::HasExtension("GL_ARB_shader_ballot");
     const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     this->MaxBindlessTextures =
       renderer && std::string(renderer).find("zink") != std::string::npos ? 1023 : -1;
@@ -337,12 +337,12 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
   ++this->NumberOfBuilds;
   try
   {
-    vtkAMRCoreConversion::ArraySelection selection;
+    vtkSinglePassAMRConversion::ArraySelection selection;
     selection.Name = array;
     selection.Component = component;
     amrsp::Hierarchy h;
     std::string error;
-    if (!vtkAMRCoreConversion::FromOverlappingAMR(amr, selection, h, error))
+    if (!vtkSinglePassAMRConversion::FromOverlappingAMR(amr, selection, h, error))
     {
       this->BuildError = error;
       return false;
@@ -476,7 +476,7 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::AtlasFits(vtkOpenGLRenderWindow
     why = this->PackingError;
     return false;
   }
-  return vtkAMRRenderingUtilities::AtlasFitsContext(renWin, this->AtlasDims, atlasLimit, why);
+  return vtkSinglePassAMRRenderingUtilities::AtlasFitsContext(renWin, this->AtlasDims, atlasLimit, why);
 }
 
 //------------------------------------------------------------------------------
@@ -812,7 +812,7 @@ void vtkSinglePassAMRVolumeMapper::GetBounds(double bounds[6])
 //------------------------------------------------------------------------------
 bool vtkSinglePassAMRVolumeMapper::IsRenderSupported(vtkRenderWindow* window, std::string* why)
 {
-  return vtkAMRRenderingUtilities::IsRenderSupported(window, why);
+  return vtkSinglePassAMRRenderingUtilities::IsRenderSupported(window, why);
 }
 
 //------------------------------------------------------------------------------
@@ -1079,9 +1079,9 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
 
   // ---- the view: viewport, model <-> normalized device matrices and the rays' origin
-  vtkAMRRenderingUtilities::ViewGeometry view;
+  vtkSinglePassAMRRenderingUtilities::ViewGeometry view;
   std::string viewError;
-  if (!vtkAMRRenderingUtilities::ComputeViewGeometry(ren, vol, view, viewError))
+  if (!vtkSinglePassAMRRenderingUtilities::ComputeViewGeometry(ren, vol, view, viewError))
   {
     fail(viewError);
     return;
@@ -1142,7 +1142,7 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   // ---- depth of the opaque geometry drawn so far
   if (useDepth)
   {
-    vtkAMRRenderingUtilities::CopyDepthBuffer(renWin, view, in.Depth);
+    vtkSinglePassAMRRenderingUtilities::CopyDepthBuffer(renWin, view, in.Depth);
   }
 
   // ---- empty-space skipping: one flag per data node, whether its value range is transparent
@@ -1244,7 +1244,7 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   program->SetUniform3f("amrspRootHi", &in.RootHi.x);
   glm::vec3 clipLo, clipHi;
   std::string cropWarning;
-  vtkAMRRenderingUtilities::ClipBox(
+  vtkSinglePassAMRRenderingUtilities::ClipBox(
     this, in.Origin, in.Spacing0, in.RootLo, in.RootHi, clipLo, clipHi, cropWarning);
   if (!cropWarning.empty())
   {

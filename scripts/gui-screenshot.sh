@@ -7,7 +7,7 @@
 set -Eeuo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 out=${1:-$repo/docs/paraview-gui.png}
-plugin="$repo/build/paraview/lib/paraview-5.11/plugins/AMRSinglePass/AMRSinglePass.so"
+plugin="$repo/build/paraview/lib/paraview-5.11/plugins/SinglePassAMRPlugin/SinglePassAMRPlugin.so"
 [ -f "$plugin" ] || { echo "gui-screenshot: build the plugin first (scripts/build.sh paraview)" >&2; exit 1; }
 display=${AMRSP_SCREENSHOT_DISPLAY:-:97}
 n=${display#:}

@@ -3,7 +3,7 @@
 
 #include "vtkAMRBox.h"
 #include "vtkAMRInformation.h"
-#include "vtkAMRCoreConversion.h"
+#include "vtkSinglePassAMRConversion.h"
 #include "vtkCellData.h"
 #include "vtkCharArray.h"
 #include "vtkCommunicator.h"
@@ -180,10 +180,10 @@ vtkSmartPointer<vtkOverlappingAMR> vtkSinglePassAMRRegionSplit::SplitByRegion(
   // 1. the metadata must be the same on every rank; then every rank computes the same regions
   amrsp::Hierarchy boxes;
   std::string conversionError;
-  vtkAMRCoreConversion::ArraySelection structureOnly;
+  vtkSinglePassAMRConversion::ArraySelection structureOnly;
   structureOnly.CopyValues = false;
   const bool usable = local && local->GetNumberOfLevels() > 0 &&
-    vtkAMRCoreConversion::FromOverlappingAMR(local, structureOnly, boxes, conversionError) &&
+    vtkSinglePassAMRConversion::FromOverlappingAMR(local, structureOnly, boxes, conversionError) &&
     !boxes.RootCells().Empty();
   const long long mine[2] = { usable ? 1 : 0, usable ? MetadataDigest(local) : 0 };
   long long lowest[2] = { 0, 0 };

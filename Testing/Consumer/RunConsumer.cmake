@@ -1,5 +1,5 @@
 # ctest -P script: installs the build tree into a scratch prefix, then configures, builds and runs
-# the consumer project against that installation (find_package(AMRSinglePass)).
+# the consumer project against that installation (find_package(SinglePassAMR)).
 foreach (v BUILD_DIR SOURCE_DIR VTK_DIR)
   if (NOT DEFINED ${v})
     message(FATAL_ERROR "${v} is required")

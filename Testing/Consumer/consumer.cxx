@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Uses the installed AMRSP::SinglePassAMR module: generates a small synthetic hierarchy.
-#include "vtkAMRCosmoSource.h"
+#include "vtkSinglePassAMRCosmoSource.h"
 #include "vtkNew.h"
 #include "vtkOverlappingAMR.h"
 
@@ -8,7 +8,7 @@
 
 int main()
 {
-  vtkNew<vtkAMRCosmoSource> source;
+  vtkNew<vtkSinglePassAMRCosmoSource> source;
   source->SetNumberOfGrids(40);
   source->SetNumberOfLevels(3);
   source->SetNumberOfCells(100000);
@@ -20,6 +20,6 @@ int main()
     return 1;
   }
   std::cout << "consumer: " << amr->GetNumberOfLevels() << " levels, "
-            << amr->GetTotalNumberOfBlocks() << " blocks from the installed AMRSinglePass\n";
+            << amr->GetTotalNumberOfBlocks() << " blocks from the installed SinglePassAMR\n";
   return 0;
 }

@@ -48,7 +48,7 @@ def enzo_transfer(lo, hi):
 
 def preset_transfer(lo, hi):
     """amrsp's "default" preset over the data range: cool-to-warm colours, opacity 0 / 0.05 /
-    0.4 / 0.9 at 0 / 0.3 / 0.7 / 1 of the range (Mapper/Core/src/TransferFunction.cxx)."""
+    0.4 / 0.9 at 0 / 0.3 / 0.7 / 1 of the range (Core/src/TransferFunction.cxx)."""
     at = lambda f: lo + f * (hi - lo)
     rgb = [[at(0.0), 0.23, 0.30, 0.75], [at(0.5), 0.87, 0.87, 0.87], [at(1.0), 0.71, 0.02, 0.15]]
     opacity = [[at(0.0), 0.0], [at(0.3), 0.05], [at(0.7), 0.4], [at(1.0), 0.9]]

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // vtkOverlappingAMR -> amrsp::Hierarchy: ghost layers, ratios, bad input.
-#include "vtkAMRCoreConversion.h"
+#include "vtkSinglePassAMRConversion.h"
 
 #include "vtkAMRBox.h"
 #include "vtkAMRUtilities.h"
@@ -66,10 +66,10 @@ vtkNew<vtkOverlappingAMR> MakeAMR(int ghost, double fineSpacing, int components 
 TEST(Conversion, StripsGhostLayers)
 {
   auto amr = MakeAMR(1, 0.5);
-  vtkAMRCoreConversion::ArraySelection sel;
+  vtkSinglePassAMRConversion::ArraySelection sel;
   amrsp::Hierarchy h;
   std::string error;
-  ASSERT_TRUE(vtkAMRCoreConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
+  ASSERT_TRUE(vtkSinglePassAMRConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
   ASSERT_EQ(h.Grids.size(), 2u);
   EXPECT_EQ(h.ArrayName, "phi");
   EXPECT_EQ(h.RefinementRatio[1], glm::ivec3(2));
@@ -84,13 +84,13 @@ TEST(Conversion, StripsGhostLayers)
 TEST(Conversion, VectorMagnitudeAndComponent)
 {
   auto amr = MakeAMR(0, 0.5, 2);
-  vtkAMRCoreConversion::ArraySelection sel;
+  vtkSinglePassAMRConversion::ArraySelection sel;
   amrsp::Hierarchy h;
   std::string error;
-  ASSERT_TRUE(vtkAMRCoreConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
+  ASSERT_TRUE(vtkSinglePassAMRConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
   EXPECT_FLOAT_EQ(h.Values[0][3], std::sqrt(3.0f * 3.0f + 4.0f * 4.0f));
   sel.Component = 1;
-  ASSERT_TRUE(vtkAMRCoreConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
+  ASSERT_TRUE(vtkSinglePassAMRConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
   EXPECT_EQ(h.Values[0][3], 4.0f);
 }
 
@@ -111,11 +111,11 @@ TEST(Conversion, PointDataIsVertexCentred)
     }
     g->GetPointData()->AddArray(p);
   }
-  vtkAMRCoreConversion::ArraySelection sel;
+  vtkSinglePassAMRConversion::ArraySelection sel;
   sel.Name = "pressure";
   amrsp::Hierarchy h;
   std::string error;
-  ASSERT_TRUE(vtkAMRCoreConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
+  ASSERT_TRUE(vtkSinglePassAMRConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
   EXPECT_TRUE(h.VertexCentred);
   ASSERT_EQ(h.Values[0].size(), 125u);
   ASSERT_EQ(h.Values[1].size(), 125u);
@@ -142,17 +142,17 @@ TEST(Conversion, IntegerAndDoubleArraysBecomeFloat)
     g->GetCellData()->AddArray(ints);
     g->GetCellData()->AddArray(bytes);
   }
-  vtkAMRCoreConversion::ArraySelection sel;
+  vtkSinglePassAMRConversion::ArraySelection sel;
   amrsp::Hierarchy h;
   std::string error;
   sel.Name = "count";
-  ASSERT_TRUE(vtkAMRCoreConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
+  ASSERT_TRUE(vtkSinglePassAMRConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
   EXPECT_EQ(h.Values[0][9], -63.0f);
   sel.Name = "flag";
-  ASSERT_TRUE(vtkAMRCoreConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
+  ASSERT_TRUE(vtkSinglePassAMRConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
   EXPECT_EQ(h.Values[1][63], 63.0f);
   sel.Name = "phi"; // vtkDoubleArray
-  ASSERT_TRUE(vtkAMRCoreConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
+  ASSERT_TRUE(vtkSinglePassAMRConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
   EXPECT_EQ(h.Values[1][5], 1005.0f);
 }
 
@@ -160,14 +160,14 @@ TEST(Conversion, BadInputGivesOneClearError)
 {
   amrsp::Hierarchy h;
   std::string error;
-  vtkAMRCoreConversion::ArraySelection sel;
-  EXPECT_FALSE(vtkAMRCoreConversion::FromOverlappingAMR(MakeAMR(0, 0.3), sel, h, error));
+  vtkSinglePassAMRConversion::ArraySelection sel;
+  EXPECT_FALSE(vtkSinglePassAMRConversion::FromOverlappingAMR(MakeAMR(0, 0.3), sel, h, error));
   EXPECT_NE(error.find("unsupported refinement"), std::string::npos) << error;
   sel.Name = "rho";
-  EXPECT_FALSE(vtkAMRCoreConversion::FromOverlappingAMR(MakeAMR(0, 0.5), sel, h, error));
+  EXPECT_FALSE(vtkSinglePassAMRConversion::FromOverlappingAMR(MakeAMR(0, 0.5), sel, h, error));
   EXPECT_NE(error.find("no cell array named 'rho' (available: phi)"), std::string::npos) << error;
   vtkNew<vtkOverlappingAMR> empty;
-  EXPECT_FALSE(vtkAMRCoreConversion::FromOverlappingAMR(empty, sel, h, error));
+  EXPECT_FALSE(vtkSinglePassAMRConversion::FromOverlappingAMR(empty, sel, h, error));
   EXPECT_NE(error.find("no blocks"), std::string::npos) << error;
 }
 
@@ -189,9 +189,9 @@ TEST(Conversion, BlankingMatchesVtkBlankCells)
     h.Values.emplace_back(static_cast<std::size_t>(g.Cells.Cells()), 1.0f);
   }
   vtkNew<vtkOverlappingAMR> ours;
-  vtkAMRCoreConversion::ToOverlappingAMR(h, ours);
+  vtkSinglePassAMRConversion::ToOverlappingAMR(h, ours);
   vtkNew<vtkOverlappingAMR> vtks;
-  vtkAMRCoreConversion::ToOverlappingAMR(h, vtks);
+  vtkSinglePassAMRConversion::ToOverlappingAMR(h, vtks);
   for (unsigned int l = 0; l < vtks->GetNumberOfLevels(); ++l)
   {
     for (unsigned int i = 0; i < vtks->GetNumberOfDataSets(l); ++i)

@@ -5,7 +5,7 @@
 
 #include "amrsp/SyntheticCosmo.h"
 #include "amrsp/VertexData.h"
-#include "vtkAMRCoreConversion.h"
+#include "vtkSinglePassAMRConversion.h"
 
 #include "vtkAMRBaseReader.h"
 #include "vtkAMREnzoReader.h"
@@ -14,7 +14,7 @@
 #include "vtkAlgorithm.h"
 #include "vtkCellData.h"
 #include "vtkPointData.h"
-#include "vtkAMRCosmoSource.h"
+#include "vtkSinglePassAMRCosmoSource.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOutputWindow.h"
@@ -377,7 +377,7 @@ bool FileChecksOn()
   return !(skip && std::string(skip) == "1");
 }
 
-/// `requested`, or the array the conversion renders by default (vtkAMRCoreConversion: the
+/// `requested`, or the array the conversion renders by default (vtkSinglePassAMRConversion: the
 /// first cell array, else the first point array; never vtkGhostType).
 std::string FirstArrayName(vtkOverlappingAMR* amr, const std::string& requested)
 {
@@ -387,7 +387,7 @@ std::string FirstArrayName(vtkOverlappingAMR* amr, const std::string& requested)
   }
   for (bool points : { false, true })
   {
-    const std::vector<std::string> names = vtkAMRCoreConversion::ArrayNames(amr, points);
+    const std::vector<std::string> names = vtkSinglePassAMRConversion::ArrayNames(amr, points);
     if (!names.empty())
     {
       return names.front();
@@ -538,7 +538,7 @@ LoadedDataset LoadStored(const DatasetRequest& request)
     if (request.NeedVTK)
     {
       out.Amr = vtkSmartPointer<vtkOverlappingAMR>::New();
-      vtkAMRCoreConversion::ToOverlappingAMR(out.Data, out.Amr);
+      vtkSinglePassAMRConversion::ToOverlappingAMR(out.Data, out.Amr);
     }
     out.LoadSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -638,7 +638,7 @@ LoadedDataset LoadStored(const DatasetRequest& request)
     }
   }
 
-  vtkAMRCoreConversion::ArraySelection selection;
+  vtkSinglePassAMRConversion::ArraySelection selection;
   selection.Name = request.Array;
   if (selection.Name.empty() && out.Format == "synthetic:pulse")
   {
@@ -647,7 +647,7 @@ LoadedDataset LoadStored(const DatasetRequest& request)
   selection.Component = request.Component;
   selection.CopyValues = request.NeedValues;
   std::string error;
-  if (!vtkAMRCoreConversion::FromOverlappingAMR(out.Amr, selection, out.Data, error))
+  if (!vtkSinglePassAMRConversion::FromOverlappingAMR(out.Amr, selection, out.Data, error))
   {
     throw DatasetError(error + " (" + spec + ")");
   }

@@ -4,7 +4,7 @@
 #include "AmrspDriver.h"
 #include "AmrspLighting.h"
 
-#include "vtkAMRCoreConversion.h"
+#include "vtkSinglePassAMRConversion.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
 #include "vtkSmartPointer.h"
 #include "vtkVolumeMapper.h"
@@ -121,7 +121,7 @@ GpuRenderer::GpuRenderer(const std::string& method, vtkVolumeMapper* mapper, con
   }
   I->Width = s.Width;
   I->Height = s.Height;
-  vtkAMRCoreConversion::ToOverlappingAMR(h, I->Amr);
+  vtkSinglePassAMRConversion::ToOverlappingAMR(h, I->Amr);
 
   // the same piecewise-linear functions as amrsp::TransferFunction (clamped beyond the ends)
   for (const TransferFunction::ColorPoint& p : s.Transfer.Color)

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "vtkAMRCoreConversion.h"
+#include "vtkSinglePassAMRConversion.h"
 
 #include "amrsp/RefinedCells.h"
 #include "amrsp/VertexData.h"
@@ -49,12 +49,12 @@ std::string Join(const std::vector<std::string>& names)
 }
 } // namespace
 
-std::vector<std::string> vtkAMRCoreConversion::CellArrayNames(vtkOverlappingAMR* amr)
+std::vector<std::string> vtkSinglePassAMRConversion::CellArrayNames(vtkOverlappingAMR* amr)
 {
   return ArrayNames(amr, false);
 }
 
-std::vector<std::string> vtkAMRCoreConversion::ArrayNames(vtkOverlappingAMR* amr, bool points)
+std::vector<std::string> vtkSinglePassAMRConversion::ArrayNames(vtkOverlappingAMR* amr, bool points)
 {
   std::vector<std::string> names;
   if (vtkUniformGrid* g = FirstBlock(amr))
@@ -73,7 +73,7 @@ std::vector<std::string> vtkAMRCoreConversion::ArrayNames(vtkOverlappingAMR* amr
   return names;
 }
 
-bool vtkAMRCoreConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
+bool vtkSinglePassAMRConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
   const ArraySelection& selection, amrsp::Hierarchy& out, std::string& error)
 {
   out = amrsp::Hierarchy();
@@ -269,7 +269,7 @@ bool vtkAMRCoreConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
   return true;
 }
 
-void vtkAMRCoreConversion::ToOverlappingAMR(const amrsp::Hierarchy& h, vtkOverlappingAMR* out)
+void vtkSinglePassAMRConversion::ToOverlappingAMR(const amrsp::Hierarchy& h, vtkOverlappingAMR* out)
 {
   const int levels = h.NumberOfLevels();
   std::vector<int> blocksPerLevel(static_cast<std::size_t>(levels), 0);

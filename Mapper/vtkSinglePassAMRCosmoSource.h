@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @class   vtkAMRCosmoSource
+ * @class   vtkSinglePassAMRCosmoSource
  * @brief   synthetic cosmology-like vtkOverlappingAMR for tests and benchmarks
  *
  * Produces a properly nested hierarchy with refinement ratio 2 and several root grids that
@@ -11,17 +11,17 @@
  *
  * The domain is the unit cube; level-0 spacing is 1 / (root cells per axis).
  */
-#ifndef vtkAMRCosmoSource_h
-#define vtkAMRCosmoSource_h
+#ifndef vtkSinglePassAMRCosmoSource_h
+#define vtkSinglePassAMRCosmoSource_h
 
 #include "vtkOverlappingAMRAlgorithm.h"
 #include "vtkSinglePassAMRModule.h" // for export macro
 
-class VTKSINGLEPASSAMR_EXPORT vtkAMRCosmoSource : public vtkOverlappingAMRAlgorithm
+class VTKSINGLEPASSAMR_EXPORT vtkSinglePassAMRCosmoSource : public vtkOverlappingAMRAlgorithm
 {
 public:
-  static vtkAMRCosmoSource* New();
-  vtkTypeMacro(vtkAMRCosmoSource, vtkOverlappingAMRAlgorithm);
+  static vtkSinglePassAMRCosmoSource* New();
+  vtkTypeMacro(vtkSinglePassAMRCosmoSource, vtkOverlappingAMRAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
@@ -49,8 +49,8 @@ public:
   ///@}
 
 protected:
-  vtkAMRCosmoSource();
-  ~vtkAMRCosmoSource() override = default;
+  vtkSinglePassAMRCosmoSource();
+  ~vtkSinglePassAMRCosmoSource() override = default;
 
   int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
@@ -61,8 +61,8 @@ protected:
   int Seed = 1;
 
 private:
-  vtkAMRCosmoSource(const vtkAMRCosmoSource&) = delete;
-  void operator=(const vtkAMRCosmoSource&) = delete;
+  vtkSinglePassAMRCosmoSource(const vtkSinglePassAMRCosmoSource&) = delete;
+  void operator=(const vtkSinglePassAMRCosmoSource&) = delete;
 };
 
 #endif

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "vtkAMRRenderingUtilities.h"
+#include "vtkSinglePassAMRRenderingUtilities.h"
 
-#include "vtkAMRCoreConversion.h"
+#include "vtkSinglePassAMRConversion.h"
 
 #include "amrsp/BrickPacking.h"
 
@@ -21,7 +21,7 @@
 #include "vtkVolume.h"
 #include "vtkVolumeMapper.h"
 #include "vtkVolumeProperty.h"
-#include "vtkAMROpenGL.h"
+#include "vtkSinglePassAMROpenGL.h"
 
 #include <algorithm>
 #include <cmath>
@@ -30,7 +30,7 @@
 #include <sstream>
 #include <utility>
 
-namespace vtkAMRRenderingUtilities
+namespace vtkSinglePassAMRRenderingUtilities
 {
 
 //------------------------------------------------------------------------------
@@ -42,7 +42,7 @@ std::string RequestedArray(vtkOverlappingAMR* amr, int accessMode, const char* n
   }
   if (accessMode == VTK_GET_ARRAY_BY_ID && id >= 0)
   {
-    const std::vector<std::string> names = vtkAMRCoreConversion::CellArrayNames(amr);
+    const std::vector<std::string> names = vtkSinglePassAMRConversion::CellArrayNames(amr);
     if (static_cast<std::size_t>(id) < names.size())
     {
       return names[static_cast<std::size_t>(id)];
@@ -100,11 +100,11 @@ bool BuildPackedHierarchy(vtkOverlappingAMR* amr, const std::string& array, int 
   out = PackedHierarchy();
   try
   {
-    vtkAMRCoreConversion::ArraySelection selection;
+    vtkSinglePassAMRConversion::ArraySelection selection;
     selection.Name = array;
     selection.Component = component;
     amrsp::Hierarchy& h = out.Structure;
-    if (!vtkAMRCoreConversion::FromOverlappingAMR(amr, selection, h, error))
+    if (!vtkSinglePassAMRConversion::FromOverlappingAMR(amr, selection, h, error))
     {
       return false;
     }
@@ -492,4 +492,4 @@ bool IsRenderSupported(vtkRenderWindow* window, std::string* why)
   return true;
 }
 
-} // namespace vtkAMRRenderingUtilities
+} // namespace vtkSinglePassAMRRenderingUtilities

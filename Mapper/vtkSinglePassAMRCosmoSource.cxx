@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "vtkAMRCosmoSource.h"
+#include "vtkSinglePassAMRCosmoSource.h"
 
-#include "vtkAMRCoreConversion.h"
+#include "vtkSinglePassAMRConversion.h"
 #include "vtkDataObject.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -12,20 +12,20 @@
 
 #include <stdexcept>
 
-vtkStandardNewMacro(vtkAMRCosmoSource);
+vtkStandardNewMacro(vtkSinglePassAMRCosmoSource);
 
-vtkAMRCosmoSource::vtkAMRCosmoSource()
+vtkSinglePassAMRCosmoSource::vtkSinglePassAMRCosmoSource()
 {
   this->SetNumberOfInputPorts(0);
 }
 
-int vtkAMRCosmoSource::FillOutputPortInformation(int, vtkInformation* info)
+int vtkSinglePassAMRCosmoSource::FillOutputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkOverlappingAMR");
   return 1;
 }
 
-int vtkAMRCosmoSource::RequestData(
+int vtkSinglePassAMRCosmoSource::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   vtkOverlappingAMR* output = vtkOverlappingAMR::GetData(outputVector, 0);
@@ -42,7 +42,7 @@ int vtkAMRCosmoSource::RequestData(
   try
   {
     const amrsp::Hierarchy h = amrsp::GenerateCosmo(p);
-    vtkAMRCoreConversion::ToOverlappingAMR(h, output);
+    vtkSinglePassAMRConversion::ToOverlappingAMR(h, output);
   }
   catch (const std::exception& e)
   {
@@ -52,7 +52,7 @@ int vtkAMRCosmoSource::RequestData(
   return 1;
 }
 
-void vtkAMRCosmoSource::PrintSelf(ostream& os, vtkIndent indent)
+void vtkSinglePassAMRCosmoSource::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "NumberOfGrids: " << this->NumberOfGrids << "\n";

@@ -1,24 +1,26 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @class   vtkAMRCoreConversion
+ * @class   vtkSinglePassAMRConversion
  * @brief   converts between vtkOverlappingAMR and the core's amrsp::Hierarchy
  *
- * Private to the module (the header exposes core types). vtkOverlappingAMR boxes are inclusive
+ * Not installed (the header exposes core types), but exported: the amrsp tool and the ParaView
+ * representation, which link the core themselves, convert through it. vtkOverlappingAMR boxes are inclusive
  * cell ranges in each level's index space relative to the global origin; the core uses half-open
  * boxes in the same index spaces. Refinement ratios are recovered per axis from the level
  * spacings, so anisotropic and per-level ratios survive; a non-integer ratio is an error.
  */
-#ifndef vtkAMRCoreConversion_h
-#define vtkAMRCoreConversion_h
+#ifndef vtkSinglePassAMRConversion_h
+#define vtkSinglePassAMRConversion_h
 
 #include "amrsp/Hierarchy.h"
+#include "vtkSinglePassAMRModule.h" // for export macro
 
 #include <string>
 #include <vector>
 
 class vtkOverlappingAMR;
 
-class vtkAMRCoreConversion
+class VTKSINGLEPASSAMR_EXPORT vtkSinglePassAMRConversion
 {
 public:
   struct ArraySelection

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @file    vtkAMRRenderingUtilities.h
+ * @file    vtkSinglePassAMRRenderingUtilities.h
  * @brief   pieces shared by the AMR volume mappers (private to the module)
  *
  * What the single-pass and the multi-pass mapper have in common and must keep identical so that
@@ -14,8 +14,8 @@
  * coordinates are the volume's own (before its vtkProp3D matrix); "finest cells" are cells of the
  * hierarchy's finest level, in which kD-tree regions are exact integers.
  */
-#ifndef vtkAMRRenderingUtilities_h
-#define vtkAMRRenderingUtilities_h
+#ifndef vtkSinglePassAMRRenderingUtilities_h
+#define vtkSinglePassAMRRenderingUtilities_h
 
 #include "amrsp/BrickAtlas.h"
 #include "amrsp/Hierarchy.h"
@@ -40,7 +40,7 @@ class vtkVolumeMapper;
 class vtkVolumeProperty;
 class vtkWindow;
 
-namespace vtkAMRRenderingUtilities
+namespace vtkSinglePassAMRRenderingUtilities
 {
 
 /// Entries of the RGBA transfer-function table (linear filtering between entries).
@@ -187,6 +187,6 @@ void CopyDepthBuffer(vtkOpenGLRenderWindow* renWin, const ViewGeometry& view, De
 /// float colour attachments, depth clamping). When it does not, `why` says what is missing.
 bool IsRenderSupported(vtkRenderWindow* window, std::string* why);
 
-} // namespace vtkAMRRenderingUtilities
+} // namespace vtkSinglePassAMRRenderingUtilities
 
 #endif
