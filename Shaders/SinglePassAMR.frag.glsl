@@ -6,7 +6,7 @@
 // Per fragment: rebuild the ray from gl_FragCoord, walk the encoded kD-tree with kd-restart (each
 // restart descends from the root to the node that contains the ray's current point and ends at the
 // nearest split plane crossed or the node's exit), sample every data segment at its level's rate,
-// and composite front to back. The traversal mirrors Mapper/Core/src/KdTraversal.cxx step by step
+// and composite front to back. The traversal mirrors Core/src/KdTraversal.cxx step by step
 // (same float arithmetic, plane and tie rules) and the sampling mirrors amrsp::RenderKdTree
 // (README, "Sampling rule"); keep the three in sync.
 //
@@ -125,7 +125,7 @@ uniform float amrspPixelSizePerDistance; // perspective: model size of a pixel a
 uniform float amrspParallelPixelSize;    // parallel projection: model size of a pixel (> 0)
 
 #if defined(AMRSP_SHADE) || defined(AMRSP_SHADOWS) || AMRSP_BLEND_MODE == 4
-// Shading, shadows and iso-surfaces (the rules of Mapper/Core/include/amrsp/Shading.h).
+// Shading, shadows and iso-surfaces (the rules of Core/include/amrsp/Shading.h).
 #define AMRSP_SHADOW_MAX_STEPS 4096
 #define AMRSP_SHADOW_MIN_TRANSMITTANCE 1.0e-3
 #define AMRSP_ISO_REFINE_STEPS 8
