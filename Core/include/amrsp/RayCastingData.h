@@ -1,0 +1,101 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/// @file
+/// The CPU build of the GPU ray casters (paper, sections 4 and 5), without OpenGL: from a
+/// converted hierarchy to the kD-tree textures, the brick layout of the packed atlas, the level
+/// table the shaders take as uniforms, and the figures the mappers report. The mappers upload the
+/// result; everything here is tested without a GPU.
+///
+/// Units: "index units" are level-0 cell indices (world = Origin + index * Spacing0); "model"
+/// coordinates are the volume's own; "finest cells" are cells of the hierarchy's finest level,
+/// in which kD-tree regions are exact integers.
+
+#include "amrsp/BrickPacking.h"
+#include "amrsp/Hierarchy.h"
+#include "amrsp/KdTree.h"
+#include "amrsp/KdTreeEncoding.h"
+
+#include <glm/glm.hpp>
+
+#include <string>
+#include <vector>
+
+namespace amrsp
+{
+
+/// Base-2 logarithms of `ratios` (all > 0); empty unless every one is a power of two.
+std::vector<int> PowerOfTwoExponents(const std::vector<int>& ratios);
+
+/// k > 0 when `toFinestLog2` (3 per level) says every level refines the one above by 2^k on every
+/// axis, i.e. level l has k (L - 1 - l) on every axis (one level: k = 1), with k (L - 1) < 31;
+/// else 0.
+int UniformRefinementExponent(const std::vector<int>& toFinestLog2);
+
+/// What the shaders need about the levels and the root box, derived exactly from the tree.
+struct LevelTable
+{
+  /// The root box in finest cells (exact); each bound within [-2^30, 2^30].
+  glm::ivec3 RootLoFinest{ 0 };
+  glm::ivec3 RootHiFinest{ 0 };
+  /// Finest cells per cell of each level, 3 per level; their base-2 logarithms (empty unless all
+  /// are powers of two); UniformRefinementExponent of those.
+  std::vector<int> LevelToFinest;
+  std::vector<int> LevelToFinestLog2;
+  int UniformRefinementLog2 = 0;
+  /// Smallest model-space edge of a cell of each level: the sampling distance D at factor 1.
+  std::vector<double> LevelMinEdge;
+  /// Model-space bounds of the root box [xmin, xmax, ymin, ymax, zmin, zmax], through the float
+  /// root box the shaders use (EncodedKdTree::RootLo/RootHi).
+  double Bounds[6] = { 0.0, -1.0, 0.0, -1.0, 0.0, -1.0 };
+};
+
+/// The level table of `h` and its tree. Throws std::runtime_error when the root box spans more
+/// than 2^30 finest cells (the shader's integer node boxes cannot hold it).
+LevelTable ComputeLevelTable(const Hierarchy& h, const KdTree& tree);
+
+/// The range of the finite values of `h` in `range`; false (and [0, 1]) when there is none.
+bool FiniteValueRange(const Hierarchy& h, double range[2]);
+
+/// The single-pass mapper's CPU build: both data-node encodings (packed atlas offsets, and
+/// offsets inside each grid's own brick for the bindless storage), the atlas layout when the
+/// bricks can be packed, the data nodes' value ranges (empty-space skipping) and the sizes.
+struct RayCastingData
+{
+  /// The converted hierarchy; its Values are the bricks (FreeBricks drops them after upload).
+  Hierarchy Data;
+  UIntTexture3D TreeTexels;
+  UIntTexture3D PackedDataNodeTexels;   ///< empty when the bricks could not be packed
+  UIntTexture3D BindlessDataNodeTexels;
+  /// Cell size of each level in index units (float, as in GLSL), and the float root box.
+  std::vector<glm::vec3> LevelCellSize;
+  glm::vec3 RootLo{ 0.0f };
+  glm::vec3 RootHi{ 0.0f };
+  LevelTable Levels;
+  /// min, max scalar per data node, indexed like the data-node texels (entry 0 unused).
+  std::vector<glm::vec2> NodeRanges;
+  AtlasLayout Layout;       ///< Dims (0,0,0) when the bricks could not be packed
+  std::string PackingError; ///< why no atlas could be packed (empty when packed)
+  double AtlasWaste = 0.0;  ///< unused fraction of the atlas's texels
+  double ScalarRange[2] = { 0.0, 1.0 };
+  long long KdNodes = 0;
+  long long DataNodes = 0;
+  long long Grids = 0;
+  /// GPU bytes of each storage: tree + data nodes + atlas (0 without an atlas), or tree + data
+  /// nodes + separate bricks + handles.
+  long long PackedBytes = 0;
+  long long BindlessBytes = 0;
+  bool VertexCentred = false;
+
+  /// Drops the CPU copies the upload consumed (bricks, layout, texels); the figures stay.
+  void FreeUploadData();
+};
+
+/// Builds the kD-tree of `h`, encodes it for both storages and packs the bricks within
+/// `packLimit` texels per axis (0: the 2048 the data-node offsets address; a positive value
+/// lowers it). A hierarchy that cannot be packed still succeeds (PackingError says why: the
+/// bindless storage can render it). Throws std::runtime_error with a one-line message when it
+/// cannot be rendered at all: an encoding limit, a root box over 2^30 finest cells, or no finite
+/// value in any cell.
+RayCastingData PrepareRayCasting(Hierarchy h, int packLimit);
+
+} // namespace amrsp

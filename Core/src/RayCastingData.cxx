@@ -1,0 +1,179 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "amrsp/RayCastingData.h"
+
+#include "amrsp/BrickAtlas.h"
+#include "amrsp/EmptySpace.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <utility>
+
+namespace amrsp
+{
+
+std::vector<int> PowerOfTwoExponents(const std::vector<int>& ratios)
+{
+  std::vector<int> exponents;
+  for (int ratio : ratios)
+  {
+    int e = 0;
+    while (e < 30 && (1 << e) < ratio)
+    {
+      ++e;
+    }
+    if ((1 << e) != ratio)
+    {
+      return {};
+    }
+    exponents.push_back(e);
+  }
+  return exponents;
+}
+
+int UniformRefinementExponent(const std::vector<int>& toFinestLog2)
+{
+  const int levels = static_cast<int>(toFinestLog2.size() / 3);
+  if (levels == 0)
+  {
+    return 0;
+  }
+  const int k = levels > 1 ? toFinestLog2[0] / (levels - 1) : 1;
+  if (k <= 0 || k * (levels - 1) >= 31)
+  {
+    return 0;
+  }
+  for (int l = 0; l < levels; ++l)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      if (toFinestLog2[static_cast<std::size_t>(3 * l + a)] != k * (levels - 1 - l))
+      {
+        return 0;
+      }
+    }
+  }
+  return k;
+}
+
+LevelTable ComputeLevelTable(const Hierarchy& h, const KdTree& tree)
+{
+  LevelTable t;
+  const glm::i64vec3 finest = h.CumulativeRatio(tree.FinestLevel);
+  const Box& root = tree.Root().Region;
+  const int64_t limit = int64_t(1) << 30;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (root.Lo[a] < -limit || root.Hi[a] > limit)
+    {
+      throw std::runtime_error("the root box spans more than 2^30 cells of the finest level; the "
+                               "shader's integer node boxes cannot hold it");
+    }
+    t.RootLoFinest[a] = static_cast<int>(root.Lo[a]);
+    t.RootHiFinest[a] = static_cast<int>(root.Hi[a]);
+  }
+  for (int l = 0; l < h.NumberOfLevels(); ++l)
+  {
+    const glm::i64vec3 r = finest / h.CumulativeRatio(l);
+    for (int a = 0; a < 3; ++a)
+    {
+      t.LevelToFinest.push_back(static_cast<int>(r[a]));
+    }
+    const glm::dvec3 edge = h.Spacing0 * h.CellSize(l);
+    t.LevelMinEdge.push_back(std::min(edge.x, std::min(edge.y, edge.z)));
+  }
+  t.LevelToFinestLog2 = PowerOfTwoExponents(t.LevelToFinest);
+  t.UniformRefinementLog2 = UniformRefinementExponent(t.LevelToFinestLog2);
+  const glm::dvec3 lo =
+    h.Origin + glm::dvec3(glm::vec3(RegionLoIndex(h, tree, root))) * h.Spacing0;
+  const glm::dvec3 hi =
+    h.Origin + glm::dvec3(glm::vec3(RegionHiIndex(h, tree, root))) * h.Spacing0;
+  for (int a = 0; a < 3; ++a)
+  {
+    t.Bounds[2 * a] = lo[a];
+    t.Bounds[2 * a + 1] = hi[a];
+  }
+  return t;
+}
+
+bool FiniteValueRange(const Hierarchy& h, double range[2])
+{
+  double vmin = std::numeric_limits<double>::max();
+  double vmax = -std::numeric_limits<double>::max();
+  for (const GridValues& values : h.Values)
+  {
+    for (float v : values)
+    {
+      if (std::isfinite(v))
+      {
+        vmin = std::min(vmin, static_cast<double>(v));
+        vmax = std::max(vmax, static_cast<double>(v));
+      }
+    }
+  }
+  const bool found = vmin <= vmax;
+  range[0] = found ? vmin : 0.0;
+  range[1] = found ? vmax : 1.0;
+  return found;
+}
+
+void RayCastingData::FreeUploadData()
+{
+  this->Data.Values = std::vector<GridValues>();
+  this->Layout = AtlasLayout();
+  this->TreeTexels = UIntTexture3D();
+  this->PackedDataNodeTexels = UIntTexture3D();
+  this->BindlessDataNodeTexels = UIntTexture3D();
+}
+
+RayCastingData PrepareRayCasting(Hierarchy h, int packLimit)
+{
+  RayCastingData out;
+  const KdTree tree = BuildKdTree(h);
+  out.VertexCentred = h.VertexCentred;
+  // bindless: every data node stores the offset of its lower corner inside its own brick
+  const std::vector<glm::ivec3> brickStarts(h.Grids.size(), glm::ivec3(0));
+  EncodedKdTree enc = EncodeKdTree(h, tree, &brickStarts);
+  out.NodeRanges = ComputeDataNodeRanges(h, enc);
+  out.BindlessDataNodeTexels = std::move(enc.DataNodes);
+  // packing: one brick per grid (cells, or vertices one texel larger), within the per-axis limit
+  // the data-node offsets can address and packLimit when set
+  try
+  {
+    out.Layout = PackBricks(BrickExtents(h, h.VertexCentred), Packer::Best,
+      AtlasLimits(packLimit > 0 ? std::min(packLimit, 2048) : 2048));
+    out.PackedDataNodeTexels = EncodeKdTree(h, tree, &out.Layout.Origins).DataNodes;
+  }
+  catch (const std::exception& e)
+  {
+    out.PackingError = e.what();
+    out.Layout = AtlasLayout();
+    out.PackedDataNodeTexels = UIntTexture3D();
+  }
+  out.Levels = ComputeLevelTable(h, tree);
+  out.LevelCellSize = enc.LevelCellSize;
+  out.RootLo = enc.RootLo;
+  out.RootHi = enc.RootHi;
+  out.KdNodes = enc.NodeCount;
+  out.DataNodes = enc.DataNodeCount;
+  out.AtlasWaste = out.Layout.TotalTexels > 0 ? 1.0 - out.Layout.Efficiency : 0.0;
+  if (!FiniteValueRange(h, out.ScalarRange) && !h.Grids.empty())
+  {
+    throw std::runtime_error("the array '" + h.ArrayName +
+      "' holds no finite value (NaN or +-Inf in every cell): nothing to render");
+  }
+  const long long treeBytes =
+    static_cast<long long>(KdTreeTextureBytes(enc.Tree, out.BindlessDataNodeTexels));
+  out.BindlessBytes = treeBytes +
+    static_cast<long long>(SeparateBrickBytes(h) + HandleTextureBytes(h.Grids.size()));
+  out.PackedBytes = out.PackingError.empty()
+    ? treeBytes + out.Layout.TotalTexels * static_cast<long long>(AtlasTexelBytes)
+    : 0;
+  out.Grids = static_cast<long long>(h.Grids.size());
+  out.TreeTexels = std::move(enc.Tree);
+  out.Data = std::move(h);
+  return out;
+}
+
+} // namespace amrsp

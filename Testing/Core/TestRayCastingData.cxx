@@ -1,0 +1,143 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The GPU ray casters' CPU build (amrsp/RayCastingData.h) without OpenGL: the level table, the
+// refinement exponents the shader specialises on, the two data-node encodings, and the errors
+// that stop a hierarchy from being rendered.
+#include "TestHierarchies.h"
+#include "amrsp/KdTree.h"
+#include "amrsp/RayCastingData.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+using namespace amrsp;
+using amrsp::test::MakeBox;
+
+TEST(RayCastingData, PowerOfTwoExponents)
+{
+  EXPECT_EQ(PowerOfTwoExponents({ 1, 2, 4, 1024 }), (std::vector<int>{ 0, 1, 2, 10 }));
+  EXPECT_TRUE(PowerOfTwoExponents({ 1, 3 }).empty());
+  EXPECT_TRUE(PowerOfTwoExponents({ 4, 6, 8 }).empty());
+  EXPECT_TRUE(PowerOfTwoExponents({ (1 << 30) + 1 }).empty());
+  EXPECT_EQ(PowerOfTwoExponents({ 1 << 30 }), std::vector<int>{ 30 });
+}
+
+TEST(RayCastingData, UniformRefinementExponent)
+{
+  // three levels of ratio 4: level l has 2 (2 - l) on every axis
+  EXPECT_EQ(UniformRefinementExponent({ 4, 4, 4, 2, 2, 2, 0, 0, 0 }), 2);
+  EXPECT_EQ(UniformRefinementExponent({ 0, 0, 0 }), 1); // one level
+  EXPECT_EQ(UniformRefinementExponent({}), 0);
+  EXPECT_EQ(UniformRefinementExponent({ 2, 2, 1, 1, 1, 0, 0, 0, 0 }), 0); // anisotropic
+  EXPECT_EQ(UniformRefinementExponent({ 3, 3, 3, 1, 1, 1, 0, 0, 0 }), 0); // ratios 4 then 2
+  // 31 levels of ratio 2 would need 2^30 on level 0: over the limit
+  std::vector<int> deep;
+  for (int l = 0; l < 32; ++l)
+  {
+    deep.insert(deep.end(), 3, 31 - l);
+  }
+  EXPECT_EQ(UniformRefinementExponent(deep), 0);
+}
+
+TEST(RayCastingData, LevelTableOfThePaperExample)
+{
+  const Hierarchy h = amrsp::test::PaperExample();
+  const KdTree tree = BuildKdTree(h);
+  const LevelTable t = ComputeLevelTable(h, tree);
+  EXPECT_EQ(t.LevelToFinest, (std::vector<int>{ 4, 4, 4, 2, 2, 2, 1, 1, 1 }));
+  EXPECT_EQ(t.LevelToFinestLog2, (std::vector<int>{ 2, 2, 2, 1, 1, 1, 0, 0, 0 }));
+  EXPECT_EQ(t.UniformRefinementLog2, 1);
+  ASSERT_EQ(t.LevelMinEdge.size(), 3u);
+  EXPECT_DOUBLE_EQ(t.LevelMinEdge[0], 0.25); // spacing (0.5, 0.25, 1)
+  EXPECT_DOUBLE_EQ(t.LevelMinEdge[2], 0.0625);
+  // the root box: the level-0 grid, 16 x 16 x 4 cells from the origin (-3, 1, 2)
+  EXPECT_EQ(t.RootLoFinest, glm::ivec3(0));
+  EXPECT_EQ(t.RootHiFinest, glm::ivec3(64, 64, 16));
+  const double expected[6] = { -3.0, 5.0, 1.0, 5.0, 2.0, 6.0 };
+  for (int i = 0; i < 6; ++i)
+  {
+    EXPECT_DOUBLE_EQ(t.Bounds[i], expected[i]) << "bound " << i;
+  }
+}
+
+TEST(RayCastingData, RootBoxOverTwoToTheThirtyFinestCellsIsAnError)
+{
+  Hierarchy h;
+  h.Grids.push_back(Grid{ 0, MakeBox(0, 0, 0, 4, 4, 4) });
+  for (int l = 1; l <= 29; ++l)
+  {
+    h.RefinementRatio.push_back(glm::ivec3(2));
+  }
+  h.Grids.push_back(Grid{ 29, MakeBox(0, 0, 0, 2, 2, 2) });
+  amrsp::test::FillValues(h);
+  // 4 level-0 cells are 2^31 cells of level 29
+  try
+  {
+    PrepareRayCasting(h, 0);
+    FAIL() << "no error";
+  }
+  catch (const std::runtime_error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("2^30"), std::string::npos) << e.what();
+  }
+  // 2^30 exactly still fits
+  h.Grids[0].Cells = MakeBox(0, 0, 0, 2, 2, 2);
+  amrsp::test::FillValues(h);
+  EXPECT_NO_THROW(PrepareRayCasting(h, 0));
+}
+
+TEST(RayCastingData, NoFiniteValueIsAnError)
+{
+  Hierarchy h = amrsp::test::PaperExample();
+  for (GridValues& v : h.Values)
+  {
+    std::fill(v.begin(), v.end(), std::numeric_limits<float>::quiet_NaN());
+  }
+  h.Values[1][0] = std::numeric_limits<float>::infinity();
+  EXPECT_THROW(PrepareRayCasting(h, 0), std::runtime_error);
+  h.Values[2][3] = 7.5f; // one finite value is enough
+  const RayCastingData d = PrepareRayCasting(h, 0);
+  EXPECT_EQ(d.ScalarRange[0], 7.5);
+  EXPECT_EQ(d.ScalarRange[1], 7.5);
+}
+
+TEST(RayCastingData, BothEncodingsAndTheFigures)
+{
+  const Hierarchy h = amrsp::test::PaperExample();
+  const RayCastingData d = PrepareRayCasting(h, 0);
+  EXPECT_TRUE(d.PackingError.empty());
+  EXPECT_EQ(d.Grids, 6);
+  EXPECT_GT(d.DataNodes, 0);
+  EXPECT_GE(d.KdNodes, d.DataNodes);
+  EXPECT_EQ(d.NodeRanges.size(), static_cast<std::size_t>(d.DataNodes) + 1); // texel 0 unused
+  EXPECT_EQ(d.PackedDataNodeTexels.Dims, d.BindlessDataNodeTexels.Dims);
+  EXPECT_NE(d.PackedDataNodeTexels.Texels, d.BindlessDataNodeTexels.Texels); // offsets differ
+  EXPECT_GT(d.Layout.Dims.x, 0);
+  EXPECT_GT(d.PackedBytes, 0);
+  EXPECT_GT(d.BindlessBytes, 0);
+  double range[2];
+  ASSERT_TRUE(FiniteValueRange(h, range));
+  EXPECT_EQ(d.ScalarRange[0], range[0]);
+  EXPECT_EQ(d.ScalarRange[1], range[1]);
+  EXPECT_EQ(d.Data.Values.size(), 6u); // the bricks wait for the upload
+
+  RayCastingData freed = d;
+  freed.FreeUploadData();
+  EXPECT_TRUE(freed.Data.Values.empty());
+  EXPECT_TRUE(freed.TreeTexels.Texels.empty());
+  EXPECT_EQ(freed.KdNodes, d.KdNodes); // the figures stay
+}
+
+TEST(RayCastingData, UnpackableBricksLeaveTheBindlessEncoding)
+{
+  const Hierarchy h = amrsp::test::PaperExample();
+  // a 4-texel atlas cannot hold the 16 x 16 x 4 root brick
+  const RayCastingData d = PrepareRayCasting(h, 4);
+  EXPECT_FALSE(d.PackingError.empty());
+  EXPECT_EQ(d.Layout.Dims, glm::ivec3(0));
+  EXPECT_TRUE(d.PackedDataNodeTexels.Texels.empty());
+  EXPECT_EQ(d.PackedBytes, 0);
+  EXPECT_FALSE(d.BindlessDataNodeTexels.Texels.empty());
+}
