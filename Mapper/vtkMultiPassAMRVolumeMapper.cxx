@@ -73,55 +73,12 @@ struct NodeDraw
   int AtlasOffset[3];
 };
 
-/// The unit cube's 12 triangles, counter-clockwise seen from outside (corners 0 or 1 per axis).
-std::vector<float> UnitCube()
-{
-  std::vector<float> vertices;
-  for (int axis = 0; axis < 3; ++axis)
-  {
-    for (int side = 0; side < 2; ++side)
-    {
-      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-      float quad[4][3];
-      const int corners[4][2] = { { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 } };
-      for (int c = 0; c < 4; ++c)
-      {
-        quad[c][axis] = static_cast<float>(side);
-        quad[c][u] = static_cast<float>(corners[c][0]);
-        quad[c][v] = static_cast<float>(corners[c][1]);
-      }
-      // (u, v, axis) is right-handed: u x v points along +axis, so this order faces +axis
-      const int order[2][6] = { { 0, 2, 1, 0, 3, 2 }, { 0, 1, 2, 0, 2, 3 } };
-      for (int k : order[side])
-      {
-        vertices.insert(vertices.end(), quad[k], quad[k] + 3);
-      }
-    }
-  }
-  return vertices;
-}
-
 } // namespace
 
 //------------------------------------------------------------------------------
 class vtkMultiPassAMRVolumeMapper::vtkInternals
 {
 public:
-  // ---- what the data were built from
-  vtkOverlappingAMR* BuiltInput = nullptr; // identity only, never dereferenced
-  vtkMTimeType BuiltInputMTime = 0;
-  std::string BuiltArray;
-  int BuiltComponent = -1;
-  int BuiltPackLimit = -1;
-  bool Built = false;     // a build was attempted for the key above
-  bool DataValid = false; // ... and succeeded
-  std::string BuildError; // ... or failed with this message
-  vtkTimeStamp BuildTime;
-  int NumberOfBuilds = 0;
-  double BuildSeconds = 0.0;
-  double UploadSeconds = 0.0;
-  int PackLimit = 0; // MaximumAtlasSize to pack for (0 = none)
-
   // ---- CPU results of the build
   utilities::PackedHierarchy Data; // Data.Atlas.Texels is freed once uploaded
   std::vector<NodeDraw> Draws;     // one per leaf with data
@@ -137,7 +94,7 @@ public:
   // ---- OpenGL resources
   vtkOpenGLRenderWindow* Context = nullptr;
   int UploadLimit = 0; // MaximumAtlasSize of the last upload attempt
-  vtkTimeStamp UploadTime;
+  vtkMTimeType UploadedBuildTime = 0; // the build the atlas on the GPU holds
   vtkSmartPointer<vtkTextureObject> Atlas;
   vtkSinglePassAMRRenderingUtilities::DepthCopy Depth;
   vtkSmartPointer<vtkTextureObject> Accumulation; // RGBA32F, viewport-sized
@@ -149,30 +106,11 @@ public:
   std::unique_ptr<vtkOpenGLQuadHelper> Composite;
 
   std::string FailedFragmentSource; // do not retry a program that failed to compile
-  std::string LastError;
-  std::string CropWarning; // the unsupported-cropping warning last given (said once)
 
   /// CPU side: convert, build the tree, pack, and list the nodes' draws. Returns false with
-  /// BuildError set on failure.
-  bool Build(vtkOverlappingAMR* amr, const std::string& array, int component);
-
-  /// Builds when the input object, its modification time, the array selection or the packing
-  /// limit differ from what the current data were built from. Returns whether data are valid.
-  bool EnsureBuilt(vtkOverlappingAMR* amr, const std::string& array, int component)
-  {
-    if (!this->Built || this->BuiltInput != amr || this->BuiltInputMTime != amr->GetMTime() ||
-      this->BuiltArray != array || this->BuiltComponent != component ||
-      this->BuiltPackLimit != this->PackLimit)
-    {
-      this->BuiltPackLimit = this->PackLimit;
-      this->BuiltInput = amr;
-      this->BuiltInputMTime = amr->GetMTime();
-      this->BuiltArray = array;
-      this->BuiltComponent = component;
-      this->Build(amr, array, component);
-    }
-    return this->DataValid;
-  }
+  /// `error` set on failure.
+  bool Build(vtkOverlappingAMR* amr, const std::string& array, int component, int packLimit,
+    std::string& error);
 
   /// Fills Order with the data leaves front to back for rays from `view` (see the class comment).
   void OrderNodes(const utilities::ViewGeometry& view);
@@ -197,18 +135,12 @@ public:
 };
 
 //------------------------------------------------------------------------------
-bool vtkMultiPassAMRVolumeMapper::vtkInternals::Build(
-  vtkOverlappingAMR* amr, const std::string& array, int component)
+bool vtkMultiPassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
+  const std::string& array, int component, int packLimit, std::string& error)
 {
-  const auto t0 = std::chrono::steady_clock::now();
-  this->Built = true;
-  this->DataValid = false;
-  this->BuildError.clear();
   this->Draws.clear();
   this->DrawOfNode.clear();
-  ++this->NumberOfBuilds;
-  if (!utilities::BuildPackedHierarchy(
-        amr, array, component, this->PackLimit, this->Data, this->BuildError))
+  if (!utilities::BuildPackedHierarchy(amr, array, component, packLimit, this->Data, error))
   {
     return false;
   }
@@ -277,9 +209,6 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::Build(
     this->Draws.push_back(d);
   }
   this->TextureBytes = static_cast<long long>(this->Data.Atlas.Bytes());
-  this->DataValid = true;
-  this->BuildTime.Modified();
-  this->BuildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return true;
 }
 
@@ -511,12 +440,6 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWind
     this->Composite.reset();
   }
   this->Context = nullptr;
-  if (this->Data.Atlas.Texels.empty())
-  {
-    // the CPU copy of the atlas was freed after the upload: rebuild from the input next time
-    this->Built = false;
-    this->DataValid = false;
-  }
 }
 
 //------------------------------------------------------------------------------
@@ -535,147 +458,54 @@ vtkMultiPassAMRVolumeMapper::~vtkMultiPassAMRVolumeMapper()
 }
 
 //------------------------------------------------------------------------------
-int vtkMultiPassAMRVolumeMapper::FillInputPortInformation(
-  int vtkNotUsed(port), vtkInformation* info)
+bool vtkMultiPassAMRVolumeMapper::BuildData(
+  vtkOverlappingAMR* amr, const std::string& array, std::string& error)
 {
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkOverlappingAMR");
-  return 1;
+  return this->Internals->Build(amr, array, this->ArrayComponent, this->MaximumAtlasSize, error);
 }
 
 //------------------------------------------------------------------------------
-void vtkMultiPassAMRVolumeMapper::SetInputData(vtkOverlappingAMR* input)
+void vtkMultiPassAMRVolumeMapper::GetBuiltBounds(double bounds[6])
 {
-  this->SetInputDataInternal(0, input);
-}
-
-void vtkMultiPassAMRVolumeMapper::SetInputData(vtkImageData*)
-{
-  vtkErrorMacro("vtkMultiPassAMRVolumeMapper renders vtkOverlappingAMR only");
-}
-
-void vtkMultiPassAMRVolumeMapper::SetInputData(vtkDataSet*)
-{
-  vtkErrorMacro("vtkMultiPassAMRVolumeMapper renders vtkOverlappingAMR only");
-}
-
-void vtkMultiPassAMRVolumeMapper::SetInputData(vtkRectilinearGrid*)
-{
-  vtkErrorMacro("vtkMultiPassAMRVolumeMapper renders vtkOverlappingAMR only");
-}
-
-//------------------------------------------------------------------------------
-vtkOverlappingAMR* vtkMultiPassAMRVolumeMapper::GetAMRInput()
-{
-  if (this->GetNumberOfInputConnections(0) < 1)
-  {
-    return nullptr;
-  }
-  return vtkOverlappingAMR::SafeDownCast(this->GetInputDataObject(0, 0));
-}
-
-//------------------------------------------------------------------------------
-double* vtkMultiPassAMRVolumeMapper::GetBounds()
-{
-  vtkMath::UninitializeBounds(this->Bounds);
-  if (this->GetNumberOfInputConnections(0) < 1)
-  {
-    return this->Bounds;
-  }
-  this->Update();
-  vtkOverlappingAMR* amr = this->GetAMRInput();
-  if (!amr)
-  {
-    return this->Bounds;
-  }
-  vtkInternals& in = *this->Internals;
-  const std::string array =
-    utilities::RequestedArray(amr, this->ArrayAccessMode, this->ArrayName, this->ArrayId);
-  in.PackLimit = this->MaximumAtlasSize;
-  if (in.EnsureBuilt(amr, array, this->ArrayComponent))
-  {
-    std::copy(in.Data.Bounds, in.Data.Bounds + 6, this->Bounds);
-    return this->Bounds;
-  }
-  // the conversion failed (Render reports why): the AMR's own overall bounds
-  amr->GetBounds(this->Bounds);
-  return this->Bounds;
-}
-
-void vtkMultiPassAMRVolumeMapper::GetBounds(double bounds[6])
-{
-  const double* b = this->GetBounds();
+  const double* b = this->Internals->Data.Bounds;
   std::copy(b, b + 6, bounds);
-}
-
-//------------------------------------------------------------------------------
-bool vtkMultiPassAMRVolumeMapper::IsRenderSupported(vtkRenderWindow* window, std::string* why)
-{
-  return utilities::IsRenderSupported(window, why);
 }
 
 //------------------------------------------------------------------------------
 void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 {
   vtkInternals& in = *this->Internals;
-  // the same error is reported once, not on every frame
-  const std::string previousError = in.LastError;
-  in.LastError.clear();
   in.Passes = 0;
-  auto fail = [&](const std::string& message)
-  {
-    if (message != previousError)
-    {
-      vtkErrorMacro(<< message);
-    }
-    in.LastError = message;
-  };
-
-  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
-  if (!renWin)
-  {
-    fail("vtkMultiPassAMRVolumeMapper needs an OpenGL render window");
-    return;
-  }
-  if (this->GetNumberOfInputConnections(0) < 1)
-  {
-    fail("no input: set a vtkOverlappingAMR with SetInputData or SetInputConnection");
-    return;
-  }
-  this->Update();
-  vtkOverlappingAMR* amr = this->GetAMRInput();
+  vtkOpenGLRenderWindow* renWin = nullptr;
+  vtkOverlappingAMR* amr = this->BeginFrame(ren, renWin);
   if (!amr)
   {
-    fail("the input is not a vtkOverlappingAMR");
     return;
   }
 
   if (this->GetBlendMode() != vtkVolumeMapper::COMPOSITE_BLEND)
   {
-    fail("the multi-pass method implements composite blending only (blend mode " +
+    this->ReportError("the multi-pass method implements composite blending only (blend mode " +
       std::to_string(this->GetBlendMode()) + " requested)");
     return;
   }
 
   // ---- data: rebuilt only when the input, the array selection or the packing limit changed
-  const std::string array =
-    utilities::RequestedArray(amr, this->ArrayAccessMode, this->ArrayName, this->ArrayId);
-  in.PackLimit = this->MaximumAtlasSize;
-  if (!in.EnsureBuilt(amr, array, this->ArrayComponent))
+  if (!this->EnsureBuilt(amr))
   {
-    fail(in.BuildError);
+    this->ReportError(this->GetBuildError());
     return;
   }
   if (!in.Atlas || in.Context != renWin || in.UploadLimit != this->MaximumAtlasSize ||
-    in.UploadTime < in.BuildTime)
+    in.UploadedBuildTime != this->GetBuildTime().GetMTime())
   {
     in.UploadLimit = this->MaximumAtlasSize;
     if (in.Data.Atlas.Texels.empty())
     {
       // the CPU copy was dropped after an upload to another context: rebuild it
-      in.Build(amr, array, this->ArrayComponent);
-      if (!in.DataValid)
+      if (!this->Rebuild(amr))
       {
-        fail(in.BuildError);
+        this->ReportError(this->GetBuildError());
         return;
       }
     }
@@ -685,24 +515,25 @@ void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
           renWin, in.Data.Atlas, in.Data.VertexCentred, this->MaximumAtlasSize, in.Atlas, error))
     {
       // keep the CPU data: a later context (or a smaller input) may succeed
-      fail(error);
+      this->ReportError(error);
       return;
     }
     std::vector<float>().swap(in.Data.Atlas.Texels);
     in.Context = renWin;
-    in.UploadTime.Modified();
-    in.UploadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    in.UploadedBuildTime = this->GetBuildTime().GetMTime();
+    this->UploadSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
 
   vtkVolumeProperty* property = vol->GetProperty();
   if (!property)
   {
-    fail("the volume has no vtkVolumeProperty");
+    this->ReportError("the volume has no vtkVolumeProperty");
     return;
   }
-  if (!in.Transfer.Update(renWin, property, in.Data.ScalarRange, in.BuildTime))
+  if (!in.Transfer.Update(renWin, property, in.Data.ScalarRange, this->GetBuildTime()))
   {
-    fail("uploading the transfer-function table failed");
+    this->ReportError("uploading the transfer-function table failed");
     return;
   }
 
@@ -715,12 +546,11 @@ void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     defines += "#define AMRSP_USE_DEPTH 1\n";
   }
-  std::string fragment = amrsp_MultiPassAMR_frag_glsl;
-  vtkShaderProgram::Substitute(fragment, "//AMRSP::Defines", defines);
-  vtkShaderProgram::Substitute(fragment, "//AMRSP::RayCommon", amrsp_RayCommon_glsl);
+  const std::string fragment = utilities::ComposeFragmentShader(
+    amrsp_MultiPassAMR_frag_glsl, defines, { { "RayCommon", amrsp_RayCommon_glsl } }, vol);
   if (fragment == in.FailedFragmentSource)
   {
-    fail("the multi-pass AMR shader failed to compile or link (see the earlier error)");
+    this->ReportError("the multi-pass AMR shader failed to compile or link (see the earlier error)");
     return;
   }
   if (!in.Composite)
@@ -731,7 +561,7 @@ void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   if (!in.Composite->Program)
   {
     in.Composite.reset();
-    fail("the multi-pass AMR composite shader failed to compile or link (see the error above)");
+    this->ReportError("the multi-pass AMR composite shader failed to compile or link (see the error above)");
     return;
   }
   vtkShaderProgram* program = renWin->GetShaderCache()->ReadyShaderProgram(
@@ -739,7 +569,7 @@ void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   if (!program)
   {
     in.FailedFragmentSource = fragment;
-    fail("the multi-pass AMR shader failed to compile or link (see the error above)");
+    this->ReportError("the multi-pass AMR shader failed to compile or link (see the error above)");
     return;
   }
 
@@ -747,19 +577,20 @@ void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   std::string error;
   if (!utilities::ComputeViewGeometry(ren, vol, view, error))
   {
-    fail(error);
+    this->ReportError(error);
     return;
   }
   if (!in.EnsureAccumulation(renWin, view.Width, view.Height, error))
   {
-    fail(error);
+    this->ReportError(error);
     return;
   }
 
   // ---- proxy geometry: the unit cube, placed per node by the vertex shader
   if (in.CubeBuffer->GetHandle() == 0)
   {
-    in.CubeBuffer->Upload(UnitCube(), vtkOpenGLBufferObject::ArrayBuffer);
+    const double lo[3] = { 0.0, 0.0, 0.0 }, hi[3] = { 1.0, 1.0, 1.0 };
+    in.CubeBuffer->Upload(utilities::BoxTriangles(lo, hi), vtkOpenGLBufferObject::ArrayBuffer);
     in.CubeArrayProgram = nullptr;
   }
   in.CubeArray->Bind();
@@ -771,7 +602,7 @@ void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
           program, in.CubeBuffer, "amrspCorner", 0, 3 * sizeof(float), VTK_FLOAT, 3, false))
     {
       in.CubeArray->Release();
-      fail("cannot bind the node box's vertices to the shader");
+      this->ReportError("cannot bind the node box's vertices to the shader");
       return;
     }
     in.CubeArrayProgram = program;
@@ -834,11 +665,10 @@ void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   std::string cropWarning;
   utilities::ClipBox(this, h.Origin, h.Spacing0, glm::vec3(root.Lo), glm::vec3(root.Hi), clipLo,
     clipHi, cropWarning);
-  if (!cropWarning.empty() && cropWarning != in.CropWarning)
+  if (!cropWarning.empty())
   {
-    vtkWarningMacro(<< cropWarning);
+    this->WarnOnce(cropWarning);
   }
-  in.CropWarning = cropWarning;
   in.DrawNodes(state, program, view, steps, clipLo, clipHi);
   in.Atlas->Deactivate();
   in.Transfer.GetTexture()->Deactivate();
@@ -856,30 +686,15 @@ void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 void vtkMultiPassAMRVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Internals->ReleaseGraphicsResources(window);
+  if (this->Internals->Data.Atlas.Texels.empty())
+  {
+    // the CPU copy of the atlas was freed after the upload: rebuild from the input next time
+    this->InvalidateBuild();
+  }
   this->Superclass::ReleaseGraphicsResources(window);
 }
 
 //------------------------------------------------------------------------------
-const char* vtkMultiPassAMRVolumeMapper::GetLastError()
-{
-  return this->Internals->LastError.c_str();
-}
-
-double vtkMultiPassAMRVolumeMapper::GetLastBuildSeconds()
-{
-  return this->Internals->BuildSeconds;
-}
-
-double vtkMultiPassAMRVolumeMapper::GetLastUploadSeconds()
-{
-  return this->Internals->UploadSeconds;
-}
-
-int vtkMultiPassAMRVolumeMapper::GetNumberOfBuilds()
-{
-  return this->Internals->NumberOfBuilds;
-}
-
 void vtkMultiPassAMRVolumeMapper::GetAtlasDimensions(int dims[3])
 {
   const glm::ivec3 d = this->Internals->Data.Atlas.Layout.Dims;
@@ -924,15 +739,9 @@ void vtkMultiPassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   const vtkInternals& in = *this->Internals;
-  os << indent << "ArrayComponent: " << this->ArrayComponent << "\n";
-  os << indent << "SampleDistanceFactor: " << this->SampleDistanceFactor << "\n";
-  os << indent << "MaximumAtlasSize: " << this->MaximumAtlasSize << "\n";
-  os << indent << "UseDepthBuffer: " << (this->UseDepthBuffer ? "on" : "off") << "\n";
-  os << indent << "NumberOfBuilds: " << in.NumberOfBuilds << "\n";
   os << indent << "KdNodes: " << in.Data.Tree.Nodes.size() << ", DataNodes: " << in.DataNodes
      << ", drawn leaves: " << in.Draws.size() << "\n";
   const glm::ivec3 d = in.Data.Atlas.Layout.Dims;
   os << indent << "AtlasDimensions: " << d.x << " x " << d.y << " x " << d.z << "\n";
   os << indent << "LastNumberOfPasses: " << in.Passes << "\n";
-  os << indent << "LastError: " << (in.LastError.empty() ? "(none)" : in.LastError) << "\n";
 }

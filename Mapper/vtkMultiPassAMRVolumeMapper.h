@@ -39,63 +39,15 @@
 #ifndef vtkMultiPassAMRVolumeMapper_h
 #define vtkMultiPassAMRVolumeMapper_h
 
+#include "vtkSinglePassAMRMapperBase.h"
 #include "vtkSinglePassAMRModule.h" // for export macro
-#include "vtkVolumeMapper.h"
 
-#include <string> // for IsRenderSupported
-
-class vtkOverlappingAMR;
-class vtkRenderWindow;
-
-class VTKSINGLEPASSAMR_EXPORT vtkMultiPassAMRVolumeMapper : public vtkVolumeMapper
+class VTKSINGLEPASSAMR_EXPORT vtkMultiPassAMRVolumeMapper : public vtkSinglePassAMRMapperBase
 {
 public:
   static vtkMultiPassAMRVolumeMapper* New();
-  vtkTypeMacro(vtkMultiPassAMRVolumeMapper, vtkVolumeMapper);
+  vtkTypeMacro(vtkMultiPassAMRVolumeMapper, vtkSinglePassAMRMapperBase);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  ///@{
-  /// The AMR input. The vtkDataSet overloads of vtkVolumeMapper are rejected with an error.
-  virtual void SetInputData(vtkOverlappingAMR* input);
-  void SetInputData(vtkImageData* input) override;
-  void SetInputData(vtkDataSet* input) override;
-  void SetInputData(vtkRectilinearGrid* input) override;
-  vtkOverlappingAMR* GetAMRInput();
-  ///@}
-
-  ///@{
-  /// Bounds of the root box of the hierarchy (the bounding box of the level-0 grids), in model
-  /// coordinates. Computing them converts the input (the same conversion rendering needs).
-  double* GetBounds() VTK_SIZEHINT(6) override;
-  void GetBounds(double bounds[6]) override;
-  ///@}
-
-  ///@{
-  /// Component of a multi-component scalar array; -1 (default) takes the magnitude.
-  vtkSetMacro(ArrayComponent, int);
-  vtkGetMacro(ArrayComponent, int);
-  ///@}
-
-  ///@{
-  /// Sampling distance of a ray segment in one kD node, in units of the smallest edge of a cell
-  /// of that node's level (default 1: about one sample per cell).
-  vtkSetClampMacro(SampleDistanceFactor, double, 1e-3, 1e3);
-  vtkGetMacro(SampleDistanceFactor, double);
-  ///@}
-
-  ///@{
-  /// Clip rays at the depth of opaque geometry rendered before the volume (default on).
-  vtkSetMacro(UseDepthBuffer, bool);
-  vtkGetMacro(UseDepthBuffer, bool);
-  vtkBooleanMacro(UseDepthBuffer, bool);
-  ///@}
-
-  ///@{
-  /// Largest atlas edge accepted, in texels: 0 (default) uses the context's
-  /// GL_MAX_3D_TEXTURE_SIZE; a positive value lowers that limit.
-  vtkSetClampMacro(MaximumAtlasSize, int, 0, VTK_INT_MAX);
-  vtkGetMacro(MaximumAtlasSize, int);
-  ///@}
 
   /// Renders the volume. Called by vtkVolume during the volumetric pass.
   void Render(vtkRenderer* ren, vtkVolume* vol) override;
@@ -103,31 +55,17 @@ public:
   /// Frees the textures, framebuffer, buffers and shaders of `window`'s context.
   void ReleaseGraphicsResources(vtkWindow* window) override;
 
-#ifndef __VTK_WRAP__
-  /// Whether `window` offers what the mapper needs: an OpenGL 3.2 core context (float colour
-  /// attachments, depth clamping, GLSL 1.50). When it does not, `why` says what is missing.
-  static bool IsRenderSupported(vtkRenderWindow* window, std::string* why = nullptr);
-#endif
-
   ///@{
-  /// Diagnostics of the last build and render.
-  /// GetLastError: empty after a successful Render(), else one line naming the problem.
-  const char* GetLastError();
-  /// Seconds spent converting, building the kD-tree and packing (CPU), and uploading.
-  double GetLastBuildSeconds();
-  double GetLastUploadSeconds();
-  /// Number of times the data were (re)built; camera or transfer-function changes must not
-  /// increase it.
-  int GetNumberOfBuilds();
+  /// Diagnostics of the last build and render (see also vtkSinglePassAMRMapperBase).
   /// Atlas texture dimensions, and the bytes of the data textures (the atlas: the multi-pass
   /// method has no tree textures). The RGBA32F accumulation target (16 bytes per viewport pixel)
   /// is counted apart.
-  void GetAtlasDimensions(int dims[3]);
-  long long GetTextureBytes();
+  void GetAtlasDimensions(int dims[3]) override;
+  long long GetTextureBytes() override;
   long long GetAccumulationBytes();
   /// kD-tree nodes and data nodes (types (a) and (b)) of the current hierarchy.
-  long long GetNumberOfKdNodes();
-  long long GetNumberOfDataNodes();
+  long long GetNumberOfKdNodes() override;
+  long long GetNumberOfDataNodes() override;
   /// Draws (passes) of the last frame: the tree's leaves with data, one per data node drawn.
   long long GetLastNumberOfPasses();
   /// CPU seconds of the last frame's front-to-back ordering of the nodes.
@@ -138,12 +76,8 @@ protected:
   vtkMultiPassAMRVolumeMapper();
   ~vtkMultiPassAMRVolumeMapper() override;
 
-  int FillInputPortInformation(int port, vtkInformation* info) override;
-
-  int ArrayComponent = -1;
-  double SampleDistanceFactor = 1.0;
-  bool UseDepthBuffer = true;
-  int MaximumAtlasSize = 0;
+  bool BuildData(vtkOverlappingAMR* amr, const std::string& array, std::string& error) override;
+  void GetBuiltBounds(double bounds[6]) override;
 
 private:
   vtkMultiPassAMRVolumeMapper(const vtkMultiPassAMRVolumeMapper&) = delete;

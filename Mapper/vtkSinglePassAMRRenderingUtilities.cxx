@@ -4,8 +4,12 @@
 #include "vtkSinglePassAMRConversion.h"
 
 #include "amrsp/BrickPacking.h"
+#include "amrsp/RayCastingData.h"
 
 #include "vtkCamera.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkMath.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
@@ -13,6 +17,9 @@
 #include "vtkOpenGLCamera.h"
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderProperty.h"
+#include "vtkShader.h"
+#include "vtkShaderProgram.h"
 #include "vtkOpenGLState.h"
 #include "vtkOverlappingAMR.h"
 #include "vtkPiecewiseFunction.h"
@@ -94,6 +101,124 @@ void ClipBox(vtkVolumeMapper* mapper, const glm::dvec3& origin, const glm::dvec3
 }
 
 //------------------------------------------------------------------------------
+vtkSmartPointer<vtkTextureObject> MakeIntegerTexture(
+  vtkOpenGLRenderWindow* renWin, const amrsp::UIntTexture3D& texels)
+{
+  auto tex = vtkSmartPointer<vtkTextureObject>::New();
+  tex->SetContext(renWin);
+  tex->SetInternalFormat(GL_RG32UI);
+  tex->SetFormat(GL_RG_INTEGER);
+  tex->SetDataType(GL_UNSIGNED_INT);
+  tex->SetMinificationFilter(vtkTextureObject::Nearest);
+  tex->SetMagnificationFilter(vtkTextureObject::Nearest);
+  tex->SetWrapS(vtkTextureObject::ClampToEdge);
+  tex->SetWrapT(vtkTextureObject::ClampToEdge);
+  tex->SetWrapR(vtkTextureObject::ClampToEdge);
+  const bool ok = tex->Create3DFromRaw(static_cast<unsigned int>(texels.Dims.x),
+    static_cast<unsigned int>(texels.Dims.y), static_cast<unsigned int>(texels.Dims.z), 2,
+    VTK_UNSIGNED_INT, const_cast<glm::uvec2*>(texels.Texels.data()));
+  return ok ? tex : nullptr;
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkTextureObject> MakeScalarTexture(
+  vtkOpenGLRenderWindow* renWin, const glm::ivec3& dims, const float* texels, bool vertexCentred)
+{
+  auto tex = vtkSmartPointer<vtkTextureObject>::New();
+  tex->SetContext(renWin);
+  tex->SetInternalFormat(GL_R32F);
+  tex->SetFormat(GL_RED);
+  tex->SetDataType(GL_FLOAT);
+  const int filter = vertexCentred ? vtkTextureObject::Linear : vtkTextureObject::Nearest;
+  tex->SetMinificationFilter(filter);
+  tex->SetMagnificationFilter(filter);
+  tex->SetWrapS(vtkTextureObject::ClampToEdge);
+  tex->SetWrapT(vtkTextureObject::ClampToEdge);
+  tex->SetWrapR(vtkTextureObject::ClampToEdge);
+  const bool ok = tex->Create3DFromRaw(static_cast<unsigned int>(dims.x),
+    static_cast<unsigned int>(dims.y), static_cast<unsigned int>(dims.z), 1, VTK_FLOAT,
+    const_cast<float*>(texels));
+  return ok ? tex : nullptr;
+}
+
+//------------------------------------------------------------------------------
+std::vector<float> BoxTriangles(const double lo[3], const double hi[3])
+{
+  std::vector<float> vertices;
+  vertices.reserve(36 * 3);
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    for (int side = 0; side < 2; ++side)
+    {
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      double quad[4][3];
+      const int corners[4][2] = { { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 } };
+      for (int c = 0; c < 4; ++c)
+      {
+        quad[c][axis] = side ? hi[axis] : lo[axis];
+        quad[c][u] = corners[c][0] ? hi[u] : lo[u];
+        quad[c][v] = corners[c][1] ? hi[v] : lo[v];
+      }
+      // (u, v, axis) is right-handed: u x v points along +axis, so this order faces +axis
+      const int order[2][6] = { { 0, 2, 1, 0, 3, 2 }, { 0, 1, 2, 0, 2, 3 } };
+      for (int k : order[side])
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          vertices.push_back(static_cast<float>(quad[k][a]));
+        }
+      }
+    }
+  }
+  return vertices;
+}
+
+//------------------------------------------------------------------------------
+ModelLight FirstLightInModel(vtkRenderer* ren, vtkVolume* vol)
+{
+  ModelLight light;
+  vtkNew<vtkMatrix4x4> wcmc; // world -> model
+  vtkMatrix4x4::Invert(vol->GetMatrix(), wcmc);
+  vtkLightCollection* lights = ren->GetLights();
+  vtkCollectionSimpleIterator it;
+  lights->InitTraversal(it);
+  while (vtkLight* l = lights->GetNextLight(it))
+  {
+    if (!l->GetSwitch())
+    {
+      continue;
+    }
+    double position[4] = { 0.0, 0.0, 0.0, 1.0 }, focal[4] = { 0.0, 0.0, 0.0, 1.0 };
+    l->GetTransformedPosition(position);
+    l->GetTransformedFocalPoint(focal);
+    double positionMC[4], focalMC[4];
+    wcmc->MultiplyPoint(position, positionMC);
+    wcmc->MultiplyPoint(focal, focalMC);
+    double toLight[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      light.Position[a] = static_cast<float>(positionMC[a] / positionMC[3]);
+      toLight[a] = positionMC[a] / positionMC[3] - focalMC[a] / focalMC[3];
+    }
+    if (vtkMath::Normalize(toLight) > 0.0)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        light.Direction[a] = static_cast<float>(toLight[a]);
+      }
+    }
+    const double* colour = l->GetDiffuseColor();
+    for (int a = 0; a < 3; ++a)
+    {
+      light.Colour[a] = static_cast<float>(colour[a] * l->GetIntensity());
+    }
+    light.Positional = l->GetPositional() != 0;
+    break;
+  }
+  return light;
+}
+
+//------------------------------------------------------------------------------
 bool BuildPackedHierarchy(vtkOverlappingAMR* amr, const std::string& array, int component,
   int packLimit, PackedHierarchy& out, std::string& error)
 {
@@ -115,37 +240,11 @@ bool BuildPackedHierarchy(vtkOverlappingAMR* amr, const std::string& array, int 
       h, amrsp::Packer::Best, amrsp::AtlasLimits(packLimit > 0 ? std::min(packLimit, 2048) : 2048));
     out.VertexCentred = h.VertexCentred;
 
-    for (int l = 0; l < h.NumberOfLevels(); ++l)
-    {
-      const glm::dvec3 edge = h.Spacing0 * h.CellSize(l);
-      out.LevelMinEdge.push_back(std::min(edge.x, std::min(edge.y, edge.z)));
-    }
-    // through float, as the root box the shaders use (amrsp::EncodedKdTree::RootLo/RootHi)
-    const glm::dvec3 lo = h.Origin +
-      glm::dvec3(glm::vec3(amrsp::RegionLoIndex(h, out.Tree, out.Tree.Root().Region))) * h.Spacing0;
-    const glm::dvec3 hi = h.Origin +
-      glm::dvec3(glm::vec3(amrsp::RegionHiIndex(h, out.Tree, out.Tree.Root().Region))) * h.Spacing0;
-    for (int a = 0; a < 3; ++a)
-    {
-      out.Bounds[2 * a] = lo[a];
-      out.Bounds[2 * a + 1] = hi[a];
-    }
-
-    double vmin = std::numeric_limits<double>::max();
-    double vmax = -std::numeric_limits<double>::max();
-    for (const amrsp::GridValues& values : h.Values)
-    {
-      for (float v : values)
-      {
-        if (std::isfinite(v))
-        {
-          vmin = std::min(vmin, static_cast<double>(v));
-          vmax = std::max(vmax, static_cast<double>(v));
-        }
-      }
-    }
-    out.ScalarRange[0] = vmin <= vmax ? vmin : 0.0;
-    out.ScalarRange[1] = vmin <= vmax ? vmax : 1.0;
+    // the level table and the finite range as the single-pass build computes them
+    const amrsp::LevelTable levels = amrsp::ComputeLevelTable(h, out.Tree);
+    out.LevelMinEdge = levels.LevelMinEdge;
+    std::copy(levels.Bounds, levels.Bounds + 6, out.Bounds);
+    amrsp::FiniteValueRange(h, out.ScalarRange);
     // the atlas holds the values now
     std::vector<amrsp::GridValues>().swap(h.Values);
   }
@@ -196,21 +295,8 @@ bool UploadAtlas(vtkOpenGLRenderWindow* renWin, const amrsp::BrickAtlas& atlas, 
   while (glGetError() != GL_NO_ERROR)
   {
   }
-  texture = vtkSmartPointer<vtkTextureObject>::New();
-  texture->SetContext(renWin);
-  texture->SetInternalFormat(GL_R32F);
-  texture->SetFormat(GL_RED);
-  texture->SetDataType(GL_FLOAT);
-  // vertex bricks: hardware trilinear interpolation (the shaders never leave a brick)
-  const int filter = vertexCentred ? vtkTextureObject::Linear : vtkTextureObject::Nearest;
-  texture->SetMinificationFilter(filter);
-  texture->SetMagnificationFilter(filter);
-  texture->SetWrapS(vtkTextureObject::ClampToEdge);
-  texture->SetWrapT(vtkTextureObject::ClampToEdge);
-  texture->SetWrapR(vtkTextureObject::ClampToEdge);
-  const bool ok =
-    texture->Create3DFromRaw(static_cast<unsigned int>(d.x), static_cast<unsigned int>(d.y),
-      static_cast<unsigned int>(d.z), 1, VTK_FLOAT, const_cast<float*>(atlas.Texels.data()));
+  texture = MakeScalarTexture(renWin, d, atlas.Texels.data(), vertexCentred);
+  const bool ok = texture != nullptr;
   const GLenum glError = glGetError();
   if (!ok || glError != GL_NO_ERROR)
   {
@@ -458,6 +544,38 @@ void CopyDepthBuffer(vtkOpenGLRenderWindow* renWin, const ViewGeometry& view, De
     view.Width, view.Height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
   state->PopDrawFramebufferBinding();
   copy.Depth->Activate();
+}
+
+//------------------------------------------------------------------------------
+std::string ComposeFragmentShader(const char* source, const std::string& defines,
+  const std::vector<std::pair<std::string, const char*>>& pieces, vtkVolume* vol)
+{
+  vtkOpenGLShaderProperty* shaderProperty =
+    vtkOpenGLShaderProperty::SafeDownCast(vol ? vol->GetShaderProperty() : nullptr);
+  auto applyUserReplacements = [&](std::string& code, bool first)
+  {
+    if (!shaderProperty)
+    {
+      return;
+    }
+    for (const auto& r : shaderProperty->GetAllShaderReplacements())
+    {
+      if (r.first.ShaderType == vtkShader::Fragment && r.first.ReplaceFirst == first)
+      {
+        vtkShaderProgram::Substitute(
+          code, r.first.OriginalValue, r.second.Replacement, r.second.ReplaceAll);
+      }
+    }
+  };
+  std::string fragment = source;
+  applyUserReplacements(fragment, true);
+  vtkShaderProgram::Substitute(fragment, "//AMRSP::Defines", defines);
+  for (const auto& piece : pieces)
+  {
+    vtkShaderProgram::Substitute(fragment, "//AMRSP::" + piece.first, piece.second);
+  }
+  applyUserReplacements(fragment, false);
+  return fragment;
 }
 
 //------------------------------------------------------------------------------

@@ -20,12 +20,15 @@
 #include "amrsp/BrickAtlas.h"
 #include "amrsp/Hierarchy.h"
 #include "amrsp/KdTree.h"
+#include "amrsp/KdTreeEncoding.h"
 
 #include "vtkSmartPointer.h"
+#include "vtkTextureObject.h" // for TransferFunctionTable::GetTexture
 #include "vtkTimeStamp.h"
 #include "vtkType.h"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 class vtkOpenGLFramebufferObject;
@@ -34,7 +37,6 @@ class vtkMatrix4x4;
 class vtkOverlappingAMR;
 class vtkRenderWindow;
 class vtkRenderer;
-class vtkTextureObject;
 class vtkVolume;
 class vtkVolumeMapper;
 class vtkVolumeProperty;
@@ -100,6 +102,31 @@ bool BuildPackedHierarchy(vtkOverlappingAMR* amr, const std::string& array, int 
  */
 bool AtlasFitsContext(vtkOpenGLRenderWindow* renWin, const glm::ivec3& dims, int atlasLimit,
   std::string& why);
+
+/// An RG32UI 3D texture of a kD-tree encoding (nearest, clamped); null when OpenGL refused it.
+vtkSmartPointer<vtkTextureObject> MakeIntegerTexture(
+  vtkOpenGLRenderWindow* renWin, const amrsp::UIntTexture3D& texels);
+
+/// An R32F brick or atlas texture of `dims` texels: nearest for cell bricks, trilinear for vertex
+/// bricks (the shaders never sample outside a brick), clamped; null when OpenGL refused it.
+vtkSmartPointer<vtkTextureObject> MakeScalarTexture(
+  vtkOpenGLRenderWindow* renWin, const glm::ivec3& dims, const float* texels, bool vertexCentred);
+
+/// The 12 triangles (36 vertices, xyz) of the box [lo, hi], wound counter-clockwise seen from
+/// outside: the proxy geometry whose back faces start the rays.
+std::vector<float> BoxTriangles(const double lo[3], const double hi[3]);
+
+/// The first switched-on light of a renderer, in model coordinates (what the shaders light with).
+struct ModelLight
+{
+  float Position[3] = { 0.0f, 0.0f, 0.0f };
+  float Direction[3] = { 0.0f, 0.0f, 1.0f }; ///< unit vector from the focal point to the light
+  float Colour[3] = { 0.0f, 0.0f, 0.0f };    ///< diffuse colour x intensity; black: no light
+  bool Positional = false;
+};
+
+/// The first switched-on light of `ren` moved into the model coordinates of `vol` (none: black).
+ModelLight FirstLightInModel(vtkRenderer* ren, vtkVolume* vol);
 
 /**
  * Uploads the atlas as an R32F 3D texture (nearest filtering for cell bricks, linear for vertex
@@ -182,6 +209,15 @@ struct DepthCopy
 /// Copies the depth buffer of the viewport into `copy.Depth`, (re)creating the textures when
 /// missing, of another context or size, or of another depth format. Leaves `copy.Depth` active.
 void CopyDepthBuffer(vtkOpenGLRenderWindow* renWin, const ViewGeometry& view, DepthCopy& copy);
+
+/**
+ * A fragment shader from its template `source`: `defines` replaces the line //AMRSP::Defines,
+ * each (tag, code) of `pieces` replaces its line //AMRSP::<tag> (the shared .glsl pieces), and
+ * the volume's vtkShaderProperty fragment replacements apply as VTK's own mappers apply them:
+ * those marked "replace first" before these substitutions, the others after.
+ */
+std::string ComposeFragmentShader(const char* source, const std::string& defines,
+  const std::vector<std::pair<std::string, const char*>>& pieces, vtkVolume* vol);
 
 /// Whether `window` offers an OpenGL 3.2 core context (integer and float textures, GLSL 1.50,
 /// float colour attachments, depth clamping). When it does not, `why` says what is missing.

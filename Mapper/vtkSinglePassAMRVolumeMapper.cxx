@@ -2,38 +2,25 @@
 #include "vtkSinglePassAMRVolumeMapper.h"
 
 #include "vtkSinglePassAMRConversion.h"
+#include "vtkSinglePassAMRGridStorage.h"
 #include "vtkSinglePassAMRRenderingUtilities.h"
 
-#include "amrsp/Hierarchy.h"
-#include "amrsp/BrickAtlas.h"
-#include "amrsp/BrickPacking.h"
-#include "amrsp/EmptySpace.h"
-#include "amrsp/KdTree.h"
-#include "amrsp/KdTreeEncoding.h"
+#include "amrsp/RayCastingData.h"
 
-#include "vtkColorTransferFunction.h"
-#include "vtkDataObject.h"
-#include "vtkInformation.h"
 #include "vtkCamera.h"
 #include "vtkContourValues.h"
-#include "vtkLight.h"
-#include "vtkLightCollection.h"
 #include "vtkMath.h"
-#include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLError.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
-#include "vtkOpenGLShaderProperty.h"
 #include "vtkOpenGLState.h"
 #include "vtkOpenGLVertexArrayObject.h"
 #include "vtkOverlappingAMR.h"
-#include "vtkPiecewiseFunction.h"
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
-#include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
@@ -49,679 +36,98 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
-#include <limits>
-#include <cfloat>
-#include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
+namespace utilities = vtkSinglePassAMRRenderingUtilities;
+
 namespace
 {
-
-
-/// Base-2 logarithms of `ratios` (all > 0); empty unless every one is a power of two.
-std::vector<int> PowerOfTwoExponents(const std::vector<int>& ratios)
+/// What one frame renders, resolved from the mapper's settings, the volume property and what
+/// the context offers. The shader variant depends on these and on the data only.
+struct FrameSettings
 {
-  std::vector<int> exponents;
-  for (int ratio : ratios)
-  {
-    int e = 0;
-    while ((1 << e) < ratio)
-    {
-      ++e;
-    }
-    if ((1 << e) != ratio)
-    {
-      return {};
-    }
-    exponents.push_back(e);
-  }
-  return exponents;
-}
+  int Storage = -1; // PACKED_ATLAS or BINDLESS_TEXTURES
+  int Access = -1;  // DIRECT_ACCESS or WATERFALL_ACCESS with bindless, else -1
+  int Blend = 0;    // AMRSP_BLEND_MODE: 0 composite, 1 maximum, 2 minimum, 3 average, 4 iso
+  std::vector<float> IsoValues; // sorted, padded to 8 (iso-surface blending only)
+  int IsoCount = 0;
+  bool Shade = false;      // gradient shading (composite and iso-surface blending)
+  bool Shadows = false;    // shadow rays (composite and iso-surface blending)
+  bool SkipEmpty = false;  // empty-space skipping (composite blending)
+  bool SmoothCells = false; // trilinear cell reconstruction (cell data)
+  bool UseDepth = false;
 
-/// k > 0 when `toFinestLog2` (3 per level, as LevelToFinestLog2) says every level refines the one
-/// above by 2^k on every axis, i.e. level l has k (L - 1 - l) on every axis (one level: k = 1);
-/// else 0.
-int UniformRefinementExponent(const std::vector<int>& toFinestLog2)
-{
-  const int levels = static_cast<int>(toFinestLog2.size() / 3);
-  if (levels == 0)
-  {
-    return 0;
-  }
-  const int k = levels > 1 ? toFinestLog2[0] / (levels - 1) : 1;
-  if (k <= 0 || k * (levels - 1) >= 31)
-  {
-    return 0;
-  }
-  for (int l = 0; l < levels; ++l)
-  {
-    for (int a = 0; a < 3; ++a)
-    {
-      if (toFinestLog2[3 * l + a] != k * (levels - 1 - l))
-      {
-        return 0;
-      }
-    }
-  }
-  return k;
-}
-
-double MinEdge(const glm::dvec3& v)
-{
-  return std::min(v.x, std::min(v.y, v.z));
-}
-
-using vtkSinglePassAMRRenderingUtilities::RequestedArray;
-using vtkSinglePassAMRRenderingUtilities::TransferTableSize;
-
+  bool Bindless() const { return this->Storage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES; }
+};
 } // namespace
 
 //------------------------------------------------------------------------------
 class vtkSinglePassAMRVolumeMapper::vtkInternals
 {
 public:
-  // ---- what the textures were built from
-  vtkOverlappingAMR* BuiltInput = nullptr; // identity only, never dereferenced
-  vtkMTimeType BuiltInputMTime = 0;
-  std::string BuiltArray;
-  int BuiltComponent = -1;
-  bool Built = false;     // a build was attempted for the key above
-  bool DataValid = false; // ... and succeeded
-  std::string BuildError; // ... or failed with this message
-  vtkTimeStamp BuildTime;
-  int NumberOfBuilds = 0;
-  int IsoCount = 0; // iso-values of the current frame
-  double BuildSeconds = 0.0;
-  double UploadSeconds = 0.0;
+  explicit vtkInternals(vtkSinglePassAMRVolumeMapper* self)
+    : Self(self)
+  {
+  }
 
-  // ---- CPU results of the build (what the shader needs as uniforms)
-  glm::dvec3 Origin{ 0.0 };
-  glm::dvec3 Spacing0{ 1.0 };
-  glm::vec3 RootLo{ 0.0f };
-  glm::vec3 RootHi{ 0.0f };
-  int RootLoFinest[3] = { 0, 0, 0 };
-  int RootHiFinest[3] = { 0, 0, 0 };
-  std::vector<glm::vec3> LevelCellSize;
-  std::vector<int> LevelToFinest;   // 3 per level
-  // base-2 logarithms of LevelToFinest; empty unless every entry is a power of two
-  std::vector<int> LevelToFinestLog2;
-  // k > 0 when every level refines the one above by 2^k on every axis (else 0)
-  int UniformRefinementLog2 = 0;
-  std::vector<double> LevelMinEdge; // smallest model-space edge of a cell of each level
-  double Bounds[6] = { 0, -1, 0, -1, 0, -1 };
-  double ScalarRange[2] = { 0.0, 1.0 };
-  long long KdNodes = 0;
-  long long DataNodes = 0;
-  long long TextureBytes = 0;
-  long long GridCount = 0; // grids of the hierarchy: bricks, and textures of the bindless storage
-  glm::ivec3 AtlasDims{ 0 };   // (0,0,0) when the bricks could not be packed
-  double AtlasWaste = 0.0;     // unused fraction of the atlas's texels
-  std::string PackingError;    // why no atlas could be packed (empty when packed)
-  long long PackedBytes = 0;   // tree + data nodes + atlas (0 without an atlas)
-  long long BindlessBytes = 0; // tree + data nodes + separate bricks + handles
-  bool VertexCentred = false;  // vertex bricks, trilinear sampling; else cells, nearest
-  int PackLimit = 0;           // MaximumAtlasSize the atlas was packed for (0 = none)
+  // The steps of a frame, in order. Each returns false after Self->ReportError when the frame
+  // cannot be drawn.
+  /// Chooses the storage (warning once when a requested bindless storage falls back to the
+  /// atlas) and uploads the data when the build, the storage, the context or the atlas limit
+  /// changed.
+  bool PrepareStorage(vtkOpenGLRenderWindow* renWin, vtkOverlappingAMR* amr, FrameSettings& frame);
+  /// Tabulates the transfer function and resolves blending, shading, shadows and skipping.
+  bool PrepareAppearance(
+    vtkOpenGLRenderWindow* renWin, vtkVolumeProperty* property, FrameSettings& frame);
+  /// The shader variant of `frame`, compiled once per variant by VTK's shader cache.
+  vtkShaderProgram* ReadyShader(vtkOpenGLRenderWindow* renWin, vtkVolume* vol,
+    const FrameSettings& frame);
+  /// Uploads the root box's triangles after a build and binds them to `program`'s vertexMC.
+  bool BindProxyBox(vtkShaderProgram* program);
+  /// Re-flags the transparent data nodes when the transfer table changed (composite only).
+  bool UpdateEmptySpaceFlags(vtkOpenGLRenderWindow* renWin, const FrameSettings& frame);
+  void ActivateTextures(vtkShaderProgram* program, const FrameSettings& frame);
+  /// The tree, the levels, sampling, transfer function, clipping and level of detail.
+  void SetDataUniforms(vtkShaderProgram* program, vtkRenderer* ren, vtkVolumeProperty* property,
+    const utilities::ViewGeometry& view, const FrameSettings& frame);
+  /// The first light in model coordinates, the material, shadow step and iso-values.
+  void SetLightingUniforms(vtkShaderProgram* program, vtkRenderer* ren, vtkVolume* vol,
+    vtkVolumeProperty* property, const FrameSettings& frame);
+  /// Draws the proxy box's back faces once per pixel, blending premultiplied colour "over".
+  void DrawBackFaces(vtkOpenGLRenderWindow* renWin, const utilities::ViewGeometry& view);
+  void DeactivateTextures(const FrameSettings& frame);
 
-  // ---- CPU data waiting for upload (freed once uploaded): the converted hierarchy (its values
-  // are the bricks), the tree and the two data-node encodings (atlas offsets, in-brick offsets)
+  vtkSinglePassAMRVolumeMapper* Self;
+
+  /// The CPU build; its bricks and texels wait in it until uploaded (PendingUpload).
+  amrsp::RayCastingData Data;
   bool PendingUpload = false;
-  amrsp::Hierarchy Data;
-  amrsp::AtlasLayout Layout;
-  amrsp::UIntTexture3D TreeTexels;
-  amrsp::UIntTexture3D PackedDataNodeTexels;
-  amrsp::UIntTexture3D BindlessDataNodeTexels;
-  /// min, max scalar per data node (kept: 8 bytes per node, for the transparent-node count)
-  std::vector<glm::vec2> NodeRanges;
+  vtkSinglePassAMRGridStorage Storage;
+  utilities::TransferFunctionTable Transfer;
+  utilities::DepthCopy Depth;
 
-  // ---- OpenGL resources of the storage uploaded last (UploadedStorage)
-  int UploadedStorage = -1;
-  int LastStorage = -1; // what rendered the last frame
-  int LastAccess = -1;
-  vtkSmartPointer<vtkTextureObject> Tree;
-  vtkSmartPointer<vtkTextureObject> DataNodesTexture;
-  vtkSmartPointer<vtkTextureObject> Atlas;         // packing
-  vtkSmartPointer<vtkTextureObject> HandlesTexture; // bindless: RG32UI, one handle per brick
-  std::vector<vtkSmartPointer<vtkTextureObject>> Bricks;
-  std::vector<GLuint64> ResidentHandles;
-  vtkSinglePassAMRRenderingUtilities::DepthCopy Depth;
-  vtkSmartPointer<vtkTextureObject> BrickBoxes; // RG32UI, per brick and axis: grid cells lo, hi
-  // empty-space skipping: R8, indexed like the data nodes, 255 where the node's value range is
-  // transparent under the transfer table of FlagsTableTime (recomputed when it is re-tabulated)
-  vtkSmartPointer<vtkTextureObject> TransparentFlags;
-  vtkMTimeType FlagsTableTime = 0;
-  long long FlaggedDataNodes = 0;     // data nodes flagged in TransparentFlags
-  long long TransparentDataNodes = 0; // ... that the last frame skipped (0 with skipping off)
+  // proxy geometry: the root box's 12 triangles, for the build of BoxBufferTime
   vtkNew<vtkOpenGLBufferObject> BoxBuffer;
   vtkNew<vtkOpenGLVertexArrayObject> BoxArray;
   vtkShaderProgram* BoxArrayProgram = nullptr;
-  vtkTimeStamp BoxBufferTime;
-  vtkTimeStamp UploadTime;
-  vtkOpenGLRenderWindow* Context = nullptr;
-  int UploadLimit = 0; // MaximumAtlasSize of the last upload attempt
-  int BuiltPackLimit = -1;
+  vtkMTimeType BoxBufferTime = 0;
 
-  // transfer function table
-  vtkSinglePassAMRRenderingUtilities::TransferFunctionTable Transfer;
-
-  // shader
   std::string FailedFragmentSource; // do not retry a program that failed to compile
-  std::string LastError;
-  std::string StorageNote; // why the last frame did not use the bindless storage it was asked for
 
-  // extensions of the context last asked (cached per context)
-  vtkOpenGLRenderWindow* CapsContext = nullptr;
-  bool HasBindless = false;
-  bool HasNVShader5 = false;
-  bool HasBallot = false;
-  // bindless textures the driver can hold (-1: no known limit). Mesa's zink crashes when more
-  // than 1023 handles are made resident (its bindless descriptor array has 1024 slots); checked
-  // with Mesa 25.0.7: 1023 grids render, 1024 crash inside glMakeTextureHandleResidentARB.
-  long long MaxBindlessTextures = -1;
-  std::set<std::string> Warned; // fallback notes already given (each is said once)
-
-  void FreePendingData()
-  {
-    this->Data = amrsp::Hierarchy();
-    this->Layout = amrsp::AtlasLayout();
-    this->TreeTexels = amrsp::UIntTexture3D();
-    this->PackedDataNodeTexels = amrsp::UIntTexture3D();
-    this->BindlessDataNodeTexels = amrsp::UIntTexture3D();
-    this->PendingUpload = false;
-  }
-
-  void QueryCapabilities(vtkOpenGLRenderWindow* renWin)
-  {
-    if (this->CapsContext == renWin)
-    {
-      return;
-    }
-    renWin->MakeCurrent();
-    this->HasBindless = vtkSinglePassAMROpenGL::HasExtension("GL_ARB_bindless_texture");
-    this->HasNVShader5 = vtkSinglePassAMROpenGL::HasExtension("GL_NV_gpu_shader5");
-    this->HasBallot = vtkSinglePassAMROpenGL::HasExtension("GL_ARB_shader_ballot");
-    const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-    this->MaxBindlessTextures =
-      renderer && std::string(renderer).find("zink") != std::string::npos ? 1023 : -1;
-    this->CapsContext = renWin;
-  }
-
-  /// The bindless access mode `requested` resolves to in the queried context, or -1 with `why`.
-  int ResolveAccess(int requested, std::string& why) const
-  {
-    if (!this->HasBindless)
-    {
-      why = "the OpenGL context lacks GL_ARB_bindless_texture";
-      return -1;
-    }
-    if (requested == vtkSinglePassAMRVolumeMapper::DIRECT_ACCESS ||
-      (requested == vtkSinglePassAMRVolumeMapper::AUTO_ACCESS && this->HasNVShader5))
-    {
-      return vtkSinglePassAMRVolumeMapper::DIRECT_ACCESS;
-    }
-    if (this->HasBallot)
-    {
-      return vtkSinglePassAMRVolumeMapper::WATERFALL_ACCESS;
-    }
-    why = requested == vtkSinglePassAMRVolumeMapper::WATERFALL_ACCESS
-      ? "the waterfall access needs GL_ARB_shader_ballot, which the OpenGL context lacks"
-      : "non-uniform bindless handles need GL_NV_gpu_shader5 or GL_ARB_shader_ballot, and the "
-        "OpenGL context has neither";
-    return -1;
-  }
-
-  /// Makes every brick handle non-resident and frees the bindless textures (the context of the
-  /// upload must be current).
-  void ReleaseBindless(vtkWindow* window)
-  {
-    for (GLuint64 handle : this->ResidentHandles)
-    {
-      glMakeTextureHandleNonResidentARB(handle);
-    }
-    this->ResidentHandles.clear();
-    for (vtkSmartPointer<vtkTextureObject>& brick : this->Bricks)
-    {
-      brick->ReleaseGraphicsResources(window);
-    }
-    this->Bricks.clear();
-    if (this->HandlesTexture)
-    {
-      this->HandlesTexture->ReleaseGraphicsResources(window);
-      this->HandlesTexture = nullptr;
-    }
-  }
-
-  /// CPU side: convert, build the tree, pack, encode, fill the atlas. Returns false with
-  /// BuildError set on failure.
-  bool Build(vtkOverlappingAMR* amr, const std::string& array, int component);
-
-  /// Builds when the input object, its modification time or the array selection differ from
-  /// what the current textures were built from. Returns whether valid data is available.
-  bool EnsureBuilt(vtkOverlappingAMR* amr, const std::string& array, int component)
-  {
-    if (!this->Built || this->BuiltInput != amr || this->BuiltInputMTime != amr->GetMTime() ||
-      this->BuiltArray != array || this->BuiltComponent != component ||
-      this->BuiltPackLimit != this->PackLimit)
-    {
-      this->BuiltPackLimit = this->PackLimit;
-      this->BuiltInput = amr;
-      this->BuiltInputMTime = amr->GetMTime();
-      this->BuiltArray = array;
-      this->BuiltComponent = component;
-      this->Build(amr, array, component);
-    }
-    return this->DataValid;
-  }
-
-  /// Whether the packed atlas fits `renWin` within `atlasLimit` (0 = GL_MAX_3D_TEXTURE_SIZE);
-  /// when not, `why` says which limit it exceeds.
-  bool AtlasFits(vtkOpenGLRenderWindow* renWin, int atlasLimit, std::string& why) const;
-
-  /// Uploads the tree and the grid data in `storage` (PACKED_ATLAS or BINDLESS_TEXTURES).
-  bool Upload(vtkOpenGLRenderWindow* renWin, int storage, std::string& error);
-  bool UploadBindless(vtkOpenGLRenderWindow* renWin, std::string& error);
-  void ReleaseGraphicsResources(vtkWindow* window);
+  // what the last frame did
+  int LastStorage = -1;
+  int LastAccess = -1;
+  std::string StorageNote; // why it did not use the bindless storage it was asked for
+  long long TransparentDataNodes = 0;
 };
-
-//------------------------------------------------------------------------------
-bool vtkSinglePassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
-  const std::string& array,
-  int component)
-{
-  const auto t0 = std::chrono::steady_clock::now();
-  this->Built = true;
-  this->DataValid = false;
-  this->BuildError.clear();
-  this->FreePendingData();
-  ++this->NumberOfBuilds;
-  try
-  {
-    vtkSinglePassAMRConversion::ArraySelection selection;
-    selection.Name = array;
-    selection.Component = component;
-    amrsp::Hierarchy h;
-    std::string error;
-    if (!vtkSinglePassAMRConversion::FromOverlappingAMR(amr, selection, h, error))
-    {
-      this->BuildError = error;
-      return false;
-    }
-    const amrsp::KdTree tree = amrsp::BuildKdTree(h);
-    this->VertexCentred = h.VertexCentred;
-    // bindless: every data node stores the offset of its lower corner inside its own brick
-    const std::vector<glm::ivec3> brickStarts(h.Grids.size(), glm::ivec3(0));
-    amrsp::EncodedKdTree enc = amrsp::EncodeKdTree(h, tree, &brickStarts);
-    this->NodeRanges = amrsp::ComputeDataNodeRanges(h, enc);
-    this->BindlessDataNodeTexels = std::move(enc.DataNodes);
-    // packing: one brick per grid (cells, or vertices one texel larger), packed within the
-    // per-axis limit the data-node offsets can address and MaximumAtlasSize when set; a
-    // hierarchy that cannot be packed can still be rendered bindless
-    this->PackingError.clear();
-    this->Layout = amrsp::AtlasLayout();
-    try
-    {
-      this->Layout = amrsp::PackBricks(amrsp::BrickExtents(h, h.VertexCentred), amrsp::Packer::Best,
-        amrsp::AtlasLimits(this->PackLimit > 0 ? std::min(this->PackLimit, 2048) : 2048));
-      this->PackedDataNodeTexels =
-        amrsp::EncodeKdTree(h, tree, &this->Layout.Origins).DataNodes;
-    }
-    catch (const std::exception& e)
-    {
-      this->PackingError = e.what();
-      this->Layout = amrsp::AtlasLayout();
-      this->PackedDataNodeTexels = amrsp::UIntTexture3D();
-    }
-
-    // exact integer bookkeeping of node boxes in finest-level cells (see the shader)
-    const glm::i64vec3 finest = h.CumulativeRatio(tree.FinestLevel);
-    const amrsp::Box& root = tree.Root().Region;
-    const int64_t limit = int64_t(1) << 30;
-    for (int a = 0; a < 3; ++a)
-    {
-      if (root.Lo[a] < -limit || root.Hi[a] > limit)
-      {
-        this->BuildError = "the root box spans more than 2^30 cells of the finest level; the "
-                           "shader's integer node boxes cannot hold it";
-        this->FreePendingData();
-        return false;
-      }
-      this->RootLoFinest[a] = static_cast<int>(root.Lo[a]);
-      this->RootHiFinest[a] = static_cast<int>(root.Hi[a]);
-    }
-    this->LevelToFinest.clear();
-    this->LevelMinEdge.clear();
-    for (int l = 0; l < h.NumberOfLevels(); ++l)
-    {
-      const glm::i64vec3 r = finest / h.CumulativeRatio(l);
-      this->LevelToFinest.push_back(static_cast<int>(r.x));
-      this->LevelToFinest.push_back(static_cast<int>(r.y));
-      this->LevelToFinest.push_back(static_cast<int>(r.z));
-      this->LevelMinEdge.push_back(MinEdge(h.Spacing0 * h.CellSize(l)));
-    }
-    this->LevelToFinestLog2 = PowerOfTwoExponents(this->LevelToFinest);
-    this->UniformRefinementLog2 = UniformRefinementExponent(this->LevelToFinestLog2);
-    this->LevelCellSize = enc.LevelCellSize;
-    this->RootLo = enc.RootLo;
-    this->RootHi = enc.RootHi;
-    this->Origin = h.Origin;
-    this->Spacing0 = h.Spacing0;
-    const glm::dvec3 lo = h.Origin + glm::dvec3(enc.RootLo) * h.Spacing0;
-    const glm::dvec3 hi = h.Origin + glm::dvec3(enc.RootHi) * h.Spacing0;
-    this->Bounds[0] = lo.x;
-    this->Bounds[1] = hi.x;
-    this->Bounds[2] = lo.y;
-    this->Bounds[3] = hi.y;
-    this->Bounds[4] = lo.z;
-    this->Bounds[5] = hi.z;
-    this->KdNodes = enc.NodeCount;
-    this->DataNodes = enc.DataNodeCount;
-
-    this->AtlasDims = this->Layout.Dims;
-    this->AtlasWaste = this->Layout.TotalTexels > 0 ? 1.0 - this->Layout.Efficiency : 0.0;
-    double vmin = std::numeric_limits<double>::max();
-    double vmax = -std::numeric_limits<double>::max();
-    for (const amrsp::GridValues& values : h.Values)
-    {
-      for (float v : values)
-      {
-        if (std::isfinite(v))
-        {
-          vmin = std::min(vmin, static_cast<double>(v));
-          vmax = std::max(vmax, static_cast<double>(v));
-        }
-      }
-    }
-    if (vmin > vmax && !h.Grids.empty())
-    {
-      this->BuildError = "the array '" + h.ArrayName +
-        "' holds no finite value (NaN or +-Inf in every cell): nothing to render";
-      this->FreePendingData();
-      return false;
-    }
-    this->ScalarRange[0] = vmin <= vmax ? vmin : 0.0;
-    this->ScalarRange[1] = vmin <= vmax ? vmax : 1.0;
-    const long long treeBytes =
-      static_cast<long long>(amrsp::KdTreeTextureBytes(enc.Tree, this->BindlessDataNodeTexels));
-    this->BindlessBytes = treeBytes +
-      static_cast<long long>(amrsp::SeparateBrickBytes(h) + amrsp::HandleTextureBytes(h.Grids.size()));
-    this->PackedBytes = this->PackingError.empty()
-      ? treeBytes + this->Layout.TotalTexels * static_cast<long long>(amrsp::AtlasTexelBytes)
-      : 0;
-    this->TextureBytes = 0;
-    this->GridCount = static_cast<long long>(h.Grids.size());
-    this->TreeTexels = std::move(enc.Tree);
-    this->Data = std::move(h);
-    this->PendingUpload = true;
-    this->DataValid = true;
-  }
-  catch (const std::exception& e)
-  {
-    this->BuildError = e.what();
-    this->FreePendingData();
-    return false;
-  }
-  this->BuildTime.Modified();
-  this->BuildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return true;
-}
-
-//------------------------------------------------------------------------------
-bool vtkSinglePassAMRVolumeMapper::vtkInternals::AtlasFits(vtkOpenGLRenderWindow* renWin,
-  int atlasLimit,
-  std::string& why) const
-{
-  if (!this->PackingError.empty())
-  {
-    why = this->PackingError;
-    return false;
-  }
-  return vtkSinglePassAMRRenderingUtilities::AtlasFitsContext(renWin, this->AtlasDims, atlasLimit, why);
-}
-
-//------------------------------------------------------------------------------
-namespace
-{
-/// An RG32UI texture of the kD-tree encoding (nearest, clamped).
-vtkSmartPointer<vtkTextureObject> MakeIntegerTexture(vtkOpenGLRenderWindow* renWin,
-  const amrsp::UIntTexture3D& texels)
-{
-  auto tex = vtkSmartPointer<vtkTextureObject>::New();
-  tex->SetContext(renWin);
-  tex->SetInternalFormat(GL_RG32UI);
-  tex->SetFormat(GL_RG_INTEGER);
-  tex->SetDataType(GL_UNSIGNED_INT);
-  tex->SetMinificationFilter(vtkTextureObject::Nearest);
-  tex->SetMagnificationFilter(vtkTextureObject::Nearest);
-  tex->SetWrapS(vtkTextureObject::ClampToEdge);
-  tex->SetWrapT(vtkTextureObject::ClampToEdge);
-  tex->SetWrapR(vtkTextureObject::ClampToEdge);
-  const bool ok = tex->Create3DFromRaw(static_cast<unsigned int>(texels.Dims.x),
-    static_cast<unsigned int>(texels.Dims.y),
-    static_cast<unsigned int>(texels.Dims.z),
-    2,
-    VTK_UNSIGNED_INT,
-    const_cast<glm::uvec2*>(texels.Texels.data()));
-  return ok ? tex : nullptr;
-}
-
-/// An R32F brick or atlas texture: nearest for cells, trilinear for vertices (the shader never
-/// samples outside a brick).
-vtkSmartPointer<vtkTextureObject> MakeScalarTexture(vtkOpenGLRenderWindow* renWin,
-  const glm::ivec3& dims,
-  const float* texels,
-  bool vertexCentred)
-{
-  auto tex = vtkSmartPointer<vtkTextureObject>::New();
-  tex->SetContext(renWin);
-  tex->SetInternalFormat(GL_R32F);
-  tex->SetFormat(GL_RED);
-  tex->SetDataType(GL_FLOAT);
-  const int filter = vertexCentred ? vtkTextureObject::Linear : vtkTextureObject::Nearest;
-  tex->SetMinificationFilter(filter);
-  tex->SetMagnificationFilter(filter);
-  tex->SetWrapS(vtkTextureObject::ClampToEdge);
-  tex->SetWrapT(vtkTextureObject::ClampToEdge);
-  tex->SetWrapR(vtkTextureObject::ClampToEdge);
-  const bool ok = tex->Create3DFromRaw(static_cast<unsigned int>(dims.x),
-    static_cast<unsigned int>(dims.y),
-    static_cast<unsigned int>(dims.z),
-    1,
-    VTK_FLOAT,
-    const_cast<float*>(texels));
-  return ok ? tex : nullptr;
-}
-} // namespace
-
-//------------------------------------------------------------------------------
-bool vtkSinglePassAMRVolumeMapper::vtkInternals::Upload(vtkOpenGLRenderWindow* renWin,
-  int storage,
-  std::string& error)
-{
-  const auto t0 = std::chrono::steady_clock::now();
-  const bool bindless = storage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES;
-  const int max3D = vtkTextureObject::GetMaximumTextureSize3D(renWin);
-  for (const amrsp::UIntTexture3D* t : { &this->TreeTexels,
-         bindless ? &this->BindlessDataNodeTexels : &this->PackedDataNodeTexels })
-  {
-    if (t->Dims.x > max3D || t->Dims.y > max3D || t->Dims.z > max3D)
-    {
-      error = "the kD-tree textures exceed GL_MAX_3D_TEXTURE_SIZE of this OpenGL context";
-      return false;
-    }
-  }
-  // the previous storage's textures go first (their handles are made non-resident)
-  if (this->Context == renWin)
-  {
-    this->ReleaseBindless(renWin);
-  }
-  this->Bricks.clear();
-  this->ResidentHandles.clear();
-  this->HandlesTexture = nullptr;
-  this->Atlas = nullptr;
-  this->TransparentFlags = nullptr; // the data nodes may have changed: flagged again per frame
-  this->UploadedStorage = -1;
-  while (glGetError() != GL_NO_ERROR)
-  {
-  }
-
-  this->Tree = MakeIntegerTexture(renWin, this->TreeTexels);
-  this->DataNodesTexture = MakeIntegerTexture(
-    renWin, bindless ? this->BindlessDataNodeTexels : this->PackedDataNodeTexels);
-  bool ok = this->Tree && this->DataNodesTexture;
-  long long bytes = 0;
-  if (ok && bindless)
-  {
-    ok = this->UploadBindless(renWin, error);
-    bytes = this->BindlessBytes;
-  }
-  else if (ok)
-  {
-    const amrsp::BrickAtlas atlas = amrsp::FillBrickAtlas(this->Data, this->Layout);
-    this->Atlas = MakeScalarTexture(renWin, atlas.Layout.Dims, atlas.Texels.data(),
-      this->VertexCentred);
-    ok = this->Atlas != nullptr;
-    bytes = this->PackedBytes;
-  }
-  if (ok)
-  {
-    // grid boxes for the smooth reconstruction: texel 3 g + axis holds grid g's (lo, hi) cells
-    // on that axis, signed values bit for bit
-    amrsp::UIntTexture3D boxes;
-    boxes.Dims = amrsp::TextureDimsFor(3 * this->Data.Grids.size());
-    boxes.Texels.assign(
-      static_cast<std::size_t>(boxes.Dims.x) * boxes.Dims.y * boxes.Dims.z, glm::uvec2(0u));
-    for (std::size_t g = 0; g < this->Data.Grids.size(); ++g)
-    {
-      const amrsp::Box& box = this->Data.Grids[g].Cells;
-      for (int a = 0; a < 3; ++a)
-      {
-        boxes.Texels[3 * g + a] =
-          glm::uvec2(static_cast<uint32_t>(static_cast<int32_t>(box.Lo[a])),
-            static_cast<uint32_t>(static_cast<int32_t>(box.Hi[a])));
-      }
-    }
-    this->BrickBoxes = MakeIntegerTexture(renWin, boxes);
-    ok = this->BrickBoxes != nullptr;
-  }
-  const GLenum glError = glGetError();
-  if (!ok || glError != GL_NO_ERROR)
-  {
-    if (error.empty())
-    {
-      std::ostringstream msg;
-      msg << "uploading the kD-tree and " << (bindless ? "brick" : "atlas") << " textures ("
-          << bytes / (1024.0 * 1024.0) << " MiB) failed"
-          << (glError == GL_OUT_OF_MEMORY ? ": out of GPU memory" : "")
-          << (glError == GL_NO_ERROR ? ": the driver refused a texture allocation (out of GPU "
-                                       "memory, or over one of its limits)"
-                                     : "")
-          << (glError != GL_NO_ERROR ? " (OpenGL error " + std::to_string(glError) + ")" : "");
-      error = msg.str();
-    }
-    this->ReleaseBindless(renWin);
-    this->Tree = nullptr;
-    this->DataNodesTexture = nullptr;
-    this->Atlas = nullptr;
-    this->BrickBoxes = nullptr;
-    return false;
-  }
-  this->FreePendingData();
-  this->TextureBytes = bytes;
-  this->UploadedStorage = storage;
-  this->Context = renWin;
-  this->UploadTime.Modified();
-  this->UploadSeconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return true;
-}
-
-//------------------------------------------------------------------------------
-bool vtkSinglePassAMRVolumeMapper::vtkInternals::UploadBindless(vtkOpenGLRenderWindow* renWin,
-  std::string& error)
-{
-  const int max3D = vtkTextureObject::GetMaximumTextureSize3D(renWin);
-  const std::vector<glm::ivec3> extents = amrsp::BrickExtents(this->Data, this->VertexCentred);
-  amrsp::UIntTexture3D handles;
-  handles.Dims = amrsp::TextureDimsFor(extents.size());
-  handles.Texels.assign(
-    static_cast<std::size_t>(handles.Dims.x) * handles.Dims.y * handles.Dims.z, glm::uvec2(0u));
-  this->Bricks.reserve(extents.size());
-  this->ResidentHandles.reserve(extents.size());
-  for (std::size_t g = 0; g < extents.size(); ++g)
-  {
-    const glm::ivec3 e = extents[g];
-    if (e.x > max3D || e.y > max3D || e.z > max3D)
-    {
-      error = "grid " + std::to_string(g) + " (" + std::to_string(e.x) + " x " +
-        std::to_string(e.y) + " x " + std::to_string(e.z) +
-        " texels) exceeds GL_MAX_3D_TEXTURE_SIZE = " + std::to_string(max3D);
-      return false;
-    }
-    vtkSmartPointer<vtkTextureObject> brick =
-      MakeScalarTexture(renWin, e, this->Data.Values[g].data(), this->VertexCentred);
-    if (!brick)
-    {
-      return false;
-    }
-    // the handle freezes the texture's sampling state, set above by Create3DFromRaw
-    const GLuint64 handle = glGetTextureHandleARB(brick->GetHandle());
-    if (handle == 0)
-    {
-      error = "glGetTextureHandleARB returned no handle for grid " + std::to_string(g);
-      return false;
-    }
-    glMakeTextureHandleResidentARB(handle);
-    this->Bricks.push_back(brick);
-    this->ResidentHandles.push_back(handle);
-    handles.Texels[g] = glm::uvec2(static_cast<uint32_t>(handle & 0xffffffffu),
-      static_cast<uint32_t>(handle >> 32));
-  }
-  this->HandlesTexture = MakeIntegerTexture(renWin, handles);
-  return this->HandlesTexture != nullptr;
-}
-
-//------------------------------------------------------------------------------
-void vtkSinglePassAMRVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWindow* window)
-{
-  if (this->Context == window)
-  {
-    this->ReleaseBindless(window);
-  }
-  this->Bricks.clear();
-  this->ResidentHandles.clear();
-  this->UploadedStorage = -1;
-  for (vtkSmartPointer<vtkTextureObject>* t :
-    { &this->Tree, &this->DataNodesTexture, &this->Atlas, &this->HandlesTexture,
-      &this->BrickBoxes, &this->TransparentFlags })
-  {
-    if (*t)
-    {
-      (*t)->ReleaseGraphicsResources(window);
-      *t = nullptr;
-    }
-  }
-  this->Depth.ReleaseGraphicsResources(window);
-  this->Transfer.ReleaseGraphicsResources(window);
-  this->BoxBuffer->ReleaseGraphicsResources();
-  this->BoxArray->ReleaseGraphicsResources();
-  this->BoxArrayProgram = nullptr;
-  this->Context = nullptr;
-  this->CapsContext = nullptr;
-  if (!this->PendingUpload)
-  {
-    // the CPU copies were freed after the upload: rebuild from the input next time
-    this->Built = false;
-    this->DataValid = false;
-  }
-}
 
 //------------------------------------------------------------------------------
 vtkStandardNewMacro(vtkSinglePassAMRVolumeMapper);
 
 //------------------------------------------------------------------------------
 vtkSinglePassAMRVolumeMapper::vtkSinglePassAMRVolumeMapper()
-  : Internals(new vtkInternals)
+  : Internals(new vtkInternals(this))
 {
 }
 
@@ -732,644 +138,478 @@ vtkSinglePassAMRVolumeMapper::~vtkSinglePassAMRVolumeMapper()
 }
 
 //------------------------------------------------------------------------------
-int vtkSinglePassAMRVolumeMapper::FillInputPortInformation(int vtkNotUsed(port),
-  vtkInformation* info)
+bool vtkSinglePassAMRVolumeMapper::BuildData(
+  vtkOverlappingAMR* amr, const std::string& array, std::string& error)
 {
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkOverlappingAMR");
-  return 1;
-}
-
-//------------------------------------------------------------------------------
-void vtkSinglePassAMRVolumeMapper::SetInputData(vtkOverlappingAMR* input)
-{
-  this->SetInputDataInternal(0, input);
-}
-
-void vtkSinglePassAMRVolumeMapper::SetInputData(vtkImageData*)
-{
-  vtkErrorMacro("vtkSinglePassAMRVolumeMapper renders vtkOverlappingAMR only");
-}
-
-void vtkSinglePassAMRVolumeMapper::SetInputData(vtkDataSet*)
-{
-  vtkErrorMacro("vtkSinglePassAMRVolumeMapper renders vtkOverlappingAMR only");
-}
-
-void vtkSinglePassAMRVolumeMapper::SetInputData(vtkRectilinearGrid*)
-{
-  vtkErrorMacro("vtkSinglePassAMRVolumeMapper renders vtkOverlappingAMR only");
-}
-
-//------------------------------------------------------------------------------
-vtkOverlappingAMR* vtkSinglePassAMRVolumeMapper::GetAMRInput()
-{
-  if (this->GetNumberOfInputConnections(0) < 1)
-  {
-    return nullptr;
-  }
-  return vtkOverlappingAMR::SafeDownCast(this->GetInputDataObject(0, 0));
-}
-
-//------------------------------------------------------------------------------
-
-//------------------------------------------------------------------------------
-double* vtkSinglePassAMRVolumeMapper::GetBounds()
-{
-  vtkMath::UninitializeBounds(this->Bounds);
-  if (this->GetNumberOfInputConnections(0) < 1)
-  {
-    return this->Bounds;
-  }
-  this->Update();
-  vtkOverlappingAMR* amr = this->GetAMRInput();
-  // An AMR without metadata or blocks (e.g. the empty placeholder a ParaView view's producer
-  // holds until it delivers data) has no bounds; it is not built, so the textures of the last
-  // real input stay valid and no build is counted.
-  if (!amr || !amr->GetAMRInfo() || amr->GetTotalNumberOfBlocks() == 0)
-  {
-    return this->Bounds;
-  }
   vtkInternals& in = *this->Internals;
-  const std::string array =
-    RequestedArray(amr, this->ArrayAccessMode, this->ArrayName, this->ArrayId);
-  in.PackLimit = this->MaximumAtlasSize;
-  if (in.EnsureBuilt(amr, array, this->ArrayComponent))
+  in.Data = amrsp::RayCastingData();
+  in.PendingUpload = false;
+  try
   {
-    std::copy(in.Bounds, in.Bounds + 6, this->Bounds);
-    return this->Bounds;
+    vtkSinglePassAMRConversion::ArraySelection selection;
+    selection.Name = array;
+    selection.Component = this->ArrayComponent;
+    amrsp::Hierarchy h;
+    if (!vtkSinglePassAMRConversion::FromOverlappingAMR(amr, selection, h, error))
+    {
+      return false;
+    }
+    in.Data = amrsp::PrepareRayCasting(std::move(h), this->MaximumAtlasSize);
   }
-  // the conversion failed (Render reports why): the AMR's own overall bounds
-  amr->GetBounds(this->Bounds);
-  return this->Bounds;
-}
-
-void vtkSinglePassAMRVolumeMapper::GetBounds(double bounds[6])
-{
-  const double* b = this->GetBounds();
-  std::copy(b, b + 6, bounds);
+  catch (const std::exception& e)
+  {
+    error = e.what();
+    in.Data = amrsp::RayCastingData();
+    return false;
+  }
+  in.PendingUpload = true;
+  return true;
 }
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMRVolumeMapper::IsRenderSupported(vtkRenderWindow* window, std::string* why)
+void vtkSinglePassAMRVolumeMapper::GetBuiltBounds(double bounds[6])
 {
-  return vtkSinglePassAMRRenderingUtilities::IsRenderSupported(window, why);
+  const double* b = this->Internals->Data.Levels.Bounds;
+  std::copy(b, b + 6, bounds);
 }
 
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 {
   vtkInternals& in = *this->Internals;
-  // the same error is reported once, not on every frame
-  const std::string previousError = in.LastError;
-  in.LastError.clear();
   in.LastStorage = -1;
   in.LastAccess = -1;
   in.StorageNote.clear();
-  auto fail = [&](const std::string& message)
-  {
-    if (message != previousError)
-    {
-      vtkErrorMacro(<< message);
-    }
-    in.LastError = message;
-  };
-
-  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
-  if (!renWin)
-  {
-    fail("vtkSinglePassAMRVolumeMapper needs an OpenGL render window");
-    return;
-  }
-  if (this->GetNumberOfInputConnections(0) < 1)
-  {
-    fail("no input: set a vtkOverlappingAMR with SetInputData or SetInputConnection");
-    return;
-  }
-  this->Update();
-  vtkOverlappingAMR* amr = this->GetAMRInput();
+  vtkOpenGLRenderWindow* renWin = nullptr;
+  vtkOverlappingAMR* amr = this->BeginFrame(ren, renWin);
   if (!amr)
   {
-    fail("the input is not a vtkOverlappingAMR");
     return;
   }
-
-  // ---- data: rebuilt only when the input or the array selection changed
-  const std::string array =
-    RequestedArray(amr, this->ArrayAccessMode, this->ArrayName, this->ArrayId);
-  in.PackLimit = this->MaximumAtlasSize;
-  if (!in.EnsureBuilt(amr, array, this->ArrayComponent))
+  // data: rebuilt only when the input or the array selection changed
+  if (!this->EnsureBuilt(amr))
   {
-    fail(in.BuildError);
+    this->ReportError(this->GetBuildError());
     return;
   }
-  // ---- storage: what was asked, what the context offers, what fits
-  in.QueryCapabilities(renWin);
-  auto warnOnce = [&](const std::string& message)
-  {
-    if (in.Warned.insert(message).second)
-    {
-      vtkWarningMacro(<< message);
-    }
-  };
-  std::string noBindless;
-  int access = in.ResolveAccess(this->BindlessAccess, noBindless);
-  if (access >= 0 && in.MaxBindlessTextures >= 0 && in.GridCount > in.MaxBindlessTextures)
-  {
-    noBindless = "this driver (Mesa's zink) holds at most " +
-      std::to_string(in.MaxBindlessTextures) + " bindless textures and the hierarchy has " +
-      std::to_string(in.GridCount) + " grids";
-    access = -1;
-  }
-  std::string noAtlas;
-  const bool atlasFits = in.AtlasFits(renWin, this->MaximumAtlasSize, noAtlas);
-  int storage = PACKED_ATLAS;
-  if (this->DataStorage == BINDLESS_TEXTURES)
-  {
-    if (access >= 0)
-    {
-      storage = BINDLESS_TEXTURES;
-    }
-    else
-    {
-      in.StorageNote = noBindless;
-      warnOnce("bindless textures requested, but " + noBindless +
-        ": rendering with the packed atlas instead");
-    }
-  }
-  else if (this->DataStorage == AUTO_STORAGE && access >= 0 &&
-    (!atlasFits || in.AtlasWaste > this->AutoBindlessWaste))
-  {
-    storage = BINDLESS_TEXTURES;
-  }
-  if (storage == PACKED_ATLAS && !atlasFits)
-  {
-    fail(noAtlas +
-      (this->DataStorage == PACKED_ATLAS ? std::string()
-                                         : "; bindless textures cannot be used: " + noBindless));
-    return;
-  }
-
-  if (in.PendingUpload || in.UploadedStorage != storage || in.Context != renWin ||
-    in.UploadLimit != this->MaximumAtlasSize)
-  {
-    in.UploadLimit = this->MaximumAtlasSize;
-    if (!in.PendingUpload)
-    {
-      // the CPU copies were dropped after an upload of another storage or to another context:
-      // rebuild them
-      in.Build(amr, array, this->ArrayComponent);
-      if (!in.DataValid)
-      {
-        fail(in.BuildError);
-        return;
-      }
-    }
-    std::string error;
-    if (!in.Upload(renWin, storage, error))
-    {
-      // keep the CPU data: a later context (or a smaller input) may succeed
-      fail(error);
-      return;
-    }
-  }
-  const bool bindless = storage == BINDLESS_TEXTURES;
-
+  FrameSettings frame;
   vtkVolumeProperty* property = vol->GetProperty();
+  if (!in.PrepareStorage(renWin, amr, frame) || !in.PrepareAppearance(renWin, property, frame))
+  {
+    return;
+  }
+  vtkShaderProgram* program = in.ReadyShader(renWin, vol, frame);
+  if (!program)
+  {
+    return;
+  }
+  utilities::ViewGeometry view;
+  std::string viewError;
+  if (!utilities::ComputeViewGeometry(ren, vol, view, viewError))
+  {
+    this->ReportError(viewError);
+    return;
+  }
+  if (!in.BindProxyBox(program))
+  {
+    return;
+  }
+  if (frame.UseDepth)
+  {
+    utilities::CopyDepthBuffer(renWin, view, in.Depth); // leaves the depth texture active
+  }
+  if (!in.UpdateEmptySpaceFlags(renWin, frame))
+  {
+    return;
+  }
+  in.ActivateTextures(program, frame);
+  in.SetDataUniforms(program, ren, property, view, frame);
+  if (frame.Shade || frame.Shadows || frame.Blend == 4)
+  {
+    in.SetLightingUniforms(program, ren, vol, property, frame);
+  }
+  in.DrawBackFaces(renWin, view);
+  in.DeactivateTextures(frame);
+  in.LastStorage = frame.Storage;
+  in.LastAccess = frame.Access;
+  vtkOpenGLCheckErrorMacro("failed after vtkSinglePassAMRVolumeMapper::Render");
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareStorage(
+  vtkOpenGLRenderWindow* renWin, vtkOverlappingAMR* amr, FrameSettings& frame)
+{
+  vtkSinglePassAMRVolumeMapper* self = this->Self;
+  const vtkSinglePassAMRGridStorage::Choice choice = this->Storage.Choose(renWin, this->Data,
+    self->DataStorage, self->BindlessAccess, self->AutoBindlessWaste, self->MaximumAtlasSize);
+  if (!choice.FallbackReason.empty())
+  {
+    this->StorageNote = choice.FallbackReason;
+    self->WarnOnce("bindless textures requested, but " + choice.FallbackReason +
+      ": rendering with the packed atlas instead");
+  }
+  if (choice.Storage < 0)
+  {
+    self->ReportError(choice.Error);
+    return false;
+  }
+  frame.Storage = choice.Storage;
+  frame.Access = choice.Access;
+  if (!this->PendingUpload &&
+    this->Storage.IsUploaded(renWin, frame.Storage, self->MaximumAtlasSize))
+  {
+    return true;
+  }
+  if (!this->PendingUpload)
+  {
+    // the CPU copies were dropped after an upload of another storage or to another context:
+    // rebuild them
+    if (!self->Rebuild(amr))
+    {
+      self->ReportError(self->GetBuildError());
+      return false;
+    }
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  std::string error;
+  if (!this->Storage.Upload(renWin, frame.Storage, self->MaximumAtlasSize, this->Data, error))
+  {
+    // keep the CPU data: a later context (or a smaller input) may succeed
+    self->ReportError(error);
+    return false;
+  }
+  this->Data.FreeUploadData();
+  this->PendingUpload = false;
+  self->UploadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareAppearance(
+  vtkOpenGLRenderWindow* renWin, vtkVolumeProperty* property, FrameSettings& frame)
+{
+  vtkSinglePassAMRVolumeMapper* self = this->Self;
   if (!property)
   {
-    fail("the volume has no vtkVolumeProperty");
-    return;
+    self->ReportError("the volume has no vtkVolumeProperty");
+    return false;
   }
-  if (!in.Transfer.Update(renWin, property, in.ScalarRange, in.BuildTime))
+  if (!this->Transfer.Update(renWin, property, this->Data.ScalarRange, self->GetBuildTime()))
   {
-    fail("uploading the transfer-function table failed");
-    return;
+    self->ReportError("uploading the transfer-function table failed");
+    return false;
   }
-
-  // ---- blend mode: composite, maximum, minimum and average intensity
-  int blend = 0;
-  switch (this->GetBlendMode())
+  switch (self->GetBlendMode())
   {
     case vtkVolumeMapper::COMPOSITE_BLEND:
-      blend = 0;
+      frame.Blend = 0;
       break;
     case vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND:
-      blend = 1;
+      frame.Blend = 1;
       break;
     case vtkVolumeMapper::MINIMUM_INTENSITY_BLEND:
-      blend = 2;
+      frame.Blend = 2;
       break;
     case vtkVolumeMapper::AVERAGE_INTENSITY_BLEND:
-      blend = 3;
+      frame.Blend = 3;
       break;
     case vtkVolumeMapper::ISOSURFACE_BLEND:
-      blend = 4;
+      frame.Blend = 4;
       break;
     default:
-      fail("blend mode " + std::to_string(this->GetBlendMode()) +
+      self->ReportError("blend mode " + std::to_string(self->GetBlendMode()) +
         " is not supported (composite, maximum, minimum, average intensity and iso-surface are)");
-      return;
+      return false;
   }
-  std::vector<float> isoValues;
-  if (blend == 4)
+  if (frame.Blend == 4)
   {
     vtkContourValues* values = property->GetIsoSurfaceValues();
     const int count = values ? values->GetNumberOfContours() : 0;
     if (count < 1 || count > 8)
     {
-      fail("iso-surface blending needs 1 to 8 values in vtkVolumeProperty::GetIsoSurfaceValues() "
-           "(it has " + std::to_string(count) + ")");
-      return;
+      self->ReportError("iso-surface blending needs 1 to 8 values in "
+                        "vtkVolumeProperty::GetIsoSurfaceValues() (it has " +
+        std::to_string(count) + ")");
+      return false;
     }
     for (int i = 0; i < count; ++i)
     {
-      isoValues.push_back(static_cast<float>(values->GetValue(i)));
+      frame.IsoValues.push_back(static_cast<float>(values->GetValue(i)));
     }
-    std::sort(isoValues.begin(), isoValues.end());
-    isoValues.resize(8, 0.0f);
-    in.IsoCount = count;
+    std::sort(frame.IsoValues.begin(), frame.IsoValues.end());
+    frame.IsoValues.resize(8, 0.0f);
+    frame.IsoCount = count;
   }
   // shading and shadows apply to composite and iso-surface blending only
-  const bool lit = blend == 0 || blend == 4;
-  const bool shade = lit && property->GetShade(0) != 0;
-  const bool shadows = lit && this->Shadows;
+  const bool lit = frame.Blend == 0 || frame.Blend == 4;
+  frame.Shade = lit && property->GetShade(0) != 0;
+  frame.Shadows = lit && self->Shadows;
+  frame.SkipEmpty = self->EmptySpaceSkipping && frame.Blend == 0;
+  frame.SmoothCells = self->CellInterpolation == SMOOTH_CELL && !this->Data.VertexCentred;
+  frame.UseDepth = self->UseDepthBuffer;
+  return true;
+}
 
-  // ---- shader (one variant per level count and depth use; cached by VTK's shader cache)
-  const int levels = static_cast<int>(in.LevelCellSize.size());
-  const bool useDepth = this->UseDepthBuffer;
-  std::string defines = "#define AMRSP_LEVEL_COUNT " + std::to_string(levels) + "\n" +
-    (bindless ? "#define AMRSP_BINDLESS 1\n" : "#define AMRSP_PACKING 1\n") +
-    (in.VertexCentred ? "#define AMRSP_VERTEX_CENTRED 1\n" : "#define AMRSP_CELL_CENTRED 1\n");
-  if (bindless && access == WATERFALL_ACCESS)
+//------------------------------------------------------------------------------
+vtkShaderProgram* vtkSinglePassAMRVolumeMapper::vtkInternals::ReadyShader(
+  vtkOpenGLRenderWindow* renWin, vtkVolume* vol, const FrameSettings& frame)
+{
+  vtkSinglePassAMRVolumeMapper* self = this->Self;
+  const amrsp::LevelTable& levels = this->Data.Levels;
+  std::string defines = "#define AMRSP_LEVEL_COUNT " +
+    std::to_string(this->Data.LevelCellSize.size()) + "\n" +
+    (frame.Bindless() ? "#define AMRSP_BINDLESS 1\n" : "#define AMRSP_PACKING 1\n") +
+    (this->Data.VertexCentred ? "#define AMRSP_VERTEX_CENTRED 1\n"
+                              : "#define AMRSP_CELL_CENTRED 1\n");
+  const auto define = [&defines](bool on, const std::string& line)
   {
-    defines += "#define AMRSP_WATERFALL 1\n";
-  }
-  if (useDepth)
-  {
-    defines += "#define AMRSP_USE_DEPTH 1\n";
-  }
-  const bool powerOfTwoRefinement = !in.LevelToFinestLog2.empty();
-  if (powerOfTwoRefinement)
-  {
-    defines += "#define AMRSP_POWER_OF_TWO_REFINEMENT 1\n";
-  }
-  if (in.UniformRefinementLog2 > 0)
-  {
-    defines += "#define AMRSP_UNIFORM_REFINEMENT_LOG2 " + std::to_string(in.UniformRefinementLog2) + "\n";
-  }
-  defines += "#define AMRSP_BLEND_MODE " + std::to_string(blend) + "\n";
-  const bool skipEmpty = this->EmptySpaceSkipping && blend == 0;
-  if (skipEmpty)
-  {
-    defines += "#define AMRSP_SKIP_EMPTY 1\n";
-  }
-  if (this->CellInterpolation == SMOOTH_CELL && !in.VertexCentred)
-  {
-    defines += "#define AMRSP_SMOOTH_CELLS 1\n";
-  }
-  if (shade)
-  {
-    defines += "#define AMRSP_SHADE 1\n";
-  }
-  if (shadows)
-  {
-    defines += "#define AMRSP_SHADOWS 1\n";
-  }
-  if (this->WorkCountersOutput)
-  {
-    defines += "#define AMRSP_WORK_COUNTERS 1\n";
-  }
-  // the volume's vtkShaderProperty fragment replacements, as VTK's own mappers apply them: those
-  // marked "replace first" before the mapper's substitutions, the others after
-  vtkOpenGLShaderProperty* shaderProperty =
-    vtkOpenGLShaderProperty::SafeDownCast(vol->GetShaderProperty());
-  auto applyUserReplacements = [&](std::string& code, bool first)
-  {
-    if (!shaderProperty)
+    if (on)
     {
-      return;
-    }
-    for (const auto& r : shaderProperty->GetAllShaderReplacements())
-    {
-      if (r.first.ShaderType == vtkShader::Fragment && r.first.ReplaceFirst == first)
-      {
-        vtkShaderProgram::Substitute(
-          code, r.first.OriginalValue, r.second.Replacement, r.second.ReplaceAll);
-      }
+      defines += "#define " + line + "\n";
     }
   };
-  std::string fragment = amrsp_SinglePassAMR_frag_glsl;
-  applyUserReplacements(fragment, true);
-  vtkShaderProgram::Substitute(fragment, "//AMRSP::Defines", defines);
-  vtkShaderProgram::Substitute(fragment, "//AMRSP::KdTreeLayout", amrsp_KdTreeLayout_glsl);
-  vtkShaderProgram::Substitute(fragment, "//AMRSP::RayCommon", amrsp_RayCommon_glsl);
-  applyUserReplacements(fragment, false);
-  if (fragment == in.FailedFragmentSource)
+  define(frame.Access == WATERFALL_ACCESS, "AMRSP_WATERFALL 1");
+  define(frame.UseDepth, "AMRSP_USE_DEPTH 1");
+  define(!levels.LevelToFinestLog2.empty(), "AMRSP_POWER_OF_TWO_REFINEMENT 1");
+  define(levels.UniformRefinementLog2 > 0,
+    "AMRSP_UNIFORM_REFINEMENT_LOG2 " + std::to_string(levels.UniformRefinementLog2));
+  define(true, "AMRSP_BLEND_MODE " + std::to_string(frame.Blend));
+  define(frame.SkipEmpty, "AMRSP_SKIP_EMPTY 1");
+  define(frame.SmoothCells, "AMRSP_SMOOTH_CELLS 1");
+  define(frame.Shade, "AMRSP_SHADE 1");
+  define(frame.Shadows, "AMRSP_SHADOWS 1");
+  define(self->WorkCountersOutput, "AMRSP_WORK_COUNTERS 1");
+  const std::string fragment = utilities::ComposeFragmentShader(amrsp_SinglePassAMR_frag_glsl,
+    defines,
+    { { "KdTreeLayout", amrsp_KdTreeLayout_glsl }, { "RayCommon", amrsp_RayCommon_glsl } }, vol);
+  if (fragment == this->FailedFragmentSource)
   {
-    fail("the single-pass AMR shader failed to compile or link (see the earlier error)");
-    return;
+    self->ReportError("the single-pass AMR shader failed to compile or link (see the earlier error)");
+    return nullptr;
   }
   vtkShaderProgram* program = renWin->GetShaderCache()->ReadyShaderProgram(
     amrsp_SinglePassAMR_vert_glsl, fragment.c_str(), "");
   if (!program)
   {
-    in.FailedFragmentSource = fragment;
-    fail("the single-pass AMR shader failed to compile or link (see the error above)");
-    return;
+    this->FailedFragmentSource = fragment;
+    self->ReportError("the single-pass AMR shader failed to compile or link (see the error above)");
   }
+  return program;
+}
 
-  // ---- the view: viewport, model <-> normalized device matrices and the rays' origin
-  vtkSinglePassAMRRenderingUtilities::ViewGeometry view;
-  std::string viewError;
-  if (!vtkSinglePassAMRRenderingUtilities::ComputeViewGeometry(ren, vol, view, viewError))
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRVolumeMapper::vtkInternals::BindProxyBox(vtkShaderProgram* program)
+{
+  const vtkMTimeType buildTime = this->Self->GetBuildTime().GetMTime();
+  if (this->BoxBufferTime != buildTime || this->BoxBuffer->GetHandle() == 0)
   {
-    fail(viewError);
-    return;
+    const double* b = this->Data.Levels.Bounds;
+    const double lo[3] = { b[0], b[2], b[4] };
+    const double hi[3] = { b[1], b[3], b[5] };
+    this->BoxBuffer->Upload(utilities::BoxTriangles(lo, hi), vtkOpenGLBufferObject::ArrayBuffer);
+    this->BoxBufferTime = buildTime;
+    this->BoxArrayProgram = nullptr;
   }
-  vtkCamera* camera = ren->GetActiveCamera();
-  vtkNew<vtkMatrix4x4> wcmc; // world -> model, for the light
-  vtkMatrix4x4::Invert(vol->GetMatrix(), wcmc);
-
-  // ---- proxy geometry: the root box's faces, wound counter-clockwise seen from outside
-  if (in.BoxBufferTime < in.BuildTime || in.BoxBuffer->GetHandle() == 0)
+  this->BoxArray->Bind();
+  if (this->BoxArrayProgram != program)
   {
-    const double* b = in.Bounds;
-    std::vector<float> vertices;
-    for (int axis = 0; axis < 3; ++axis)
+    this->BoxArray->ReleaseGraphicsResources();
+    this->BoxArray->Bind();
+    if (!this->BoxArray->AddAttributeArray(
+          program, this->BoxBuffer, "vertexMC", 0, 3 * sizeof(float), VTK_FLOAT, 3, false))
     {
-      for (int side = 0; side < 2; ++side)
-      {
-        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-        double quad[4][3];
-        const int corners[4][2] = { { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 } };
-        for (int c = 0; c < 4; ++c)
-        {
-          quad[c][axis] = b[2 * axis + side];
-          quad[c][u] = b[2 * u + corners[c][0]];
-          quad[c][v] = b[2 * v + corners[c][1]];
-        }
-        // (u, v, axis) is right-handed: u x v points along +axis, so this order faces +axis
-        const int order[2][6] = { { 0, 2, 1, 0, 3, 2 }, { 0, 1, 2, 0, 2, 3 } };
-        for (int k : order[side])
-        {
-          vertices.push_back(static_cast<float>(quad[k][0]));
-          vertices.push_back(static_cast<float>(quad[k][1]));
-          vertices.push_back(static_cast<float>(quad[k][2]));
-        }
-      }
+      this->BoxArray->Release();
+      this->Self->ReportError("cannot bind the proxy box's vertices to the shader");
+      return false;
     }
-    in.BoxBuffer->Upload(vertices, vtkOpenGLBufferObject::ArrayBuffer);
-    in.BoxBufferTime.Modified();
-    in.BoxArrayProgram = nullptr;
+    this->BoxArrayProgram = program;
   }
-  in.BoxArray->Bind();
-  if (in.BoxArrayProgram != program)
-  {
-    in.BoxArray->ReleaseGraphicsResources();
-    in.BoxArray->Bind();
-    if (!in.BoxArray->AddAttributeArray(
-          program, in.BoxBuffer, "vertexMC", 0, 3 * sizeof(float), VTK_FLOAT, 3, false))
-    {
-      in.BoxArray->Release();
-      fail("cannot bind the proxy box's vertices to the shader");
-      return;
-    }
-    in.BoxArrayProgram = program;
-  }
+  return true;
+}
 
-  vtkOpenGLState* state = renWin->GetState();
-
-  // ---- depth of the opaque geometry drawn so far
-  if (useDepth)
-  {
-    vtkSinglePassAMRRenderingUtilities::CopyDepthBuffer(renWin, view, in.Depth);
-  }
-
-  // ---- empty-space skipping: one flag per data node, whether its value range is transparent
-  // under the tabulated transfer function (amrsp::TableRangeTransparent on the table the shader
-  // samples); recomputed when the table is re-tabulated (the node ranges never change with it)
-  if (skipEmpty &&
-    (!in.TransparentFlags || in.TransparentFlags->GetContext() != renWin ||
-      in.FlagsTableTime != in.Transfer.GetTableTime()))
-  {
-    const std::vector<float> prefix = amrsp::OpacityPrefixCounts(in.Transfer.GetOpacityTable());
-    float tableRange[2];
-    in.Transfer.GetShaderRange(tableRange);
-    // texel k at the data node's own texel; texel 0 and padding texels are never read
-    const glm::ivec3 dims = amrsp::TextureDimsFor(in.NodeRanges.size());
-    std::vector<unsigned char> flags(static_cast<std::size_t>(dims.x) * dims.y * dims.z, 0);
-    in.FlaggedDataNodes = 0;
-    for (std::size_t k = 1; k < in.NodeRanges.size(); ++k)
-    {
-      if (amrsp::TableRangeTransparent(
-            prefix, tableRange, in.NodeRanges[k].x, in.NodeRanges[k].y))
-      {
-        flags[k] = 255;
-        ++in.FlaggedDataNodes;
-      }
-    }
-    // R8 rows need no unpack padding: a texture row is 256 texels, or the only row
-    in.TransparentFlags = vtkSmartPointer<vtkTextureObject>::New();
-    in.TransparentFlags->SetContext(renWin);
-    in.TransparentFlags->SetInternalFormat(GL_R8);
-    in.TransparentFlags->SetFormat(GL_RED);
-    in.TransparentFlags->SetDataType(GL_UNSIGNED_BYTE);
-    in.TransparentFlags->SetMinificationFilter(vtkTextureObject::Nearest);
-    in.TransparentFlags->SetMagnificationFilter(vtkTextureObject::Nearest);
-    if (!in.TransparentFlags->Create3DFromRaw(static_cast<unsigned int>(dims.x),
-          static_cast<unsigned int>(dims.y), static_cast<unsigned int>(dims.z), 1,
-          VTK_UNSIGNED_CHAR, flags.data()))
-    {
-      in.TransparentFlags = nullptr;
-      fail("uploading the empty-space skipping flags failed");
-      return;
-    }
-    in.FlagsTableTime = in.Transfer.GetTableTime();
-  }
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRVolumeMapper::vtkInternals::UpdateEmptySpaceFlags(
+  vtkOpenGLRenderWindow* renWin, const FrameSettings& frame)
+{
   // the flags stay valid while skipping is switched off: switching it on again reuses them
-  in.TransparentDataNodes = skipEmpty ? in.FlaggedDataNodes : 0;
+  this->TransparentDataNodes = 0;
+  if (!frame.SkipEmpty)
+  {
+    return true;
+  }
+  float tableRange[2];
+  this->Transfer.GetShaderRange(tableRange);
+  if (!this->Storage.UpdateTransparentFlags(renWin, this->Data.NodeRanges,
+        this->Transfer.GetOpacityTable(), tableRange, this->Transfer.GetTableTime()))
+  {
+    this->Self->ReportError("uploading the empty-space skipping flags failed");
+    return false;
+  }
+  this->TransparentDataNodes = this->Storage.GetFlaggedDataNodes();
+  return true;
+}
 
-  // ---- uniforms
-  const std::vector<glm::vec3>& cells = in.LevelCellSize;
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeMapper::vtkInternals::ActivateTextures(
+  vtkShaderProgram* program, const FrameSettings& frame)
+{
+  vtkSinglePassAMRGridStorage& s = this->Storage;
+  s.GetTree()->Activate();
+  s.GetDataNodes()->Activate();
+  s.GetGridData()->Activate();
+  this->Transfer.GetTexture()->Activate();
+  program->SetUniformi("amrspTree", s.GetTree()->GetTextureUnit());
+  program->SetUniformi("amrspDataNodes", s.GetDataNodes()->GetTextureUnit());
+  program->SetUniformi(
+    frame.Bindless() ? "amrspHandles" : "amrspAtlas", s.GetGridData()->GetTextureUnit());
+  program->SetUniformi("amrspTransfer", this->Transfer.GetTexture()->GetTextureUnit());
+  if (frame.SmoothCells)
+  {
+    s.GetBrickBoxes()->Activate();
+    program->SetUniformi("amrspBrickBoxes", s.GetBrickBoxes()->GetTextureUnit());
+  }
+  if (frame.SkipEmpty)
+  {
+    s.GetTransparentFlags()->Activate();
+    program->SetUniformi("amrspTransparentFlags", s.GetTransparentFlags()->GetTextureUnit());
+  }
+  if (frame.UseDepth)
+  {
+    program->SetUniformi("amrspDepth", this->Depth.Depth->GetTextureUnit());
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeMapper::vtkInternals::SetDataUniforms(vtkShaderProgram* program,
+  vtkRenderer* ren, vtkVolumeProperty* property, const utilities::ViewGeometry& view,
+  const FrameSettings& frame)
+{
+  vtkSinglePassAMRVolumeMapper* self = this->Self;
+  const amrsp::RayCastingData& d = this->Data;
+  const amrsp::LevelTable& levels = d.Levels;
+  const int levelCount = static_cast<int>(d.LevelCellSize.size());
   std::vector<float> steps;
-  for (double edge : in.LevelMinEdge)
+  for (double edge : levels.LevelMinEdge)
   {
-    steps.push_back(static_cast<float>(this->SampleDistanceFactor * edge));
+    steps.push_back(static_cast<float>(self->SampleDistanceFactor * edge));
   }
-  const float origin[3] = { static_cast<float>(in.Origin.x),
-    static_cast<float>(in.Origin.y),
-    static_cast<float>(in.Origin.z) };
-  const float spacing[3] = { static_cast<float>(in.Spacing0.x),
-    static_cast<float>(in.Spacing0.y),
-    static_cast<float>(in.Spacing0.z) };
-  const float viewport[4] = { static_cast<float>(view.X0),
-    static_cast<float>(view.Y0),
-    static_cast<float>(view.Width),
-    static_cast<float>(view.Height) };
+  const glm::vec3 origin(d.Data.Origin);
+  const glm::vec3 spacing(d.Data.Spacing0);
+  const float viewport[4] = { static_cast<float>(view.X0), static_cast<float>(view.Y0),
+    static_cast<float>(view.Width), static_cast<float>(view.Height) };
   float transferRange[2];
-  in.Transfer.GetShaderRange(transferRange);
+  this->Transfer.GetShaderRange(transferRange);
 
-  vtkTextureObject* gridData = bindless ? in.HandlesTexture.Get() : in.Atlas.Get();
-  in.Tree->Activate();
-  in.DataNodesTexture->Activate();
-  gridData->Activate();
-  in.Transfer.GetTexture()->Activate();
-  program->SetUniformi("amrspTree", in.Tree->GetTextureUnit());
-  program->SetUniformi("amrspDataNodes", in.DataNodesTexture->GetTextureUnit());
-  program->SetUniformi(bindless ? "amrspHandles" : "amrspAtlas", gridData->GetTextureUnit());
-  program->SetUniformi("amrspTransfer", in.Transfer.GetTexture()->GetTextureUnit());
-  program->SetUniformf("amrspOpacityThreshold", static_cast<float>(this->OpacityThreshold));
-  const bool smoothCells = this->CellInterpolation == SMOOTH_CELL && !in.VertexCentred;
-  if (smoothCells)
-  {
-    in.BrickBoxes->Activate();
-    program->SetUniformi("amrspBrickBoxes", in.BrickBoxes->GetTextureUnit());
-  }
-  if (skipEmpty)
-  {
-    in.TransparentFlags->Activate();
-    program->SetUniformi("amrspTransparentFlags", in.TransparentFlags->GetTextureUnit());
-  }
-  if (useDepth)
-  {
-    program->SetUniformi("amrspDepth", in.Depth.Depth->GetTextureUnit());
-  }
-  program->SetUniformMatrix4x4("amrspMCDCMatrix", view.MCDC);
-  program->SetUniformMatrix4x4("amrspDCMCMatrix", view.DCMC);
+  program->SetUniformf("amrspOpacityThreshold", static_cast<float>(self->OpacityThreshold));
+  program->SetUniformMatrix4x4("amrspMCDCMatrix", const_cast<float*>(view.MCDC));
+  program->SetUniformMatrix4x4("amrspDCMCMatrix", const_cast<float*>(view.DCMC));
   program->SetUniform4f("amrspViewport", viewport);
   program->SetUniform4f("amrspEyeMC", view.EyeMC);
-  program->SetUniform3f("amrspOrigin", origin);
-  program->SetUniform3f("amrspSpacing0", spacing);
-  program->SetUniform3f("amrspRootLo", &in.RootLo.x);
-  program->SetUniform3f("amrspRootHi", &in.RootHi.x);
+  program->SetUniform3f("amrspOrigin", &origin.x);
+  program->SetUniform3f("amrspSpacing0", &spacing.x);
+  program->SetUniform3f("amrspRootLo", &d.RootLo.x);
+  program->SetUniform3f("amrspRootHi", &d.RootHi.x);
   glm::vec3 clipLo, clipHi;
   std::string cropWarning;
-  vtkSinglePassAMRRenderingUtilities::ClipBox(
-    this, in.Origin, in.Spacing0, in.RootLo, in.RootHi, clipLo, clipHi, cropWarning);
+  utilities::ClipBox(
+    self, d.Data.Origin, d.Data.Spacing0, d.RootLo, d.RootHi, clipLo, clipHi, cropWarning);
   if (!cropWarning.empty())
   {
-    warnOnce(cropWarning);
+    self->WarnOnce(cropWarning);
   }
   program->SetUniform3f("amrspClipLo", &clipLo.x);
   program->SetUniform3f("amrspClipHi", &clipHi.x);
-  program->SetUniform1iv("amrspRootLoFinest", 3, in.RootLoFinest);
-  program->SetUniform1iv("amrspRootHiFinest", 3, in.RootHiFinest);
+  program->SetUniform1iv("amrspRootLoFinest", 3, &levels.RootLoFinest.x);
+  program->SetUniform1iv("amrspRootHiFinest", 3, &levels.RootHiFinest.x);
   // (with uniform power-of-two refinement the shader computes these from the level)
   if (program->IsUniformUsed("amrspLevelCellSize"))
   {
-    program->SetUniform3fv("amrspLevelCellSize", levels, &cells[0].x);
+    program->SetUniform3fv("amrspLevelCellSize", levelCount, &d.LevelCellSize[0].x);
   }
   if (program->IsUniformUsed("amrspLevelToFinest"))
   {
-    program->SetUniform1iv("amrspLevelToFinest", 3 * levels, in.LevelToFinest.data());
+    program->SetUniform1iv("amrspLevelToFinest", 3 * levelCount, levels.LevelToFinest.data());
   }
-  if (in.UniformRefinementLog2 > 0)
+  if (levels.UniformRefinementLog2 > 0)
   {
-    program->SetUniformf("amrspFinestCellSize", cells.back().x);
+    program->SetUniformf("amrspFinestCellSize", d.LevelCellSize.back().x);
   }
-  else if (powerOfTwoRefinement)
+  else if (!levels.LevelToFinestLog2.empty())
   {
-    program->SetUniform1iv("amrspLevelToFinestLog2", 3 * levels, in.LevelToFinestLog2.data());
+    program->SetUniform1iv(
+      "amrspLevelToFinestLog2", 3 * levelCount, levels.LevelToFinestLog2.data());
   }
-  program->SetUniform1fv("amrspLevelStep", levels, steps.data());
-  const long long guard = 4 * in.KdNodes + 16;
+  program->SetUniform1fv("amrspLevelStep", levelCount, steps.data());
+  const long long guard = 4 * d.KdNodes + 16;
   program->SetUniformi("amrspMaxSegments", static_cast<int>(std::min<long long>(guard, 1 << 30)));
   program->SetUniform2f("amrspTransferRange", transferRange);
-  program->SetUniformf("amrspTransferSize", static_cast<float>(TransferTableSize));
-  const float atlasSize[3] = { static_cast<float>(in.AtlasDims.x),
-    static_cast<float>(in.AtlasDims.y), static_cast<float>(in.AtlasDims.z) };
-  if (!bindless)
+  program->SetUniformf("amrspTransferSize", static_cast<float>(utilities::TransferTableSize));
+  if (!frame.Bindless())
   {
-    program->SetUniform3f("amrspAtlasSize", atlasSize);
+    const glm::vec3 atlasSize(d.AtlasDims);
+    program->SetUniform3f("amrspAtlasSize", &atlasSize.x);
   }
   // level of detail: world size of a pixel at distance 1 (perspective) or everywhere (parallel),
   // as amrsp::LevelOfDetail
-  const float pixelPerDistance = view.Parallel ? 0.0f
-    : static_cast<float>(2.0 * std::tan(vtkMath::RadiansFromDegrees(camera->GetViewAngle()) * 0.5) /
-        view.Height);
+  vtkCamera* camera = ren->GetActiveCamera();
+  const float pixelPerDistance = view.Parallel
+    ? 0.0f
+    : static_cast<float>(
+        2.0 * std::tan(vtkMath::RadiansFromDegrees(camera->GetViewAngle()) * 0.5) / view.Height);
   const float parallelPixel =
     view.Parallel ? static_cast<float>(2.0 * camera->GetParallelScale() / view.Height) : 0.0f;
-  program->SetUniformf("amrspLodThreshold", static_cast<float>(this->LODThreshold));
+  program->SetUniformf("amrspLodThreshold", static_cast<float>(self->LODThreshold));
   program->SetUniformf("amrspPixelSizePerDistance", pixelPerDistance);
   program->SetUniformf("amrspParallelPixelSize", parallelPixel);
   program->SetUniformf("amrspUnitDistance",
     static_cast<float>(std::max(property->GetScalarOpacityUnitDistance(0), 1e-12)));
-  if (shade || shadows || blend == 4)
-  {
-    // the first switched-on light, in model coordinates (none: ambient only)
-    float lightPosition[3] = { 0.0f, 0.0f, 0.0f };
-    float lightDirection[3] = { 0.0f, 0.0f, 1.0f };
-    float lightColour[3] = { 0.0f, 0.0f, 0.0f };
-    int positional = 0;
-    vtkLightCollection* lights = ren->GetLights();
-    vtkCollectionSimpleIterator it;
-    lights->InitTraversal(it);
-    while (vtkLight* light = lights->GetNextLight(it))
-    {
-      if (!light->GetSwitch())
-      {
-        continue;
-      }
-      double position[4] = { 0.0, 0.0, 0.0, 1.0 }, focal[4] = { 0.0, 0.0, 0.0, 1.0 };
-      light->GetTransformedPosition(position);
-      light->GetTransformedFocalPoint(focal);
-      double positionMC[4], focalMC[4];
-      wcmc->MultiplyPoint(position, positionMC);
-      wcmc->MultiplyPoint(focal, focalMC);
-      double toLight[3];
-      for (int a = 0; a < 3; ++a)
-      {
-        lightPosition[a] = static_cast<float>(positionMC[a] / positionMC[3]);
-        toLight[a] = positionMC[a] / positionMC[3] - focalMC[a] / focalMC[3];
-      }
-      if (vtkMath::Normalize(toLight) > 0.0)
-      {
-        for (int a = 0; a < 3; ++a)
-        {
-          lightDirection[a] = static_cast<float>(toLight[a]);
-        }
-      }
-      const double* colour = light->GetDiffuseColor();
-      for (int a = 0; a < 3; ++a)
-      {
-        lightColour[a] = static_cast<float>(colour[a] * light->GetIntensity());
-      }
-      positional = light->GetPositional() ? 1 : 0;
-      break;
-    }
-    const auto setIfUsed = [&](const char* name, auto&& set) {
-      if (program->IsUniformUsed(name))
-      {
-        set(name);
-      }
-    };
-    setIfUsed("amrspAmbient",
-      [&](const char* n) { program->SetUniformf(n, static_cast<float>(property->GetAmbient(0))); });
-    setIfUsed("amrspDiffuse",
-      [&](const char* n) { program->SetUniformf(n, static_cast<float>(property->GetDiffuse(0))); });
-    setIfUsed("amrspSpecular", [&](const char* n)
-      { program->SetUniformf(n, static_cast<float>(property->GetSpecular(0))); });
-    setIfUsed("amrspSpecularPower", [&](const char* n)
-      { program->SetUniformf(n, static_cast<float>(property->GetSpecularPower(0))); });
-    setIfUsed("amrspLightPositional", [&](const char* n) { program->SetUniformi(n, positional); });
-    setIfUsed("amrspLightPositionMC", [&](const char* n) { program->SetUniform3f(n, lightPosition); });
-    setIfUsed("amrspLightDirectionMC",
-      [&](const char* n) { program->SetUniform3f(n, lightDirection); });
-    setIfUsed("amrspLightColour", [&](const char* n) { program->SetUniform3f(n, lightColour); });
-    const double shadowStep = this->ShadowSampleDistance > 0.0
-      ? this->ShadowSampleDistance
-      : (in.LevelMinEdge.empty() ? 1.0 : in.LevelMinEdge[0]);
-    setIfUsed("amrspShadowStep",
-      [&](const char* n) { program->SetUniformf(n, static_cast<float>(shadowStep)); });
-    setIfUsed("amrspIsoCount", [&](const char* n) { program->SetUniformi(n, in.IsoCount); });
-    if (!isoValues.empty())
-    {
-      setIfUsed("amrspIsoValues",
-        [&](const char* n) { program->SetUniform1fv(n, 8, isoValues.data()); });
-    }
-  }
+}
 
-  // ---- draw the back faces once per pixel, blending premultiplied colour front to back
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeMapper::vtkInternals::SetLightingUniforms(vtkShaderProgram* program,
+  vtkRenderer* ren, vtkVolume* vol, vtkVolumeProperty* property, const FrameSettings& frame)
+{
+  const utilities::ModelLight light = utilities::FirstLightInModel(ren, vol);
+  const auto setIfUsed = [program](const char* name, auto&& set)
+  {
+    if (program->IsUniformUsed(name))
+    {
+      set(name);
+    }
+  };
+  setIfUsed("amrspAmbient",
+    [&](const char* n) { program->SetUniformf(n, static_cast<float>(property->GetAmbient(0))); });
+  setIfUsed("amrspDiffuse",
+    [&](const char* n) { program->SetUniformf(n, static_cast<float>(property->GetDiffuse(0))); });
+  setIfUsed("amrspSpecular",
+    [&](const char* n) { program->SetUniformf(n, static_cast<float>(property->GetSpecular(0))); });
+  setIfUsed("amrspSpecularPower", [&](const char* n)
+    { program->SetUniformf(n, static_cast<float>(property->GetSpecularPower(0))); });
+  setIfUsed("amrspLightPositional",
+    [&](const char* n) { program->SetUniformi(n, light.Positional ? 1 : 0); });
+  setIfUsed("amrspLightPositionMC", [&](const char* n) { program->SetUniform3f(n, light.Position); });
+  setIfUsed(
+    "amrspLightDirectionMC", [&](const char* n) { program->SetUniform3f(n, light.Direction); });
+  setIfUsed("amrspLightColour", [&](const char* n) { program->SetUniform3f(n, light.Colour); });
+  const std::vector<double>& minEdge = this->Data.Levels.LevelMinEdge;
+  const double shadowStep = this->Self->ShadowSampleDistance > 0.0
+    ? this->Self->ShadowSampleDistance
+    : (minEdge.empty() ? 1.0 : minEdge[0]);
+  setIfUsed("amrspShadowStep",
+    [&](const char* n) { program->SetUniformf(n, static_cast<float>(shadowStep)); });
+  setIfUsed("amrspIsoCount", [&](const char* n) { program->SetUniformi(n, frame.IsoCount); });
+  if (!frame.IsoValues.empty())
+  {
+    setIfUsed("amrspIsoValues",
+      [&](const char* n) { program->SetUniform1fv(n, 8, frame.IsoValues.data()); });
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeMapper::vtkInternals::DrawBackFaces(
+  vtkOpenGLRenderWindow* renWin, const utilities::ViewGeometry& view)
+{
+  vtkOpenGLState* state = renWin->GetState();
   {
     vtkOpenGLState::ScopedglEnableDisable cullSaved(state, GL_CULL_FACE);
     vtkOpenGLState::ScopedglEnableDisable depthSaved(state, GL_DEPTH_TEST);
@@ -1386,82 +626,91 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     glDrawArrays(GL_TRIANGLES, 0, 36);
     state->vtkglCullFace(GL_BACK);
   }
-  in.BoxArray->Release();
+  this->BoxArray->Release();
+}
 
-  in.Tree->Deactivate();
-  in.DataNodesTexture->Deactivate();
-  gridData->Deactivate();
-  in.Transfer.GetTexture()->Deactivate();
-  if (smoothCells)
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeMapper::vtkInternals::DeactivateTextures(const FrameSettings& frame)
+{
+  vtkSinglePassAMRGridStorage& s = this->Storage;
+  s.GetTree()->Deactivate();
+  s.GetDataNodes()->Deactivate();
+  s.GetGridData()->Deactivate();
+  this->Transfer.GetTexture()->Deactivate();
+  if (frame.SmoothCells)
   {
-    in.BrickBoxes->Deactivate();
+    s.GetBrickBoxes()->Deactivate();
   }
-  if (skipEmpty)
+  if (frame.SkipEmpty)
   {
-    in.TransparentFlags->Deactivate();
+    s.GetTransparentFlags()->Deactivate();
   }
-  if (useDepth)
+  if (frame.UseDepth)
   {
-    in.Depth.Depth->Deactivate();
+    this->Depth.Depth->Deactivate();
   }
-  in.LastStorage = storage;
-  in.LastAccess = bindless ? access : -1;
-  vtkOpenGLCheckErrorMacro("failed after vtkSinglePassAMRVolumeMapper::Render");
 }
 
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
-  this->Internals->ReleaseGraphicsResources(window);
+  vtkInternals& in = *this->Internals;
+  in.Storage.ReleaseGraphicsResources(window);
+  in.Depth.ReleaseGraphicsResources(window);
+  in.Transfer.ReleaseGraphicsResources(window);
+  in.BoxBuffer->ReleaseGraphicsResources();
+  in.BoxArray->ReleaseGraphicsResources();
+  in.BoxArrayProgram = nullptr;
+  if (!in.PendingUpload)
+  {
+    // the CPU copies were freed after the upload: rebuild from the input next time
+    this->InvalidateBuild();
+  }
   this->Superclass::ReleaseGraphicsResources(window);
 }
 
 //------------------------------------------------------------------------------
-const char* vtkSinglePassAMRVolumeMapper::GetLastError()
-{
-  return this->Internals->LastError.c_str();
-}
-
-double vtkSinglePassAMRVolumeMapper::GetLastBuildSeconds()
-{
-  return this->Internals->BuildSeconds;
-}
-
-double vtkSinglePassAMRVolumeMapper::GetLastUploadSeconds()
-{
-  return this->Internals->UploadSeconds;
-}
-
-int vtkSinglePassAMRVolumeMapper::GetNumberOfBuilds()
-{
-  return this->Internals->NumberOfBuilds;
-}
-
 void vtkSinglePassAMRVolumeMapper::GetAtlasDimensions(int dims[3])
 {
-  dims[0] = this->Internals->AtlasDims.x;
-  dims[1] = this->Internals->AtlasDims.y;
-  dims[2] = this->Internals->AtlasDims.z;
+  const glm::ivec3 d = this->Internals->Data.AtlasDims;
+  dims[0] = d.x;
+  dims[1] = d.y;
+  dims[2] = d.z;
 }
 
 long long vtkSinglePassAMRVolumeMapper::GetTextureBytes()
 {
-  return this->Internals->TextureBytes;
+  return this->Internals->Storage.GetTextureBytes();
 }
 
 long long vtkSinglePassAMRVolumeMapper::GetPackedTextureBytes()
 {
-  return this->Internals->PackedBytes;
+  return this->Internals->Data.PackedBytes;
 }
 
 long long vtkSinglePassAMRVolumeMapper::GetBindlessTextureBytes()
 {
-  return this->Internals->BindlessBytes;
+  return this->Internals->Data.BindlessBytes;
 }
 
 double vtkSinglePassAMRVolumeMapper::GetAtlasWaste()
 {
-  return this->Internals->AtlasWaste;
+  return this->Internals->Data.AtlasWaste;
+}
+
+long long vtkSinglePassAMRVolumeMapper::GetNumberOfKdNodes()
+{
+  return this->Internals->Data.KdNodes;
+}
+
+long long vtkSinglePassAMRVolumeMapper::GetNumberOfDataNodes()
+{
+  return this->Internals->Data.DataNodes;
+}
+
+long long vtkSinglePassAMRVolumeMapper::GetNumberOfTransparentDataNodes()
+{
+  return this->Internals->TransparentDataNodes;
 }
 
 int vtkSinglePassAMRVolumeMapper::GetLastDataStorage()
@@ -1513,41 +762,18 @@ const char* vtkSinglePassAMRVolumeMapper::GetBindlessAccessName(int access)
 bool vtkSinglePassAMRVolumeMapper::IsBindlessSupported(vtkRenderWindow* window, std::string* why)
 {
   std::string reason;
-  if (!IsRenderSupported(window, &reason))
+  bool supported = IsRenderSupported(window, &reason);
+  if (supported)
   {
-    if (why)
-    {
-      *why = reason;
-    }
-    return false;
+    vtkSinglePassAMRGridStorage capabilities;
+    supported = capabilities.ResolveAccess(
+                  vtkOpenGLRenderWindow::SafeDownCast(window), AUTO_ACCESS, reason) >= 0;
   }
-  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
-  vtkInternals caps;
-  caps.QueryCapabilities(renWin);
-  if (caps.ResolveAccess(AUTO_ACCESS, reason) < 0)
+  if (!supported && why)
   {
-    if (why)
-    {
-      *why = reason;
-    }
-    return false;
+    *why = reason;
   }
-  return true;
-}
-
-long long vtkSinglePassAMRVolumeMapper::GetNumberOfKdNodes()
-{
-  return this->Internals->KdNodes;
-}
-
-long long vtkSinglePassAMRVolumeMapper::GetNumberOfDataNodes()
-{
-  return this->Internals->DataNodes;
-}
-
-long long vtkSinglePassAMRVolumeMapper::GetNumberOfTransparentDataNodes()
-{
-  return this->Internals->TransparentDataNodes;
+  return supported;
 }
 
 //------------------------------------------------------------------------------
@@ -1555,11 +781,7 @@ void vtkSinglePassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   const vtkInternals& in = *this->Internals;
-  os << indent << "ArrayComponent: " << this->ArrayComponent << "\n";
-  os << indent << "SampleDistanceFactor: " << this->SampleDistanceFactor << "\n";
-  os << indent << "MaximumAtlasSize: " << this->MaximumAtlasSize << "\n";
   os << indent << "LODThreshold: " << this->LODThreshold << "\n";
-  os << indent << "UseDepthBuffer: " << (this->UseDepthBuffer ? "on" : "off") << "\n";
   os << indent << "DataStorage: " << GetDataStorageName(this->DataStorage) << "\n";
   os << indent << "BindlessAccess: " << GetBindlessAccessName(this->BindlessAccess) << "\n";
   os << indent << "AutoBindlessWaste: " << this->AutoBindlessWaste << "\n";
@@ -1573,9 +795,7 @@ void vtkSinglePassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "TransparentDataNodes: " << in.TransparentDataNodes << "\n";
   os << indent << "Shadows: " << (this->Shadows ? "on" : "off")
      << ", ShadowSampleDistance: " << this->ShadowSampleDistance << "\n";
-  os << indent << "NumberOfBuilds: " << in.NumberOfBuilds << "\n";
-  os << indent << "KdNodes: " << in.KdNodes << ", DataNodes: " << in.DataNodes << "\n";
-  os << indent << "AtlasDimensions: " << in.AtlasDims.x << " x " << in.AtlasDims.y << " x "
-     << in.AtlasDims.z << "\n";
-  os << indent << "LastError: " << (in.LastError.empty() ? "(none)" : in.LastError) << "\n";
+  os << indent << "KdNodes: " << in.Data.KdNodes << ", DataNodes: " << in.Data.DataNodes << "\n";
+  const glm::ivec3 d = in.Data.AtlasDims;
+  os << indent << "AtlasDimensions: " << d.x << " x " << d.y << " x " << d.z << "\n";
 }

@@ -60,64 +60,19 @@
 #ifndef vtkSinglePassAMRVolumeMapper_h
 #define vtkSinglePassAMRVolumeMapper_h
 
+#include "vtkSinglePassAMRMapperBase.h"
 #include "vtkSinglePassAMRModule.h" // for export macro
-#include "vtkVolumeMapper.h"
 
-#include <string> // for IsRenderSupported
+#include <string> // for IsBindlessSupported
 
-class vtkOverlappingAMR;
 class vtkRenderWindow;
 
-class VTKSINGLEPASSAMR_EXPORT vtkSinglePassAMRVolumeMapper : public vtkVolumeMapper
+class VTKSINGLEPASSAMR_EXPORT vtkSinglePassAMRVolumeMapper : public vtkSinglePassAMRMapperBase
 {
 public:
   static vtkSinglePassAMRVolumeMapper* New();
-  vtkTypeMacro(vtkSinglePassAMRVolumeMapper, vtkVolumeMapper);
+  vtkTypeMacro(vtkSinglePassAMRVolumeMapper, vtkSinglePassAMRMapperBase);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  ///@{
-  /// The AMR input. The vtkDataSet overloads of vtkVolumeMapper are rejected with an error.
-  virtual void SetInputData(vtkOverlappingAMR* input);
-  void SetInputData(vtkImageData* input) override;
-  void SetInputData(vtkDataSet* input) override;
-  void SetInputData(vtkRectilinearGrid* input) override;
-  vtkOverlappingAMR* GetAMRInput();
-  ///@}
-
-  ///@{
-  /// Bounds of the root box of the hierarchy (the bounding box of the level-0 grids), in model
-  /// coordinates. Computing them converts the input (the same conversion rendering needs).
-  double* GetBounds() VTK_SIZEHINT(6) override;
-  void GetBounds(double bounds[6]) override;
-  ///@}
-
-  ///@{
-  /// Component of a multi-component scalar array; -1 (default) takes the magnitude.
-  vtkSetMacro(ArrayComponent, int);
-  vtkGetMacro(ArrayComponent, int);
-  ///@}
-
-  ///@{
-  /// Sampling distance of a ray segment in one kD node, in units of the smallest edge of a cell
-  /// of that node's level (default 1: about one sample per cell).
-  vtkSetClampMacro(SampleDistanceFactor, double, 1e-3, 1e3);
-  vtkGetMacro(SampleDistanceFactor, double);
-  ///@}
-
-  ///@{
-  /// Clip rays at the depth of opaque geometry rendered before the volume (default on).
-  vtkSetMacro(UseDepthBuffer, bool);
-  vtkGetMacro(UseDepthBuffer, bool);
-  vtkBooleanMacro(UseDepthBuffer, bool);
-  ///@}
-
-  ///@{
-  /// Largest atlas edge accepted, in texels: 0 (default) uses the context's
-  /// GL_MAX_3D_TEXTURE_SIZE; a positive value lowers that limit (to keep memory for others, and
-  /// to exercise the error path in tests).
-  vtkSetClampMacro(MaximumAtlasSize, int, 0, VTK_INT_MAX);
-  vtkGetMacro(MaximumAtlasSize, int);
-  ///@}
 
   /// How the grid data reaches the GPU (see the class description).
   enum DataStorageMode
@@ -164,10 +119,6 @@ public:
   void ReleaseGraphicsResources(vtkWindow* window) override;
 
 #ifndef __VTK_WRAP__
-  /// Whether `window` offers what the mapper needs: an OpenGL 3.2 core context (integer
-  /// textures, GLSL 1.50). When it does not, `why` says what is missing.
-  static bool IsRenderSupported(vtkRenderWindow* window, std::string* why = nullptr);
-
   /// Whether `window`'s context can render with BINDLESS_TEXTURES: GL_ARB_bindless_texture and
   /// at least one access mode (GL_NV_gpu_shader5 for direct, GL_ARB_shader_ballot for waterfall).
   /// When it cannot, `why` says what is missing.
@@ -188,19 +139,11 @@ public:
   ///@}
 
   ///@{
-  /// Diagnostics of the last build and render.
-  /// GetLastError: empty after a successful Render(), else one line naming the problem.
-  const char* GetLastError();
-  /// Seconds spent converting, building the kD-tree, packing and encoding (CPU), and uploading.
-  double GetLastBuildSeconds();
-  double GetLastUploadSeconds();
-  /// Number of times the data textures were (re)built; camera or transfer-function changes must
-  /// not increase it.
-  int GetNumberOfBuilds();
+  /// Diagnostics of the last build and render (see also vtkSinglePassAMRMapperBase).
   /// Atlas texture dimensions (0 when no atlas could be packed) and the bytes of all data
   /// textures uploaded for the last frame (tree + data nodes + atlas, or + bricks + handles).
-  void GetAtlasDimensions(int dims[3]);
-  long long GetTextureBytes();
+  void GetAtlasDimensions(int dims[3]) override;
+  long long GetTextureBytes() override;
   /// Bytes either storage needs for the current data, whichever rendered (the paper's Table 2
   /// "GPU memory": tree textures + grid data). Packing is 0 when no atlas could be packed.
   long long GetPackedTextureBytes();
@@ -208,8 +151,8 @@ public:
   /// Fraction of the packed atlas's texels that hold no brick (0 when no atlas).
   double GetAtlasWaste();
   /// kD-tree nodes and data nodes of the current hierarchy.
-  long long GetNumberOfKdNodes();
-  long long GetNumberOfDataNodes();
+  long long GetNumberOfKdNodes() override;
+  long long GetNumberOfDataNodes() override;
   ///@}
 
   ///@{
@@ -317,12 +260,9 @@ protected:
   vtkSinglePassAMRVolumeMapper();
   ~vtkSinglePassAMRVolumeMapper() override;
 
-  int FillInputPortInformation(int port, vtkInformation* info) override;
+  bool BuildData(vtkOverlappingAMR* amr, const std::string& array, std::string& error) override;
+  void GetBuiltBounds(double bounds[6]) override;
 
-  int ArrayComponent = -1;
-  double SampleDistanceFactor = 1.0;
-  bool UseDepthBuffer = true;
-  int MaximumAtlasSize = 0;
   double LODThreshold = 0.0;
   int DataStorage = AUTO_STORAGE;
   int BindlessAccess = AUTO_ACCESS;

@@ -63,15 +63,18 @@ LevelTable ComputeLevelTable(const Hierarchy& h, const KdTree& tree)
   const glm::i64vec3 finest = h.CumulativeRatio(tree.FinestLevel);
   const Box& root = tree.Root().Region;
   const int64_t limit = int64_t(1) << 30;
+  t.RootFitsShaderIntegers = true;
   for (int a = 0; a < 3; ++a)
   {
-    if (root.Lo[a] < -limit || root.Hi[a] > limit)
+    t.RootFitsShaderIntegers = t.RootFitsShaderIntegers && root.Lo[a] >= -limit && root.Hi[a] <= limit;
+  }
+  if (t.RootFitsShaderIntegers)
+  {
+    for (int a = 0; a < 3; ++a)
     {
-      throw std::runtime_error("the root box spans more than 2^30 cells of the finest level; the "
-                               "shader's integer node boxes cannot hold it");
+      t.RootLoFinest[a] = static_cast<int>(root.Lo[a]);
+      t.RootHiFinest[a] = static_cast<int>(root.Hi[a]);
     }
-    t.RootLoFinest[a] = static_cast<int>(root.Lo[a]);
-    t.RootHiFinest[a] = static_cast<int>(root.Hi[a]);
   }
   for (int l = 0; l < h.NumberOfLevels(); ++l)
   {
@@ -152,11 +155,17 @@ RayCastingData PrepareRayCasting(Hierarchy h, int packLimit)
     out.PackedDataNodeTexels = UIntTexture3D();
   }
   out.Levels = ComputeLevelTable(h, tree);
+  if (!out.Levels.RootFitsShaderIntegers)
+  {
+    throw std::runtime_error("the root box spans more than 2^30 cells of the finest level; the "
+                             "shader's integer node boxes cannot hold it");
+  }
   out.LevelCellSize = enc.LevelCellSize;
   out.RootLo = enc.RootLo;
   out.RootHi = enc.RootHi;
   out.KdNodes = enc.NodeCount;
   out.DataNodes = enc.DataNodeCount;
+  out.AtlasDims = out.Layout.Dims;
   out.AtlasWaste = out.Layout.TotalTexels > 0 ? 1.0 - out.Layout.Efficiency : 0.0;
   if (!FiniteValueRange(h, out.ScalarRange) && !h.Grids.empty())
   {

@@ -49,6 +49,7 @@ TEST(RayCastingData, LevelTableOfThePaperExample)
   EXPECT_EQ(t.LevelToFinest, (std::vector<int>{ 4, 4, 4, 2, 2, 2, 1, 1, 1 }));
   EXPECT_EQ(t.LevelToFinestLog2, (std::vector<int>{ 2, 2, 2, 1, 1, 1, 0, 0, 0 }));
   EXPECT_EQ(t.UniformRefinementLog2, 1);
+  EXPECT_TRUE(t.RootFitsShaderIntegers);
   ASSERT_EQ(t.LevelMinEdge.size(), 3u);
   EXPECT_DOUBLE_EQ(t.LevelMinEdge[0], 0.25); // spacing (0.5, 0.25, 1)
   EXPECT_DOUBLE_EQ(t.LevelMinEdge[2], 0.0625);
@@ -73,6 +74,7 @@ TEST(RayCastingData, RootBoxOverTwoToTheThirtyFinestCellsIsAnError)
   h.Grids.push_back(Grid{ 29, MakeBox(0, 0, 0, 2, 2, 2) });
   amrsp::test::FillValues(h);
   // 4 level-0 cells are 2^31 cells of level 29
+  EXPECT_FALSE(ComputeLevelTable(h, BuildKdTree(h)).RootFitsShaderIntegers);
   try
   {
     PrepareRayCasting(h, 0);
@@ -128,6 +130,7 @@ TEST(RayCastingData, BothEncodingsAndTheFigures)
   EXPECT_TRUE(freed.Data.Values.empty());
   EXPECT_TRUE(freed.TreeTexels.Texels.empty());
   EXPECT_EQ(freed.KdNodes, d.KdNodes); // the figures stay
+  EXPECT_EQ(freed.AtlasDims, d.Layout.Dims);
 }
 
 TEST(RayCastingData, UnpackableBricksLeaveTheBindlessEncoding)

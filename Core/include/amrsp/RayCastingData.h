@@ -34,7 +34,9 @@ int UniformRefinementExponent(const std::vector<int>& toFinestLog2);
 /// What the shaders need about the levels and the root box, derived exactly from the tree.
 struct LevelTable
 {
-  /// The root box in finest cells (exact); each bound within [-2^30, 2^30].
+  /// The root box in finest cells (exact), valid when RootFitsShaderIntegers: every bound within
+  /// [-2^30, 2^30], what the single-pass shader's integer node boxes can hold.
+  bool RootFitsShaderIntegers = false;
   glm::ivec3 RootLoFinest{ 0 };
   glm::ivec3 RootHiFinest{ 0 };
   /// Finest cells per cell of each level, 3 per level; their base-2 logarithms (empty unless all
@@ -49,8 +51,7 @@ struct LevelTable
   double Bounds[6] = { 0.0, -1.0, 0.0, -1.0, 0.0, -1.0 };
 };
 
-/// The level table of `h` and its tree. Throws std::runtime_error when the root box spans more
-/// than 2^30 finest cells (the shader's integer node boxes cannot hold it).
+/// The level table of `h` and its tree.
 LevelTable ComputeLevelTable(const Hierarchy& h, const KdTree& tree);
 
 /// The range of the finite values of `h` in `range`; false (and [0, 1]) when there is none.
@@ -74,6 +75,7 @@ struct RayCastingData
   /// min, max scalar per data node, indexed like the data-node texels (entry 0 unused).
   std::vector<glm::vec2> NodeRanges;
   AtlasLayout Layout;       ///< Dims (0,0,0) when the bricks could not be packed
+  glm::ivec3 AtlasDims{ 0 }; ///< Layout.Dims, kept after FreeUploadData
   std::string PackingError; ///< why no atlas could be packed (empty when packed)
   double AtlasWaste = 0.0;  ///< unused fraction of the atlas's texels
   double ScalarRange[2] = { 0.0, 1.0 };
@@ -86,7 +88,8 @@ struct RayCastingData
   long long BindlessBytes = 0;
   bool VertexCentred = false;
 
-  /// Drops the CPU copies the upload consumed (bricks, layout, texels); the figures stay.
+  /// Drops the CPU copies the upload consumed (bricks, layout, texels); the figures (sizes,
+  /// ranges, level table, AtlasDims) stay.
   void FreeUploadData();
 };
 

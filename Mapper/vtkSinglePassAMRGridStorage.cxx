@@ -1,0 +1,349 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkSinglePassAMRGridStorage.h"
+
+#include "vtkSinglePassAMRRenderingUtilities.h"
+#include "vtkSinglePassAMRVolumeMapper.h"
+
+#include "amrsp/BrickAtlas.h"
+#include "amrsp/EmptySpace.h"
+
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkTextureObject.h"
+#include "vtkSinglePassAMROpenGL.h"
+
+#include <chrono>
+#include <sstream>
+
+namespace utilities = vtkSinglePassAMRRenderingUtilities;
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRGridStorage::QueryCapabilities(vtkOpenGLRenderWindow* renWin)
+{
+  if (this->CapsContext == renWin)
+  {
+    return;
+  }
+  renWin->MakeCurrent();
+  this->HasBindless = vtkSinglePassAMROpenGL::HasExtension("GL_ARB_bindless_texture");
+  this->HasNVShader5 = vtkSinglePassAMROpenGL::HasExtension("GL_NV_gpu_shader5");
+  this->HasBallot = vtkSinglePassAMROpenGL::HasExtension("GL_ARB_shader_ballot");
+  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  this->MaxBindlessTextures =
+    renderer && std::string(renderer).find("zink") != std::string::npos ? 1023 : -1;
+  this->CapsContext = renWin;
+}
+
+//------------------------------------------------------------------------------
+int vtkSinglePassAMRGridStorage::ResolveAccess(
+  vtkOpenGLRenderWindow* renWin, int access, std::string& why)
+{
+  this->QueryCapabilities(renWin);
+  if (!this->HasBindless)
+  {
+    why = "the OpenGL context lacks GL_ARB_bindless_texture";
+    return -1;
+  }
+  if (access == vtkSinglePassAMRVolumeMapper::DIRECT_ACCESS ||
+    (access == vtkSinglePassAMRVolumeMapper::AUTO_ACCESS && this->HasNVShader5))
+  {
+    return vtkSinglePassAMRVolumeMapper::DIRECT_ACCESS;
+  }
+  if (this->HasBallot)
+  {
+    return vtkSinglePassAMRVolumeMapper::WATERFALL_ACCESS;
+  }
+  why = access == vtkSinglePassAMRVolumeMapper::WATERFALL_ACCESS
+    ? "the waterfall access needs GL_ARB_shader_ballot, which the OpenGL context lacks"
+    : "non-uniform bindless handles need GL_NV_gpu_shader5 or GL_ARB_shader_ballot, and the "
+      "OpenGL context has neither";
+  return -1;
+}
+
+//------------------------------------------------------------------------------
+vtkSinglePassAMRGridStorage::Choice vtkSinglePassAMRGridStorage::Choose(
+  vtkOpenGLRenderWindow* renWin, const amrsp::RayCastingData& data, int requested, int access,
+  double autoBindlessWaste, int atlasLimit)
+{
+  Choice c;
+  std::string noBindless;
+  int resolved = this->ResolveAccess(renWin, access, noBindless);
+  if (resolved >= 0 && this->MaxBindlessTextures >= 0 && data.Grids > this->MaxBindlessTextures)
+  {
+    noBindless = "this driver (Mesa's zink) holds at most " +
+      std::to_string(this->MaxBindlessTextures) + " bindless textures and the hierarchy has " +
+      std::to_string(data.Grids) + " grids";
+    resolved = -1;
+  }
+  std::string noAtlas = data.PackingError;
+  const bool atlasFits = noAtlas.empty() &&
+    utilities::AtlasFitsContext(renWin, data.Layout.Dims, atlasLimit, noAtlas);
+  int storage = vtkSinglePassAMRVolumeMapper::PACKED_ATLAS;
+  if (requested == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES)
+  {
+    if (resolved >= 0)
+    {
+      storage = vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES;
+    }
+    else
+    {
+      c.FallbackReason = noBindless;
+    }
+  }
+  else if (requested == vtkSinglePassAMRVolumeMapper::AUTO_STORAGE && resolved >= 0 &&
+    (!atlasFits || data.AtlasWaste > autoBindlessWaste))
+  {
+    storage = vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES;
+  }
+  if (storage == vtkSinglePassAMRVolumeMapper::PACKED_ATLAS && !atlasFits)
+  {
+    c.Error = noAtlas +
+      (requested == vtkSinglePassAMRVolumeMapper::PACKED_ATLAS
+          ? std::string()
+          : "; bindless textures cannot be used: " + noBindless);
+    return c;
+  }
+  c.Storage = storage;
+  c.Access = storage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES ? resolved : -1;
+  return c;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRGridStorage::IsUploaded(
+  vtkOpenGLRenderWindow* renWin, int storage, int atlasLimit) const
+{
+  return this->UploadedStorage == storage && this->Context == renWin &&
+    this->UploadLimit == atlasLimit;
+}
+
+//------------------------------------------------------------------------------
+vtkTextureObject* vtkSinglePassAMRGridStorage::GetGridData() const
+{
+  return this->UploadedStorage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES
+    ? this->HandlesTexture.Get()
+    : this->Atlas.Get();
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, int storage,
+  int atlasLimit, const amrsp::RayCastingData& data, std::string& error)
+{
+  this->UploadLimit = atlasLimit;
+  const bool bindless = storage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES;
+  const amrsp::UIntTexture3D& dataNodes =
+    bindless ? data.BindlessDataNodeTexels : data.PackedDataNodeTexels;
+  const int max3D = vtkTextureObject::GetMaximumTextureSize3D(renWin);
+  for (const amrsp::UIntTexture3D* t : { &data.TreeTexels, &dataNodes })
+  {
+    if (t->Dims.x > max3D || t->Dims.y > max3D || t->Dims.z > max3D)
+    {
+      error = "the kD-tree textures exceed GL_MAX_3D_TEXTURE_SIZE of this OpenGL context";
+      return false;
+    }
+  }
+  // the previous storage's textures go first (their handles are made non-resident)
+  if (this->Context == renWin)
+  {
+    this->ReleaseBindless(renWin);
+  }
+  this->Bricks.clear();
+  this->ResidentHandles.clear();
+  this->HandlesTexture = nullptr;
+  this->Atlas = nullptr;
+  this->TransparentFlags = nullptr; // the data nodes may have changed: flagged again per frame
+  this->UploadedStorage = -1;
+  while (glGetError() != GL_NO_ERROR)
+  {
+  }
+
+  this->Tree = utilities::MakeIntegerTexture(renWin, data.TreeTexels);
+  this->DataNodes = utilities::MakeIntegerTexture(renWin, dataNodes);
+  bool ok = this->Tree && this->DataNodes;
+  const long long bytes = bindless ? data.BindlessBytes : data.PackedBytes;
+  if (ok && bindless)
+  {
+    ok = this->UploadBindless(renWin, data, error);
+  }
+  else if (ok)
+  {
+    const amrsp::BrickAtlas atlas = amrsp::FillBrickAtlas(data.Data, data.Layout);
+    this->Atlas = utilities::MakeScalarTexture(
+      renWin, atlas.Layout.Dims, atlas.Texels.data(), data.VertexCentred);
+    ok = this->Atlas != nullptr;
+  }
+  if (ok)
+  {
+    // grid boxes for the smooth reconstruction: texel 3 g + axis holds grid g's (lo, hi) cells
+    // on that axis, signed values bit for bit
+    amrsp::UIntTexture3D boxes;
+    boxes.Dims = amrsp::TextureDimsFor(3 * data.Data.Grids.size());
+    boxes.Texels.assign(
+      static_cast<std::size_t>(boxes.Dims.x) * boxes.Dims.y * boxes.Dims.z, glm::uvec2(0u));
+    for (std::size_t g = 0; g < data.Data.Grids.size(); ++g)
+    {
+      const amrsp::Box& box = data.Data.Grids[g].Cells;
+      for (int a = 0; a < 3; ++a)
+      {
+        boxes.Texels[3 * g + a] = glm::uvec2(static_cast<uint32_t>(static_cast<int32_t>(box.Lo[a])),
+          static_cast<uint32_t>(static_cast<int32_t>(box.Hi[a])));
+      }
+    }
+    this->BrickBoxes = utilities::MakeIntegerTexture(renWin, boxes);
+    ok = this->BrickBoxes != nullptr;
+  }
+  const GLenum glError = glGetError();
+  if (!ok || glError != GL_NO_ERROR)
+  {
+    if (error.empty())
+    {
+      std::ostringstream msg;
+      msg << "uploading the kD-tree and " << (bindless ? "brick" : "atlas") << " textures ("
+          << bytes / (1024.0 * 1024.0) << " MiB) failed"
+          << (glError == GL_OUT_OF_MEMORY ? ": out of GPU memory" : "")
+          << (glError == GL_NO_ERROR ? ": the driver refused a texture allocation (out of GPU "
+                                       "memory, or over one of its limits)"
+                                     : "")
+          << (glError != GL_NO_ERROR ? " (OpenGL error " + std::to_string(glError) + ")" : "");
+      error = msg.str();
+    }
+    this->ReleaseBindless(renWin);
+    this->Tree = nullptr;
+    this->DataNodes = nullptr;
+    this->Atlas = nullptr;
+    this->BrickBoxes = nullptr;
+    return false;
+  }
+  this->TextureBytes = bytes;
+  this->UploadedStorage = storage;
+  this->Context = renWin;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRGridStorage::UploadBindless(
+  vtkOpenGLRenderWindow* renWin, const amrsp::RayCastingData& data, std::string& error)
+{
+  const int max3D = vtkTextureObject::GetMaximumTextureSize3D(renWin);
+  const std::vector<glm::ivec3> extents = amrsp::BrickExtents(data.Data, data.VertexCentred);
+  amrsp::UIntTexture3D handles;
+  handles.Dims = amrsp::TextureDimsFor(extents.size());
+  handles.Texels.assign(
+    static_cast<std::size_t>(handles.Dims.x) * handles.Dims.y * handles.Dims.z, glm::uvec2(0u));
+  this->Bricks.reserve(extents.size());
+  this->ResidentHandles.reserve(extents.size());
+  for (std::size_t g = 0; g < extents.size(); ++g)
+  {
+    const glm::ivec3 e = extents[g];
+    if (e.x > max3D || e.y > max3D || e.z > max3D)
+    {
+      error = "grid " + std::to_string(g) + " (" + std::to_string(e.x) + " x " +
+        std::to_string(e.y) + " x " + std::to_string(e.z) +
+        " texels) exceeds GL_MAX_3D_TEXTURE_SIZE = " + std::to_string(max3D);
+      return false;
+    }
+    vtkSmartPointer<vtkTextureObject> brick =
+      utilities::MakeScalarTexture(renWin, e, data.Data.Values[g].data(), data.VertexCentred);
+    if (!brick)
+    {
+      return false;
+    }
+    // the handle freezes the texture's sampling state, set above by Create3DFromRaw
+    const GLuint64 handle = glGetTextureHandleARB(brick->GetHandle());
+    if (handle == 0)
+    {
+      error = "glGetTextureHandleARB returned no handle for grid " + std::to_string(g);
+      return false;
+    }
+    glMakeTextureHandleResidentARB(handle);
+    this->Bricks.push_back(brick);
+    this->ResidentHandles.push_back(handle);
+    handles.Texels[g] = glm::uvec2(
+      static_cast<uint32_t>(handle & 0xffffffffu), static_cast<uint32_t>(handle >> 32));
+  }
+  this->HandlesTexture = utilities::MakeIntegerTexture(renWin, handles);
+  return this->HandlesTexture != nullptr;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRGridStorage::UpdateTransparentFlags(vtkOpenGLRenderWindow* renWin,
+  const std::vector<glm::vec2>& nodeRanges, const std::vector<float>& opacity,
+  const float tableRange[2], vtkMTimeType tableTime)
+{
+  if (this->TransparentFlags && this->TransparentFlags->GetContext() == renWin &&
+    this->FlagsTableTime == tableTime)
+  {
+    return true;
+  }
+  const std::vector<float> prefix = amrsp::OpacityPrefixCounts(opacity);
+  // texel k at the data node's own texel; texel 0 and padding texels are never read
+  const glm::ivec3 dims = amrsp::TextureDimsFor(nodeRanges.size());
+  std::vector<unsigned char> flags(static_cast<std::size_t>(dims.x) * dims.y * dims.z, 0);
+  this->FlaggedDataNodes = 0;
+  for (std::size_t k = 1; k < nodeRanges.size(); ++k)
+  {
+    if (amrsp::TableRangeTransparent(prefix, tableRange, nodeRanges[k].x, nodeRanges[k].y))
+    {
+      flags[k] = 255;
+      ++this->FlaggedDataNodes;
+    }
+  }
+  // R8 rows need no unpack padding: a texture row is 256 texels, or the only row
+  this->TransparentFlags = vtkSmartPointer<vtkTextureObject>::New();
+  this->TransparentFlags->SetContext(renWin);
+  this->TransparentFlags->SetInternalFormat(GL_R8);
+  this->TransparentFlags->SetFormat(GL_RED);
+  this->TransparentFlags->SetDataType(GL_UNSIGNED_BYTE);
+  this->TransparentFlags->SetMinificationFilter(vtkTextureObject::Nearest);
+  this->TransparentFlags->SetMagnificationFilter(vtkTextureObject::Nearest);
+  if (!this->TransparentFlags->Create3DFromRaw(static_cast<unsigned int>(dims.x),
+        static_cast<unsigned int>(dims.y), static_cast<unsigned int>(dims.z), 1, VTK_UNSIGNED_CHAR,
+        flags.data()))
+  {
+    this->TransparentFlags = nullptr;
+    return false;
+  }
+  this->FlagsTableTime = tableTime;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRGridStorage::ReleaseBindless(vtkWindow* window)
+{
+  for (std::uint64_t handle : this->ResidentHandles)
+  {
+    glMakeTextureHandleNonResidentARB(handle);
+  }
+  this->ResidentHandles.clear();
+  for (vtkSmartPointer<vtkTextureObject>& brick : this->Bricks)
+  {
+    brick->ReleaseGraphicsResources(window);
+  }
+  this->Bricks.clear();
+  if (this->HandlesTexture)
+  {
+    this->HandlesTexture->ReleaseGraphicsResources(window);
+    this->HandlesTexture = nullptr;
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRGridStorage::ReleaseGraphicsResources(vtkWindow* window)
+{
+  if (this->Context == window)
+  {
+    this->ReleaseBindless(window);
+  }
+  this->Bricks.clear();
+  this->ResidentHandles.clear();
+  this->UploadedStorage = -1;
+  for (vtkSmartPointer<vtkTextureObject>* t : { &this->Tree, &this->DataNodes, &this->Atlas,
+         &this->HandlesTexture, &this->BrickBoxes, &this->TransparentFlags })
+  {
+    if (*t)
+    {
+      (*t)->ReleaseGraphicsResources(window);
+      *t = nullptr;
+    }
+  }
+  this->Context = nullptr;
+  this->CapsContext = nullptr;
+}

@@ -1,0 +1,130 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkSinglePassAMRGridStorage
+ * @brief   the single-pass mapper's GPU data: tree textures and the grid data, packed or bindless
+ *
+ * Private to the module (the header exposes core types), as vtkVolumeTexture is to VTK's GPU ray
+ * caster. It holds, for one OpenGL context:
+ * - the kD-tree (RG32UI) and its data nodes (RG32UI) of amrsp::RayCastingData;
+ * - the grid data in one of the paper's two storages (section 5): one packed R32F atlas
+ *   (PACKED_ATLAS), or one R32F texture per grid whose GL_ARB_bindless_texture handles are kept
+ *   resident and stored in an RG32UI handles texture (BINDLESS_TEXTURES);
+ * - the grids' cell boxes (RG32UI, 3 texels per grid) for the smooth-cell reconstruction;
+ * - the empty-space flags (R8, one per data node) for the current transfer-function table.
+ * It also answers what the context can do (bindless extensions, access modes, the driver's
+ * handle limit) and makes the AUTO_STORAGE choice. Storage and access values are those of
+ * vtkSinglePassAMRVolumeMapper's DataStorageMode and BindlessAccessMode.
+ */
+#ifndef vtkSinglePassAMRGridStorage_h
+#define vtkSinglePassAMRGridStorage_h
+
+#include "amrsp/RayCastingData.h"
+
+#include "vtkSmartPointer.h"
+#include "vtkType.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+class vtkOpenGLRenderWindow;
+class vtkTextureObject;
+class vtkWindow;
+
+class vtkSinglePassAMRGridStorage
+{
+public:
+  /// What a frame renders with, and why bindless was not used when it was asked for.
+  struct Choice
+  {
+    int Storage = -1; ///< PACKED_ATLAS or BINDLESS_TEXTURES; -1 when neither can render
+    int Access = -1;  ///< DIRECT_ACCESS or WATERFALL_ACCESS for bindless, else -1
+    /// Why bindless was not used although BINDLESS_TEXTURES was requested (a warning for the
+    /// user: the frame falls back to the atlas), else empty.
+    std::string FallbackReason;
+    /// Why nothing can render (Storage = -1), else empty.
+    std::string Error;
+  };
+
+  /// The storage for `data` in `renWin`: `requested` and `access` are the mapper's DataStorage
+  /// and BindlessAccess; AUTO_STORAGE takes bindless where it runs and the atlas cannot be built,
+  /// exceeds `atlasLimit` (> 0) or GL_MAX_3D_TEXTURE_SIZE, or wastes more than `autoBindlessWaste`
+  /// of its texels.
+  Choice Choose(vtkOpenGLRenderWindow* renWin, const amrsp::RayCastingData& data, int requested,
+    int access, double autoBindlessWaste, int atlasLimit);
+
+  /// Whether `renWin` can render bindless with `access` (AUTO_ACCESS, DIRECT_ACCESS or
+  /// WATERFALL_ACCESS); returns the access mode that runs, or -1 with `why`.
+  int ResolveAccess(vtkOpenGLRenderWindow* renWin, int access, std::string& why);
+
+  /// Whether the textures of `storage` in `renWin` are up to date for the data built last.
+  bool IsUploaded(vtkOpenGLRenderWindow* renWin, int storage, int atlasLimit) const;
+
+  /// Uploads the tree and the grid data of `data` in `storage`; the previous textures are freed
+  /// first. Returns false with a one-line `error` (a texture over GL_MAX_3D_TEXTURE_SIZE, the
+  /// driver refusing an allocation); the caller keeps `data` to try again.
+  bool Upload(vtkOpenGLRenderWindow* renWin, int storage, int atlasLimit,
+    const amrsp::RayCastingData& data, std::string& error);
+
+  /// Flags the data nodes whose value range (`nodeRanges`, entry 0 unused) is transparent under
+  /// the tabulated opacities `opacity` over [tableRange[0], tableRange[0] + 1 / tableRange[1]]
+  /// (amrsp::TableRangeTransparent), when `tableTime` differs from the last call's or the flags
+  /// are missing. Returns false when the flag texture cannot be created.
+  bool UpdateTransparentFlags(vtkOpenGLRenderWindow* renWin,
+    const std::vector<glm::vec2>& nodeRanges, const std::vector<float>& opacity,
+    const float tableRange[2], vtkMTimeType tableTime);
+  /// Data nodes flagged transparent by the last UpdateTransparentFlags.
+  long long GetFlaggedDataNodes() const { return this->FlaggedDataNodes; }
+
+  ///@{
+  /// The textures of the last upload (null before it). GetGridData is the atlas or the handles.
+  vtkTextureObject* GetTree() const { return this->Tree; }
+  vtkTextureObject* GetDataNodes() const { return this->DataNodes; }
+  vtkTextureObject* GetGridData() const;
+  vtkTextureObject* GetBrickBoxes() const { return this->BrickBoxes; }
+  vtkTextureObject* GetTransparentFlags() const { return this->TransparentFlags; }
+  ///@}
+
+  /// Bytes of the textures of the last upload (tree + data nodes + atlas, or + bricks + handles).
+  long long GetTextureBytes() const { return this->TextureBytes; }
+  /// The storage of the last upload, -1 when none is on the GPU.
+  int GetUploadedStorage() const { return this->UploadedStorage; }
+
+  /// Frees every texture of `window` (making the bindless handles non-resident first).
+  void ReleaseGraphicsResources(vtkWindow* window);
+
+private:
+  void QueryCapabilities(vtkOpenGLRenderWindow* renWin);
+  bool UploadBindless(
+    vtkOpenGLRenderWindow* renWin, const amrsp::RayCastingData& data, std::string& error);
+  void ReleaseBindless(vtkWindow* window);
+
+  vtkSmartPointer<vtkTextureObject> Tree;
+  vtkSmartPointer<vtkTextureObject> DataNodes;
+  vtkSmartPointer<vtkTextureObject> Atlas;          // packing
+  vtkSmartPointer<vtkTextureObject> HandlesTexture; // bindless: RG32UI, one handle per brick
+  std::vector<vtkSmartPointer<vtkTextureObject>> Bricks;
+  std::vector<std::uint64_t> ResidentHandles;
+  vtkSmartPointer<vtkTextureObject> BrickBoxes; // RG32UI, per brick and axis: grid cells lo, hi
+  // R8, indexed like the data nodes: 255 where the node's value range is transparent under the
+  // table of FlagsTableTime
+  vtkSmartPointer<vtkTextureObject> TransparentFlags;
+  vtkMTimeType FlagsTableTime = 0;
+  long long FlaggedDataNodes = 0;
+  long long TextureBytes = 0;
+  int UploadedStorage = -1;
+  int UploadLimit = 0; // atlasLimit of the last upload
+  vtkOpenGLRenderWindow* Context = nullptr;
+
+  // extensions of the context last asked (cached per context)
+  vtkOpenGLRenderWindow* CapsContext = nullptr;
+  bool HasBindless = false;
+  bool HasNVShader5 = false;
+  bool HasBallot = false;
+  // bindless textures the driver can hold (-1: no known limit). Mesa's zink crashes when more
+  // than 1023 handles are made resident (its bindless descriptor array has 1024 slots); checked
+  // with Mesa 25.0.7: 1023 grids render, 1024 crash inside glMakeTextureHandleResidentARB.
+  long long MaxBindlessTextures = -1;
+};
+
+#endif

@@ -1,0 +1,227 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkSinglePassAMRMapperBase.h"
+
+#include "vtkSinglePassAMRRenderingUtilities.h"
+
+#include "vtkInformation.h"
+#include "vtkMath.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOverlappingAMR.h"
+#include "vtkRenderer.h"
+
+#include <algorithm>
+#include <chrono>
+
+//------------------------------------------------------------------------------
+vtkSinglePassAMRMapperBase::vtkSinglePassAMRMapperBase() = default;
+
+//------------------------------------------------------------------------------
+vtkSinglePassAMRMapperBase::~vtkSinglePassAMRMapperBase() = default;
+
+//------------------------------------------------------------------------------
+int vtkSinglePassAMRMapperBase::FillInputPortInformation(
+  int vtkNotUsed(port), vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkOverlappingAMR");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRMapperBase::SetInputData(vtkOverlappingAMR* input)
+{
+  this->SetInputDataInternal(0, input);
+}
+
+void vtkSinglePassAMRMapperBase::SetInputData(vtkImageData*)
+{
+  vtkErrorMacro(<< this->GetClassName() << " renders vtkOverlappingAMR only");
+}
+
+void vtkSinglePassAMRMapperBase::SetInputData(vtkDataSet*)
+{
+  vtkErrorMacro(<< this->GetClassName() << " renders vtkOverlappingAMR only");
+}
+
+void vtkSinglePassAMRMapperBase::SetInputData(vtkRectilinearGrid*)
+{
+  vtkErrorMacro(<< this->GetClassName() << " renders vtkOverlappingAMR only");
+}
+
+//------------------------------------------------------------------------------
+vtkOverlappingAMR* vtkSinglePassAMRMapperBase::GetAMRInput()
+{
+  if (this->GetNumberOfInputConnections(0) < 1)
+  {
+    return nullptr;
+  }
+  return vtkOverlappingAMR::SafeDownCast(this->GetInputDataObject(0, 0));
+}
+
+//------------------------------------------------------------------------------
+double* vtkSinglePassAMRMapperBase::GetBounds()
+{
+  vtkMath::UninitializeBounds(this->Bounds);
+  if (this->GetNumberOfInputConnections(0) < 1)
+  {
+    return this->Bounds;
+  }
+  this->Update();
+  vtkOverlappingAMR* amr = this->GetAMRInput();
+  // An AMR without metadata or blocks (e.g. the empty placeholder a ParaView view's producer
+  // holds until it delivers data) has no bounds; it is not built, so the textures of the last
+  // real input stay valid and no build is counted.
+  if (!amr || !amr->GetAMRInfo() || amr->GetTotalNumberOfBlocks() == 0)
+  {
+    return this->Bounds;
+  }
+  if (this->EnsureBuilt(amr))
+  {
+    this->GetBuiltBounds(this->Bounds);
+    return this->Bounds;
+  }
+  // the conversion failed (Render reports why): the AMR's own overall bounds
+  amr->GetBounds(this->Bounds);
+  return this->Bounds;
+}
+
+void vtkSinglePassAMRMapperBase::GetBounds(double bounds[6])
+{
+  const double* b = this->GetBounds();
+  std::copy(b, b + 6, bounds);
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRMapperBase::IsRenderSupported(vtkRenderWindow* window, std::string* why)
+{
+  return vtkSinglePassAMRRenderingUtilities::IsRenderSupported(window, why);
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRMapperBase::EnsureBuilt(vtkOverlappingAMR* amr)
+{
+  const std::string array = vtkSinglePassAMRRenderingUtilities::RequestedArray(
+    amr, this->ArrayAccessMode, this->ArrayName, this->ArrayId);
+  if (!this->Built || this->BuiltInput != amr || this->BuiltInputMTime != amr->GetMTime() ||
+    this->BuiltArray != array || this->BuiltComponent != this->ArrayComponent ||
+    this->BuiltPackLimit != this->MaximumAtlasSize)
+  {
+    this->BuiltInput = amr;
+    this->BuiltInputMTime = amr->GetMTime();
+    this->BuiltArray = array;
+    this->BuiltComponent = this->ArrayComponent;
+    this->BuiltPackLimit = this->MaximumAtlasSize;
+    this->RunBuild(amr);
+  }
+  return this->DataValid;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRMapperBase::Rebuild(vtkOverlappingAMR* amr)
+{
+  return this->RunBuild(amr);
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRMapperBase::RunBuild(vtkOverlappingAMR* amr)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  this->Built = true;
+  this->DataValid = false;
+  this->BuildError.clear();
+  ++this->NumberOfBuilds;
+  std::string error;
+  if (!this->BuildData(amr, this->BuiltArray, error))
+  {
+    this->BuildError = error.empty() ? "the AMR input could not be prepared for rendering" : error;
+    return false;
+  }
+  this->DataValid = true;
+  this->BuildTime.Modified();
+  this->BuildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+vtkOverlappingAMR* vtkSinglePassAMRMapperBase::BeginFrame(
+  vtkRenderer* ren, vtkOpenGLRenderWindow*& renWin)
+{
+  this->PreviousError = this->LastError;
+  this->LastError.clear();
+  renWin = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  if (!renWin)
+  {
+    this->ReportError(std::string(this->GetClassName()) + " needs an OpenGL render window");
+    return nullptr;
+  }
+  vtkOverlappingAMR* amr = nullptr;
+  if (this->GetNumberOfInputConnections(0) < 1)
+  {
+    this->ReportError("no input: set a vtkOverlappingAMR with SetInputData or SetInputConnection");
+  }
+  else
+  {
+    this->Update();
+    amr = this->GetAMRInput();
+    if (!amr)
+    {
+      this->ReportError("the input is not a vtkOverlappingAMR");
+    }
+  }
+  if (!amr)
+  {
+    renWin = nullptr;
+  }
+  return amr;
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRMapperBase::ReportError(const std::string& message)
+{
+  if (message != this->PreviousError)
+  {
+    vtkErrorMacro(<< message);
+  }
+  this->LastError = message;
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRMapperBase::WarnOnce(const std::string& message)
+{
+  if (this->Warned.insert(message).second)
+  {
+    vtkWarningMacro(<< message);
+  }
+}
+
+//------------------------------------------------------------------------------
+const char* vtkSinglePassAMRMapperBase::GetLastError()
+{
+  return this->LastError.c_str();
+}
+
+double vtkSinglePassAMRMapperBase::GetLastBuildSeconds()
+{
+  return this->BuildSeconds;
+}
+
+double vtkSinglePassAMRMapperBase::GetLastUploadSeconds()
+{
+  return this->UploadSeconds;
+}
+
+int vtkSinglePassAMRMapperBase::GetNumberOfBuilds()
+{
+  return this->NumberOfBuilds;
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRMapperBase::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "ArrayComponent: " << this->ArrayComponent << "\n";
+  os << indent << "SampleDistanceFactor: " << this->SampleDistanceFactor << "\n";
+  os << indent << "MaximumAtlasSize: " << this->MaximumAtlasSize << "\n";
+  os << indent << "UseDepthBuffer: " << (this->UseDepthBuffer ? "on" : "off") << "\n";
+  os << indent << "NumberOfBuilds: " << this->NumberOfBuilds << "\n";
+  os << indent << "LastError: " << (this->LastError.empty() ? "(none)" : this->LastError) << "\n";
+}
