@@ -31,6 +31,7 @@
 #include "amrsp_MultiPassAMRComposite_frag_glsl.h"
 #include "amrsp_MultiPassAMR_frag_glsl.h"
 #include "amrsp_MultiPassAMR_vert_glsl.h"
+#include "amrsp_BrickSample_glsl.h"
 #include "amrsp_RayCommon_glsl.h"
 
 #include <algorithm>
@@ -547,7 +548,7 @@ void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     defines += "#define AMRSP_USE_DEPTH 1\n";
   }
   const std::string fragment = utilities::ComposeFragmentShader(
-    amrsp_MultiPassAMR_frag_glsl, defines, { { "RayCommon", amrsp_RayCommon_glsl } }, vol);
+    amrsp_MultiPassAMR_frag_glsl, defines, { { "RayCommon", amrsp_RayCommon_glsl }, { "BrickSample", amrsp_BrickSample_glsl } }, vol);
   if (fragment == in.FailedFragmentSource)
   {
     this->ReportError("the multi-pass AMR shader failed to compile or link (see the earlier error)");

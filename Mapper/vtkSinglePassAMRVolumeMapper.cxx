@@ -27,8 +27,11 @@
 #include "vtkSinglePassAMROpenGL.h"
 
 // GLSL embedded at build time (vtk_encode_string)
+#include "amrsp_BrickSample_glsl.h"
 #include "amrsp_KdTreeLayout_glsl.h"
 #include "amrsp_RayCommon_glsl.h"
+#include "amrsp_Shading_glsl.h"
+#include "amrsp_SmoothCells_glsl.h"
 #include "amrsp_SinglePassAMR_frag_glsl.h"
 #include "amrsp_SinglePassAMR_vert_glsl.h"
 
@@ -381,7 +384,10 @@ vtkShaderProgram* vtkSinglePassAMRVolumeMapper::vtkInternals::ReadyShader(
   define(self->WorkCountersOutput, "AMRSP_WORK_COUNTERS 1");
   const std::string fragment = utilities::ComposeFragmentShader(amrsp_SinglePassAMR_frag_glsl,
     defines,
-    { { "KdTreeLayout", amrsp_KdTreeLayout_glsl }, { "RayCommon", amrsp_RayCommon_glsl } }, vol);
+    { { "KdTreeLayout", amrsp_KdTreeLayout_glsl }, { "RayCommon", amrsp_RayCommon_glsl },
+      { "BrickSample", amrsp_BrickSample_glsl }, { "SmoothCells", amrsp_SmoothCells_glsl },
+      { "Shading", amrsp_Shading_glsl } },
+    vol);
   if (fragment == this->FailedFragmentSource)
   {
     self->ReportError("the single-pass AMR shader failed to compile or link (see the earlier error)");

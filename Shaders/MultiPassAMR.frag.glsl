@@ -54,6 +54,7 @@ uniform ivec3 amrspAtlasOffset; // atlas texel of amrspFirstCell
 // Ray set-up, slab test and transfer function, shared with the single-pass shader
 // (Shaders/RayCommon.glsl).
 //AMRSP::RayCommon
+//AMRSP::BrickSample
 
 void main()
 {
@@ -88,16 +89,11 @@ void main()
   {
     float ts = t + (float(k) + 0.5) * dt;
     vec3 p = ro + ts * rd;
-#ifdef AMRSP_VERTEX_CENTRED
-    // vertex (i,j,k) of the node's first cell is texel offset + (i,j,k); texel centres at +0.5
-    vec3 u = clamp(p / amrspCellSize - vec3(amrspFirstCell), vec3(0.0),
-      vec3(amrspLastCell - amrspFirstCell + 1));
-    float scalar = texture(amrspAtlas, (vec3(amrspAtlasOffset) + u + 0.5) / amrspAtlasSize).r;
-#else
-    // nearest cell, clamped into the node so float error never reaches a neighbouring brick
-    ivec3 cell = clamp(ivec3(floor(p / amrspCellSize)), amrspFirstCell, amrspLastCell);
-    float scalar = texelFetch(amrspAtlas, amrspAtlasOffset + (cell - amrspFirstCell), 0).r;
-#endif
+    ivec3 texel;
+    vec3 where;
+    amrspBrickPosition(
+      p, amrspCellSize, amrspFirstCell, amrspLastCell, amrspAtlasOffset, texel, where);
+    float scalar = amrspReadAtlas(texel, where);
     if (isnan(scalar))
     {
       continue; // missing data is transparent
