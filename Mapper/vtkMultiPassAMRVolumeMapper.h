@@ -18,7 +18,7 @@
  *   clamping keeps faces between the eye and the near plane) with the node's box, level, cell
  *   range and atlas offset as uniforms.
  * - Per fragment: the ray through the pixel centre (from the eye, or from the near plane for
- *   parallel projection) is clipped to the node box, cut by the README sampling rule (n =
+ *   parallel projection) is clipped to the node box, cut by the sampling rule (docs/design.md) (n =
  *   max(1, ceil(length / D)) equal steps, samples at the midpoints, D = SampleDistanceFactor x
  *   the smallest edge of a cell of the node's level), sampled nearest-cell (cell data) or
  *   trilinearly (vertex data) and integrated into premultiplied colour and opacity.

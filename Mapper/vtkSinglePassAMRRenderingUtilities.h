@@ -169,7 +169,7 @@ private:
 
 /**
  * The renderer's view as the raycasting shaders use it: viewport, model -> normalized device
- * matrices and the rays' origin. Perspective rays start at the eye (the README's pinhole camera),
+ * matrices and the rays' origin. Perspective rays start at the eye (the pinhole camera of docs/design.md),
  * parallel rays on the near plane.
  */
 struct ViewGeometry

@@ -9,7 +9,7 @@
 //
 // The segment is [max(tEnter, 0), min(tExit, depth)] of the node box, which the CPU computes in
 // the same float arithmetic as the single-pass traversal (SinglePassAMR.frag.glsl, amrsp::
-// TraverseKdTree), and it is sampled by the same rule as amrsp::RenderKdTree (README, "Sampling
+// TraverseKdTree), and it is sampled by the same rule as amrsp::RenderKdTree (docs/design.md, "Sampling
 // rule"); keep them in sync.
 //
 // Variants are selected by the mapper with #defines inserted at the marker below:

@@ -8,7 +8,7 @@
 // nearest split plane crossed or the node's exit), sample every data segment at its level's rate,
 // and composite front to back. The traversal mirrors Core/src/KdTraversal.cxx step by step
 // (same float arithmetic, plane and tie rules) and the sampling mirrors amrsp::RenderKdTree
-// (README, "Sampling rule"); keep the three in sync.
+// (docs/design.md, "Sampling rule"); keep the three in sync.
 //
 // Variants are selected by the mapper with #defines inserted at the marker below:
 //   AMRSP_LEVEL_COUNT   number of levels of the hierarchy (sizes the per-level uniform arrays)

@@ -123,7 +123,7 @@ void TestDataset(const std::string& name, Hierarchy h, bool uniformHandlesOnly)
   Check(wVsKd < BoundVsKdTree,
     "waterfall vs CPU kD-tree RMSE " + Fixed(wVsKd) + " < " + Fixed(BoundVsKdTree));
   // thin sharp features (AMReX's Y(H)) put even the CPU kD-tree integrator 7 away from the
-  // reference (README, "Sampling rule"); the GPU must not be further than it plus 0.5
+  // reference (docs/design.md, "Sampling rule"); the GPU must not be further than it plus 0.5
   const double refBound = std::max(BoundVsReference, Rmse(kd, ref) + 0.5);
   Check(wVsRef < refBound,
     "waterfall vs CPU reference RMSE " + Fixed(wVsRef) + " < " + Fixed(refBound));

@@ -125,7 +125,7 @@ def main():
         ("new data changes the image", rmse(changed, again) > 3.0),
         ("packing after multi-pass: the same image", rmse(packing, finest) == 0.0),
         ("auto is packing", rmse(auto, finest) == 0.0),
-        # both mappers take the same samples (README, "Multi-pass"); float blending differs
+        # both mappers take the same samples (docs/design.md, "Multi-pass baseline"); float blending differs
         ("multi-pass renders the packing image", rmse(multipass, finest) < MULTIPASS_RMSE_BOUND),
     ]
     print("rmse (0-255): LOD vs finest %.2f, maximum intensity vs composite %.2f, new data vs "

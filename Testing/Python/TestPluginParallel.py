@@ -112,7 +112,7 @@ def check_regions(log_path, ranks, mode):
 # and OpenGL check (vtkPVRenderingCapabilitiesInformation, at view creation); one refused X
 # connection on one rank (an Xvfb without -noreset refused 4 of 160 connections made 4 at a
 # time: it drops connections while it resets) turns parallel rendering off on all ranks, and ParaView 5.11 then deadlocks in IceT at
-# the first render (README, "MPI runs and the X display check"). --disable-xdisplay-test skips
+# the first render (docs/paraview.md, "MPI runs and the X display check"). --disable-xdisplay-test skips
 # that check: each rank opens its own window when it renders, and a refused connection there
 # aborts the run with "bad X server connection", which RetryOnXFailure.py runs again.
 MPI_PVBATCH_OPTIONS = ["--disable-xdisplay-test"]

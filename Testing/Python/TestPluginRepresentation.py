@@ -8,7 +8,7 @@
 #   1. loads the plugin, opens the dataset with ParaView's reader (all levels), shows it with the
 #      representation "AMR Single-Pass Volume", colours it by the cell array and sets a colour map
 #      and an opacity function (RGB space, piecewise linear) and ScalarOpacityUnitDistance;
-#   2. sets the camera by the amrsp convention (README, "Rendering conventions": ResetCamera on the
+#   2. sets the camera by the amrsp convention (docs/design.md, "Rendering conventions": ResetCamera on the
 #      level-0 box, Azimuth 30, Elevation 20, OrthogonalizeViewUp, view angle 30) and saves a
 #      200x200 screenshot on a black background;
 #   3. checks that the representation rendered without error, that the screenshot shows the volume
@@ -159,7 +159,7 @@ def coverage(pixels, background_tolerance=6.0):
 
 
 def convention_camera(bounds, azimuth=30.0, elevation=20.0, view_angle=30.0):
-    """amrsp's camera (README): vtkRenderer::ResetCamera on the level-0 box seen along -z with +y
+    """amrsp's camera (docs/design.md): vtkRenderer::ResetCamera on the level-0 box seen along -z with +y
     up (focal point at the centre, distance = half diagonal / sin(view angle / 2)), then Azimuth,
     Elevation and OrthogonalizeViewUp of vtkCamera."""
     from vtkmodules.vtkRenderingCore import vtkCamera
@@ -399,7 +399,7 @@ def main():
 
     view = simple.CreateView("RenderView")
     if ranks > 1 and not view.GetClientSideObject().GetRemoteRenderingAvailable():
-        # ParaView 5.11 would deadlock at the first render (README, "MPI runs and the X display
+        # ParaView 5.11 would deadlock at the first render (docs/paraview.md, "MPI runs and the X display
         # check"); TestPluginParallel.py passes --disable-xdisplay-test, which keeps it on
         fail("parallel rendering is off on these %d ranks: a rank failed ParaView's X display/"
              "OpenGL check (pvbatch --disable-xdisplay-test skips it); ParaView 5.11 would "
