@@ -4,15 +4,12 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <limits>
-#include <queue>
-#include <sstream>
-#include <stdexcept>
-#include <thread>
+#include <memory>
 #include <utility>
+#include <vector>
 
 namespace amrsp
 {

@@ -3,16 +3,12 @@
 #include "amrsp/SyntheticCosmo.h"
 
 #include <algorithm>
-#include <array>
-#include <atomic>
-#include <cmath>
 #include <cstddef>
 #include <limits>
-#include <queue>
 #include <sstream>
 #include <stdexcept>
-#include <thread>
-#include <utility>
+#include <string>
+#include <vector>
 
 namespace amrsp
 {

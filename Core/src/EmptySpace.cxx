@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "amrsp/EmptySpace.h"
 
+#include "amrsp/KdTree.h"
 #include "amrsp/KdTreeLayout.h"
-#include "amrsp/Render.h"
+#include "amrsp/TransferFunction.h"
 
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 
 namespace amrsp
 {

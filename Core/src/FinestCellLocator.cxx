@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The reference's tree-free lookup of the finest cell containing a point.
-#include "amrsp/Render.h"
+#include "amrsp/FinestCellLocator.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 
 namespace amrsp

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // 8-bit images and their RMSE.
-#include "amrsp/Render.h"
+#include "amrsp/Image.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <stdexcept>
 
 namespace amrsp

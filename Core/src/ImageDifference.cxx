@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "amrsp/ImageDifference.h"
 
-#include "amrsp/Render.h"
+#include "amrsp/Image.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,11 @@
 #include "amrsp/Invariants.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstddef>
 #include <limits>
+#include <string>
+#include <vector>
 
 namespace amrsp
 {

@@ -3,6 +3,7 @@
 
 #include "amrsp/KdTreeLayout.h"
 
+#include <cstddef>
 #include <string>
 
 namespace amrsp

@@ -1,14 +1,25 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The CPU kD-tree integrator: the shader's traversal, sampling and compositing on the CPU.
+#include "amrsp/Render.h"
+
 #include "RayIntegration.h"
 
+#include "amrsp/BrickAtlas.h"
 #include "amrsp/EmptySpace.h"
+#include "amrsp/FinestCellLocator.h"
+#include "amrsp/KdTraversal.h"
 #include "amrsp/KdTreeLayout.h"
+#include "amrsp/Shading.h"
 #include "amrsp/VertexData.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
 #include <limits>
+#include <stdexcept>
+#include <vector>
 
 namespace amrsp
 {

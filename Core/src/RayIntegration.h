@@ -6,17 +6,24 @@
 /// every blend mode, grid sampling, the dual-cell interpolation of smooth cells and the work
 /// counters. Internal to the core library.
 
-#include "amrsp/Render.h"
+#include "amrsp/FinestCellLocator.h"
+#include "amrsp/Hierarchy.h"
+#include "amrsp/RenderSettings.h"
+#include "amrsp/Shading.h"
+#include "amrsp/TransferFunction.h"
 #include "amrsp/VertexData.h"
 
 #include <glm/glm.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <mutex>
 #include <stdexcept>
+#include <string>
 #include <thread>
 #include <vector>
 

@@ -1,12 +1,19 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The reference integrator: no kD-tree, the finest cell found from the grids' boxes.
+#include "amrsp/Render.h"
+
 #include "RayIntegration.h"
 
-#include "amrsp/VertexData.h"
+#include "amrsp/FinestCellLocator.h"
+#include "amrsp/Shading.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
 #include <limits>
+#include <vector>
 
 namespace amrsp
 {

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "amrsp/Resample.h"
 
-#include "amrsp/Render.h"
+#include "amrsp/FinestCellLocator.h"
 #include "amrsp/VertexData.h"
 
 #include <algorithm>
-#include <cmath>
+#include <cstddef>
 #include <limits>
 #include <string>
 #include <thread>

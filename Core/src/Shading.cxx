@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "amrsp/Shading.h"
 
-#include "amrsp/Render.h"
+#include "amrsp/TransferFunction.h"
 
 #include <algorithm>
 #include <cmath>

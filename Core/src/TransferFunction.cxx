@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Transfer functions (piecewise linear, clamped, as VTK's) and the presets.
-#include "amrsp/Render.h"
+#include "amrsp/TransferFunction.h"
 
 #include <algorithm>
-#include <cmath>
 #include <stdexcept>
 
 namespace amrsp

@@ -2,7 +2,10 @@
 #include "amrsp/VertexData.h"
 
 #include <cmath>
+#include <cstddef>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 namespace amrsp
 {
