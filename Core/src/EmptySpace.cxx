@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "amrsp/EmptySpace.h"
 
+#include "amrsp/IntegerMath.h"
 #include "amrsp/KdTree.h"
 #include "amrsp/KdTreeLayout.h"
 #include "amrsp/TransferFunction.h"
@@ -13,20 +14,6 @@
 
 namespace amrsp
 {
-
-namespace
-{
-int64_t FloorDivide(int64_t a, int64_t b)
-{
-  const int64_t q = a / b;
-  return (q * b > a) ? q - 1 : q;
-}
-
-int64_t CeilDivide(int64_t a, int64_t b)
-{
-  return -FloorDivide(-a, b);
-}
-} // namespace
 
 std::vector<glm::vec2> ComputeDataNodeRanges(const Hierarchy& h, const EncodedKdTree& tree)
 {
@@ -52,8 +39,8 @@ std::vector<glm::vec2> ComputeDataNodeRanges(const Hierarchy& h, const EncodedKd
     glm::i64vec3 first, last;
     for (int a = 0; a < 3; ++a)
     {
-      first[a] = FloorDivide(n.Region.Lo[a], toData[a]);
-      last[a] = CeilDivide(n.Region.Hi[a], toData[a]) - 1;
+      first[a] = FloorDiv(n.Region.Lo[a], toData[a]);
+      last[a] = CeilDiv(n.Region.Hi[a], toData[a]) - 1;
     }
     first = glm::clamp(first, g.Cells.Lo, g.Cells.Hi - glm::i64vec3(1)) - g.Cells.Lo;
     last = glm::clamp(last, g.Cells.Lo, g.Cells.Hi - glm::i64vec3(1)) - g.Cells.Lo;

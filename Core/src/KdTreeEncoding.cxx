@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "amrsp/KdTreeEncoding.h"
 
+#include "amrsp/IntegerMath.h"
 #include "amrsp/KdTreeLayout.h"
 
 #include <cstddef>
@@ -31,12 +32,6 @@ void Require(bool ok, const std::string& what)
   {
     throw EncodingError(what);
   }
-}
-
-int64_t FloorDiv(int64_t a, int64_t b)
-{
-  const int64_t q = a / b;
-  return (a % b != 0 && (a < 0) != (b < 0)) ? q - 1 : q;
 }
 
 void Resize(UIntTexture3D& t, std::size_t texels)

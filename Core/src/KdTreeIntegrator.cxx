@@ -9,6 +9,7 @@
 #include "amrsp/FinestCellLocator.h"
 #include "amrsp/KdTraversal.h"
 #include "amrsp/KdTreeLayout.h"
+#include "amrsp/SampleStep.h"
 #include "amrsp/Shading.h"
 #include "amrsp/VertexData.h"
 
@@ -270,7 +271,7 @@ void SampleRayKdTree(const Hierarchy& h, const EncodedKdTree& tree, const glm::d
     }
     const int32_t g = static_cast<int32_t>(amrspDataBrick(tree.DataNodes.Texels[s.Data]));
     const glm::dvec3 ratio(h.CumulativeRatio(s.Level));
-    const double step = sampleDistanceFactor * MinEdge(h.Spacing0 / ratio);
+    const double step = LevelSampleStep(h, s.Level, sampleDistanceFactor);
     const double length = static_cast<double>(s.T1) - static_cast<double>(s.T0);
     const int n = std::max(1, static_cast<int>(std::ceil(length / step)));
     const double dt = length / n;
@@ -307,8 +308,7 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
   std::vector<float> stepOfLevel;
   for (int l = 0; l < h.NumberOfLevels(); ++l)
   {
-    stepOfLevel.push_back(
-      static_cast<float>(s.SampleDistanceFactor * MinEdge(h.Spacing0 * h.CellSize(l))));
+    stepOfLevel.push_back(static_cast<float>(LevelSampleStep(h, l, s.SampleDistanceFactor)));
   }
   const glm::vec3 spacing(h.Spacing0), worldOrigin(h.Origin);
   // empty-space skipping: per data node, whether its value range is transparent under this

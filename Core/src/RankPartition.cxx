@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "amrsp/RankPartition.h"
 
+#include "amrsp/IntegerMath.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -11,12 +13,6 @@ namespace amrsp
 {
 namespace
 {
-
-int64_t FloorDiv(int64_t a, int64_t b)
-{
-  const int64_t q = a / b;
-  return (a % b != 0 && ((a < 0) != (b < 0))) ? q - 1 : q;
-}
 
 /// Cells of every grid inside `box` (level-0 cells) per level-0 slab along `axis`:
 /// weights[s] counts the cells whose level-0 slab is box.Lo[axis] + s.

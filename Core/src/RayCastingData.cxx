@@ -3,6 +3,7 @@
 
 #include "amrsp/BrickAtlas.h"
 #include "amrsp/EmptySpace.h"
+#include "amrsp/SampleStep.h"
 
 #include <algorithm>
 #include <cmath>
@@ -83,8 +84,7 @@ LevelTable ComputeLevelTable(const Hierarchy& h, const KdTree& tree)
     {
       t.LevelToFinest.push_back(static_cast<int>(r[a]));
     }
-    const glm::dvec3 edge = h.Spacing0 * h.CellSize(l);
-    t.LevelMinEdge.push_back(std::min(edge.x, std::min(edge.y, edge.z)));
+    t.LevelMinEdge.push_back(LevelMinEdge(h, l));
   }
   t.LevelToFinestLog2 = PowerOfTwoExponents(t.LevelToFinest);
   t.UniformRefinementLog2 = UniformRefinementExponent(t.LevelToFinestLog2);

@@ -209,11 +209,6 @@ struct StatsSink
   }
 };
 
-inline double MinEdge(const glm::dvec3& v)
-{
-  return std::min(v.x, std::min(v.y, v.z));
-}
-
 /// The iso-values sorted ascending; throws for too many.
 inline std::vector<double> SortedIsoValues(const RenderSettings& s)
 {

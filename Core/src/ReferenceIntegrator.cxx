@@ -5,6 +5,7 @@
 #include "RayIntegration.h"
 
 #include "amrsp/FinestCellLocator.h"
+#include "amrsp/SampleStep.h"
 #include "amrsp/Shading.h"
 
 #include <algorithm>
@@ -103,7 +104,7 @@ Image RenderReference(const Hierarchy& h, const RenderSettings& s)
   std::vector<double> stepOfLevel;
   for (int l = 0; l < h.NumberOfLevels(); ++l)
   {
-    stepOfLevel.push_back(s.ReferenceSampleFactor * MinEdge(h.Spacing0 * h.CellSize(l)));
+    stepOfLevel.push_back(LevelSampleStep(h, l, s.ReferenceSampleFactor));
   }
   const std::vector<double> isoValues = SortedIsoValues(s);
   const bool shaded = s.Light.Shade || s.Light.Shadows;

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "amrsp/RefinedCells.h"
 
+#include "amrsp/IntegerMath.h"
+
 #include <algorithm>
 #include <cstddef>
 
@@ -8,16 +10,6 @@ namespace amrsp
 {
 namespace
 {
-
-int64_t FloorDiv(int64_t a, int64_t b)
-{
-  return a >= 0 ? a / b : -((-a + b - 1) / b);
-}
-
-int64_t CeilDiv(int64_t a, int64_t b)
-{
-  return -FloorDiv(-a, b);
-}
 
 /// `box` of level l+1 in cells of level l, widened to whole coarse cells.
 Box Coarsened(const Box& box, const glm::ivec3& ratio)

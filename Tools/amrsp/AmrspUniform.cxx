@@ -2,6 +2,7 @@
 #include "AmrspUniform.h"
 
 #include "amrsp/Resample.h"
+#include "amrsp/SampleStep.h"
 
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
@@ -95,8 +96,9 @@ UniformGpuRenderer::UniformGpuRenderer(
   I->Property->SetInterpolationTypeToNearest();
   I->Mapper->SetInputData(I->Image);
   I->Mapper->AutoAdjustSampleDistancesOff();
-  I->Mapper->SetSampleDistance(static_cast<float>(
-    s.SampleDistanceFactor * std::min(u.Spacing.x, std::min(u.Spacing.y, u.Spacing.z))));
+  // the voxels are the level's cells: its sampling distance
+  I->Mapper->SetSampleDistance(
+    static_cast<float>(LevelSampleStep(h, level, s.SampleDistanceFactor)));
   I->Volume->SetMapper(I->Mapper);
   I->Volume->SetProperty(I->Property);
   I->Renderer->SetBackground(s.Background.r, s.Background.g, s.Background.b);

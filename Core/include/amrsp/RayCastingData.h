@@ -44,7 +44,8 @@ struct LevelTable
   std::vector<int> LevelToFinest;
   std::vector<int> LevelToFinestLog2;
   int UniformRefinementLog2 = 0;
-  /// Smallest model-space edge of a cell of each level: the sampling distance D at factor 1.
+  /// Smallest model-space edge of a cell of each level (amrsp::LevelMinEdge): the sampling
+  /// distance D at factor 1; D = amrsp::LevelSampleStep(factor, LevelMinEdge[level]).
   std::vector<double> LevelMinEdge;
   /// Model-space bounds of the root box [xmin, xmax, ymin, ymax, zmin, zmax], through the float
   /// root box the shaders use (EncodedKdTree::RootLo/RootHi).

@@ -10,8 +10,8 @@
 ///   (vtkVolumeProperty's ScalarOpacityUnitDistance). The pixel is C + (1 - A) * Background.
 /// - Sampling rule of the kD-tree integrator (and of the GPU shader): a segment of data level d,
 ///   [t0, t1], is cut into n = max(1, ceil((t1 - t0) / D)) equal steps, D = SampleDistanceFactor
-///   times the smallest world-space edge of a level-d cell; samples sit at the step midpoints.
-///   Cell-centred data is sampled nearest-cell.
+///   times the smallest world-space edge of a level-d cell (LevelSampleStep, amrsp/SampleStep.h);
+///   samples sit at the step midpoints. Cell-centred data is sampled nearest-cell.
 /// - Reference integrator: no kD-tree. It marches the root box with steps of
 ///   ReferenceSampleFactor times the smallest edge of the finest cell at the current point, found
 ///   directly from the hierarchy (finest grid containing the point), and samples step midpoints.
