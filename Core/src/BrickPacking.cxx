@@ -3,6 +3,7 @@
 
 #include "amrsp/Hierarchy.h"
 #include "amrsp/KdTreeLayout.h"
+#include "amrsp/ParallelFor.h"
 
 #include <algorithm>
 #include <cctype>
@@ -12,7 +13,7 @@
 #include <numeric>
 #include <set>
 #include <sstream>
-#include <thread>
+#include <string>
 #include <tuple>
 #include <utility>
 
@@ -401,13 +402,14 @@ Trial RunBestFitTrials(const ShapeIndex& prototype, std::size_t count,
   {
     return Trial{};
   }
-  std::size_t threads = std::max(1u, std::thread::hardware_concurrency());
   // a thread is worth starting for about 20,000 brick placements
-  threads = std::min<std::size_t>({ threads, 8, (n + 3) / 4, count * n / 20000 + 1 });
+  const std::size_t threads = std::min<std::size_t>(
+    { static_cast<std::size_t>(WorkerCount()), 8, (n + 3) / 4, count * n / 20000 + 1 });
   std::vector<Worker> workers(threads, Worker{ prototype, {}, {}, {}, 0 });
-  auto work = [&](std::size_t w) {
-    Worker& k = workers[w];
-    for (std::size_t c = w; c < n; c += threads)
+  // worker w tries the candidates w, w + threads, ... in order (its ties go to the earlier one)
+  RunWorkers(static_cast<int>(threads), [&](int w) {
+    Worker& k = workers[static_cast<std::size_t>(w)];
+    for (std::size_t c = static_cast<std::size_t>(w); c < n; c += threads)
     {
       BestFitTrial(k.Shapes, count, candidates[c].x, candidates[c].y, maxZ, k.Heap, k.Current);
       if (Better(k.Current, k.Best))
@@ -416,17 +418,7 @@ Trial RunBestFitTrials(const ShapeIndex& prototype, std::size_t count,
         k.BestIndex = c;
       }
     }
-  };
-  std::vector<std::thread> pool;
-  for (std::size_t w = 1; w < threads; ++w)
-  {
-    pool.emplace_back(work, w);
-  }
-  work(0);
-  for (std::thread& th : pool)
-  {
-    th.join();
-  }
+  });
   std::size_t best = 0;
   for (std::size_t w = 1; w < threads; ++w)
   {

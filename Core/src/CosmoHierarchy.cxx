@@ -2,8 +2,9 @@
 // The synthetic cosmology's hierarchy: levels of grids refined where the density peaks.
 #include "amrsp/SyntheticCosmo.h"
 
+#include "amrsp/ParallelFor.h"
+
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -11,7 +12,6 @@
 #include <queue>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -67,33 +67,17 @@ int64_t NearestIntegerCubeRoot(int64_t x)
 // Threads. Every parallel loop writes disjoint outputs computed from read-only inputs, so results
 // do not depend on the number of threads.
 
-unsigned WorkerCount()
+/// One per core, at most 64.
+int CosmoWorkers()
 {
-  const unsigned n = std::thread::hardware_concurrency();
-  return std::max(1u, std::min(n, 64u));
+  return std::min(WorkerCount(), 64);
 }
 
-/// Calls body(begin, end) on contiguous slices of [0, n), in parallel when n is large enough.
-template <class Body>
-void ParallelFor(int64_t n, int64_t minPerThread, const Body& body)
+/// Workers for `n` items of which each should get at least `minPerWorker` (1 for small n).
+int SliceWorkers(int64_t n, int64_t minPerWorker)
 {
-  const int64_t threads =
-    std::min<int64_t>(WorkerCount(), std::max<int64_t>(1, n / std::max<int64_t>(1, minPerThread)));
-  if (threads <= 1)
-  {
-    body(int64_t(0), n);
-    return;
-  }
-  std::vector<std::thread> pool;
-  pool.reserve(static_cast<std::size_t>(threads));
-  for (int64_t t = 0; t < threads; ++t)
-  {
-    pool.emplace_back([&body, n, t, threads]() { body(n * t / threads, n * (t + 1) / threads); });
-  }
-  for (std::thread& th : pool)
-  {
-    th.join();
-  }
+  return static_cast<int>(std::min<int64_t>(
+    CosmoWorkers(), std::max<int64_t>(1, n / std::max<int64_t>(1, minPerWorker))));
 }
 
 } // namespace
@@ -373,15 +357,16 @@ private:
     }
     const double cs = this->CellSize;
     const CosmoField& field = this->Field;
-    ParallelFor(offset, 8192, [&t, cs, &field](int64_t begin, int64_t end) {
-      for (int64_t i = begin; i < end; ++i)
-      {
-        const Box b = t.TileBox(i);
-        // Centre in cells of this level: (Lo + Hi) / 2, exact in double.
-        const glm::dvec3 c = glm::dvec3(b.Lo + b.Hi) * 0.5;
-        t.Density[static_cast<std::size_t>(i)] = field(c * cs);
-      }
-    });
+    ParallelForSlices(
+      offset, SliceWorkers(offset, 8192), [&t, cs, &field](int64_t begin, int64_t end) {
+        for (int64_t i = begin; i < end; ++i)
+        {
+          const Box b = t.TileBox(i);
+          // Centre in cells of this level: (Lo + Hi) / 2, exact in double.
+          const glm::dvec3 c = glm::dvec3(b.Lo + b.Hi) * 0.5;
+          t.Density[static_cast<std::size_t>(i)] = field(c * cs);
+        }
+      });
   }
 
   void MergeParent(int32_t pi, const std::vector<uint8_t>& selected, std::vector<LevelBox>& out)
@@ -912,33 +897,16 @@ Hierarchy GenerateCosmo(const CosmoParameters& p)
     std::stable_sort(order.begin(), order.end(), [&h](std::size_t a, std::size_t b) {
       return h.Grids[a].Cells.Cells() > h.Grids[b].Cells.Cells();
     });
-    std::atomic<std::size_t> next(0);
-    const unsigned threads = WorkerCount();
-    auto work = [&]() {
-      for (;;)
-      {
-        const std::size_t i = next.fetch_add(1);
-        if (i >= order.size())
-        {
-          return;
-        }
-        const std::size_t g = order[i];
+    ParallelFor(
+      static_cast<int64_t>(order.size()),
+      [&](int64_t i) {
+        const std::size_t g = order[static_cast<std::size_t>(i)];
         const Grid& grid = h.Grids[g];
         // Cell size of the grid's level in world units: Spacing0 / 2^level (exact scaling).
         const double cs = std::ldexp(h.Spacing0.x, -grid.Level);
         field.Sample(grid.Cells, cs, h.Values[g]);
-      }
-    };
-    std::vector<std::thread> pool;
-    for (unsigned t = 1; t < threads; ++t)
-    {
-      pool.emplace_back(work);
-    }
-    work();
-    for (std::thread& th : pool)
-    {
-      th.join();
-    }
+      },
+      CosmoWorkers());
   }
   return h;
 }

@@ -8,6 +8,7 @@
 
 #include "amrsp/FinestCellLocator.h"
 #include "amrsp/Hierarchy.h"
+#include "amrsp/ParallelFor.h"
 #include "amrsp/RenderSettings.h"
 #include "amrsp/Shading.h"
 #include "amrsp/TransferFunction.h"
@@ -24,7 +25,6 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <vector>
 
 namespace amrsp
@@ -32,24 +32,11 @@ namespace amrsp
 namespace integration
 {
 
-inline void ForEachRow(int height, int threads, const std::function<void(int)>& row)
+/// row(j) for every image row j, the rows interleaved over `threads` workers (0: one per core).
+template <class Row>
+void ForEachRow(int height, int threads, const Row& row)
 {
-  int n = threads > 0 ? threads : static_cast<int>(std::thread::hardware_concurrency());
-  n = std::max(1, std::min(n, height));
-  std::vector<std::thread> pool;
-  for (int t = 0; t < n; ++t)
-  {
-    pool.emplace_back([&, t]() {
-      for (int j = t; j < height; j += n)
-      {
-        row(j);
-      }
-    });
-  }
-  for (std::thread& th : pool)
-  {
-    th.join();
-  }
+  ParallelForInterleaved(height, [&row](int64_t j) { row(static_cast<int>(j)); }, threads);
 }
 
 /// Front-to-back accumulation of one ray, in the precision `T` of the integrator.

@@ -2,13 +2,12 @@
 #include "amrsp/Resample.h"
 
 #include "amrsp/FinestCellLocator.h"
+#include "amrsp/ParallelFor.h"
 #include "amrsp/VertexData.h"
 
-#include <algorithm>
 #include <cstddef>
 #include <limits>
 #include <string>
-#include <thread>
 
 namespace amrsp
 {
@@ -43,38 +42,30 @@ UniformGrid ResampleToLevel(const Hierarchy& h, int level, int64_t maxVoxels, in
   u.Origin = h.Origin + glm::dvec3(root.Lo) * cell * h.Spacing0;
   u.Values.assign(static_cast<std::size_t>(voxels), std::numeric_limits<float>::quiet_NaN());
   const FinestCellLocator locator(h);
-  int n = threads > 0 ? threads : static_cast<int>(std::thread::hardware_concurrency());
-  n = std::max(1, std::min(n, u.Dims.z));
-  std::vector<std::thread> pool;
-  for (int t = 0; t < n; ++t)
-  {
-    pool.emplace_back([&, t]() {
-      for (int k = t; k < u.Dims.z; k += n)
+  // each slice k of voxels is written by one worker
+  ParallelForInterleaved(
+    u.Dims.z,
+    [&](int64_t slice) {
+      const int k = static_cast<int>(slice);
+      for (int j = 0; j < u.Dims.y; ++j)
       {
-        for (int j = 0; j < u.Dims.y; ++j)
+        for (int i = 0; i < u.Dims.x; ++i)
         {
-          for (int i = 0; i < u.Dims.x; ++i)
+          const glm::dvec3 p = (glm::dvec3(root.Lo) + glm::dvec3(i, j, k) + 0.5) * cell;
+          glm::i64vec3 c;
+          const int32_t g = locator.Find(p, c);
+          if (g < 0)
           {
-            const glm::dvec3 p = (glm::dvec3(root.Lo) + glm::dvec3(i, j, k) + 0.5) * cell;
-            glm::i64vec3 c;
-            const int32_t g = locator.Find(p, c);
-            if (g < 0)
-            {
-              continue;
-            }
-            const glm::dvec3 r(h.CumulativeRatio(h.Grids[g].Level));
-            u.Values[(static_cast<std::size_t>(k) * u.Dims.y + j) * u.Dims.x + i] = h.VertexCentred
-              ? InterpolateVertices(h, g, p * r - glm::dvec3(h.Grids[g].Cells.Lo))
-              : CellValue(h, g, c);
+            continue;
           }
+          const glm::dvec3 r(h.CumulativeRatio(h.Grids[g].Level));
+          u.Values[(static_cast<std::size_t>(k) * u.Dims.y + j) * u.Dims.x + i] = h.VertexCentred
+            ? InterpolateVertices(h, g, p * r - glm::dvec3(h.Grids[g].Cells.Lo))
+            : CellValue(h, g, c);
         }
       }
-    });
-  }
-  for (std::thread& th : pool)
-  {
-    th.join();
-  }
+    },
+    threads);
   return u;
 }
 
