@@ -4,6 +4,8 @@
 #include "vtkSinglePassAMRRenderingUtilities.h"
 
 #include "amrsp/Hierarchy.h"
+#include "amrsp/IntegerMath.h"
+#include "amrsp/SampleStep.h"
 #include "amrsp/KdTree.h"
 
 #include "vtkInformation.h"
@@ -45,17 +47,6 @@ namespace utilities = vtkSinglePassAMRRenderingUtilities;
 
 namespace
 {
-
-int64_t FloorDiv(int64_t a, int64_t b)
-{
-  const int64_t q = a / b;
-  return (q * b > a) ? q - 1 : q;
-}
-
-int64_t CeilDiv(int64_t a, int64_t b)
-{
-  return -FloorDiv(-a, b);
-}
 
 /// Everything one draw needs about its data node (the per-node uniforms).
 struct NodeDraw
@@ -200,8 +191,8 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
       d.Lo[a] = p.Lo[a];
       d.Hi[a] = p.Hi[a];
       d.CellSize[a] = levelCellSize[static_cast<std::size_t>(grid.Level)][a];
-      const int64_t first = FloorDiv(node.Region.Lo[a], toData[a]);
-      const int64_t last = CeilDiv(node.Region.Hi[a], toData[a]) - 1;
+      const int64_t first = amrsp::FloorDiv(node.Region.Lo[a], toData[a]);
+      const int64_t last = amrsp::CeilDiv(node.Region.Hi[a], toData[a]) - 1;
       d.FirstCell[a] = static_cast<int>(first);
       d.LastCell[a] = static_cast<int>(last);
       d.AtlasOffset[a] = origin[a] + static_cast<int>(first - grid.Cells.Lo[a]);
@@ -625,7 +616,7 @@ void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   std::vector<float> steps;
   for (double edge : in.Data.LevelMinEdge)
   {
-    steps.push_back(static_cast<float>(this->SampleDistanceFactor * edge));
+    steps.push_back(static_cast<float>(amrsp::LevelSampleStep(this->SampleDistanceFactor, edge)));
   }
   const float origin[3] = { static_cast<float>(h.Origin.x), static_cast<float>(h.Origin.y),
     static_cast<float>(h.Origin.z) };

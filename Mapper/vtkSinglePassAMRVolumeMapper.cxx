@@ -6,6 +6,7 @@
 #include "vtkSinglePassAMRRenderingUtilities.h"
 
 #include "amrsp/RayCastingData.h"
+#include "amrsp/SampleStep.h"
 
 #include "vtkCamera.h"
 #include "vtkContourValues.h"
@@ -497,7 +498,7 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::SetDataUniforms(vtkShaderProgra
   std::vector<float> steps;
   for (double edge : levels.LevelMinEdge)
   {
-    steps.push_back(static_cast<float>(self->SampleDistanceFactor * edge));
+    steps.push_back(static_cast<float>(amrsp::LevelSampleStep(self->SampleDistanceFactor, edge)));
   }
   const glm::vec3 origin(d.Data.Origin);
   const glm::vec3 spacing(d.Data.Spacing0);
