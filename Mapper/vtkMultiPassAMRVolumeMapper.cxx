@@ -71,6 +71,29 @@ struct NodeDraw
 class vtkMultiPassAMRVolumeMapper::vtkInternals
 {
 public:
+  explicit vtkInternals(vtkMultiPassAMRVolumeMapper* self)
+    : Self(self)
+  {
+  }
+
+  // The steps of a frame (see Render). Each returns false after Self->ReportError when the frame
+  // cannot be drawn.
+  /// Uploads the atlas after a build, or to another context or atlas limit.
+  bool UploadAtlas(vtkOpenGLRenderWindow* renWin, vtkOverlappingAMR* amr);
+  /// The node raycaster (one variant per centring and depth use; cached by VTK's shader cache)
+  /// and the final composite.
+  vtkShaderProgram* ReadyShaders(vtkOpenGLRenderWindow* renWin, vtkVolume* vol);
+  /// The unit cube's triangles (placed per node by the vertex shader), bound to `program`.
+  bool BindCube(vtkShaderProgram* program);
+  /// Activates the atlas and transfer table and sets the per-frame uniforms.
+  void SetFrameUniforms(
+    vtkShaderProgram* program, vtkVolumeProperty* property, const utilities::ViewGeometry& view);
+  /// The box the rays integrate in (index units): the root box, cropped (warns once when the
+  /// cropping flags are not supported).
+  void ClipBox(glm::vec3& clipLo, glm::vec3& clipHi);
+
+  vtkMultiPassAMRVolumeMapper* Self;
+
   // ---- CPU results of the build
   utilities::PackedHierarchy Data; // Data.Atlas.Texels is freed once uploaded
   std::vector<NodeDraw> Draws;     // one per leaf with data
@@ -439,7 +462,7 @@ vtkStandardNewMacro(vtkMultiPassAMRVolumeMapper);
 
 //------------------------------------------------------------------------------
 vtkMultiPassAMRVolumeMapper::vtkMultiPassAMRVolumeMapper()
-  : Internals(new vtkInternals)
+  : Internals(new vtkInternals(this))
 {
 }
 
@@ -474,53 +497,26 @@ void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     return;
   }
-
   if (this->GetBlendMode() != vtkVolumeMapper::COMPOSITE_BLEND)
   {
     this->ReportError("the multi-pass method implements composite blending only (blend mode " +
       std::to_string(this->GetBlendMode()) + " requested)");
     return;
   }
-
-  // ---- data: rebuilt only when the input, the array selection or the packing limit changed
+  // data: rebuilt only when the input, the array selection or the packing limit changed
   if (!this->EnsureBuilt(amr))
   {
     this->ReportError(this->GetBuildError());
     return;
   }
-  if (!in.Atlas || in.Context != renWin || in.UploadLimit != this->MaximumAtlasSize ||
-    in.UploadedBuildTime != this->GetBuildTime().GetMTime())
-  {
-    in.UploadLimit = this->MaximumAtlasSize;
-    if (in.Data.Atlas.Texels.empty())
-    {
-      // the CPU copy was dropped after an upload to another context: rebuild it
-      if (!this->Rebuild(amr))
-      {
-        this->ReportError(this->GetBuildError());
-        return;
-      }
-    }
-    const auto t0 = std::chrono::steady_clock::now();
-    std::string error;
-    if (!utilities::UploadAtlas(
-          renWin, in.Data.Atlas, in.Data.VertexCentred, this->MaximumAtlasSize, in.Atlas, error))
-    {
-      // keep the CPU data: a later context (or a smaller input) may succeed
-      this->ReportError(error);
-      return;
-    }
-    std::vector<float>().swap(in.Data.Atlas.Texels);
-    in.Context = renWin;
-    in.UploadedBuildTime = this->GetBuildTime().GetMTime();
-    this->UploadSeconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  }
-
   vtkVolumeProperty* property = vol->GetProperty();
   if (!property)
   {
     this->ReportError("the volume has no vtkVolumeProperty");
+    return;
+  }
+  if (!in.UploadAtlas(renWin, amr))
+  {
     return;
   }
   if (!in.Transfer.Update(renWin, property, in.Data.ScalarRange, this->GetBuildTime()))
@@ -528,150 +524,196 @@ void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     this->ReportError("uploading the transfer-function table failed");
     return;
   }
-
-  // ---- shaders: the node raycaster (one variant per centring and depth use; cached by VTK's
-  // shader cache) and the final composite
-  const bool useDepth = this->UseDepthBuffer;
-  std::string defines =
-    in.Data.VertexCentred ? "#define AMRSP_VERTEX_CENTRED 1\n" : "#define AMRSP_CELL_CENTRED 1\n";
-  if (useDepth)
-  {
-    defines += "#define AMRSP_USE_DEPTH 1\n";
-  }
-  const std::string fragment = utilities::ComposeFragmentShader(
-    amrsp_MultiPassAMR_frag_glsl, defines, { { "RayCommon", amrsp_RayCommon_glsl }, { "BrickSample", amrsp_BrickSample_glsl } }, vol);
-  if (fragment == in.FailedFragmentSource)
-  {
-    this->ReportError("the multi-pass AMR shader failed to compile or link (see the earlier error)");
-    return;
-  }
-  if (!in.Composite)
-  {
-    in.Composite.reset(
-      new vtkOpenGLQuadHelper(renWin, nullptr, amrsp_MultiPassAMRComposite_frag_glsl, ""));
-  }
-  if (!in.Composite->Program)
-  {
-    in.Composite.reset();
-    this->ReportError("the multi-pass AMR composite shader failed to compile or link (see the error above)");
-    return;
-  }
-  vtkShaderProgram* program = renWin->GetShaderCache()->ReadyShaderProgram(
-    amrsp_MultiPassAMR_vert_glsl, fragment.c_str(), "");
+  vtkShaderProgram* program = in.ReadyShaders(renWin, vol);
   if (!program)
   {
-    in.FailedFragmentSource = fragment;
-    this->ReportError("the multi-pass AMR shader failed to compile or link (see the error above)");
     return;
   }
-
   utilities::ViewGeometry view;
   std::string error;
-  if (!utilities::ComputeViewGeometry(ren, vol, view, error))
+  if (!utilities::ComputeViewGeometry(ren, vol, view, error) ||
+    !in.EnsureAccumulation(renWin, view.Width, view.Height, error))
   {
     this->ReportError(error);
     return;
   }
-  if (!in.EnsureAccumulation(renWin, view.Width, view.Height, error))
+  if (!in.BindCube(program))
   {
-    this->ReportError(error);
     return;
   }
-
-  // ---- proxy geometry: the unit cube, placed per node by the vertex shader
-  if (in.CubeBuffer->GetHandle() == 0)
+  // the opaque geometry's depth, read before the accumulation target is bound
+  if (this->UseDepthBuffer)
   {
-    const double lo[3] = { 0.0, 0.0, 0.0 }, hi[3] = { 1.0, 1.0, 1.0 };
-    in.CubeBuffer->Upload(utilities::BoxTriangles(lo, hi), vtkOpenGLBufferObject::ArrayBuffer);
-    in.CubeArrayProgram = nullptr;
+    utilities::CopyDepthBuffer(renWin, view, in.Depth); // leaves the depth texture active
   }
-  in.CubeArray->Bind();
-  if (in.CubeArrayProgram != program)
-  {
-    in.CubeArray->ReleaseGraphicsResources();
-    in.CubeArray->Bind();
-    if (!in.CubeArray->AddAttributeArray(
-          program, in.CubeBuffer, "amrspCorner", 0, 3 * sizeof(float), VTK_FLOAT, 3, false))
-    {
-      in.CubeArray->Release();
-      this->ReportError("cannot bind the node box's vertices to the shader");
-      return;
-    }
-    in.CubeArrayProgram = program;
-  }
-
-  vtkOpenGLState* state = renWin->GetState();
-
-  // ---- depth of the opaque geometry drawn so far (read before the accumulation target is bound)
-  if (useDepth)
-  {
-    utilities::CopyDepthBuffer(renWin, view, in.Depth);
-  }
-
-  // ---- CPU: the data nodes front to back for this camera
-  in.OrderNodes(view);
-
-  // ---- per-frame uniforms
-  const amrsp::Hierarchy& h = in.Data.Structure;
+  in.OrderNodes(view); // CPU: the data nodes front to back for this camera
+  in.SetFrameUniforms(program, property, view);
   std::vector<float> steps;
   for (double edge : in.Data.LevelMinEdge)
   {
     steps.push_back(static_cast<float>(amrsp::LevelSampleStep(this->SampleDistanceFactor, edge)));
   }
-  const float origin[3] = { static_cast<float>(h.Origin.x), static_cast<float>(h.Origin.y),
-    static_cast<float>(h.Origin.z) };
-  const float spacing[3] = { static_cast<float>(h.Spacing0.x), static_cast<float>(h.Spacing0.y),
-    static_cast<float>(h.Spacing0.z) };
+  glm::vec3 clipLo, clipHi;
+  in.ClipBox(clipLo, clipHi);
+  in.DrawNodes(renWin->GetState(), program, view, steps, clipLo, clipHi);
+  in.Atlas->Deactivate();
+  in.Transfer.GetTexture()->Deactivate();
+  if (this->UseDepthBuffer)
+  {
+    in.Depth.Depth->Deactivate();
+  }
+  // the accumulated image over the renderer's framebuffer (premultiplied "over")
+  in.CompositeOver(renWin);
+  vtkOpenGLCheckErrorMacro("failed after vtkMultiPassAMRVolumeMapper::Render");
+}
+
+//------------------------------------------------------------------------------
+bool vtkMultiPassAMRVolumeMapper::vtkInternals::UploadAtlas(
+  vtkOpenGLRenderWindow* renWin, vtkOverlappingAMR* amr)
+{
+  vtkMultiPassAMRVolumeMapper* self = this->Self;
+  if (this->Atlas && this->Context == renWin && this->UploadLimit == self->MaximumAtlasSize &&
+    this->UploadedBuildTime == self->GetBuildTime().GetMTime())
+  {
+    return true;
+  }
+  this->UploadLimit = self->MaximumAtlasSize;
+  // the CPU copy is dropped after an upload: uploading to another context rebuilds it
+  if (this->Data.Atlas.Texels.empty() && !self->Rebuild(amr))
+  {
+    self->ReportError(self->GetBuildError());
+    return false;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  std::string error;
+  if (!utilities::UploadAtlas(renWin, this->Data.Atlas, this->Data.VertexCentred,
+        self->MaximumAtlasSize, this->Atlas, error))
+  {
+    // keep the CPU data: a later context (or a smaller input) may succeed
+    self->ReportError(error);
+    return false;
+  }
+  std::vector<float>().swap(this->Data.Atlas.Texels);
+  this->Context = renWin;
+  this->UploadedBuildTime = self->GetBuildTime().GetMTime();
+  self->UploadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+vtkShaderProgram* vtkMultiPassAMRVolumeMapper::vtkInternals::ReadyShaders(
+  vtkOpenGLRenderWindow* renWin, vtkVolume* vol)
+{
+  vtkMultiPassAMRVolumeMapper* self = this->Self;
+  std::string defines =
+    this->Data.VertexCentred ? "#define AMRSP_VERTEX_CENTRED 1\n" : "#define AMRSP_CELL_CENTRED 1\n";
+  if (self->UseDepthBuffer)
+  {
+    defines += "#define AMRSP_USE_DEPTH 1\n";
+  }
+  const std::string fragment = utilities::ComposeFragmentShader(amrsp_MultiPassAMR_frag_glsl,
+    defines, { { "RayCommon", amrsp_RayCommon_glsl }, { "BrickSample", amrsp_BrickSample_glsl } },
+    vol);
+  if (fragment == this->FailedFragmentSource)
+  {
+    self->ReportError("the multi-pass AMR shader failed to compile or link (see the earlier error)");
+    return nullptr;
+  }
+  if (!this->Composite)
+  {
+    this->Composite.reset(
+      new vtkOpenGLQuadHelper(renWin, nullptr, amrsp_MultiPassAMRComposite_frag_glsl, ""));
+  }
+  if (!this->Composite->Program)
+  {
+    this->Composite.reset();
+    self->ReportError(
+      "the multi-pass AMR composite shader failed to compile or link (see the error above)");
+    return nullptr;
+  }
+  vtkShaderProgram* program = renWin->GetShaderCache()->ReadyShaderProgram(
+    amrsp_MultiPassAMR_vert_glsl, fragment.c_str(), "");
+  if (!program)
+  {
+    this->FailedFragmentSource = fragment;
+    self->ReportError("the multi-pass AMR shader failed to compile or link (see the error above)");
+  }
+  return program;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMultiPassAMRVolumeMapper::vtkInternals::BindCube(vtkShaderProgram* program)
+{
+  if (this->CubeBuffer->GetHandle() == 0)
+  {
+    const double lo[3] = { 0.0, 0.0, 0.0 }, hi[3] = { 1.0, 1.0, 1.0 };
+    this->CubeBuffer->Upload(utilities::BoxTriangles(lo, hi), vtkOpenGLBufferObject::ArrayBuffer);
+    this->CubeArrayProgram = nullptr;
+  }
+  this->CubeArray->Bind();
+  if (this->CubeArrayProgram != program)
+  {
+    this->CubeArray->ReleaseGraphicsResources();
+    this->CubeArray->Bind();
+    if (!this->CubeArray->AddAttributeArray(
+          program, this->CubeBuffer, "amrspCorner", 0, 3 * sizeof(float), VTK_FLOAT, 3, false))
+    {
+      this->CubeArray->Release();
+      this->Self->ReportError("cannot bind the node box's vertices to the shader");
+      return false;
+    }
+    this->CubeArrayProgram = program;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkMultiPassAMRVolumeMapper::vtkInternals::SetFrameUniforms(
+  vtkShaderProgram* program, vtkVolumeProperty* property, const utilities::ViewGeometry& view)
+{
+  const amrsp::Hierarchy& h = this->Data.Structure;
+  const glm::vec3 origin(h.Origin);
+  const glm::vec3 spacing(h.Spacing0);
   // the accumulation target holds the viewport only: its pixel (0, 0) is the viewport's corner
   const float viewport[4] = { 0.0f, 0.0f, static_cast<float>(view.Width),
     static_cast<float>(view.Height) };
   float transferRange[2];
-  in.Transfer.GetShaderRange(transferRange);
-  const glm::ivec3 atlasDims = in.Data.Atlas.Layout.Dims;
-  const float atlasSize[3] = { static_cast<float>(atlasDims.x), static_cast<float>(atlasDims.y),
-    static_cast<float>(atlasDims.z) };
+  this->Transfer.GetShaderRange(transferRange);
+  const glm::vec3 atlasSize(this->Data.Atlas.Layout.Dims);
 
-  in.Atlas->Activate();
-  in.Transfer.GetTexture()->Activate();
-  program->SetUniformi("amrspAtlas", in.Atlas->GetTextureUnit());
-  program->SetUniformi("amrspTransfer", in.Transfer.GetTexture()->GetTextureUnit());
-  if (useDepth)
+  this->Atlas->Activate();
+  this->Transfer.GetTexture()->Activate();
+  program->SetUniformi("amrspAtlas", this->Atlas->GetTextureUnit());
+  program->SetUniformi("amrspTransfer", this->Transfer.GetTexture()->GetTextureUnit());
+  if (this->Self->UseDepthBuffer)
   {
-    program->SetUniformi("amrspDepth", in.Depth.Depth->GetTextureUnit());
+    program->SetUniformi("amrspDepth", this->Depth.Depth->GetTextureUnit());
   }
-  program->SetUniformMatrix4x4("amrspMCDCMatrix", view.MCDC);
-  program->SetUniformMatrix4x4("amrspDCMCMatrix", view.DCMC);
+  program->SetUniformMatrix4x4("amrspMCDCMatrix", const_cast<float*>(view.MCDC));
+  program->SetUniformMatrix4x4("amrspDCMCMatrix", const_cast<float*>(view.DCMC));
   program->SetUniform4f("amrspViewport", viewport);
   program->SetUniform4f("amrspEyeMC", view.EyeMC);
-  program->SetUniform3f("amrspOrigin", origin);
-  program->SetUniform3f("amrspSpacing0", spacing);
+  program->SetUniform3f("amrspOrigin", &origin.x);
+  program->SetUniform3f("amrspSpacing0", &spacing.x);
   program->SetUniform2f("amrspTransferRange", transferRange);
   program->SetUniformf("amrspTransferSize", static_cast<float>(utilities::TransferTableSize));
   program->SetUniformf("amrspUnitDistance",
     static_cast<float>(std::max(property->GetScalarOpacityUnitDistance(0), 1e-12)));
-  program->SetUniform3f("amrspAtlasSize", atlasSize);
+  program->SetUniform3f("amrspAtlasSize", &atlasSize.x);
+}
 
-  // ---- one draw per data node, front to back, into the accumulation target
+//------------------------------------------------------------------------------
+void vtkMultiPassAMRVolumeMapper::vtkInternals::ClipBox(glm::vec3& clipLo, glm::vec3& clipHi)
+{
+  const amrsp::Hierarchy& h = this->Data.Structure;
   const amrsp::Box root = h.RootCells();
-  glm::vec3 clipLo, clipHi;
   std::string cropWarning;
-  utilities::ClipBox(this, h.Origin, h.Spacing0, glm::vec3(root.Lo), glm::vec3(root.Hi), clipLo,
-    clipHi, cropWarning);
+  utilities::ClipBox(this->Self, h.Origin, h.Spacing0, glm::vec3(root.Lo), glm::vec3(root.Hi),
+    clipLo, clipHi, cropWarning);
   if (!cropWarning.empty())
   {
-    this->WarnOnce(cropWarning);
+    this->Self->WarnOnce(cropWarning);
   }
-  in.DrawNodes(state, program, view, steps, clipLo, clipHi);
-  in.Atlas->Deactivate();
-  in.Transfer.GetTexture()->Deactivate();
-  if (useDepth)
-  {
-    in.Depth.Depth->Deactivate();
-  }
-
-  // ---- composite the accumulated image over the renderer's framebuffer (premultiplied "over")
-  in.CompositeOver(renWin);
-  vtkOpenGLCheckErrorMacro("failed after vtkMultiPassAMRVolumeMapper::Render");
 }
 
 //------------------------------------------------------------------------------
