@@ -5,7 +5,7 @@
 #include "AmrspBench.h"
 
 #include "AmrspAmrResample.h"
-#include "AmrspDriver.h"
+#include "AmrspMethods.h"
 #include "AmrspMultipass.h"
 #include "AmrspPacking.h"
 #include "AmrspUniform.h"
@@ -13,6 +13,7 @@
 #include "amrsp/BrickPacking.h"
 #include "amrsp/KdTree.h"
 #include "amrsp/KdTreeEncoding.h"
+#include "amrsp/Render.h"
 
 #include "vtkImageData.h"
 #include "vtkNew.h"
@@ -22,11 +23,11 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
-#include <iomanip>
 #include <map>
 #include <memory>
-#include <sstream>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace amrsp
 {
@@ -35,28 +36,6 @@ namespace tool
 
 using Json = BenchJson;
 using Clock = std::chrono::steady_clock;
-
-const char* const DefaultBenchMethods =
-  "cpu-kdtree,packing,bindless,multipass,uniform-gpu,vtk-amr-resample,vtk-amr-resample:finest";
-
-const std::vector<std::pair<std::string, std::string>>& BenchMethodHelp()
-{
-  static const std::vector<std::pair<std::string, std::string>> help = {
-    { "cpu-kdtree", "the CPU kD-tree integrator (amrsp::RenderKdTree)" },
-    { "packing", "vtkSinglePassAMRVolumeMapper, packed atlas (the paper's single pass)" },
-    { "bindless",
-      "vtkSinglePassAMRVolumeMapper, one texture per grid through bindless handles (needs "
-      "GL_ARB_bindless_texture: --driver zink on a CPU)" },
-    { "multipass", "vtkMultiPassAMRVolumeMapper: one draw per kD-tree data node (paper §6)" },
-    { "uniform-gpu[:LEVEL]",
-      "vtkGPUVolumeRayCastMapper on one uniform resampling at the finest level (or LEVEL)" },
-    { "vtk-amr-resample[:N]",
-      "VTK's vtkAMRVolumeMapper (ParaView's VTK only) at its default 128^3 samples (or N^3)" },
-    { "vtk-amr-resample:finest",
-      "vtkAMRVolumeMapper at two samples per finest cell edge (where that fits)" },
-  };
-  return help;
-}
 
 namespace
 {
@@ -187,59 +166,164 @@ void RunRounds(const std::vector<KeptRenderer>& kept, const BenchOptions& o, Jso
   }
 }
 
-/// The renderer of a method that goes through GpuRenderer, or a GpuError saying why it cannot.
-std::unique_ptr<GpuRenderer> MakeGpuRenderer(
-  const std::string& m, const Hierarchy& h, const RenderSettings& s, const ViewAngles& view)
+/// The frames methods are compared against: the CPU reference, and frame 0 of the CPU kD-tree
+/// integrator (rendered when first asked for) and of packing (when it ran).
+struct Comparisons
 {
-  if (m == "packing")
+  const Hierarchy& H;
+  const RenderSettings& S;
+  const Image& Reference;
+  Image KdTree;
+  Image Packing;
+
+  const Image& KdTreeFrame()
   {
-    return std::unique_ptr<GpuRenderer>(new PackingRenderer(h, s, view));
+    if (KdTree.Pixels.empty())
+    {
+      KdTree = RenderKdTree(H, EncodeKdTree(H, BuildKdTree(H)), S);
+    }
+    return KdTree;
   }
-  if (m == "multipass")
+};
+
+/// cpu-kdtree: the tree and its encoding timed, then the orbit (no warm-up frame).
+Image BenchKdTree(const Hierarchy& h, const RenderSettings& s, const BenchOptions& o,
+  Comparisons& c, Json& r)
+{
+  auto t0 = Clock::now();
+  const KdTree tree = BuildKdTree(h);
+  const double tree_s = Seconds(t0);
+  t0 = Clock::now();
+  const EncodedKdTree enc = EncodeKdTree(h, tree);
+  const double encode_s = Seconds(t0);
+  std::vector<double> ms;
+  const Camera start = s.View;
+  Image first;
+  for (int f = 0; f < o.Frames; ++f)
   {
-    return std::unique_ptr<GpuRenderer>(new MultipassRenderer(h, s, view));
+    RenderSettings fs = s;
+    fs.View = start;
+    fs.View.Azimuth(360.0 * f / o.Frames);
+    t0 = Clock::now();
+    Image img = RenderKdTree(h, enc, fs);
+    ms.push_back(1000.0 * Seconds(t0));
+    if (f == 0)
+    {
+      first = std::move(img);
+    }
   }
-  if (m == "bindless")
+  Summarize(ms, r);
+  if (o.CompareImages)
   {
-    // the mapper falls back to the atlas where bindless cannot run; the bench then reports an
-    // error instead of packing's figures under bindless's name (checked after the warm-up frame)
-    return std::unique_ptr<GpuRenderer>(new PackingRenderer(h, s, view, "bindless"));
+    r["rmse"] = Rmse(first, c.Reference);
+    r["psnr"] = Psnr(r["rmse"].get<double>());
   }
-  std::string why;
-  if (!AmrResampleAvailable(why))
+  r["gpu_bytes"] = enc.Tree.Bytes() + enc.DataNodes.Bytes();
+  r["preprocess_s"] = { { "tree", tree_s }, { "encode", encode_s } };
+  c.KdTree = first;
+  return first;
+}
+
+/// uniform-gpu's figures after its orbit.
+void UniformFields(const UniformGpuRenderer& gpu, const Image& first, const BenchOptions& o,
+  const Comparisons& c, Json& r)
+{
+  if (o.CompareImages)
   {
-    throw GpuError(why);
+    r["rmse"] = Rmse(first, c.Reference);
+    r["psnr"] = Psnr(r["rmse"].get<double>());
+    if (!c.Packing.Pixels.empty())
+    {
+      r["rmse_vs_packing"] = Rmse(first, c.Packing);
+    }
+  }
+  r["level"] = gpu.Level();
+  r["grid"] = gpu.Dimensions();
+  r["gpu_bytes"] = gpu.TextureBytes();
+  r["preprocess_s"] = { { "resample", gpu.ResampleSeconds() } };
+}
+
+/// The figures of the other GPU methods after their orbit. Throws GpuError when bindless fell
+/// back to the atlas (its figures would be packing's under bindless's name).
+void MapperFields(const Method& m, GpuRenderer& gpu, const Image& first, const BenchOptions& o,
+  const Json& stats, Comparisons& c, Json& r)
+{
+  if (PackingRenderer* singlePass = dynamic_cast<PackingRenderer*>(&gpu))
+  {
+    r["storage"] = singlePass->StorageUsed();
+    r["gpu_bytes_packing"] = singlePass->PackedBytes();
+    r["gpu_bytes_bindless"] = singlePass->BindlessBytes();
+    if (m.Kind == MethodKind::Bindless && singlePass->StorageUsed().rfind("bindless", 0) != 0)
+    {
+      throw GpuError("bindless textures are not available: " +
+        singlePass->BindlessFallbackReason() + " (on a CPU run with --driver zink)");
+    }
+  }
+  if (o.CompareImages)
+  {
+    r["rmse"] = Rmse(first, c.Reference);
+    r["psnr"] = Psnr(r["rmse"].get<double>());
+    if (m.IsKdTreeMapper())
+    {
+      r["rmse_vs_cpu_kdtree"] = Rmse(first, c.KdTreeFrame());
+    }
+    if (m.Kind != MethodKind::Packing && !c.Packing.Pixels.empty())
+    {
+      r["rmse_vs_packing"] = Rmse(first, c.Packing);
+    }
+  }
+  r["gpu_bytes"] = gpu.TextureBytes();
+  r["device"] = gpu.Device();
+  r["backend"] = gpu.Backend();
+  if (m.IsKdTreeMapper())
+  {
+    r["atlas"] = m.Kind == MethodKind::Bindless ? std::string("none (one texture per grid)")
+                                                : gpu.AtlasDimensions();
+    r["builds"] = gpu.NumberOfBuilds();
+    // tree, encode, pack: the core steps timed by the tool on the CPU; build: the mapper's own
+    // total (conversion from vtkOverlappingAMR, tree, packing, encoding)
+    const Json& cpu = stats["times_s"];
+    Json pre = { { "tree", cpu["tree"] } };
+    if (m.Kind != MethodKind::Multipass)
+    {
+      pre["encode"] = cpu["encode"];
+      r["gpu_bytes_tree"] = stats["tree_texture_bytes"];
+    }
+    if (m.Kind != MethodKind::Bindless)
+    {
+      pre["pack"] = cpu["pack"];
+    }
+    pre["build"] = gpu.BuildSeconds();
+    pre["upload"] = gpu.UploadSeconds();
+    r["preprocess_s"] = pre;
+  }
+  if (MultipassRenderer* mp = dynamic_cast<MultipassRenderer*>(&gpu))
+  {
+    r["passes"] = mp->Passes();
+    r["order_ms"] = 1000.0 * mp->OrderSeconds();
+    r["accumulation_bytes"] = mp->AccumulationBytes();
+  }
+  if (m.Kind == MethodKind::Packing && o.CompareImages)
+  {
+    c.Packing = first;
   }
 #ifdef AMRSP_HAVE_VTK_AMR_VOLUME_MAPPER
-  glm::ivec3 samples(0);
-  if (m == "vtk-amr-resample:finest")
+  if (AmrResampleRenderer* ar = dynamic_cast<AmrResampleRenderer*>(&gpu))
   {
-    samples = glm::ivec3(-1);
+    const glm::ivec3 n = ar->Samples();
+    const glm::dvec3 cells = ar->FinestCellsPerSample();
+    r["samples"] = { n.x, n.y, n.z };
+    r["grid"] = gpu.AtlasDimensions();
+    r["finest_cells_per_sample"] = std::max(cells.x, std::max(cells.y, cells.z));
+    r["resamplings"] = ar->NumberOfBuilds();
+    r["render_mode"] = ar->RenderMode();
+    // the internal mapper's upload is part of first_frame_ms
+    r["preprocess_s"] = { { "resample", ar->BuildSeconds() } };
   }
-  else if (m != "vtk-amr-resample")
-  {
-    const std::string n = m.substr(std::string("vtk-amr-resample:").size());
-    if (n.empty() || n.find_first_not_of("0123456789") != std::string::npos || n.size() > 4 ||
-      std::stoi(n) < 2 || std::stoi(n) > 2048)
-    {
-      throw GpuError("vtk-amr-resample:N needs N in 2..2048 or 'finest', got '" + n + "'");
-    }
-    samples = glm::ivec3(std::stoi(n));
-  }
-  return std::unique_ptr<GpuRenderer>(new AmrResampleRenderer(h, s, view, samples));
-#else
-  return nullptr;
 #endif
 }
 
 } // namespace
-
-bool IsBenchMethod(const std::string& m)
-{
-  return m == "cpu-kdtree" || m == "packing" || m == "bindless" || m == "multipass" ||
-    m == "uniform-gpu" || m.rfind("uniform-gpu:", 0) == 0 || m == "vtk-amr-resample" ||
-    m.rfind("vtk-amr-resample:", 0) == 0;
-}
 
 void WriteImagePng(const Image& img, const std::string& path)
 {
@@ -295,16 +379,7 @@ Json RunBenchMethods(const Hierarchy& h, const RenderSettings& s, const Image& r
   const BenchOptions& o, const Json& stats)
 {
   Json methods = Json::object();
-  const Json& cpu = stats["times_s"];
-  Image kdFrame0;      // the CPU kD-tree image of frame 0
-  Image packingFrame0; // the packing image of frame 0
-  auto kdImage = [&]() -> const Image& {
-    if (kdFrame0.Pixels.empty())
-    {
-      kdFrame0 = RenderKdTree(h, EncodeKdTree(h, BuildKdTree(h)), s);
-    }
-    return kdFrame0;
-  };
+  Comparisons c{ h, s, reference, Image(), Image() };
   if (!o.ImageFolder.empty() && o.CompareImages)
   {
     WriteImagePng(reference, o.ImageFolder + "/reference.png");
@@ -316,166 +391,34 @@ Json RunBenchMethods(const Hierarchy& h, const RenderSettings& s, const Image& r
     Image frame0;
     try
     {
-      if (m == "cpu-kdtree")
+      const Method* method = FindMethod(m, BenchCommand);
+      if (!method)
       {
-        auto t0 = Clock::now();
-        const KdTree tree = BuildKdTree(h);
-        const double tree_s = Seconds(t0);
-        t0 = Clock::now();
-        const EncodedKdTree enc = EncodeKdTree(h, tree);
-        const double encode_s = Seconds(t0);
-        std::vector<double> ms;
-        const Camera start = s.View;
-        Image first;
-        for (int f = 0; f < o.Frames; ++f)
-        {
-          RenderSettings fs = s;
-          fs.View = start;
-          fs.View.Azimuth(360.0 * f / o.Frames);
-          t0 = Clock::now();
-          Image img = RenderKdTree(h, enc, fs);
-          ms.push_back(1000.0 * Seconds(t0));
-          if (f == 0)
-          {
-            first = std::move(img);
-          }
-        }
-        Summarize(ms, r);
-        if (o.CompareImages)
-        {
-          r["rmse"] = Rmse(first, reference);
-          r["psnr"] = Psnr(r["rmse"].get<double>());
-        }
-        r["gpu_bytes"] = enc.Tree.Bytes() + enc.DataNodes.Bytes();
-        r["preprocess_s"] = { { "tree", tree_s }, { "encode", encode_s } };
-        frame0 = first;
-        kdFrame0 = std::move(first);
+        throw std::invalid_argument("unknown method '" + m + "'");
       }
-      else if (m == "uniform-gpu" || m.rfind("uniform-gpu:", 0) == 0)
+      if (method->Kind == MethodKind::CpuKdTree)
       {
-        int level = h.NumberOfLevels() - 1;
-        if (m != "uniform-gpu")
-        {
-          const std::string l = m.substr(12);
-          if (l.empty() || l.size() > 3 || l.find_first_not_of("0123456789") != std::string::npos ||
-            std::stoi(l) >= h.NumberOfLevels())
-          {
-            throw GpuError("uniform-gpu level '" + l + "' does not exist (levels 0.." +
-              std::to_string(h.NumberOfLevels() - 1) + ")");
-          }
-          level = std::stoi(l);
-        }
-        auto gpuShared = std::make_shared<UniformGpuRenderer>(h, s, o.View, level);
-        UniformGpuRenderer& gpu = *gpuShared;
-        const Image first = Orbit(gpu, o.Frames, r);
-        if (o.Rounds > 1)
-        {
-          const int frames = o.Frames;
-          kept.push_back({ m, [gpuShared, frames]() { return OrbitMeanMs(*gpuShared, frames); } });
-        }
-        frame0 = first;
-        if (o.CompareImages)
-        {
-          r["rmse"] = Rmse(first, reference);
-          r["psnr"] = Psnr(r["rmse"].get<double>());
-          if (!packingFrame0.Pixels.empty())
-          {
-            r["rmse_vs_packing"] = Rmse(first, packingFrame0);
-          }
-        }
-        r["level"] = level;
-        r["grid"] = gpu.Dimensions();
-        r["gpu_bytes"] = gpu.TextureBytes();
-        r["preprocess_s"] = { { "resample", gpu.ResampleSeconds() } };
+        frame0 = BenchKdTree(h, s, o, c, r);
       }
       else
       {
-        std::shared_ptr<GpuRenderer> gpu = MakeGpuRenderer(m, h, s, o.View);
+        std::shared_ptr<GpuRenderer> gpu = method->Make(m, MethodRequest{ h, s, o.View });
         const Image first = Orbit(*gpu, o.Frames, r);
         if (o.Rounds > 1)
         {
           const int frames = o.Frames;
           kept.push_back({ m, [gpu, frames]() { return OrbitMeanMs(*gpu, frames); } });
         }
-        PackingRenderer* singlePass = dynamic_cast<PackingRenderer*>(gpu.get());
-        if (singlePass)
+        if (const UniformGpuRenderer* uniform = dynamic_cast<UniformGpuRenderer*>(gpu.get()))
         {
-          r["storage"] = singlePass->StorageUsed();
-          r["gpu_bytes_packing"] = singlePass->PackedBytes();
-          r["gpu_bytes_bindless"] = singlePass->BindlessBytes();
-          if (m == "bindless" && singlePass->StorageUsed().rfind("bindless", 0) != 0)
-          {
-            throw GpuError("bindless textures are not available: " +
-              singlePass->BindlessFallbackReason() + " (on a CPU run with --driver zink)");
-          }
+          UniformFields(*uniform, first, o, c, r);
         }
-        frame0 = first;
-        if (o.CompareImages)
+        else
         {
-          r["rmse"] = Rmse(first, reference);
-          r["psnr"] = Psnr(r["rmse"].get<double>());
-          if (m == "packing" || m == "bindless" || m == "multipass")
-          {
-            r["rmse_vs_cpu_kdtree"] = Rmse(first, kdImage());
-          }
-          if (m != "packing" && !packingFrame0.Pixels.empty())
-          {
-            r["rmse_vs_packing"] = Rmse(first, packingFrame0);
-          }
+          MapperFields(*method, *gpu, first, o, stats, c, r);
         }
-        r["gpu_bytes"] = gpu->TextureBytes();
-        r["device"] = gpu->Device();
-        r["backend"] = gpu->Backend();
-        if (m == "packing" || m == "bindless" || m == "multipass")
-        {
-          r["atlas"] = m == "bindless" ? std::string("none (one texture per grid)")
-                                       : gpu->AtlasDimensions();
-          r["builds"] = gpu->NumberOfBuilds();
-          // tree, encode, pack: the core steps timed by the tool on the CPU; build: the mapper's
-          // own total (conversion from vtkOverlappingAMR, tree, packing, encoding)
-          Json pre = { { "tree", cpu["tree"] } };
-          if (m != "multipass")
-          {
-            pre["encode"] = cpu["encode"];
-            r["gpu_bytes_tree"] = stats["tree_texture_bytes"];
-          }
-          if (m != "bindless")
-          {
-            pre["pack"] = cpu["pack"];
-          }
-          pre["build"] = gpu->BuildSeconds();
-          pre["upload"] = gpu->UploadSeconds();
-          r["preprocess_s"] = pre;
-        }
-        if (MultipassRenderer* mp = dynamic_cast<MultipassRenderer*>(gpu.get()))
-        {
-          r["passes"] = mp->Passes();
-          r["order_ms"] = 1000.0 * mp->OrderSeconds();
-          r["accumulation_bytes"] = mp->AccumulationBytes();
-        }
-        if (m == "packing" && o.CompareImages)
-        {
-          packingFrame0 = first;
-        }
-#ifdef AMRSP_HAVE_VTK_AMR_VOLUME_MAPPER
-        if (AmrResampleRenderer* ar = dynamic_cast<AmrResampleRenderer*>(gpu.get()))
-        {
-          const glm::ivec3 n = ar->Samples();
-          const glm::dvec3 c = ar->FinestCellsPerSample();
-          r["samples"] = { n.x, n.y, n.z };
-          r["grid"] = gpu->AtlasDimensions();
-          r["finest_cells_per_sample"] = std::max(c.x, std::max(c.y, c.z));
-          r["resamplings"] = ar->NumberOfBuilds();
-          r["render_mode"] = ar->RenderMode();
-          // the internal mapper's upload is part of first_frame_ms
-          r["preprocess_s"] = { { "resample", ar->BuildSeconds() } };
-        }
-#endif
+        frame0 = first; // not where MapperFields threw
       }
-    }
-    catch (const GpuError& e)
-    {
-      r = { { "error", e.what() } };
     }
     catch (const std::exception& e)
     {
@@ -498,310 +441,6 @@ Json RunBenchMethods(const Hierarchy& h, const RenderSettings& s, const Image& r
     RunRounds(kept, o, methods);
   }
   return methods;
-}
-
-int PaperDataset(const Json& stats)
-{
-  const int64_t grids = stats.value("grids", int64_t(0));
-  const int levels = stats.value("levels", 0);
-  if (grids == 2666 && levels == 4)
-  {
-    return 1;
-  }
-  if (grids == 18528 && levels == 4)
-  {
-    return 2;
-  }
-  if (grids == 39061 && levels == 13)
-  {
-    return 3;
-  }
-  return 0;
-}
-
-namespace
-{
-// The paper's Table 1 (grids, levels, cells, kD nodes, kD data nodes) and Table 2 (GPU memory
-// MB as tree + data, preprocessing s, fps on its GTX 680) for datasets 1-3.
-struct PaperRow
-{
-  const char* Cells;
-  long long KdNodes, KdDataNodes;
-};
-const PaperRow PaperTable1[3] = { { "19 × 10^6", 30096, 27249 }, { "33 × 10^6", 178114, 162095 },
-  { "140 × 10^6", 368225, 343389 } };
-struct PaperTiming
-{
-  const char* Method;
-  const char* Memory[3];
-  double Preprocess[3];
-  double Fps[3];
-};
-const PaperTiming PaperTable2[3] = {
-  { "multipass", { "71.4", "124.2", "530.3" }, { 1.1, 2.6, 6.8 }, { 4.2, 2.1, 0.8 } },
-  { "packing", { "0.5 + 239.3", "2.7 + 310.3", "4.3 + 1000.2" }, { 3.4, 7.5, 8.1 },
-    { 3.2, 1.6, 1.2 } },
-  { "bindless", { "0.5 + 71.4", "2.8 + 124.2", "6.1 + 530.3" }, { 1.7, 3.2, 7.4 },
-    { 2.1, 0.9, 0.4 } },
-};
-
-std::string Fixed(double v, int digits)
-{
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(digits) << v;
-  return s.str();
-}
-
-std::string Thousands(long long v)
-{
-  std::string d = std::to_string(v < 0 ? -v : v), out;
-  for (std::size_t i = 0; i < d.size(); ++i)
-  {
-    if (i > 0 && (d.size() - i) % 3 == 0)
-    {
-      out += ',';
-    }
-    out += d[i];
-  }
-  return (v < 0 ? "-" : "") + out;
-}
-
-std::string Mb(double bytes)
-{
-  return Fixed(bytes / 1.0e6, bytes < 1.0e5 ? 3 : 1);
-}
-
-/// Total preprocessing seconds of a method: the sum of its preprocess_s entries that are
-/// separate steps (the mapper's build already contains tree, encode and pack).
-double PreprocessTotal(const Json& r)
-{
-  const Json& p = r["preprocess_s"];
-  if (p.contains("build"))
-  {
-    return p["build"].get<double>() + p.value("upload", 0.0);
-  }
-  double sum = 0.0;
-  for (const auto& item : p.items())
-  {
-    sum += item.value().get<double>();
-  }
-  return sum;
-}
-
-std::string PreprocessDetail(const Json& r)
-{
-  std::string out;
-  for (const auto& item : r["preprocess_s"].items())
-  {
-    out += (out.empty() ? "" : ", ") + item.key() + " " + Fixed(item.value().get<double>(), 3);
-  }
-  return out;
-}
-} // namespace
-
-std::string RoundsMarkdown(const Json& methods)
-{
-  std::ostringstream md;
-  std::size_t rounds = 0;
-  for (const auto& item : methods.items())
-  {
-    if (item.value().contains("rounds_ms_mean"))
-    {
-      rounds = std::max(rounds, item.value()["rounds_ms_mean"].size());
-    }
-  }
-  if (rounds < 2)
-  {
-    return "";
-  }
-  md << "\nInterleaved rounds (" << rounds
-     << " orbits per method, the methods' order reversed every round; fps relative to packing = "
-        "median over rounds of packing's ms/frame over the method's)\n\n"
-     << "| method | ms/frame per round | median | fps relative to packing (min–max) |\n"
-     << "|---|---|---|---|\n";
-  for (const auto& item : methods.items())
-  {
-    const Json& r = item.value();
-    if (!r.contains("rounds_ms_mean"))
-    {
-      continue;
-    }
-    md << "| " << item.key() << " | ";
-    bool first = true;
-    for (const Json& v : r["rounds_ms_mean"])
-    {
-      md << (first ? "" : ", ") << Fixed(v.get<double>(), 1);
-      first = false;
-    }
-    md << " | " << Fixed(r["ms_rounds_median"].get<double>(), 1) << " | ";
-    if (r.contains("fps_vs_packing"))
-    {
-      md << Fixed(r["fps_vs_packing"].get<double>(), 2) << " ("
-         << Fixed(r["fps_vs_packing_range"][0].get<double>(), 2) << "–"
-         << Fixed(r["fps_vs_packing_range"][1].get<double>(), 2) << ")";
-    }
-    else
-    {
-      md << "—";
-    }
-    md << (r.contains("rounds_error") ? " (stopped: " + r["rounds_error"].get<std::string>() + ")"
-                                      : "")
-       << " |\n";
-  }
-  return md.str();
-}
-
-std::string BenchMarkdown(const Json& bench)
-{
-  std::ostringstream md;
-  const Json& st = bench["statistics"];
-  const int paper = PaperDataset(st);
-  md << "Dataset `" << bench["dataset"].get<std::string>() << "`, " << bench["image"][0] << "×"
-     << bench["image"][1] << ", " << bench["frames"] << "-frame orbit";
-  if (bench.contains("device") && !bench["device"].get<std::string>().empty())
-  {
-    md << ", " << bench["device"].get<std::string>();
-  }
-  if (bench.contains("backend"))
-  {
-    md << " through " << bench["backend"].get<std::string>();
-  }
-  if (bench.contains("vtk_version"))
-  {
-    md << " (VTK " << bench["vtk_version"].get<std::string>() << ", ParaView "
-       << bench["paraview_version"].get<std::string>() << ")";
-  }
-  md << (paper ? ", the size of the paper's dataset " + std::to_string(paper) +
-             " (the hierarchy is the project's synthetic one, not the paper's data)"
-               : "")
-     << ".\n\n";
-  md << "Table 1 (dataset)\n\n"
-     << "| | grids | levels | cells | kD nodes | kD data nodes |\n"
-     << "|---|---|---|---|---|---|\n"
-     << "| this dataset | " << Thousands(st["grids"].get<long long>()) << " | " << st["levels"]
-     << " | " << Thousands(st["cells"].get<long long>()) << " | "
-     << Thousands(st["kd_nodes"].get<long long>()) << " | "
-     << Thousands(st["kd_data_nodes"].get<long long>()) << " |\n";
-  if (paper)
-  {
-    const PaperRow& p = PaperTable1[paper - 1];
-    md << "| paper, dataset " << paper << " | " << Thousands(st["grids"].get<long long>()) << " | "
-       << st["levels"] << " | " << p.Cells << " | " << Thousands(p.KdNodes) << " | "
-       << Thousands(p.KdDataNodes) << " |\n";
-  }
-  md << "\nTable 2 (per method; GPU memory in MB = 10^6 bytes, tree textures + data; "
-        "preprocessing = the mapper's build + upload, or the resampling; RMSE of frame 0 against "
-        "the CPU reference, 0-255)\n\n"
-     << "| method | GPU memory [MB] | preprocessing [s] | fps | ms/frame (median) | RMSE | "
-        "PSNR [dB] |";
-  if (paper)
-  {
-    md << " paper: memory | paper: preprocessing | paper: fps |";
-  }
-  md << "\n|---|---|---|---|---|---|---|" << (paper ? "---|---|---|" : "") << "\n";
-  for (const auto& item : bench["methods"].items())
-  {
-    const Json& r = item.value();
-    const PaperTiming* pt = nullptr;
-    for (const PaperTiming& t : PaperTable2)
-    {
-      if (item.key() == t.Method)
-      {
-        pt = &t;
-      }
-    }
-    md << "| " << item.key() << " | ";
-    if (r.contains("error"))
-    {
-      md << "cannot run: " << r["error"].get<std::string>() << " | | | | | |";
-    }
-    else
-    {
-      const double data = r["gpu_bytes"].get<double>();
-      const double tree = r.value("gpu_bytes_tree", 0.0);
-      md << (tree > 0 ? Mb(tree) + " + " + Mb(data - tree) : Mb(data)) << " | "
-         << Fixed(PreprocessTotal(r), 3) << " (" << PreprocessDetail(r) << ") | "
-         << Fixed(r["fps"].get<double>(), 2) << " | " << Fixed(r["ms_median"].get<double>(), 1)
-         << " | " << Fixed(r["rmse"].get<double>(), 3) << " | "
-         << Fixed(r["psnr"].get<double>(), 1) << " |";
-    }
-    if (paper)
-    {
-      if (pt)
-      {
-        md << " " << pt->Memory[paper - 1] << " | " << Fixed(pt->Preprocess[paper - 1], 1)
-           << " | " << Fixed(pt->Fps[paper - 1], 1) << " |";
-      }
-      else
-      {
-        md << " — | — | — |";
-      }
-    }
-    md << "\n";
-  }
-  if (paper)
-  {
-    md << "\nThe paper's figures: GTX 680, its own real cosmology data of that size (its image "
-          "size is not stated).\n";
-  }
-  md << RoundsMarkdown(bench["methods"]);
-  return md.str();
-}
-
-std::string ScalingMarkdownHeader(const std::string& size, int frames)
-{
-  std::ostringstream md;
-  md << "Scaling (`synthetic:cosmo`, " << size << ", " << frames << " frames per method)\n\n"
-     << "| grids | levels | cells | kD nodes | paper dataset | tree [s] | encode [s] | pack [s] | "
-        "method | build [s] | upload [s] | ms/frame (mean) | GPU memory [MB] |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  return md.str();
-}
-
-std::string ScalingMarkdownRow(const Json& row)
-{
-  std::ostringstream md;
-  if (row.contains("error"))
-  {
-    md << "| " << row["dataset"].get<std::string>() << " | | | | | | | | | cannot run: "
-       << row["error"].get<std::string>() << " | | | |\n";
-    return md.str();
-  }
-  const Json& st = row["statistics"];
-  const int paper = PaperDataset(st);
-  const std::string head = "| " + Thousands(st["grids"].get<long long>()) + " | " +
-    st["levels"].dump() + " | " + Thousands(st["cells"].get<long long>()) + " | " +
-    Thousands(st["kd_nodes"].get<long long>()) + " | " + (paper ? std::to_string(paper) : "—") +
-    " | " + Fixed(st["times_s"]["tree"].get<double>(), 3) + " | " +
-    Fixed(st["times_s"]["encode"].get<double>(), 3) + " | " +
-    Fixed(st["times_s"]["pack"].get<double>(), 3) + " | ";
-  for (const auto& item : row["methods"].items())
-  {
-    const Json& r = item.value();
-    md << head << item.key() << " | ";
-    if (r.contains("error"))
-    {
-      md << "cannot run: " << r["error"].get<std::string>() << " | | | |\n";
-      continue;
-    }
-    const Json& p = r["preprocess_s"];
-    md << (p.contains("build") ? Fixed(p["build"].get<double>(), 3) : "—") << " | "
-       << (p.contains("upload") ? Fixed(p["upload"].get<double>(), 3) : "—") << " | "
-       << Fixed(r["ms_mean"].get<double>(), 1) << " | " << Mb(r["gpu_bytes"].get<double>())
-       << " |\n";
-  }
-  return md.str();
-}
-
-std::string ScalingMarkdown(const Json& scaling)
-{
-  std::string md = ScalingMarkdownHeader(
-    scaling["image"][0].dump() + "×" + scaling["image"][1].dump(), scaling["frames"].get<int>());
-  for (const Json& row : scaling["rows"])
-  {
-    md += ScalingMarkdownRow(row);
-  }
-  return md;
 }
 
 } // namespace tool

@@ -1,13 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
-/// `amrsp bench`: runs the rendering methods on one hierarchy in one process, and writes the
-/// results as JSON, as Markdown next to the paper's Tables 1 and 2, and as a bar-chart PNG.
+/// `amrsp bench`: runs the rendering methods (AmrspMethods.h) on one hierarchy in one process,
+/// and writes the results as JSON, as Markdown next to the paper's Tables 1 and 2
+/// (AmrspBenchMarkdown.cxx), and as a bar-chart PNG (AmrspBenchPlot.h).
 
 #include "AmrspGpuRenderer.h"
 
 #include "amrsp/Hierarchy.h"
-#include "amrsp/Render.h"
+#include "amrsp/Image.h"
+#include "amrsp/RenderSettings.h"
 
 #include "AmrspJson.h"
 
@@ -20,15 +22,6 @@ namespace tool
 {
 
 using BenchJson = nlohmann::ordered_json;
-
-/// The methods `amrsp bench` knows, in the order of its default list, with one line each.
-const std::vector<std::pair<std::string, std::string>>& BenchMethodHelp();
-
-/// Whether `name` is a method `amrsp bench` knows (it may still not run here).
-bool IsBenchMethod(const std::string& name);
-
-/// The methods run when --methods is not given.
-extern const char* const DefaultBenchMethods;
 
 struct BenchOptions
 {

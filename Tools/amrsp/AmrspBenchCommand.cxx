@@ -5,12 +5,12 @@
 #include "AmrspBench.h"
 #include "AmrspBenchPlot.h"
 #include "AmrspDriver.h"
+#include "AmrspMethods.h"
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <iomanip>
 #include <iostream>
 #include <sstream>
 
@@ -106,11 +106,8 @@ int RunBench(int argc, char** argv)
        "and reports how preprocessing and frame time grow; a size that cannot run is a row with\n"
        "its error.\n"
        "Methods (default "
-    << DefaultBenchMethods << "):\n";
-  for (const auto& m : BenchMethodHelp())
-  {
-    help << "  " << std::left << std::setw(25) << m.first << m.second << "\n";
-  }
+    << DefaultBenchMethods() << "):\n";
+  PrintMethodHelp(help, BenchCommand);
   try
   {
     const Arguments a = ParseArguments(argc, argv, 1,
@@ -173,18 +170,18 @@ int RunBench(int argc, char** argv)
       }
     }
     o.View = ViewOf(a);
-    o.Methods = SplitList(a.Get("methods", scaling ? "packing,multipass" : DefaultBenchMethods));
+    o.Methods =
+      SplitList(a.Get("methods", scaling ? "packing,multipass" : DefaultBenchMethods()));
     if (o.Methods.empty())
     {
       throw UsageError{ "--methods is empty" };
     }
     for (const std::string& m : o.Methods)
     {
-      if (!IsBenchMethod(m))
+      if (!FindMethod(m, BenchCommand))
       {
-        throw UsageError{ "unknown method '" + m +
-          "' in --methods (cpu-kdtree, packing, bindless, multipass, uniform-gpu[:LEVEL], "
-          "vtk-amr-resample[:N|:finest])" };
+        throw UsageError{ "unknown method '" + m + "' in --methods (" +
+          MethodList(BenchCommand) + ")" };
       }
     }
     int plotWidth = 900, plotHeight = 600;

@@ -5,6 +5,7 @@
 #include "AmrspLighting.h"
 
 #include "vtkSinglePassAMRConversion.h"
+#include "vtkSinglePassAMRMapperBase.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
 #include "vtkSmartPointer.h"
 #include "vtkVolumeMapper.h"
@@ -43,6 +44,7 @@ struct GpuRenderer::Internals
   std::string Method;
   vtkNew<vtkOverlappingAMR> Amr;
   vtkSmartPointer<vtkVolumeMapper> Mapper;
+  vtkSinglePassAMRMapperBase* AmrMapper = nullptr; // Mapper, when it is one of the project's
   vtkNew<vtkVolumeProperty> Property;
   vtkNew<vtkColorTransferFunction> Colour;
   vtkNew<vtkPiecewiseFunction> Opacity;
@@ -66,6 +68,37 @@ void Level0Bounds(const Hierarchy& h, double bounds[6])
   {
     bounds[2 * a] = lo[a];
     bounds[2 * a + 1] = hi[a];
+  }
+}
+
+/// The settings' blend mode, lighting and cropping on the mapper, property and renderer.
+void SetModes(const RenderSettings& s, vtkVolumeProperty* property, vtkVolumeMapper* mapper,
+  vtkRenderer* renderer)
+{
+  switch (s.Blend)
+  {
+    case BlendMode::Composite:
+      mapper->SetBlendModeToComposite();
+      break;
+    case BlendMode::Maximum:
+      mapper->SetBlendModeToMaximumIntensity();
+      break;
+    case BlendMode::Minimum:
+      mapper->SetBlendModeToMinimumIntensity();
+      break;
+    case BlendMode::Average:
+      mapper->SetBlendModeToAverageIntensity();
+      break;
+    case BlendMode::IsoSurface:
+      break; // ApplyLighting sets it with the iso-values
+  }
+  ApplyLighting(s, property, mapper, renderer);
+  if (s.Clip)
+  {
+    mapper->SetCropping(1);
+    mapper->SetCroppingRegionFlagsToSubVolume();
+    mapper->SetCroppingRegionPlanes(
+      s.ClipLo.x, s.ClipHi.x, s.ClipLo.y, s.ClipHi.y, s.ClipLo.z, s.ClipHi.z);
   }
 }
 } // namespace
@@ -109,19 +142,22 @@ bool GpuRenderer::Available(std::string& why)
 }
 
 GpuRenderer::GpuRenderer(const std::string& method, vtkVolumeMapper* mapper, const Hierarchy& h,
-  const RenderSettings& s, const ViewAngles& view)
+  const RenderSettings& s, const ViewAngles& view, const GpuScene& scene)
   : I(new Internals)
 {
   I->Method = method;
   I->Mapper = mapper;
+  I->AmrMapper = vtkSinglePassAMRMapperBase::SafeDownCast(mapper);
   std::string why;
   if (!Available(why))
   {
-    throw GpuError("the " + method + " method cannot render here: " + why);
+    throw GpuError(
+      (scene.Unavailable.empty() ? "the " + method + " method cannot render here: "
+                                 : scene.Unavailable) +
+      why);
   }
   I->Width = s.Width;
   I->Height = s.Height;
-  vtkSinglePassAMRConversion::ToOverlappingAMR(h, I->Amr);
 
   // the same piecewise-linear functions as amrsp::TransferFunction (clamped beyond the ends)
   for (const TransferFunction::ColorPoint& p : s.Transfer.Color)
@@ -141,30 +177,15 @@ GpuRenderer::GpuRenderer(const std::string& method, vtkVolumeMapper* mapper, con
   I->Property->ShadeOff();
   I->Property->SetInterpolationTypeToNearest();
 
-  I->Mapper->SetInputDataObject(0, I->Amr);
-  I->Mapper->SelectScalarArray(h.ArrayName.empty() ? "values" : h.ArrayName.c_str());
-  switch (s.Blend)
+  if (scene.AmrInput)
   {
-    case BlendMode::Composite:
-      I->Mapper->SetBlendModeToComposite();
-      break;
-    case BlendMode::Maximum:
-      I->Mapper->SetBlendModeToMaximumIntensity();
-      break;
-    case BlendMode::Minimum:
-      I->Mapper->SetBlendModeToMinimumIntensity();
-      break;
-    case BlendMode::Average:
-      I->Mapper->SetBlendModeToAverageIntensity();
-      break;
+    vtkSinglePassAMRConversion::ToOverlappingAMR(h, I->Amr);
+    I->Mapper->SetInputDataObject(0, I->Amr);
+    I->Mapper->SelectScalarArray(h.ArrayName.empty() ? "values" : h.ArrayName.c_str());
   }
-  ApplyLighting(s, I->Property, I->Mapper, I->Renderer);
-  if (s.Clip)
+  if (scene.Modes)
   {
-    I->Mapper->SetCropping(1);
-    I->Mapper->SetCroppingRegionFlagsToSubVolume();
-    I->Mapper->SetCroppingRegionPlanes(
-      s.ClipLo.x, s.ClipHi.x, s.ClipLo.y, s.ClipHi.y, s.ClipLo.z, s.ClipHi.z);
+    SetModes(s, I->Property, I->Mapper, I->Renderer);
   }
   I->Volume->SetMapper(I->Mapper);
   I->Volume->SetProperty(I->Property);
@@ -181,7 +202,7 @@ GpuRenderer::GpuRenderer(const std::string& method, vtkVolumeMapper* mapper, con
   Level0Bounds(h, bounds);
   I->Renderer->ResetCamera(bounds);
   vtkCamera* camera = I->Renderer->GetActiveCamera();
-  if (view.UseSettingsCamera)
+  if (scene.Modes && view.UseSettingsCamera)
   {
     camera->SetPosition(s.View.Position.x, s.View.Position.y, s.View.Position.z);
     camera->SetFocalPoint(s.View.FocalPoint.x, s.View.FocalPoint.y, s.View.FocalPoint.z);
@@ -288,6 +309,45 @@ Camera GpuRenderer::LastCamera() const
   out.Parallel = c->GetParallelProjection() != 0;
   out.ParallelScale = c->GetParallelScale();
   return out;
+}
+
+vtkSinglePassAMRMapperBase* GpuRenderer::GetAmrMapper() const
+{
+  return I->AmrMapper;
+}
+
+double GpuRenderer::BuildSeconds() const
+{
+  return I->AmrMapper ? I->AmrMapper->GetLastBuildSeconds() : 0.0;
+}
+
+double GpuRenderer::UploadSeconds() const
+{
+  return I->AmrMapper ? I->AmrMapper->GetLastUploadSeconds() : 0.0;
+}
+
+int GpuRenderer::NumberOfBuilds() const
+{
+  return I->AmrMapper ? I->AmrMapper->GetNumberOfBuilds() : 0;
+}
+
+long long GpuRenderer::TextureBytes() const
+{
+  return I->AmrMapper ? I->AmrMapper->GetTextureBytes() : 0;
+}
+
+std::string GpuRenderer::LastError() const
+{
+  return I->AmrMapper ? I->AmrMapper->GetLastError() : std::string();
+}
+
+void GpuRenderer::GetAtlasDimensions(int dims[3]) const
+{
+  dims[0] = dims[1] = dims[2] = 0;
+  if (I->AmrMapper)
+  {
+    I->AmrMapper->GetAtlasDimensions(dims);
+  }
 }
 
 std::string GpuRenderer::AtlasDimensions() const

@@ -1,19 +1,23 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
-/// The GPU methods of the amrsp tool: one AMR volume mapper in an offscreen vtkRenderWindow with
-/// the tool's camera, transfer-function and background conventions (README, "Rendering
-/// conventions"). PackingRenderer (AmrspPacking.h) and MultipassRenderer (AmrspMultipass.h) add
-/// their mapper.
+/// The GPU methods of the amrsp tool: one volume mapper in an offscreen vtkRenderWindow with the
+/// tool's camera, transfer-function and background conventions (README, "Rendering
+/// conventions"). PackingRenderer (AmrspPacking.h), MultipassRenderer (AmrspMultipass.h),
+/// UniformGpuRenderer (AmrspUniform.h) and AmrResampleRenderer (AmrspAmrResample.h) add their
+/// mapper; AmrspMethods.h says which method uses which.
 
+#include "amrsp/Camera.h"
 #include "amrsp/Hierarchy.h"
-#include "amrsp/Render.h"
+#include "amrsp/Image.h"
+#include "amrsp/RenderSettings.h"
 
 #include <memory>
 #include <stdexcept>
 #include <string>
 
 class vtkRenderer;
+class vtkSinglePassAMRMapperBase;
 class vtkVolumeMapper;
 
 namespace amrsp
@@ -38,6 +42,22 @@ struct ViewAngles
   /// Take the camera of the RenderSettings as it is (a --view-json camera) instead of the
   /// conventions' ResetCamera + angles.
   bool UseSettingsCamera = false;
+};
+
+/// What a GpuRenderer's scene takes from the hierarchy and the settings besides the image size,
+/// the transfer function (nearest interpolation, unshaded unless Modes), the background and the
+/// conventions' camera.
+struct GpuScene
+{
+  /// The mapper's input is `h` as a vtkOverlappingAMR, array `h.ArrayName` (false: the
+  /// subclass sets the mapper's input).
+  bool AmrInput = true;
+  /// The settings' blend mode, lighting, cropping and --view-json camera (false: composite,
+  /// unshaded, uncropped, the conventions' camera: uniform-gpu).
+  bool Modes = true;
+  /// The start of the error when no OpenGL context can be had (default: "the METHOD method
+  /// cannot render here: ").
+  std::string Unavailable;
 };
 
 class GpuRenderer
@@ -68,29 +88,33 @@ public:
   std::string Device() const;
   /// The window system the frames were rendered through: "GLX", "EGL" or "OSMesa" (BackendOf).
   std::string Backend() const;
-  /// The tool's name of the method ("packing", "multipass").
+  /// The tool's name of the method ("packing", "bindless", "multipass", "uniform-gpu", ...).
   const std::string& Method() const;
 
-  /// Build (CPU: conversion, kD-tree, packing, encoding) and upload seconds of the mapper.
-  virtual double BuildSeconds() const = 0;
-  virtual double UploadSeconds() const = 0;
-  virtual int NumberOfBuilds() const = 0;
+  /// Build (CPU: conversion, kD-tree, packing, encoding) and upload seconds of the mapper, and
+  /// how often it built. The base answers for the project's mappers (vtkSinglePassAMRMapperBase);
+  /// a renderer around another mapper overrides these.
+  virtual double BuildSeconds() const;
+  virtual double UploadSeconds() const;
+  virtual int NumberOfBuilds() const;
   /// Bytes of the mapper's data textures.
-  virtual long long TextureBytes() const = 0;
+  virtual long long TextureBytes() const;
   std::string AtlasDimensions() const;
 
 protected:
-  /// Sets up the window, renderer, volume, property and camera around `mapper`, whose input
-  /// becomes `h` (as a vtkOverlappingAMR) and whose array `h.ArrayName`. The subclass sets the
-  /// mapper's own options. Throws GpuError ("the METHOD method cannot render here: ...") when no
-  /// suitable OpenGL context can be created.
+  /// Sets up the window, renderer, volume, property and camera around `mapper` as `scene` says.
+  /// The subclass sets the mapper's own options. Throws GpuError (scene.Unavailable + why) when
+  /// no suitable OpenGL context can be created.
   GpuRenderer(const std::string& method, vtkVolumeMapper* mapper, const Hierarchy& h,
-    const RenderSettings& s, const ViewAngles& view);
+    const RenderSettings& s, const ViewAngles& view, const GpuScene& scene = GpuScene());
+
+  /// The mapper when it is one of the project's (vtkSinglePassAMRMapperBase), else nullptr.
+  vtkSinglePassAMRMapperBase* GetAmrMapper() const;
 
   /// The mapper's GetLastError() (empty after a successful frame).
-  virtual std::string LastError() const = 0;
-  /// The mapper's atlas dimensions.
-  virtual void GetAtlasDimensions(int dims[3]) const = 0;
+  virtual std::string LastError() const;
+  /// The mapper's atlas dimensions (0 where it has none).
+  virtual void GetAtlasDimensions(int dims[3]) const;
 
 private:
   struct Internals;

@@ -40,26 +40,6 @@ vtkMultiPassAMRVolumeMapper* MultipassRenderer::GetMapper() const
   return this->Mapper;
 }
 
-double MultipassRenderer::BuildSeconds() const
-{
-  return this->Mapper->GetLastBuildSeconds();
-}
-
-double MultipassRenderer::UploadSeconds() const
-{
-  return this->Mapper->GetLastUploadSeconds();
-}
-
-int MultipassRenderer::NumberOfBuilds() const
-{
-  return this->Mapper->GetNumberOfBuilds();
-}
-
-long long MultipassRenderer::TextureBytes() const
-{
-  return this->Mapper->GetTextureBytes();
-}
-
 long long MultipassRenderer::AccumulationBytes() const
 {
   return this->Mapper->GetAccumulationBytes();
@@ -73,16 +53,6 @@ long long MultipassRenderer::Passes() const
 double MultipassRenderer::OrderSeconds() const
 {
   return this->Mapper->GetLastOrderSeconds();
-}
-
-std::string MultipassRenderer::LastError() const
-{
-  return this->Mapper->GetLastError();
-}
-
-void MultipassRenderer::GetAtlasDimensions(int dims[3]) const
-{
-  this->Mapper->GetAtlasDimensions(dims);
 }
 
 } // namespace tool

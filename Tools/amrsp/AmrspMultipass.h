@@ -23,20 +23,12 @@ public:
 
   vtkMultiPassAMRVolumeMapper* GetMapper() const;
 
-  double BuildSeconds() const override;
-  double UploadSeconds() const override;
-  int NumberOfBuilds() const override;
-  /// The atlas (the method has no tree textures); the accumulation target is not counted.
-  long long TextureBytes() const override;
-  /// Bytes of the RGBA32F accumulation target of the last frame.
+  /// Bytes of the RGBA32F accumulation target of the last frame (TextureBytes() counts the
+  /// atlas only: the method has no tree textures).
   long long AccumulationBytes() const;
   /// Draws (data nodes) of the last frame, and the CPU seconds of their front-to-back ordering.
   long long Passes() const;
   double OrderSeconds() const;
-
-protected:
-  std::string LastError() const override;
-  void GetAtlasDimensions(int dims[3]) const override;
 
 private:
   MultipassRenderer(vtkMultiPassAMRVolumeMapper* mapper, const Hierarchy& h,

@@ -90,35 +90,5 @@ vtkSinglePassAMRVolumeMapper* PackingRenderer::GetMapper() const
   return this->Mapper;
 }
 
-double PackingRenderer::BuildSeconds() const
-{
-  return this->Mapper->GetLastBuildSeconds();
-}
-
-double PackingRenderer::UploadSeconds() const
-{
-  return this->Mapper->GetLastUploadSeconds();
-}
-
-int PackingRenderer::NumberOfBuilds() const
-{
-  return this->Mapper->GetNumberOfBuilds();
-}
-
-long long PackingRenderer::TextureBytes() const
-{
-  return this->Mapper->GetTextureBytes();
-}
-
-std::string PackingRenderer::LastError() const
-{
-  return this->Mapper->GetLastError();
-}
-
-void PackingRenderer::GetAtlasDimensions(int dims[3]) const
-{
-  this->Mapper->GetAtlasDimensions(dims);
-}
-
 } // namespace tool
 } // namespace amrsp

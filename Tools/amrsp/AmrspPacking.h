@@ -38,15 +38,6 @@ public:
   long long PackedBytes() const;
   long long BindlessBytes() const;
 
-  double BuildSeconds() const override;
-  double UploadSeconds() const override;
-  int NumberOfBuilds() const override;
-  long long TextureBytes() const override;
-
-protected:
-  std::string LastError() const override;
-  void GetAtlasDimensions(int dims[3]) const override;
-
 private:
   PackingRenderer(vtkSinglePassAMRVolumeMapper* mapper, const Hierarchy& h, const RenderSettings& s,
     const ViewAngles& view, const std::string& storage, const std::string& bindlessAccess);

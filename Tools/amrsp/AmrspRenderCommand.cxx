@@ -1,27 +1,26 @@
 // SPDX-License-Identifier: BSD-3-Clause
+// `amrsp render`: one image with one of the kD-tree raycasters (AmrspMethods.h).
 // first: see AmrspJson.h
-#include "AmrspCommandShared.h"
+#include "AmrspImageCommand.h"
 
 #include "AmrspDriver.h"
-#include "AmrspLighting.h"
+#include "AmrspMethods.h"
 #include "AmrspMultipass.h"
 #include "AmrspPacking.h"
-#include "AmrspUniform.h"
 
 #include "amrsp/BrickAtlas.h"
 #include "amrsp/EmptySpace.h"
 #include "amrsp/KdTree.h"
-#include "amrsp/VertexData.h"
+#include "amrsp/KdTreeEncoding.h"
+#include "amrsp/Render.h"
 
 #include "vtkSinglePassAMRVolumeMapper.h"
 
-#include <algorithm>
-#include <cmath>
-#include <filesystem>
-#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <sstream>
+#include <string>
+#include <vector>
 
 namespace amrsp
 {
@@ -30,57 +29,163 @@ namespace tool
 
 namespace
 {
-int RunImageCommand(int argc, char** argv, bool reference)
+
+const char* const RenderIntro =
+  "usage: amrsp render [DATASET] [-o FILE.png] [view options] [dataset options]\n"
+  "Renders the dataset with one of the kD-tree raycasters and prints which method\n"
+  "rendered. Methods:\n";
+
+/// The GPU methods: a warm-up frame (conversion, build, packing, upload, shader compile), then
+/// `repeat` timed frames; `method` becomes "packing" where bindless fell back to the atlas.
+ImageRun RenderGpu(const Method& m, std::string& method, const LoadedDataset& d,
+  const RenderSettings& s, const Arguments& a, const std::string& bindlessAccess, int repeat)
 {
-  const std::string name = reference ? "reference" : "render";
-  const std::string help = "usage: amrsp " + name +
-    " [DATASET] [-o FILE.png] [view options] [dataset options]\n" +
-    (reference
-        ? "Renders the independent CPU reference image: no kD-tree; each sample finds the finest\n"
-          "cell containing it directly from the hierarchy's boxes.\n"
-        : "Renders the dataset with one of the kD-tree raycasters and prints which method\n"
-          "rendered. Methods: cpu-kdtree (the CPU traversal of the encoded tree textures that\n"
-          "mirrors the GLSL shader, sampling the grids), cpu-packing (the same, sampling the\n"
-          "packed atlas through the data nodes' offsets, as the packing shader does), packing\n"
-          "(vtkSinglePassAMRVolumeMapper on the GPU: one packed R32F atlas, offscreen\n"
-          "vtkRenderWindow; needs an X display here), multipass (vtkMultiPassAMRVolumeMapper,\n"
-          "the paper's multi-pass baseline: the kD-tree ordered on the CPU, one draw per data\n"
-          "node blended front to back; same atlas, same display needs), bindless (the same\n"
-          "mapper with one texture per brick through GL_ARB_bindless_texture handles; where the\n"
-          "context lacks the extension it renders with the atlas and says so).\n"
-          "  --method M                  auto (default: packing where an OpenGL context can be\n"
-          "                              had, else cpu-packing), packing, bindless, cpu-packing,\n"
-          "                              cpu-kdtree, multipass\n"
-          "  --bindless-access A         auto (default), direct or waterfall (see README)\n"
-          "  --compare                   also render the CPU reference and the CPU kD-tree\n"
-          "                              image and print the RMSE (0-255) against them\n");
+  ImageRun run;
+  std::unique_ptr<GpuRenderer> gpu =
+    m.Make(method, MethodRequest{ d.Data, s, ViewOf(a), bindlessAccess });
+  GpuRenderer& r = *gpu;
+  auto* singlePass = dynamic_cast<PackingRenderer*>(gpu.get());
+  auto* multipass = dynamic_cast<MultipassRenderer*>(gpu.get());
+  double firstMs = 0.0, ms = 0.0;
+  r.Render(0.0, firstMs); // converts, builds, packs, uploads and compiles
+  for (int k = 0; k < repeat; ++k)
+  {
+    run.Img = r.Render(0.0, ms);
+    run.FrameMs.push_back(ms);
+  }
+  run.PreprocessSeconds = r.BuildSeconds() + r.UploadSeconds();
+  std::ostringstream stats, report;
+  if (singlePass)
+  {
+    vtkSinglePassAMRVolumeMapper* mapper = singlePass->GetMapper();
+    stats << "stats: transparent data nodes " << mapper->GetNumberOfTransparentDataNodes() << " of "
+          << mapper->GetNumberOfDataNodes() << " (skipping "
+          << (mapper->GetEmptySpaceSkipping() ? "on" : "off") << ", opacity threshold "
+          << mapper->GetOpacityThreshold() << ")\n";
+  }
+  const double cameraDifference = CameraDifference(r.LastCamera(), s.View);
+  if (singlePass)
+  {
+    const std::string used = singlePass->StorageUsed();
+    if (m.Kind == MethodKind::Bindless && used.rfind("bindless", 0) != 0)
+    {
+      std::cerr << "amrsp: note: bindless textures cannot be used here ("
+                << singlePass->BindlessFallbackReason()
+                << "; on a CPU try --driver zink); rendered with the packed atlas\n";
+      method = "packing";
+    }
+    report << "storage: " << used << "; textures for packing "
+           << singlePass->PackedBytes() / (1024.0 * 1024.0) << " MiB, for bindless "
+           << singlePass->BindlessBytes() / (1024.0 * 1024.0) << " MiB\n";
+  }
+  report << "device: " << r.Device() << "\n"
+         << "backend: " << r.Backend() << " (VTK " << VtkVersion() << ", ParaView "
+         << ParaViewVersion() << ")\n"
+         << "atlas: "
+         << (singlePass && method == "bindless" ? "not used (bindless)"
+                                                : r.AtlasDimensions() + " texels")
+         << ", textures " << r.TextureBytes() / (1024.0 * 1024.0) << " MiB\n"
+         << "mapper (s): build " << r.BuildSeconds() << " (conversion, kD-tree, packing"
+         << (multipass ? "" : ", encoding") << "; done in GetBounds), upload " << r.UploadSeconds()
+         << "; first frame " << firstMs / 1000.0 << " (upload, shader compile, render)\n";
+  if (multipass)
+  {
+    report << "passes: " << multipass->Passes()
+           << " draws (data nodes, front to back), ordering on the CPU "
+           << multipass->OrderSeconds() * 1000.0 << " ms\n";
+  }
+  report << "camera: VTK's camera and the tool's conventions "
+         << (cameraDifference < 1e-6 ? "agree" : "DIFFER") << " (relative difference "
+         << cameraDifference << ")\n";
+  run.DeviceReport = report.str();
+  run.StatsReport = stats.str();
+  return run;
+}
+
+/// The CPU methods: the tree and its encoding (cpu-packing: through the packed atlas, printed)
+/// and the data-node ranges, then `repeat` timed frames.
+ImageRun RenderCpu(const Method& m, const LoadedDataset& d, RenderSettings s,
+  const AtlasRequest& atlasRequest, int repeat)
+{
+  ImageRun run;
+  RenderStats stats;
+  s.Stats = &stats;
+  auto t0 = Clock::now();
+  std::unique_ptr<BrickAtlas> atlas;
+  if (m.Kind == MethodKind::CpuPacking)
+  {
+    atlas.reset(new BrickAtlas(BuildBrickAtlas(
+      d.Data, atlasRequest.Algorithm, atlasRequest.MaxDims, atlasRequest.MaxBytes)));
+  }
+  const EncodedKdTree enc =
+    EncodeKdTree(d.Data, BuildKdTree(d.Data), atlas ? &atlas->Layout.Origins : nullptr);
+  const std::vector<glm::vec2> ranges = ComputeDataNodeRanges(d.Data, enc);
+  s.DataNodeRanges = &ranges;
+  run.PreprocessSeconds = Seconds(t0);
+  if (atlas)
+  {
+    std::cout << "atlas: " << AtlasJson(atlas->Layout).dump() << "\n";
+  }
+  for (int k = 0; k < repeat; ++k)
+  {
+    t0 = Clock::now();
+    run.Img = RenderKdTree(d.Data, enc, s, atlas.get());
+    run.FrameMs.push_back(1000.0 * Seconds(t0));
+  }
+  run.StatsReport = CpuStatsReport(stats);
+  return run;
+}
+
+/// --compare: the RMSE against the CPU reference, the CPU kD-tree integrator and (multipass)
+/// packing.
+void Compare(const Method& m, const Image& img, const LoadedDataset& d, const RenderSettings& s,
+  const Arguments& a)
+{
+  std::cout << "rmse (0-255) vs cpu-reference: " << Rmse(img, RenderReference(d.Data, s));
+  if (m.Kind != MethodKind::CpuKdTree)
+  {
+    const Image kd = RenderKdTree(d.Data, EncodeKdTree(d.Data, BuildKdTree(d.Data)), s);
+    std::cout << ", vs cpu-kdtree: " << Rmse(img, kd);
+  }
+  if (m.Kind == MethodKind::Multipass)
+  {
+    // the single-pass mapper samples the same segments: the images should agree closely
+    double ms = 0.0;
+    const Image packing =
+      MakeGpuRenderer("packing", RenderCommand, MethodRequest{ d.Data, s, ViewOf(a) })
+        ->Render(0.0, ms);
+    std::cout << ", vs packing: " << Rmse(img, packing);
+  }
+  std::cout << "\n";
+}
+
+} // namespace
+
+int RunRender(int argc, char** argv)
+{
+  const std::string name = "render";
   try
   {
-    std::vector<std::string> valueOptions =
-      Concat({ DatasetOptions, ViewOptions, AtlasOptions, { "output" } });
-    valueOptions.push_back("repeat");
-    if (!reference)
-    {
-      valueOptions.push_back("method");
-      valueOptions.push_back("bindless-access");
-      valueOptions.push_back("driver");
-      valueOptions.push_back("backend");
-    }
-    const Arguments a = ParseArguments(argc, argv, 1, valueOptions,
-      Concat({ DatasetFlags,
-        reference ? std::vector<std::string>{ "stats" }
-                  : std::vector<std::string>{ "compare", "stats" } }));
+    std::vector<std::string> valueOptions = ImageValueOptions();
+    valueOptions.insert(valueOptions.end(), { "method", "bindless-access", "driver", "backend" });
+    const Arguments a =
+      ParseArguments(argc, argv, 1, valueOptions, Concat({ DatasetFlags, { "compare", "stats" } }));
     if (WantsHelp(a))
     {
-      std::cout << help << "  -o, --output FILE           PNG to write (default " << name
-                << ".png)\n"
-                << "  --repeat N                  render N timed frames after the first (default\n"
-                   "                              1); prints their mean and minimum time\n"
-                   "  --stats                     print the work counters (CPU: samples, skipped\n"
-                   "                              segments and samples, terminated rays; packing:\n"
-                   "                              transparent data nodes)\n"
-                << ViewHelp << (reference ? "" : AtlasHelp) << (reference ? "" : DriverHelp)
-                << DatasetHelp;
+      std::cout << RenderIntro;
+      PrintMethodHelp(std::cout, RenderCommand);
+      std::cout << "  --method M                  auto (default: packing where an OpenGL context "
+                   "can be\n"
+                   "                              had, else cpu-packing) or one of the above:\n"
+                   "                              "
+                << MethodList(RenderCommand)
+                << "\n"
+                   "  --bindless-access A         auto (default), direct or waterfall (see "
+                   "README)\n"
+                   "  --compare                   also render the CPU reference and the CPU "
+                   "kD-tree\n"
+                   "                              image and print the RMSE (0-255) against them\n"
+                << ImageOptionsHelp(name) << ViewHelp << AtlasHelp << DriverHelp << DatasetHelp;
       return 0;
     }
     if (a.Positional.size() > 2)
@@ -88,12 +193,10 @@ int RunImageCommand(int argc, char** argv, bool reference)
       throw UsageError{ "unexpected argument '" + a.Positional[2] + "'" };
     }
     std::string method = a.Get("method", "auto");
-    if (!reference && method != "auto" && method != "cpu-kdtree" && method != "cpu-packing" &&
-      method != "packing" && method != "bindless" && method != "multipass")
+    if (method != "auto" && !FindMethod(method, RenderCommand))
     {
-      throw UsageError{ "unknown --method '" + method +
-        "' (available in this build: auto, cpu-kdtree, cpu-packing, packing, bindless, "
-        "multipass)" };
+      throw UsageError{ "unknown --method '" + method + "' (available in this build: auto, " +
+        MethodList(RenderCommand) + ")" };
     }
     const std::string bindlessAccess = a.Get("bindless-access", "auto");
     if (bindlessAccess != "auto" && bindlessAccess != "direct" && bindlessAccess != "waterfall")
@@ -101,223 +204,34 @@ int RunImageCommand(int argc, char** argv, bool reference)
       throw UsageError{ "unknown --bindless-access '" + bindlessAccess +
         "' (auto, direct or waterfall)" };
     }
-    if (!reference)
-    {
-      SelectDriver(a.Get("driver", "default"));
-      SelectBackend(a.Get("backend", "auto"));
-    }
-    if (!reference && method == "auto")
+    SelectDriver(a.Get("driver", "default"));
+    SelectBackend(a.Get("backend", "auto"));
+    if (method == "auto")
     {
       // the GPU mapper where an OpenGL context can be had, else its CPU mirror (said once)
       std::string why;
-      method = PackingRenderer::Available(why) ? "packing" : "cpu-packing";
+      method = GpuRenderer::Available(why) ? "packing" : "cpu-packing";
       if (method != "packing")
       {
         std::cerr << "amrsp: note: no OpenGL context for the GPU mapper (" << why
                   << "); rendering with cpu-packing\n";
       }
     }
+    const Method& m = *FindMethod(method, RenderCommand);
     const AtlasRequest atlasRequest = ParseAtlasRequest(a);
     const std::string output = a.Get("output", name + ".png");
     LoadedDataset d = Load(a, true, false);
     glm::dvec2 range;
-    RenderSettings s = MakeSettings(d.Data, a, &range);
-    const int repeat = static_cast<int>(a.GetNumber("repeat", 1.0));
-    if (repeat < 1)
+    const RenderSettings s = MakeSettings(d.Data, a, &range);
+    const int repeat = RepeatCount(a);
+    const ImageRun run = m.NeedsGpu ? RenderGpu(m, method, d, s, a, bindlessAccess, repeat)
+                                    : RenderCpu(m, d, s, atlasRequest, repeat);
+    WriteImageReport(method, d, a, s, range, output, repeat, run);
+    if (a.Has("compare"))
     {
-      throw UsageError{ "--repeat must be at least 1" };
+      Compare(m, run.Img, d, s, a);
     }
-    RenderStats stats;
-    s.Stats = &stats;
-    std::vector<double> frameMs; // the timed frames
-    std::ostringstream statsReport;
-
-    auto t0 = Clock::now();
-    Image img;
-    double preprocess = 0.0;
-    double renderSeconds = 0.0;
-    std::ostringstream gpuReport;
-    if (reference)
-    {
-      for (int k = 0; k < repeat; ++k)
-      {
-        t0 = Clock::now();
-        img = RenderReference(d.Data, s);
-        frameMs.push_back(1000.0 * Seconds(t0));
-      }
-    }
-    else if (method == "packing" || method == "bindless" || method == "multipass")
-    {
-      std::unique_ptr<GpuRenderer> gpu;
-      MultipassRenderer* multipass = nullptr;
-      PackingRenderer* singlePass = nullptr;
-      if (method == "multipass")
-      {
-        multipass = new MultipassRenderer(d.Data, s, ViewOf(a));
-        gpu.reset(multipass);
-      }
-      else
-      {
-        singlePass = new PackingRenderer(d.Data, s, ViewOf(a), method, bindlessAccess);
-        gpu.reset(singlePass);
-      }
-      GpuRenderer& r = *gpu;
-      double firstMs = 0.0, ms = 0.0;
-      r.Render(0.0, firstMs); // converts, builds, packs, uploads and compiles
-      for (int k = 0; k < repeat; ++k)
-      {
-        img = r.Render(0.0, ms);
-        frameMs.push_back(ms);
-      }
-      preprocess = r.BuildSeconds() + r.UploadSeconds();
-      if (!multipass)
-      {
-        auto* packing = static_cast<PackingRenderer*>(gpu.get());
-        statsReport << "stats: transparent data nodes "
-                    << packing->GetMapper()->GetNumberOfTransparentDataNodes() << " of "
-                    << packing->GetMapper()->GetNumberOfDataNodes() << " (skipping "
-                    << (packing->GetMapper()->GetEmptySpaceSkipping() ? "on" : "off")
-                    << ", opacity threshold " << packing->GetMapper()->GetOpacityThreshold()
-                    << ")\n";
-      }
-      const double cameraDifference = CameraDifference(r.LastCamera(), s.View);
-      if (singlePass)
-      {
-        const std::string used = singlePass->StorageUsed();
-        if (method == "bindless" && used.rfind("bindless", 0) != 0)
-        {
-          std::cerr << "amrsp: note: bindless textures cannot be used here ("
-                    << singlePass->BindlessFallbackReason()
-                    << "; on a CPU try --driver zink); rendered with the packed atlas\n";
-          method = "packing";
-        }
-        gpuReport << "storage: " << used << "; textures for packing "
-                  << singlePass->PackedBytes() / (1024.0 * 1024.0) << " MiB, for bindless "
-                  << singlePass->BindlessBytes() / (1024.0 * 1024.0) << " MiB\n";
-      }
-      gpuReport << "device: " << r.Device() << "\n"
-                << "backend: " << r.Backend() << " (VTK " << VtkVersion() << ", ParaView "
-                << ParaViewVersion() << ")\n"
-                << "atlas: "
-                << (singlePass && method == "bindless" ? "not used (bindless)"
-                                                       : r.AtlasDimensions() + " texels")
-                << ", textures " << r.TextureBytes() / (1024.0 * 1024.0) << " MiB\n"
-                << "mapper (s): build " << r.BuildSeconds() << " (conversion, kD-tree, packing"
-                << (multipass ? "" : ", encoding") << "; done in GetBounds), upload "
-                << r.UploadSeconds() << "; first frame " << firstMs / 1000.0
-                << " (upload, shader compile, render)\n";
-      if (multipass)
-      {
-        gpuReport << "passes: " << multipass->Passes()
-                  << " draws (data nodes, front to back), ordering on the CPU "
-                  << multipass->OrderSeconds() * 1000.0 << " ms\n";
-      }
-      gpuReport << "camera: VTK's camera and the tool's conventions "
-                << (cameraDifference < 1e-6 ? "agree" : "DIFFER") << " (relative difference "
-                << cameraDifference << ")\n";
-    }
-    else if (method == "cpu-kdtree")
-    {
-      const EncodedKdTree enc = EncodeKdTree(d.Data, BuildKdTree(d.Data));
-      const std::vector<glm::vec2> ranges = ComputeDataNodeRanges(d.Data, enc);
-      s.DataNodeRanges = &ranges;
-      preprocess = Seconds(t0);
-      for (int k = 0; k < repeat; ++k)
-      {
-        t0 = Clock::now();
-        img = RenderKdTree(d.Data, enc, s);
-        frameMs.push_back(1000.0 * Seconds(t0));
-      }
-    }
-    else
-    {
-      const BrickAtlas atlas = BuildBrickAtlas(
-        d.Data, atlasRequest.Algorithm, atlasRequest.MaxDims, atlasRequest.MaxBytes);
-      const EncodedKdTree enc = EncodeKdTree(d.Data, BuildKdTree(d.Data), &atlas.Layout.Origins);
-      const std::vector<glm::vec2> ranges = ComputeDataNodeRanges(d.Data, enc);
-      s.DataNodeRanges = &ranges;
-      preprocess = Seconds(t0);
-      std::cout << "atlas: " << AtlasJson(atlas.Layout).dump() << "\n";
-      for (int k = 0; k < repeat; ++k)
-      {
-        t0 = Clock::now();
-        img = RenderKdTree(d.Data, enc, s, &atlas);
-        frameMs.push_back(1000.0 * Seconds(t0));
-      }
-    }
-    if (method != "packing" && method != "bindless" && method != "multipass")
-    {
-      statsReport << "stats: rays " << stats.Rays << ", samples " << stats.Samples
-                  << ", data segments " << stats.DataSegments << ", skipped segments "
-                  << stats.SkippedSegments << " (" << stats.SkippedSamples
-                  << " samples), rays terminated early " << stats.TerminatedRays;
-      if (stats.Segments > 0)
-      {
-        statsReport << ", traversal segments " << stats.Segments << " (tree levels descended "
-                    << "per segment " << double(stats.DescentLevels) / double(stats.Segments)
-                    << ")";
-      }
-      statsReport << "\n";
-    }
-    s.Stats = nullptr;
-    s.DataNodeRanges = nullptr;
-    double meanMs = 0.0, minMs = frameMs.empty() ? 0.0 : frameMs.front();
-    for (double ms : frameMs)
-    {
-      meanMs += ms / static_cast<double>(frameMs.size());
-      minMs = std::min(minMs, ms);
-    }
-    renderSeconds = meanMs / 1000.0;
-    WritePng(img, output);
-    std::cout << "method: " << (reference ? "cpu-reference" : method) << "\n"
-              << "dataset: " << d.Spec << " (" << d.Format << "), array " << d.Data.ArrayName
-              << ", " << d.Data.Grids.size() << " grids, " << d.Data.NumberOfLevels()
-              << " levels\n"
-              << "scalars: " << d.Data.ArrayName << " in [" << range.x << ", " << range.y
-              << "], transfer function '"
-              << (a.Has("view-json") && !a.Has("tf") ? "view-json" : a.Get("tf", "default"))
-              << "'\n"
-              << "image: " << output << " (" << s.Width << "x" << s.Height << ")\n"
-              << gpuReport.str()
-              << "times (s): load " << d.LoadSeconds << ", preprocess " << preprocess
-              << ", render " << renderSeconds << "\n";
-    if (repeat > 1)
-    {
-      std::cout << "frames: " << repeat << ", ms mean " << meanMs << ", min " << minMs << "\n";
-    }
-    if (a.Has("stats"))
-    {
-      std::cout << statsReport.str();
-    }
-    if (!reference && a.Has("compare"))
-    {
-      const Image ref = RenderReference(d.Data, s);
-      std::cout << "rmse (0-255) vs cpu-reference: " << Rmse(img, ref);
-      if (method != "cpu-kdtree")
-      {
-        const Image kd = RenderKdTree(d.Data, EncodeKdTree(d.Data, BuildKdTree(d.Data)), s);
-        std::cout << ", vs cpu-kdtree: " << Rmse(img, kd);
-      }
-      if (method == "multipass")
-      {
-        // the single-pass mapper samples the same segments: the images should agree closely
-        PackingRenderer packing(d.Data, s, ViewOf(a));
-        double ms = 0.0;
-        std::cout << ", vs packing: " << Rmse(img, packing.Render(0.0, ms));
-      }
-      std::cout << "\n";
-    }
-    double covered = 0.0;
-    for (const glm::vec4& p : img.Pixels)
-    {
-      covered += p.a > 0.02f ? 1.0 : 0.0;
-    }
-    if (covered < 0.001 * img.Pixels.size())
-    {
-      std::cerr << "amrsp: warning: the image is nearly empty: the transfer function gives the "
-                   "data almost no opacity (try --scale log, another --array, or a smaller "
-                   "--unit-distance)\n";
-    }
+    WarnIfNearlyEmpty(run.Img);
     return 0;
   }
   catch (const UsageError& e)
@@ -328,17 +242,6 @@ int RunImageCommand(int argc, char** argv, bool reference)
   {
     return Fail(e.what());
   }
-}
-} // namespace
-
-int RunReference(int argc, char** argv)
-{
-  return RunImageCommand(argc, argv, true);
-}
-
-int RunRender(int argc, char** argv)
-{
-  return RunImageCommand(argc, argv, false);
 }
 
 } // namespace tool
