@@ -171,7 +171,7 @@ float SmoothCornerKdTree(const Hierarchy& h, const EncodedKdTree& tree, const Br
 /// `data` (box lo, hi): trilinear in the dual cell of the node's level around p; a corner that is
 /// a cell of the node's grid (covered by finer grids or not) takes that cell's value, any other
 /// corner SmoothCornerKdTree's. Linear-exact across level boundaries where every grid's cells,
-/// covered ones included, hold the field at their centres (see README, "Smooth cells").
+/// covered ones included, hold the field at their centres (docs/design.md, "Smooth cell-centred data").
 float SmoothKdTree(const Hierarchy& h, const EncodedKdTree& tree, const BrickAtlas* atlas,
   const glm::vec3& p, uint32_t data, const glm::vec3& lo, float fallback)
 {

@@ -210,7 +210,7 @@ Json AtlasJson(const AtlasLayout& layout)
 }
 
 const char* const ViewHelp =
-  "View options (conventions of VTK's vtkCamera/vtkVolumeProperty; see README):\n"
+  "View options (conventions of VTK's vtkCamera/vtkVolumeProperty; see docs/design.md):\n"
   "  --size WxH                  image size (default 512x512)\n"
   "  --azimuth A --elevation E   degrees, applied after ResetCamera (default 30, 20)\n"
   "  --zoom Z                    vtkCamera::Zoom factor (default 1)\n"
@@ -233,7 +233,7 @@ const char* const ViewHelp =
   "                              dual-cell reconstruction across grids and levels (packing,\n"
   "                              CPU methods and the reference)\n"
   "  --view-json FILE            camera, transfer function and background from a JSON file\n"
-  "                              (e.g. written from ParaView; see README) instead of the\n"
+  "                              (e.g. written from ParaView; see docs/command-line.md) instead of the\n"
   "                              conventions above; its transfer function implies --scale linear\n"
   "  --shade on|off              gradient shading, vtkVolumeProperty's defaults (default off)\n"
   "  --iso F[,F...]              with --blend iso: iso-values as fractions of the transfer\n"

@@ -49,7 +49,7 @@ int RunReference(int argc, char** argv);
 int RunRender(int argc, char** argv);
 int RunBench(int argc, char** argv);
 
-/// The render settings of the view and transfer-function options (README, "Rendering
+/// The render settings of the view and transfer-function options (docs/design.md, "Rendering
 /// conventions"). Maps the scalars of `h` as --scale asks (log10 in place) and returns their
 /// display range in `range`. Throws UsageError for bad options.
 RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range = nullptr);

@@ -197,7 +197,7 @@ GpuRenderer::GpuRenderer(const std::string& method, vtkVolumeMapper* mapper, con
   I->Window->SetSize(s.Width, s.Height);
   I->Window->AddRenderer(I->Renderer);
 
-  // README camera: ResetCamera on the level-0 bounds, Azimuth, Elevation, OrthogonalizeViewUp, Zoom
+  // the camera of docs/design.md, "Rendering conventions": ResetCamera on the level-0 bounds, Azimuth, Elevation, OrthogonalizeViewUp, Zoom
   double bounds[6];
   Level0Bounds(h, bounds);
   I->Renderer->ResetCamera(bounds);

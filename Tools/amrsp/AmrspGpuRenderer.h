@@ -2,7 +2,7 @@
 #pragma once
 /// @file
 /// The GPU methods of the amrsp tool: one volume mapper in an offscreen vtkRenderWindow with the
-/// tool's camera, transfer-function and background conventions (README, "Rendering
+/// tool's camera, transfer-function and background conventions (docs/design.md, "Rendering
 /// conventions"). PackingRenderer (AmrspPacking.h), MultipassRenderer (AmrspMultipass.h),
 /// UniformGpuRenderer (AmrspUniform.h) and AmrResampleRenderer (AmrspAmrResample.h) add their
 /// mapper; AmrspMethods.h says which method uses which.

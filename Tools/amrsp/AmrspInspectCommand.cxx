@@ -26,7 +26,7 @@ int RunInspect(int argc, char** argv)
     "usage: amrsp inspect [DATASET] [--json] [--array NAME] [--packer P] [--compare-packers]\n"
     "Loads the hierarchy, builds and encodes the kD-tree, checks its invariants, packs the\n"
     "bricks (layout only, no data copied) and prints the statistics (with --json: one JSON\n"
-    "object; see README for the fields). --compare-packers adds the layout of every packer.\n";
+    "object; docs/command-line.md lists the fields). --compare-packers adds the layout of every packer.\n";
   try
   {
     const Arguments a = ParseArguments(

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
-/// The shading, iso-surface and shadow options of the amrsp tool (README, "Shading,
+/// The shading, iso-surface and shadow options of the amrsp tool (docs/design.md, "Shading,
 /// iso-surfaces and shadows"), and their translation into VTK objects for the GPU methods.
 
 #include "amrsp/Render.h"

@@ -3,7 +3,7 @@
 /// @file
 /// The `packing` method of the amrsp tool: vtkSinglePassAMRVolumeMapper in an offscreen
 /// vtkRenderWindow with the tool's camera, transfer-function and background conventions
-/// (README, "Rendering conventions"; the set-up is GpuRenderer's).
+/// (docs/design.md, "Rendering conventions"; the set-up is GpuRenderer's).
 
 #include "AmrspGpuRenderer.h"
 

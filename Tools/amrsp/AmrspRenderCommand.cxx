@@ -181,7 +181,7 @@ int RunRender(int argc, char** argv)
                 << MethodList(RenderCommand)
                 << "\n"
                    "  --bindless-access A         auto (default), direct or waterfall (see "
-                   "README)\n"
+                   "docs/design.md)\n"
                    "  --compare                   also render the CPU reference and the CPU "
                    "kD-tree\n"
                    "                              image and print the RMSE (0-255) against them\n"

@@ -83,7 +83,7 @@ struct RenderSettings
   /// nearest cell when the leaf's level m >= d, else the trilinear value of level m at x from
   /// the leaf's grid's cells (or, where that grid has none, the nearest cell of the leaf there).
   /// A corner outside every grid takes the nearest-cell value at p. Linear-exact across level
-  /// boundaries where covered cells hold the field at their centres (README, "Smooth cell-centred
+  /// boundaries where covered cells hold the field at their centres (docs/design.md, "Smooth cell-centred
   /// data"). With shading, the gradient's central differences, iso-surface bisection and shadow
   /// rays read the same reconstruction (each at the level of the finest data there):
   /// ShadingContext::Neighbours and the integrators' point lookup.
