@@ -108,7 +108,7 @@ public:
 
   // ---- OpenGL resources
   vtkOpenGLRenderWindow* Context = nullptr;
-  int UploadLimit = 0; // MaximumAtlasSize of the last upload attempt
+  int UploadLimit = 0;                // MaximumAtlasSize of the last upload attempt
   vtkMTimeType UploadedBuildTime = 0; // the build the atlas on the GPU holds
   vtkSmartPointer<vtkTextureObject> Atlas;
   vtkSinglePassAMRRenderingUtilities::DepthCopy Depth;
@@ -596,7 +596,8 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::UploadAtlas(
   std::vector<float>().swap(this->Data.Atlas.Texels);
   this->Context = renWin;
   this->UploadedBuildTime = self->GetBuildTime().GetMTime();
-  self->UploadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  self->UploadSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return true;
 }
 
@@ -605,18 +606,19 @@ vtkShaderProgram* vtkMultiPassAMRVolumeMapper::vtkInternals::ReadyShaders(
   vtkOpenGLRenderWindow* renWin, vtkVolume* vol)
 {
   vtkMultiPassAMRVolumeMapper* self = this->Self;
-  std::string defines =
-    this->Data.VertexCentred ? "#define AMRSP_VERTEX_CENTRED 1\n" : "#define AMRSP_CELL_CENTRED 1\n";
+  std::string defines = this->Data.VertexCentred ? "#define AMRSP_VERTEX_CENTRED 1\n"
+                                                 : "#define AMRSP_CELL_CENTRED 1\n";
   if (self->UseDepthBuffer)
   {
     defines += "#define AMRSP_USE_DEPTH 1\n";
   }
-  const std::string fragment = utilities::ComposeFragmentShader(amrsp_MultiPassAMR_frag_glsl,
-    defines, { { "RayCommon", amrsp_RayCommon_glsl }, { "BrickSample", amrsp_BrickSample_glsl } },
-    vol);
+  const std::string fragment =
+    utilities::ComposeFragmentShader(amrsp_MultiPassAMR_frag_glsl, defines,
+      { { "RayCommon", amrsp_RayCommon_glsl }, { "BrickSample", amrsp_BrickSample_glsl } }, vol);
   if (fragment == this->FailedFragmentSource)
   {
-    self->ReportError("the multi-pass AMR shader failed to compile or link (see the earlier error)");
+    self->ReportError(
+      "the multi-pass AMR shader failed to compile or link (see the earlier error)");
     return nullptr;
   }
   if (!this->Composite)

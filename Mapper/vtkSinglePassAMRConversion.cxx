@@ -64,7 +64,8 @@ std::vector<std::string> vtkSinglePassAMRConversion::ArrayNames(vtkOverlappingAM
     for (int a = 0; a < cd->GetNumberOfArrays(); ++a)
     {
       vtkDataArray* arr = cd->GetArray(a);
-      if (arr && arr->GetName() && std::string(arr->GetName()) != vtkDataSetAttributes::GhostArrayName())
+      if (arr && arr->GetName() &&
+        std::string(arr->GetName()) != vtkDataSetAttributes::GhostArrayName())
       {
         names.emplace_back(arr->GetName());
       }
@@ -126,9 +127,8 @@ bool vtkSinglePassAMRConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
   std::string name = selection.Name;
   const std::vector<std::string> cellArrays = ArrayNames(amr, false);
   const std::vector<std::string> pointArrays = ArrayNames(amr, true);
-  const auto has = [](const std::vector<std::string>& v, const std::string& n) {
-    return std::find(v.begin(), v.end(), n) != v.end();
-  };
+  const auto has = [](const std::vector<std::string>& v, const std::string& n)
+  { return std::find(v.begin(), v.end(), n) != v.end(); };
   bool points = false;
   if (name.empty())
   {
@@ -192,8 +192,8 @@ bool vtkSinglePassAMRConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
       vtkUniformGrid* block = amr->GetDataSet(l, i);
       if (!block)
       {
-        error = "block " + std::to_string(i) + " of level " + std::to_string(l) +
-          " has no data loaded";
+        error =
+          "block " + std::to_string(i) + " of level " + std::to_string(l) + " has no data loaded";
         return false;
       }
       vtkDataArray* arr = points ? block->GetPointData()->GetArray(name.c_str())
@@ -232,7 +232,8 @@ bool vtkSinglePassAMRConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
         {
           for (int64_t x = 0; x < extent.x; ++x, ++k)
           {
-            const vtkIdType c = ((z + ghost.z) * cellDims.y + (y + ghost.y)) * cellDims.x + x + ghost.x;
+            const vtkIdType c =
+              ((z + ghost.z) * cellDims.y + (y + ghost.y)) * cellDims.x + x + ghost.x;
             if (fast && components == 1)
             {
               values[k] = fast->GetValue(c);
@@ -311,7 +312,8 @@ void vtkSinglePassAMRConversion::ToOverlappingAMR(const amrsp::Hierarchy& h, vtk
     grid->SetOrigin(corner.x, corner.y, corner.z);
     grid->SetSpacing(spacing.x, spacing.y, spacing.z);
     const glm::i64vec3 e = g.Cells.Extent();
-    grid->SetDimensions(static_cast<int>(e.x) + 1, static_cast<int>(e.y) + 1, static_cast<int>(e.z) + 1);
+    grid->SetDimensions(
+      static_cast<int>(e.x) + 1, static_cast<int>(e.y) + 1, static_cast<int>(e.z) + 1);
     if (h.HasValues())
     {
       vtkNew<vtkFloatArray> values;

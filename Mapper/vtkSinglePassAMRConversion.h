@@ -4,9 +4,9 @@
  * @brief   converts between vtkOverlappingAMR and the core's amrsp::Hierarchy
  *
  * Not installed (the header exposes core types), but exported: the amrsp tool and the ParaView
- * representation, which link the core themselves, convert through it. vtkOverlappingAMR boxes are inclusive
- * cell ranges in each level's index space relative to the global origin; the core uses half-open
- * boxes in the same index spaces. Refinement ratios are recovered per axis from the level
+ * representation, which link the core themselves, convert through it. vtkOverlappingAMR boxes are
+ * inclusive cell ranges in each level's index space relative to the global origin; the core uses
+ * half-open boxes in the same index spaces. Refinement ratios are recovered per axis from the level
  * spacings, so anisotropic and per-level ratios survive; a non-integer ratio is an error.
  */
 #ifndef vtkSinglePassAMRConversion_h

@@ -75,8 +75,8 @@ vtkSinglePassAMRGridStorage::Choice vtkSinglePassAMRGridStorage::Choose(
     resolved = -1;
   }
   std::string noAtlas = data.PackingError;
-  const bool atlasFits = noAtlas.empty() &&
-    utilities::AtlasFitsContext(renWin, data.Layout.Dims, atlasLimit, noAtlas);
+  const bool atlasFits =
+    noAtlas.empty() && utilities::AtlasFitsContext(renWin, data.Layout.Dims, atlasLimit, noAtlas);
   int storage = vtkSinglePassAMRVolumeMapper::PACKED_ATLAS;
   if (requested == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES)
   {
@@ -124,8 +124,8 @@ vtkTextureObject* vtkSinglePassAMRGridStorage::GetGridData() const
 }
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, int storage,
-  int atlasLimit, const amrsp::RayCastingData& data, std::string& error)
+bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, int storage, int atlasLimit,
+  const amrsp::RayCastingData& data, std::string& error)
 {
   this->UploadLimit = atlasLimit;
   const bool bindless = storage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES;
@@ -256,8 +256,8 @@ bool vtkSinglePassAMRGridStorage::UploadBindless(
     glMakeTextureHandleResidentARB(handle);
     this->Bricks.push_back(brick);
     this->ResidentHandles.push_back(handle);
-    handles.Texels[g] = glm::uvec2(
-      static_cast<uint32_t>(handle & 0xffffffffu), static_cast<uint32_t>(handle >> 32));
+    handles.Texels[g] =
+      glm::uvec2(static_cast<uint32_t>(handle & 0xffffffffu), static_cast<uint32_t>(handle >> 32));
   }
   this->HandlesTexture = utilities::MakeIntegerTexture(renWin, handles);
   return this->HandlesTexture != nullptr;

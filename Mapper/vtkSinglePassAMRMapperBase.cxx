@@ -19,8 +19,7 @@ vtkSinglePassAMRMapperBase::vtkSinglePassAMRMapperBase() = default;
 vtkSinglePassAMRMapperBase::~vtkSinglePassAMRMapperBase() = default;
 
 //------------------------------------------------------------------------------
-int vtkSinglePassAMRMapperBase::FillInputPortInformation(
-  int vtkNotUsed(port), vtkInformation* info)
+int vtkSinglePassAMRMapperBase::FillInputPortInformation(int vtkNotUsed(port), vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkOverlappingAMR");
   return 1;

@@ -21,7 +21,7 @@
 #define vtkSinglePassAMRMapperBase_h
 
 #include "vtkSinglePassAMRModule.h" // for export macro
-#include "vtkTimeStamp.h"    // for GetBuildTime
+#include "vtkTimeStamp.h"           // for GetBuildTime
 #include "vtkVolumeMapper.h"
 
 #include <set>    // for the warnings already given
@@ -125,10 +125,19 @@ protected:
   /// must upload again). Returns whether it succeeded.
   bool Rebuild(vtkOverlappingAMR* amr);
   /// Forgets the build: the next EnsureBuilt builds again.
-  void InvalidateBuild() { this->Built = false; }
+  void InvalidateBuild()
+  {
+    this->Built = false;
+  }
   /// The error of the last build (empty when it succeeded) and when it last succeeded.
-  const std::string& GetBuildError() const { return this->BuildError; }
-  const vtkTimeStamp& GetBuildTime() const { return this->BuildTime; }
+  const std::string& GetBuildError() const
+  {
+    return this->BuildError;
+  }
+  const vtkTimeStamp& GetBuildTime() const
+  {
+    return this->BuildTime;
+  }
 
   /// The common start of Render: clears the frame's error, checks the window and the input and
   /// updates it. Returns the input, or nullptr after ReportError; `renWin` is then null too.

@@ -135,9 +135,9 @@ vtkSmartPointer<vtkTextureObject> MakeScalarTexture(
   tex->SetWrapS(vtkTextureObject::ClampToEdge);
   tex->SetWrapT(vtkTextureObject::ClampToEdge);
   tex->SetWrapR(vtkTextureObject::ClampToEdge);
-  const bool ok = tex->Create3DFromRaw(static_cast<unsigned int>(dims.x),
-    static_cast<unsigned int>(dims.y), static_cast<unsigned int>(dims.z), 1, VTK_FLOAT,
-    const_cast<float*>(texels));
+  const bool ok =
+    tex->Create3DFromRaw(static_cast<unsigned int>(dims.x), static_cast<unsigned int>(dims.y),
+      static_cast<unsigned int>(dims.z), 1, VTK_FLOAT, const_cast<float*>(texels));
   return ok ? tex : nullptr;
 }
 
@@ -258,8 +258,8 @@ bool BuildPackedHierarchy(vtkOverlappingAMR* amr, const std::string& array, int 
 }
 
 //------------------------------------------------------------------------------
-bool AtlasFitsContext(vtkOpenGLRenderWindow* renWin, const glm::ivec3& dims, int atlasLimit,
-  std::string& why)
+bool AtlasFitsContext(
+  vtkOpenGLRenderWindow* renWin, const glm::ivec3& dims, int atlasLimit, std::string& why)
 {
   const int max3D = vtkTextureObject::GetMaximumTextureSize3D(renWin);
   const int limit = atlasLimit > 0 ? std::min(atlasLimit, max3D) : max3D;
@@ -476,8 +476,8 @@ namespace
 int ReadFramebufferDepthFormat()
 {
   GLint type = GL_NONE, bits = 0;
-  glGetFramebufferAttachmentParameteriv(GL_READ_FRAMEBUFFER, GL_DEPTH_ATTACHMENT,
-    GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE, &type);
+  glGetFramebufferAttachmentParameteriv(
+    GL_READ_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE, &type);
   glGetFramebufferAttachmentParameteriv(
     GL_READ_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE, &bits);
   while (glGetError() != GL_NO_ERROR)

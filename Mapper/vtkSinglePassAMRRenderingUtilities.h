@@ -100,8 +100,8 @@ bool BuildPackedHierarchy(vtkOverlappingAMR* amr, const std::string& array, int 
  * Whether an atlas of `dims` texels fits `renWin`'s GL_MAX_3D_TEXTURE_SIZE and `atlasLimit`
  * (> 0: a lower limit set by the user). When not, `why` names the limit it exceeds.
  */
-bool AtlasFitsContext(vtkOpenGLRenderWindow* renWin, const glm::ivec3& dims, int atlasLimit,
-  std::string& why);
+bool AtlasFitsContext(
+  vtkOpenGLRenderWindow* renWin, const glm::ivec3& dims, int atlasLimit, std::string& why);
 
 /// An RG32UI 3D texture of a kD-tree encoding (nearest, clamped); null when OpenGL refused it.
 vtkSmartPointer<vtkTextureObject> MakeIntegerTexture(
@@ -169,8 +169,8 @@ private:
 
 /**
  * The renderer's view as the raycasting shaders use it: viewport, model -> normalized device
- * matrices and the rays' origin. Perspective rays start at the eye (the pinhole camera of docs/design.md),
- * parallel rays on the near plane.
+ * matrices and the rays' origin. Perspective rays start at the eye (the pinhole camera of
+ * docs/design.md), parallel rays on the near plane.
  */
 struct ViewGeometry
 {

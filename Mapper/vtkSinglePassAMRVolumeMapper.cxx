@@ -56,9 +56,9 @@ struct FrameSettings
   int Blend = 0;    // AMRSP_BLEND_MODE: 0 composite, 1 maximum, 2 minimum, 3 average, 4 iso
   std::vector<float> IsoValues; // sorted, padded to 8 (iso-surface blending only)
   int IsoCount = 0;
-  bool Shade = false;      // gradient shading (composite and iso-surface blending)
-  bool Shadows = false;    // shadow rays (composite and iso-surface blending)
-  bool SkipEmpty = false;  // empty-space skipping (composite blending)
+  bool Shade = false;       // gradient shading (composite and iso-surface blending)
+  bool Shadows = false;     // shadow rays (composite and iso-surface blending)
+  bool SkipEmpty = false;   // empty-space skipping (composite blending)
   bool SmoothCells = false; // trilinear cell reconstruction (cell data)
   bool UseDepth = false;
 
@@ -85,8 +85,8 @@ public:
   bool PrepareAppearance(
     vtkOpenGLRenderWindow* renWin, vtkVolumeProperty* property, FrameSettings& frame);
   /// The shader variant of `frame`, compiled once per variant by VTK's shader cache.
-  vtkShaderProgram* ReadyShader(vtkOpenGLRenderWindow* renWin, vtkVolume* vol,
-    const FrameSettings& frame);
+  vtkShaderProgram* ReadyShader(
+    vtkOpenGLRenderWindow* renWin, vtkVolume* vol, const FrameSettings& frame);
   /// Uploads the root box's triangles after a build and binds them to `program`'s vertexMC.
   bool BindProxyBox(vtkShaderProgram* program);
   /// Re-flags the transparent data nodes when the transfer table changed (composite only).
@@ -284,7 +284,8 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareStorage(
   }
   this->Data.FreeUploadData();
   this->PendingUpload = false;
-  self->UploadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  self->UploadSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return true;
 }
 
@@ -383,15 +384,16 @@ vtkShaderProgram* vtkSinglePassAMRVolumeMapper::vtkInternals::ReadyShader(
   define(frame.Shade, "AMRSP_SHADE 1");
   define(frame.Shadows, "AMRSP_SHADOWS 1");
   define(self->WorkCountersOutput, "AMRSP_WORK_COUNTERS 1");
-  const std::string fragment = utilities::ComposeFragmentShader(amrsp_SinglePassAMR_frag_glsl,
-    defines,
-    { { "KdTreeLayout", amrsp_KdTreeLayout_glsl }, { "RayCommon", amrsp_RayCommon_glsl },
-      { "BrickSample", amrsp_BrickSample_glsl }, { "SmoothCells", amrsp_SmoothCells_glsl },
-      { "Shading", amrsp_Shading_glsl } },
-    vol);
+  const std::string fragment =
+    utilities::ComposeFragmentShader(amrsp_SinglePassAMR_frag_glsl, defines,
+      { { "KdTreeLayout", amrsp_KdTreeLayout_glsl }, { "RayCommon", amrsp_RayCommon_glsl },
+        { "BrickSample", amrsp_BrickSample_glsl }, { "SmoothCells", amrsp_SmoothCells_glsl },
+        { "Shading", amrsp_Shading_glsl } },
+      vol);
   if (fragment == this->FailedFragmentSource)
   {
-    self->ReportError("the single-pass AMR shader failed to compile or link (see the earlier error)");
+    self->ReportError(
+      "the single-pass AMR shader failed to compile or link (see the earlier error)");
     return nullptr;
   }
   vtkShaderProgram* program = renWin->GetShaderCache()->ReadyShaderProgram(
@@ -590,11 +592,13 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::SetLightingUniforms(vtkShaderPr
     [&](const char* n) { program->SetUniformf(n, static_cast<float>(property->GetDiffuse(0))); });
   setIfUsed("amrspSpecular",
     [&](const char* n) { program->SetUniformf(n, static_cast<float>(property->GetSpecular(0))); });
-  setIfUsed("amrspSpecularPower", [&](const char* n)
+  setIfUsed("amrspSpecularPower",
+    [&](const char* n)
     { program->SetUniformf(n, static_cast<float>(property->GetSpecularPower(0))); });
   setIfUsed("amrspLightPositional",
     [&](const char* n) { program->SetUniformi(n, light.Positional ? 1 : 0); });
-  setIfUsed("amrspLightPositionMC", [&](const char* n) { program->SetUniform3f(n, light.Position); });
+  setIfUsed(
+    "amrspLightPositionMC", [&](const char* n) { program->SetUniform3f(n, light.Position); });
   setIfUsed(
     "amrspLightDirectionMC", [&](const char* n) { program->SetUniform3f(n, light.Direction); });
   setIfUsed("amrspLightColour", [&](const char* n) { program->SetUniform3f(n, light.Colour); });
@@ -797,8 +801,9 @@ void vtkSinglePassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "OpacityThreshold: " << this->OpacityThreshold << "\n";
   os << indent << "EmptySpaceSkipping: " << (this->EmptySpaceSkipping ? "on" : "off") << "\n";
   os << indent << "WorkCountersOutput: " << (this->WorkCountersOutput ? "on" : "off") << "\n";
-  os << indent << "CellInterpolation: "
-     << (this->CellInterpolation == SMOOTH_CELL ? "smooth" : "nearest") << "\n";
+  os << indent
+     << "CellInterpolation: " << (this->CellInterpolation == SMOOTH_CELL ? "smooth" : "nearest")
+     << "\n";
   os << indent << "TransparentDataNodes: " << in.TransparentDataNodes << "\n";
   os << indent << "Shadows: " << (this->Shadows ? "on" : "off")
      << ", ShadowSampleDistance: " << this->ShadowSampleDistance << "\n";

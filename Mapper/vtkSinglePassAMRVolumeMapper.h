@@ -226,8 +226,14 @@ public:
   };
   vtkSetClampMacro(CellInterpolation, int, NEAREST_CELL, SMOOTH_CELL);
   vtkGetMacro(CellInterpolation, int);
-  void SetCellInterpolationToNearest() { this->SetCellInterpolation(NEAREST_CELL); }
-  void SetCellInterpolationToSmooth() { this->SetCellInterpolation(SMOOTH_CELL); }
+  void SetCellInterpolationToNearest()
+  {
+    this->SetCellInterpolation(NEAREST_CELL);
+  }
+  void SetCellInterpolationToSmooth()
+  {
+    this->SetCellInterpolation(SMOOTH_CELL);
+  }
   ///@}
 
   /// Diagnostic of empty-space skipping: how many data nodes the last rendered frame's transfer

@@ -10,8 +10,8 @@
 namespace amrsp
 {
 
-BrickAtlas BuildBrickAtlas(const Hierarchy& h, Packer packer, const glm::ivec3& maxDims,
-  std::size_t maxBytes)
+BrickAtlas BuildBrickAtlas(
+  const Hierarchy& h, Packer packer, const glm::ivec3& maxDims, std::size_t maxBytes)
 {
   if (!h.HasValues())
   {
@@ -47,7 +47,8 @@ BrickAtlas FillBrickAtlas(const Hierarchy& h, AtlasLayout layout)
     {
       for (int64_t j = 0; j < e.y; ++j)
       {
-        float* row = &atlas.Texels[(static_cast<std::size_t>(o.z + k) * d.y + (o.y + j)) * d.x + o.x];
+        float* row =
+          &atlas.Texels[(static_cast<std::size_t>(o.z + k) * d.y + (o.y + j)) * d.x + o.x];
         std::copy(src, src + e.x, row);
         src += e.x;
       }

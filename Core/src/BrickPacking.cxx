@@ -101,11 +101,13 @@ std::vector<int> NfdhOrder(const std::vector<glm::ivec3>& e)
 {
   std::vector<int> order(e.size());
   std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    const auto ka = std::make_tuple(e[a].z, e[a].y, e[a].x);
-    const auto kb = std::make_tuple(e[b].z, e[b].y, e[b].x);
-    return ka != kb ? ka > kb : a < b;
-  });
+  std::sort(order.begin(), order.end(),
+    [&](int a, int b)
+    {
+      const auto ka = std::make_tuple(e[a].z, e[a].y, e[a].x);
+      const auto kb = std::make_tuple(e[b].z, e[b].y, e[b].x);
+      return ka != kb ? ka > kb : a < b;
+    });
   return order;
 }
 
@@ -198,13 +200,14 @@ public:
   {
     std::vector<int> order(e.size());
     std::iota(order.begin(), order.end(), 0);
-    auto key = [&](int i) {
-      return std::make_tuple(e[i].z, int64_t(e[i].x) * e[i].y, e[i].y, e[i].x);
-    };
-    std::sort(order.begin(), order.end(), [&](int a, int b) {
-      const auto ka = key(a), kb = key(b);
-      return ka != kb ? ka > kb : a < b;
-    });
+    auto key = [&](int i)
+    { return std::make_tuple(e[i].z, int64_t(e[i].x) * e[i].y, e[i].y, e[i].x); };
+    std::sort(order.begin(), order.end(),
+      [&](int a, int b)
+      {
+        const auto ka = key(a), kb = key(b);
+        return ka != kb ? ka > kb : a < b;
+      });
     for (std::size_t k = 0; k < order.size(); ++k)
     {
       const int i = order[k];
@@ -407,18 +410,20 @@ Trial RunBestFitTrials(const ShapeIndex& prototype, std::size_t count,
     { static_cast<std::size_t>(WorkerCount()), 8, (n + 3) / 4, count * n / 20000 + 1 });
   std::vector<Worker> workers(threads, Worker{ prototype, {}, {}, {}, 0 });
   // worker w tries the candidates w, w + threads, ... in order (its ties go to the earlier one)
-  RunWorkers(static_cast<int>(threads), [&](int w) {
-    Worker& k = workers[static_cast<std::size_t>(w)];
-    for (std::size_t c = static_cast<std::size_t>(w); c < n; c += threads)
+  RunWorkers(static_cast<int>(threads),
+    [&](int w)
     {
-      BestFitTrial(k.Shapes, count, candidates[c].x, candidates[c].y, maxZ, k.Heap, k.Current);
-      if (Better(k.Current, k.Best))
+      Worker& k = workers[static_cast<std::size_t>(w)];
+      for (std::size_t c = static_cast<std::size_t>(w); c < n; c += threads)
       {
-        std::swap(k.Best, k.Current);
-        k.BestIndex = c;
+        BestFitTrial(k.Shapes, count, candidates[c].x, candidates[c].y, maxZ, k.Heap, k.Current);
+        if (Better(k.Current, k.Best))
+        {
+          std::swap(k.Best, k.Current);
+          k.BestIndex = c;
+        }
       }
-    }
-  });
+    });
   std::size_t best = 0;
   for (std::size_t w = 1; w < threads; ++w)
   {
@@ -466,7 +471,8 @@ Trial SearchBestFit(const std::vector<glm::ivec3>& extents, int64_t used,
 
   std::vector<glm::ivec2> candidates;
   std::set<std::pair<int, int>> tried; // footprints of all stages, each tried once
-  auto add = [&](double w, double d) {
+  auto add = [&](double w, double d)
+  {
     const glm::ivec2 c(std::min(std::max(static_cast<int>(std::lround(w)), big.x), lim.x),
       std::min(std::max(static_cast<int>(std::lround(d)), big.y), lim.y));
     if (tried.emplace(c.x, c.y).second)

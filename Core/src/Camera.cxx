@@ -7,8 +7,8 @@
 namespace amrsp
 {
 
-void Camera::Ray(int width, int height, double px, double py, glm::dvec3& origin,
-  glm::dvec3& direction) const
+void Camera::Ray(
+  int width, int height, double px, double py, glm::dvec3& origin, glm::dvec3& direction) const
 {
   const glm::dvec3 forward = glm::normalize(FocalPoint - Position);
   const glm::dvec3 right = glm::normalize(glm::cross(forward, ViewUp));
@@ -47,7 +47,8 @@ glm::dvec3 Rotate(const glm::dvec3& v, const glm::dvec3& axis, double degrees)
 {
   const double a = glm::radians(degrees);
   const glm::dvec3 k = glm::normalize(axis);
-  return v * std::cos(a) + glm::cross(k, v) * std::sin(a) + k * glm::dot(k, v) * (1.0 - std::cos(a));
+  return v * std::cos(a) + glm::cross(k, v) * std::sin(a) +
+    k * glm::dot(k, v) * (1.0 - std::cos(a));
 }
 } // namespace
 

@@ -187,7 +187,8 @@ struct CosmoField::Impl
     std::vector<uint32_t> count(nb + 1, 0);
     // Squared distance from coordinate c to bucket slab i, the outermost slabs extending to
     // infinity (so that points outside the cube find their halos).
-    auto slabDistance2 = [](double c, int i) {
+    auto slabDistance2 = [](double c, int i)
+    {
       const double lo = static_cast<double>(i) / Buckets;
       const double hi = static_cast<double>(i + 1) / Buckets;
       double d = 0.0;
@@ -201,7 +202,8 @@ struct CosmoField::Impl
       }
       return d * d;
     };
-    auto forEachBucket = [&slabDistance2](const Halo& h, auto&& f) {
+    auto forEachBucket = [&slabDistance2](const Halo& h, auto&& f)
+    {
       const int x0 = BucketOf(h.Cx - h.R), x1 = BucketOf(h.Cx + h.R);
       const int y0 = BucketOf(h.Cy - h.R), y1 = BucketOf(h.Cy + h.R);
       const int z0 = BucketOf(h.Cz - h.R), z1 = BucketOf(h.Cz + h.R);
@@ -261,7 +263,8 @@ struct CosmoField::Impl
     // go to the most massive halos.
     const double epsBase = 3e-6;
     // Draws the amplitude factor, then the softening factor.
-    auto addHalo = [this, &rng, epsBase](const glm::dvec3& centre, double r) {
+    auto addHalo = [this, &rng, epsBase](const glm::dvec3& centre, double r)
+    {
       const double amp = 8.0 * rng.Uniform(0.75, 1.25) * r * r;
       const double eps = epsBase * rng.Uniform(0.5, 1.5);
       this->AddHaloToCatalogue(centre, r, amp, eps);

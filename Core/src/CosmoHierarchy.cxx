@@ -133,12 +133,13 @@ Hierarchy GenerateCosmo(const CosmoParameters& p)
     {
       order[i] = i;
     }
-    std::stable_sort(order.begin(), order.end(), [&h](std::size_t a, std::size_t b) {
-      return h.Grids[a].Cells.Cells() > h.Grids[b].Cells.Cells();
-    });
+    std::stable_sort(order.begin(), order.end(),
+      [&h](std::size_t a, std::size_t b)
+      { return h.Grids[a].Cells.Cells() > h.Grids[b].Cells.Cells(); });
     ParallelFor(
       static_cast<int64_t>(order.size()),
-      [&](int64_t i) {
+      [&](int64_t i)
+      {
         const std::size_t g = order[static_cast<std::size_t>(i)];
         const Grid& grid = h.Grids[g];
         // Cell size of the grid's level in world units: Spacing0 / 2^level (exact scaling).

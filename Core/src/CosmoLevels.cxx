@@ -155,7 +155,6 @@ constexpr double MinTile = 2.0;
 /// grids (and not more than the requested grids); splitting makes up the rest.
 constexpr double MinMergedFraction = 0.6;
 
-
 /// One candidate set for a level: each parent (a level-(l-1) grid, refined to level l) cut into
 /// a lattice of near-equal tiles of edge about T cells. Tile (i,j,k) of parent p spans cells
 /// [Bound(p,a,i), Bound(p,a,i+1)) on axis a, so tiles of one parent partition it and never cross
@@ -254,9 +253,8 @@ public:
       order[static_cast<std::size_t>(i)] = i;
     }
     const std::vector<double>& dens = this->T.Density;
-    auto denser = [&dens](int64_t a, int64_t b) {
-      return dens[a] > dens[b] || (dens[a] == dens[b] && a < b);
-    };
+    auto denser = [&dens](int64_t a, int64_t b)
+    { return dens[a] > dens[b] || (dens[a] == dens[b] && a < b); };
     if (k < nt)
     {
       std::nth_element(order.begin(), order.begin() + k, order.end(), denser);
@@ -265,7 +263,8 @@ public:
     // selected cells match the budget to within half a mean tile: add the next-densest tiles or
     // drop the least dense of the selection, never more than the deficit or excess allows.
     // order[0, k) stays the k densest tiles throughout.
-    auto cellsOf = [this, &order](int64_t begin, int64_t end) {
+    auto cellsOf = [this, &order](int64_t begin, int64_t end)
+    {
       int64_t n = 0;
       for (int64_t i = begin; i < end; ++i)
       {
@@ -380,8 +379,9 @@ private:
     }
     const double cs = this->CellSize;
     const CosmoField& field = this->Field;
-    ParallelForSlices(
-      offset, SliceWorkers(offset, 8192), [&t, cs, &field](int64_t begin, int64_t end) {
+    ParallelForSlices(offset, SliceWorkers(offset, 8192),
+      [&t, cs, &field](int64_t begin, int64_t end)
+      {
         for (int64_t i = begin; i < end; ++i)
         {
           const Box b = t.TileBox(i);
@@ -398,7 +398,8 @@ private:
     const int64_t nx = p.N.x, ny = p.N.y, nz = p.N.z;
     std::vector<uint8_t>& used = this->Used;
     used.assign(static_cast<std::size_t>(nx * ny * nz), 0);
-    auto free = [&](int64_t x, int64_t y, int64_t z) {
+    auto free = [&](int64_t x, int64_t y, int64_t z)
+    {
       const int64_t l = x + nx * (y + ny * z);
       return selected[static_cast<std::size_t>(p.Offset + l)] && !used[static_cast<std::size_t>(l)];
     };
@@ -482,7 +483,8 @@ int64_t CellsOf(const std::vector<LevelBox>& boxes)
 void SplitToCount(std::vector<LevelBox>& boxes, int64_t count)
 {
   // Max-heap on (cells, -index): the largest box first, the lowest index among equals.
-  auto less = [&boxes](std::size_t a, std::size_t b) {
+  auto less = [&boxes](std::size_t a, std::size_t b)
+  {
     const int64_t ca = boxes[a].Cells.Cells(), cb = boxes[b].Cells.Cells();
     return ca < cb || (ca == cb && a > b);
   };
@@ -589,7 +591,8 @@ void TrimToCells(
 {
   int64_t total = CellsOf(boxes);
   const int64_t limit = targetCells + targetCells / 50;
-  auto less = [&boxes](std::size_t a, std::size_t b) {
+  auto less = [&boxes](std::size_t a, std::size_t b)
+  {
     const int64_t ca = boxes[a].Cells.Cells(), cb = boxes[b].Cells.Cells();
     return ca < cb || (ca == cb && a > b);
   };
@@ -716,7 +719,8 @@ std::vector<LevelBox> BuildLevel(LevelBuilder& builder, const std::vector<Box>& 
   // with few enough boxes, or join (or, failing that, drop) boxes of the tiling with too many.
   // With only a handful of grids on a level B(T) jumps by more than the grid count, and either
   // can be the closer one in cells: keep the result nearer the cell target.
-  auto finish = [&](std::vector<LevelBox> boxes) {
+  auto finish = [&](std::vector<LevelBox> boxes)
+  {
     if (static_cast<int64_t>(boxes.size()) < grids)
     {
       SplitToCount(boxes, grids);
@@ -728,7 +732,8 @@ std::vector<LevelBox> BuildLevel(LevelBuilder& builder, const std::vector<Box>& 
     TrimToCells(boxes, targetCells, field, cellSize);
     return boxes;
   };
-  auto miss = [targetCells](const std::vector<LevelBox>& boxes) {
+  auto miss = [targetCells](const std::vector<LevelBox>& boxes)
+  {
     const int64_t d = CellsOf(boxes) - targetCells;
     return d < 0 ? -d : d;
   };
@@ -749,20 +754,22 @@ std::vector<LevelBox> BuildLevel(LevelBuilder& builder, const std::vector<Box>& 
       }
     }
   }
-  std::sort(best.begin(), best.end(), [](const LevelBox& a, const LevelBox& b) {
-    if (a.Parent != b.Parent)
+  std::sort(best.begin(), best.end(),
+    [](const LevelBox& a, const LevelBox& b)
     {
-      return a.Parent < b.Parent;
-    }
-    for (int ax = 2; ax >= 0; --ax)
-    {
-      if (a.Cells.Lo[ax] != b.Cells.Lo[ax])
+      if (a.Parent != b.Parent)
       {
-        return a.Cells.Lo[ax] < b.Cells.Lo[ax];
+        return a.Parent < b.Parent;
       }
-    }
-    return false;
-  });
+      for (int ax = 2; ax >= 0; --ax)
+      {
+        if (a.Cells.Lo[ax] != b.Cells.Lo[ax])
+        {
+          return a.Cells.Lo[ax] < b.Cells.Lo[ax];
+        }
+      }
+      return false;
+    });
   return best;
 }
 } // namespace

@@ -106,8 +106,8 @@ std::vector<float> OpacityPrefixCounts(const std::vector<float>& opacity)
   return prefix;
 }
 
-bool TableRangeTransparent(const std::vector<float>& prefix, const float range[2], float lo,
-  float hi)
+bool TableRangeTransparent(
+  const std::vector<float>& prefix, const float range[2], float lo, float hi)
 {
   if (lo > hi)
   {

@@ -37,8 +37,8 @@ FinestCellLocator::FinestCellLocator(const Hierarchy& h)
       lo = glm::min(lo, glm::dvec3(h.Grids[g].Cells.Lo) / CumRatio[l]);
       hi = glm::max(hi, glm::dvec3(h.Grids[g].Cells.Hi) / CumRatio[l]);
     }
-    const int n = std::max(1,
-      std::min(64, static_cast<int>(std::cbrt(static_cast<double>(perLevel[l].size())) * 2.0)));
+    const int n = std::max(
+      1, std::min(64, static_cast<int>(std::cbrt(static_cast<double>(perLevel[l].size())) * 2.0)));
     b.Lo = lo;
     b.Count = glm::ivec3(n);
     b.BucketSize = (hi - lo) / glm::dvec3(n);
@@ -77,9 +77,8 @@ int32_t FinestCellLocator::Find(const glm::dvec3& p, glm::i64vec3& cell) const
     const glm::ivec3 bucket =
       glm::clamp(glm::ivec3(glm::floor((p - b.Lo) / b.BucketSize)), glm::ivec3(0), b.Count - 1);
     const glm::i64vec3 c = glm::i64vec3(glm::floor(p * CumRatio[l]));
-    for (int32_t g : b.Grids[(static_cast<std::size_t>(bucket.z) * b.Count.y + bucket.y) *
-             b.Count.x +
-           bucket.x])
+    for (int32_t g :
+      b.Grids[(static_cast<std::size_t>(bucket.z) * b.Count.y + bucket.y) * b.Count.x + bucket.x])
     {
       const Box& box = H.Grids[g].Cells;
       if (c.x >= box.Lo.x && c.y >= box.Lo.y && c.z >= box.Lo.z && c.x < box.Hi.x &&

@@ -31,7 +31,8 @@ ImageDifference CompareRgb8(const std::vector<std::uint8_t>& a, const std::vecto
   }
   static const std::uint8_t black[3] = { 0, 0, 0 };
   const std::uint8_t* bg = background ? background : black;
-  auto isBackground = [bg](const std::uint8_t* p) {
+  auto isBackground = [bg](const std::uint8_t* p)
+  {
     for (int c = 0; c < 3; ++c)
     {
       if (std::abs(static_cast<int>(p[c]) - static_cast<int>(bg[c])) >

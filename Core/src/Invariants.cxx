@@ -61,8 +61,9 @@ public:
         L.Lo = glm::min(L.Lo, b.Lo);
         L.Hi = glm::max(L.Hi, b.Hi);
       }
-      const int64_t n = std::max<int64_t>(1, std::min<int64_t>(32,
-        static_cast<int64_t>(std::cbrt(static_cast<double>(L.Members.size())) * 2)));
+      const int64_t n = std::max<int64_t>(1,
+        std::min<int64_t>(
+          32, static_cast<int64_t>(std::cbrt(static_cast<double>(L.Members.size())) * 2)));
       L.N = n;
       L.Size = glm::max(glm::i64vec3(1), (L.Hi - L.Lo + glm::i64vec3(n - 1)) / glm::i64vec3(n));
       L.Buckets.resize(static_cast<std::size_t>(n * n * n));
@@ -92,20 +93,22 @@ public:
     }
     std::vector<int32_t> seen;
     bool go = true;
-    ForBuckets(L, region, [&](const std::vector<int32_t>& bucket) {
-      for (int32_t g : bucket)
+    ForBuckets(L, region,
+      [&](const std::vector<int32_t>& bucket)
       {
-        if (!go || std::find(seen.begin(), seen.end(), g) != seen.end())
+        for (int32_t g : bucket)
         {
-          continue;
+          if (!go || std::find(seen.begin(), seen.end(), g) != seen.end())
+          {
+            continue;
+          }
+          seen.push_back(g);
+          if (Fine(g).Overlaps(region))
+          {
+            go = f(g);
+          }
         }
-        seen.push_back(g);
-        if (Fine(g).Overlaps(region))
-        {
-          go = f(g);
-        }
-      }
-    });
+      });
   }
 
 private:
@@ -181,10 +184,12 @@ InvariantReport CheckKdTree(const Hierarchy& h, const KdTree& tree, const Encode
       {
         for (int l = 0; l <= finest; ++l)
         {
-          index.Overlapping(l, n.Region, [&](int32_t g) {
-            r.Fail(Name(i) + ": empty leaf overlaps grid " + std::to_string(g));
-            return false;
-          });
+          index.Overlapping(l, n.Region,
+            [&](int32_t g)
+            {
+              r.Fail(Name(i) + ": empty leaf overlaps grid " + std::to_string(g));
+              return false;
+            });
         }
         continue;
       }
@@ -199,11 +204,13 @@ InvariantReport CheckKdTree(const Hierarchy& h, const KdTree& tree, const Encode
       }
       for (int l = d + 1; l <= finest; ++l)
       {
-        index.Overlapping(l, n.Region, [&](int32_t g) {
-          r.Fail(Name(i) + " (level " + std::to_string(d) + ") is overlapped by finer grid " +
-            std::to_string(g) + " of level " + std::to_string(l));
-          return false;
-        });
+        index.Overlapping(l, n.Region,
+          [&](int32_t g)
+          {
+            r.Fail(Name(i) + " (level " + std::to_string(d) + ") is overlapped by finer grid " +
+              std::to_string(g) + " of level " + std::to_string(l));
+            return false;
+          });
       }
       continue;
     }

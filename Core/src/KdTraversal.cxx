@@ -103,8 +103,8 @@ void TraverseKdTree(const EncodedKdTree& tree, const glm::vec3& origin, const gl
         const uint dataLevel = amrspDataLevel(tree.DataNodes.Texels[data]);
         const glm::vec3 cell = tree.LevelCellSize[dataLevel] * lod.Spacing0;
         const float cellWorld = std::max(cell.x, std::max(cell.y, cell.z));
-        const float pixel = lod.ParallelPixelSize > 0.0f ? lod.ParallelPixelSize
-                                                         : t * lod.PixelSizePerDistance;
+        const float pixel =
+          lod.ParallelPixelSize > 0.0f ? lod.ParallelPixelSize : t * lod.PixelSizePerDistance;
         if (cellWorld < lod.ThresholdPixels * pixel)
         {
           break;

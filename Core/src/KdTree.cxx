@@ -255,7 +255,8 @@ private:
           {
             touched.push_back(n);
           }
-          pending[n].push_back(ClippedGrid{ static_cast<int32_t>(gi), g.Cells.Intersection(region) });
+          pending[n].push_back(
+            ClippedGrid{ static_cast<int32_t>(gi), g.Cells.Intersection(region) });
         }
         else
         {
@@ -284,8 +285,8 @@ private:
         continue; // keeps the data it inherited (a coarser grid, or none)
       }
       const Box region = Coarsened(Nodes[n].Region, ToFinest[level]);
-      const auto cover = std::find_if(grids.begin(), grids.end(),
-        [&](const ClippedGrid& g) { return g.Cells.Contains(region); });
+      const auto cover = std::find_if(
+        grids.begin(), grids.end(), [&](const ClippedGrid& g) { return g.Cells.Contains(region); });
       if (cover != grids.end())
       {
         Nodes[n].Grid = cover->Grid;

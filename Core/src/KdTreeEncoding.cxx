@@ -41,8 +41,8 @@ void Resize(UIntTexture3D& t, std::size_t texels)
 }
 } // namespace
 
-EncodedKdTree EncodeKdTree(const Hierarchy& h, const KdTree& tree,
-  const std::vector<glm::ivec3>* brickOrigins)
+EncodedKdTree EncodeKdTree(
+  const Hierarchy& h, const KdTree& tree, const std::vector<glm::ivec3>* brickOrigins)
 {
   using namespace layout;
   EncodedKdTree e;
@@ -99,17 +99,17 @@ EncodedKdTree EncodeKdTree(const Hierarchy& h, const KdTree& tree,
           "texture can address");
         offset = glm::ivec3(texel);
       }
-      e.DataNodes.Texels[data] = amrspPackDataNode(static_cast<uint>(g.Level),
-        static_cast<uint>(n.Grid), static_cast<uint>(offset.x), static_cast<uint>(offset.y),
-        static_cast<uint>(offset.z));
+      e.DataNodes.Texels[data] =
+        amrspPackDataNode(static_cast<uint>(g.Level), static_cast<uint>(n.Grid),
+          static_cast<uint>(offset.x), static_cast<uint>(offset.y), static_cast<uint>(offset.z));
     }
     uint axis = AMRSP_AXIS_NONE, child = 0, split = 0;
     if (!n.IsLeaf())
     {
       Require(n.Split >= 1 && n.Split <= static_cast<int64_t>(MaxSplit),
-        "a kD node of level " + std::to_string(n.Level) + " is split " +
-          std::to_string(n.Split) + " cells from its corner; the layout's 11 bits allow " +
-          std::to_string(MaxSplit) + " (node extents up to 2048 cells)");
+        "a kD node of level " + std::to_string(n.Level) + " is split " + std::to_string(n.Split) +
+          " cells from its corner; the layout's 11 bits allow " + std::to_string(MaxSplit) +
+          " (node extents up to 2048 cells)");
       axis = static_cast<uint>(n.Axis);
       child = static_cast<uint>(n.FirstChild);
       split = static_cast<uint>(n.Split);

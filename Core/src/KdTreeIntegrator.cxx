@@ -32,8 +32,8 @@ namespace
 
 /// Trilinear lookup in the atlas at texel coordinate `u` (texel i at u = i), with the eight
 /// texels clamped into [lo, hi]: the vertex texels of one kD node.
-float AtlasTrilinear(const BrickAtlas& atlas, const glm::vec3& u, const glm::ivec3& lo,
-  const glm::ivec3& hi)
+float AtlasTrilinear(
+  const BrickAtlas& atlas, const glm::vec3& u, const glm::ivec3& lo, const glm::ivec3& hi)
 {
   const glm::vec3 c = glm::clamp(u, glm::vec3(lo), glm::vec3(hi));
   const glm::ivec3 base = glm::min(glm::ivec3(glm::floor(c)), glm::max(hi - 1, lo));
@@ -123,8 +123,7 @@ float NodeGridCell(const Hierarchy& h, const EncodedKdTree& tree, const BrickAtl
   const uvec2 dn = tree.DataNodes.Texels[data];
   if (atlas)
   {
-    const glm::ivec3 first =
-      glm::ivec3(glm::floor(lo / tree.LevelCellSize[amrspDataLevel(dn)]));
+    const glm::ivec3 first = glm::ivec3(glm::floor(lo / tree.LevelCellSize[amrspDataLevel(dn)]));
     return atlas->At(amrspDataOffset(dn) + cell - first);
   }
   return CellValue(h, static_cast<int32_t>(amrspDataBrick(dn)), glm::i64vec3(cell));
@@ -154,24 +153,27 @@ float SmoothCornerKdTree(const Hierarchy& h, const EncodedKdTree& tree, const Br
   }
   const int32_t g = static_cast<int32_t>(amrspDataBrick(dn));
   const glm::vec3 cellSize = tree.LevelCellSize[m];
-  return DualCellInterpolate(x, cellSize, [&](const glm::vec3& c) {
-    const glm::ivec3 cell = glm::ivec3(c);
-    if (GridHasCell(h, g, glm::i64vec3(cell)))
+  return DualCellInterpolate(x, cellSize,
+    [&](const glm::vec3& c)
     {
-      return NodeGridCell(h, tree, atlas, data, lo, cell);
-    }
-    const glm::vec3 y = (c + 0.5f) * cellSize;
-    glm::vec3 ylo, yhi;
-    const uint32_t ydata = LocateDataNode(tree, y, ylo, yhi);
-    return ydata != 0 ? NodeCellValue(h, tree, atlas, ydata, ylo, yhi, y) : vx;
-  });
+      const glm::ivec3 cell = glm::ivec3(c);
+      if (GridHasCell(h, g, glm::i64vec3(cell)))
+      {
+        return NodeGridCell(h, tree, atlas, data, lo, cell);
+      }
+      const glm::vec3 y = (c + 0.5f) * cellSize;
+      glm::vec3 ylo, yhi;
+      const uint32_t ydata = LocateDataNode(tree, y, ylo, yhi);
+      return ydata != 0 ? NodeCellValue(h, tree, atlas, ydata, ylo, yhi, y) : vx;
+    });
 }
 
 /// Smooth reconstruction (RenderSettings::SmoothCellData) at p for a sample of the data node
 /// `data` (box lo, hi): trilinear in the dual cell of the node's level around p; a corner that is
 /// a cell of the node's grid (covered by finer grids or not) takes that cell's value, any other
 /// corner SmoothCornerKdTree's. Linear-exact across level boundaries where every grid's cells,
-/// covered ones included, hold the field at their centres (docs/design.md, "Smooth cell-centred data").
+/// covered ones included, hold the field at their centres (docs/design.md, "Smooth cell-centred
+/// data").
 float SmoothKdTree(const Hierarchy& h, const EncodedKdTree& tree, const BrickAtlas* atlas,
   const glm::vec3& p, uint32_t data, const glm::vec3& lo, float fallback)
 {
@@ -180,12 +182,14 @@ float SmoothKdTree(const Hierarchy& h, const EncodedKdTree& tree, const BrickAtl
   const int level = static_cast<int>(amrspDataLevel(dn));
   const int32_t g = static_cast<int32_t>(amrspDataBrick(dn));
   const glm::vec3 cellSize = tree.LevelCellSize[level];
-  return DualCellInterpolate(p, cellSize, [&](const glm::vec3& c) {
-    const glm::ivec3 cell = glm::ivec3(c);
-    return GridHasCell(h, g, glm::i64vec3(cell))
-      ? NodeGridCell(h, tree, atlas, data, lo, cell)
-      : SmoothCornerKdTree(h, tree, atlas, (c + 0.5f) * cellSize, level, fallback);
-  });
+  return DualCellInterpolate(p, cellSize,
+    [&](const glm::vec3& c)
+    {
+      const glm::ivec3 cell = glm::ivec3(c);
+      return GridHasCell(h, g, glm::i64vec3(cell))
+        ? NodeGridCell(h, tree, atlas, data, lo, cell)
+        : SmoothCornerKdTree(h, tree, atlas, (c + 0.5f) * cellSize, level, fallback);
+    });
 }
 
 /// The cell-centred value the kD-tree integrator samples at p: point location, then the leaf's
@@ -209,8 +213,8 @@ float SampleCellsKdTree(const Hierarchy& h, const EncodedKdTree& tree, const Bri
 
 } // namespace
 
-double SampleKdTreeAtPoint(const Hierarchy& h, const EncodedKdTree& tree, const glm::vec3& p,
-  glm::vec3& cellSize)
+double SampleKdTreeAtPoint(
+  const Hierarchy& h, const EncodedKdTree& tree, const glm::vec3& p, glm::vec3& cellSize)
 {
   using namespace layout;
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -284,8 +288,8 @@ void SampleRayKdTree(const Hierarchy& h, const EncodedKdTree& tree, const glm::d
   }
 }
 
-Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSettings& s,
-  const BrickAtlas* atlas)
+Image RenderKdTree(
+  const Hierarchy& h, const EncodedKdTree& tree, const RenderSettings& s, const BrickAtlas* atlas)
 {
   using namespace layout;
   RequireValues(h);
@@ -353,154 +357,157 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
     shading.Neighbours = lookup;
   }
 
-  ForEachRow(s.Height, s.Threads, [&](int j) {
-    std::vector<RaySegment> segments;
-    RenderStats rowStats;
-    for (int i = 0; i < s.Width; ++i)
+  ForEachRow(s.Height, s.Threads,
+    [&](int j)
     {
-      glm::dvec3 wo, wd;
-      s.View.Ray(s.Width, s.Height, i + 0.5, j + 0.5, wo, wd);
-      const glm::vec3 o = (glm::vec3(wo) - worldOrigin) / spacing;
-      const glm::vec3 d = glm::vec3(wd) / spacing;
-      segments.clear();
-      float tMax = std::numeric_limits<float>::infinity();
-      glm::dvec3 background = s.Background, hitColour;
-      double hit = 0.0;
-      if (s.Opaque && s.Opaque(wo, wd, hit, hitColour))
+      std::vector<RaySegment> segments;
+      RenderStats rowStats;
+      for (int i = 0; i < s.Width; ++i)
       {
-        tMax = static_cast<float>(hit);
-        background = hitColour;
-      }
-      double clip0, clip1;
-      if (ClipInterval(s, wo, wd, clip0, clip1))
-      {
-        TraverseKdTree(tree, o, d, static_cast<float>(std::max(0.0, clip0)),
-          static_cast<float>(std::min(static_cast<double>(tMax), clip1)), lod, segments);
-      }
-      rowStats.Rays += segments.empty() ? 0 : 1;
-      rowStats.Segments += static_cast<long long>(segments.size());
-      for (const RaySegment& seg : segments)
-      {
-        rowStats.DescentLevels += seg.Descent;
-      }
-      Accumulator<float> acc(s.Blend);
-      IsoSurfaceTracker iso(shading, lookup, isoValues, -wd);
-      glm::dvec3 isoColour(0.0);
-      double isoAlpha = 0.0;
-      for (const RaySegment& seg : segments)
-      {
-        if (seg.Data == 0)
+        glm::dvec3 wo, wd;
+        s.View.Ray(s.Width, s.Height, i + 0.5, j + 0.5, wo, wd);
+        const glm::vec3 o = (glm::vec3(wo) - worldOrigin) / spacing;
+        const glm::vec3 d = glm::vec3(wd) / spacing;
+        segments.clear();
+        float tMax = std::numeric_limits<float>::infinity();
+        glm::dvec3 background = s.Background, hitColour;
+        double hit = 0.0;
+        if (s.Opaque && s.Opaque(wo, wd, hit, hitColour))
         {
-          iso.Break();
-          continue;
+          tMax = static_cast<float>(hit);
+          background = hitColour;
         }
-        if (acc.Done(s.OpacityThreshold))
+        double clip0, clip1;
+        if (ClipInterval(s, wo, wd, clip0, clip1))
         {
-          break;
+          TraverseKdTree(tree, o, d, static_cast<float>(std::max(0.0, clip0)),
+            static_cast<float>(std::min(static_cast<double>(tMax), clip1)), lod, segments);
         }
-        const uvec2 dn = tree.DataNodes.Texels[seg.Data];
-        const int32_t g = static_cast<int32_t>(amrspDataBrick(dn));
-        const glm::vec3 cellSize = tree.LevelCellSize[seg.Level];
-        const float length = seg.T1 - seg.T0;
-        const int n =
-          std::max(1, static_cast<int>(std::ceil(length / stepOfLevel[seg.Level])));
-        const float dt = length / static_cast<float>(n);
-        ++rowStats.DataSegments;
-        if (skip && transparent[seg.Data])
+        rowStats.Rays += segments.empty() ? 0 : 1;
+        rowStats.Segments += static_cast<long long>(segments.size());
+        for (const RaySegment& seg : segments)
         {
-          ++rowStats.SkippedSegments;
-          rowStats.SkippedSamples += n;
-          continue;
+          rowStats.DescentLevels += seg.Descent;
         }
-        // packing path: the node's first cell sits at the data node's atlas offset; cells of
-        // the node are [first, last] (clamped so float error never reaches a neighbour brick)
-        const glm::ivec3 first = glm::ivec3(glm::floor(seg.NodeLo / cellSize));
-        const glm::ivec3 last = glm::ivec3(glm::ceil(seg.NodeHi / cellSize)) - 1;
-        const glm::ivec3 offset = amrspDataOffset(dn);
-        for (int k = 0; k < n; ++k)
+        Accumulator<float> acc(s.Blend);
+        IsoSurfaceTracker iso(shading, lookup, isoValues, -wd);
+        glm::dvec3 isoColour(0.0);
+        double isoAlpha = 0.0;
+        for (const RaySegment& seg : segments)
         {
-          const float t = seg.T0 + (static_cast<float>(k) + 0.5f) * dt;
-          const glm::vec3 p = o + t * d;
-          float v;
-          if (atlas && h.VertexCentred)
+          if (seg.Data == 0)
           {
-            v = AtlasTrilinear(*atlas, glm::vec3(offset) + p / cellSize - glm::vec3(first), offset,
-              offset + last + 1 - first);
-          }
-          else if (atlas)
-          {
-            const glm::ivec3 cell = glm::clamp(glm::ivec3(glm::floor(p / cellSize)), first, last);
-            v = atlas->At(offset + cell - first);
-          }
-          else if (h.VertexCentred)
-          {
-            v = InterpolateVertices(
-              h, g, glm::dvec3(p / cellSize) - glm::dvec3(h.Grids[g].Cells.Lo));
-          }
-          else
-          {
-            v = CellValue(h, g, glm::i64vec3(glm::floor(p / cellSize)));
-          }
-          if (s.SmoothCellData && !h.VertexCentred)
-          {
-            v = SmoothKdTree(h, tree, atlas, p, seg.Data, seg.NodeLo, v);
-          }
-          ++rowStats.Samples;
-          if (s.Blend == BlendMode::IsoSurface)
-          {
-            if (std::isnan(v))
-            {
-              iso.Break();
-            }
-            else
-            {
-              iso.Sample(glm::dvec3(p), v, isoColour, isoAlpha);
-            }
+            iso.Break();
             continue;
           }
-          const std::function<glm::dvec3(const glm::dvec3&)> shade = [&](const glm::dvec3& rgb) {
-            return ShadeSample(shading, lookup, rgb, glm::dvec3(p), v, glm::dvec3(cellSize), -wd);
-          };
-          acc.Add(s.Transfer, v, dt, shaded ? &shade : nullptr);
           if (acc.Done(s.OpacityThreshold))
           {
             break;
           }
+          const uvec2 dn = tree.DataNodes.Texels[seg.Data];
+          const int32_t g = static_cast<int32_t>(amrspDataBrick(dn));
+          const glm::vec3 cellSize = tree.LevelCellSize[seg.Level];
+          const float length = seg.T1 - seg.T0;
+          const int n = std::max(1, static_cast<int>(std::ceil(length / stepOfLevel[seg.Level])));
+          const float dt = length / static_cast<float>(n);
+          ++rowStats.DataSegments;
+          if (skip && transparent[seg.Data])
+          {
+            ++rowStats.SkippedSegments;
+            rowStats.SkippedSamples += n;
+            continue;
+          }
+          // packing path: the node's first cell sits at the data node's atlas offset; cells of
+          // the node are [first, last] (clamped so float error never reaches a neighbour brick)
+          const glm::ivec3 first = glm::ivec3(glm::floor(seg.NodeLo / cellSize));
+          const glm::ivec3 last = glm::ivec3(glm::ceil(seg.NodeHi / cellSize)) - 1;
+          const glm::ivec3 offset = amrspDataOffset(dn);
+          for (int k = 0; k < n; ++k)
+          {
+            const float t = seg.T0 + (static_cast<float>(k) + 0.5f) * dt;
+            const glm::vec3 p = o + t * d;
+            float v;
+            if (atlas && h.VertexCentred)
+            {
+              v = AtlasTrilinear(*atlas, glm::vec3(offset) + p / cellSize - glm::vec3(first),
+                offset, offset + last + 1 - first);
+            }
+            else if (atlas)
+            {
+              const glm::ivec3 cell = glm::clamp(glm::ivec3(glm::floor(p / cellSize)), first, last);
+              v = atlas->At(offset + cell - first);
+            }
+            else if (h.VertexCentred)
+            {
+              v = InterpolateVertices(
+                h, g, glm::dvec3(p / cellSize) - glm::dvec3(h.Grids[g].Cells.Lo));
+            }
+            else
+            {
+              v = CellValue(h, g, glm::i64vec3(glm::floor(p / cellSize)));
+            }
+            if (s.SmoothCellData && !h.VertexCentred)
+            {
+              v = SmoothKdTree(h, tree, atlas, p, seg.Data, seg.NodeLo, v);
+            }
+            ++rowStats.Samples;
+            if (s.Blend == BlendMode::IsoSurface)
+            {
+              if (std::isnan(v))
+              {
+                iso.Break();
+              }
+              else
+              {
+                iso.Sample(glm::dvec3(p), v, isoColour, isoAlpha);
+              }
+              continue;
+            }
+            const std::function<glm::dvec3(const glm::dvec3&)> shade = [&](const glm::dvec3& rgb) {
+              return ShadeSample(shading, lookup, rgb, glm::dvec3(p), v, glm::dvec3(cellSize), -wd);
+            };
+            acc.Add(s.Transfer, v, dt, shaded ? &shade : nullptr);
+            if (acc.Done(s.OpacityThreshold))
+            {
+              break;
+            }
+          }
         }
+        rowStats.TerminatedRays += acc.Done(s.OpacityThreshold) ? 1 : 0;
+        if (s.Blend == BlendMode::IsoSurface)
+        {
+          acc.Color = glm::vec3(isoColour);
+          acc.Alpha = static_cast<float>(isoAlpha);
+        }
+        img.Pixels[static_cast<std::size_t>(j) * s.Width + i] = acc.Pixel(s.Transfer, background);
       }
-      rowStats.TerminatedRays += acc.Done(s.OpacityThreshold) ? 1 : 0;
-      if (s.Blend == BlendMode::IsoSurface)
-      {
-        acc.Color = glm::vec3(isoColour);
-        acc.Alpha = static_cast<float>(isoAlpha);
-      }
-      img.Pixels[static_cast<std::size_t>(j) * s.Width + i] = acc.Pixel(s.Transfer, background);
-    }
-    sink.Add(rowStats);
-  });
+      sink.Add(rowStats);
+    });
   return img;
 }
 
-float SampleKdTreePoint(const Hierarchy& h, const EncodedKdTree& tree, const glm::vec3& p,
-  bool smooth)
+float SampleKdTreePoint(
+  const Hierarchy& h, const EncodedKdTree& tree, const glm::vec3& p, bool smooth)
 {
   glm::vec3 ignored;
   return SampleCellsKdTree(h, tree, nullptr, p, smooth, ignored);
 }
 
-PointLookup KdTreePointLookup(const Hierarchy& h, const EncodedKdTree& tree, bool smooth,
-  const BrickAtlas* atlas)
+PointLookup KdTreePointLookup(
+  const Hierarchy& h, const EncodedKdTree& tree, bool smooth, const BrickAtlas* atlas)
 {
   if (!smooth || h.VertexCentred)
   {
-    return [&h, &tree](const glm::dvec3& q, glm::dvec3& cellSize) {
+    return [&h, &tree](const glm::dvec3& q, glm::dvec3& cellSize)
+    {
       glm::vec3 size(1.0f);
       const double v = SampleKdTreeAtPoint(h, tree, glm::vec3(q), size);
       cellSize = glm::dvec3(size);
       return v;
     };
   }
-  return [&h, &tree, atlas](const glm::dvec3& q, glm::dvec3& cellSize) {
+  return [&h, &tree, atlas](const glm::dvec3& q, glm::dvec3& cellSize)
+  {
     glm::vec3 size(1.0f);
     const double v = SampleCellsKdTree(h, tree, atlas, glm::vec3(q), true, size);
     cellSize = glm::dvec3(size);

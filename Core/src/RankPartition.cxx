@@ -33,8 +33,8 @@ std::vector<double> SlabWeights(const Hierarchy& h, const Box& box, int axis)
     const int64_t last = FloorDiv(clipped.Hi[axis] - 1, r);
     for (int64_t s = first; s <= last; ++s)
     {
-      const int64_t cells = std::min(clipped.Hi[axis], (s + 1) * r) -
-        std::max(clipped.Lo[axis], s * r);
+      const int64_t cells =
+        std::min(clipped.Hi[axis], (s + 1) * r) - std::max(clipped.Lo[axis], s * r);
       weights[static_cast<std::size_t>(s - box.Lo[axis])] += cross * static_cast<double>(cells);
     }
   }

@@ -67,7 +67,8 @@ LevelTable ComputeLevelTable(const Hierarchy& h, const KdTree& tree)
   t.RootFitsShaderIntegers = true;
   for (int a = 0; a < 3; ++a)
   {
-    t.RootFitsShaderIntegers = t.RootFitsShaderIntegers && root.Lo[a] >= -limit && root.Hi[a] <= limit;
+    t.RootFitsShaderIntegers =
+      t.RootFitsShaderIntegers && root.Lo[a] >= -limit && root.Hi[a] <= limit;
   }
   if (t.RootFitsShaderIntegers)
   {
@@ -88,10 +89,8 @@ LevelTable ComputeLevelTable(const Hierarchy& h, const KdTree& tree)
   }
   t.LevelToFinestLog2 = PowerOfTwoExponents(t.LevelToFinest);
   t.UniformRefinementLog2 = UniformRefinementExponent(t.LevelToFinestLog2);
-  const glm::dvec3 lo =
-    h.Origin + glm::dvec3(glm::vec3(RegionLoIndex(h, tree, root))) * h.Spacing0;
-  const glm::dvec3 hi =
-    h.Origin + glm::dvec3(glm::vec3(RegionHiIndex(h, tree, root))) * h.Spacing0;
+  const glm::dvec3 lo = h.Origin + glm::dvec3(glm::vec3(RegionLoIndex(h, tree, root))) * h.Spacing0;
+  const glm::dvec3 hi = h.Origin + glm::dvec3(glm::vec3(RegionHiIndex(h, tree, root))) * h.Spacing0;
   for (int a = 0; a < 3; ++a)
   {
     t.Bounds[2 * a] = lo[a];
@@ -174,8 +173,8 @@ RayCastingData PrepareRayCasting(Hierarchy h, int packLimit)
   }
   const long long treeBytes =
     static_cast<long long>(KdTreeTextureBytes(enc.Tree, out.BindlessDataNodeTexels));
-  out.BindlessBytes = treeBytes +
-    static_cast<long long>(SeparateBrickBytes(h) + HandleTextureBytes(h.Grids.size()));
+  out.BindlessBytes =
+    treeBytes + static_cast<long long>(SeparateBrickBytes(h) + HandleTextureBytes(h.Grids.size()));
   out.PackedBytes = out.PackingError.empty()
     ? treeBytes + out.Layout.TotalTexels * static_cast<long long>(AtlasTexelBytes)
     : 0;

@@ -36,7 +36,8 @@ namespace integration
 template <class Row>
 void ForEachRow(int height, int threads, const Row& row)
 {
-  ParallelForInterleaved(height, [&row](int64_t j) { row(static_cast<int>(j)); }, threads);
+  ParallelForInterleaved(
+    height, [&row](int64_t j) { row(static_cast<int>(j)); }, threads);
 }
 
 /// Front-to-back accumulation of one ray, in the precision `T` of the integrator.
@@ -93,8 +94,8 @@ struct Accumulator
     {
       return;
     }
-    const T a = T(1) -
-      std::pow(T(1) - std::min(opacity, T(1)), static_cast<T>(dt / tf.UnitDistance));
+    const T a =
+      T(1) - std::pow(T(1) - std::min(opacity, T(1)), static_cast<T>(dt / tf.UnitDistance));
     const glm::tvec3<T, glm::defaultp> c(
       shade ? (*shade)(tf.EvaluateColor(scalar)) : tf.EvaluateColor(scalar));
     Color += (T(1) - Alpha) * a * c;
@@ -202,8 +203,8 @@ inline std::vector<double> SortedIsoValues(const RenderSettings& s)
   if (s.Blend == BlendMode::IsoSurface &&
     (s.IsoValues.empty() || s.IsoValues.size() > static_cast<std::size_t>(MaxIsoValues)))
   {
-    throw std::invalid_argument("iso-surface blending needs 1 to " +
-      std::to_string(MaxIsoValues) + " iso-values");
+    throw std::invalid_argument(
+      "iso-surface blending needs 1 to " + std::to_string(MaxIsoValues) + " iso-values");
   }
   if (s.Light.Shadows && !(s.Light.ShadowStep > 0.0))
   {

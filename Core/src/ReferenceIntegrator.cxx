@@ -41,16 +41,18 @@ double SmoothCornerReference(const Hierarchy& h, const FinestCellLocator& locato
     return vx;
   }
   const glm::dvec3 cellSize = h.CellSize(m);
-  return DualCellInterpolate(x, cellSize, [&](const glm::dvec3& c) {
-    const glm::i64vec3 cell = glm::i64vec3(c);
-    if (GridHasCell(h, g, cell))
+  return DualCellInterpolate(x, cellSize,
+    [&](const glm::dvec3& c)
     {
-      return static_cast<double>(CellValue(h, g, cell));
-    }
-    glm::i64vec3 ycell;
-    const int32_t yg = locator.Find((c + 0.5) * cellSize, ycell);
-    return yg >= 0 ? static_cast<double>(CellValue(h, yg, ycell)) : vx;
-  });
+      const glm::i64vec3 cell = glm::i64vec3(c);
+      if (GridHasCell(h, g, cell))
+      {
+        return static_cast<double>(CellValue(h, g, cell));
+      }
+      glm::i64vec3 ycell;
+      const int32_t yg = locator.Find((c + 0.5) * cellSize, ycell);
+      return yg >= 0 ? static_cast<double>(CellValue(h, yg, ycell)) : vx;
+    });
 }
 
 /// The reference's smooth reconstruction at p (level-0 index units) for a sample of grid g (the
@@ -60,12 +62,14 @@ double SmoothReference(const Hierarchy& h, const FinestCellLocator& locator, con
 {
   const int level = h.Grids[g].Level;
   const glm::dvec3 cellSize = h.CellSize(level);
-  return DualCellInterpolate(p, cellSize, [&](const glm::dvec3& c) {
-    const glm::i64vec3 cell = glm::i64vec3(c);
-    return GridHasCell(h, g, cell)
-      ? static_cast<double>(CellValue(h, g, cell))
-      : SmoothCornerReference(h, locator, (c + 0.5) * cellSize, level, fallback);
-  });
+  return DualCellInterpolate(p, cellSize,
+    [&](const glm::dvec3& c)
+    {
+      const glm::i64vec3 cell = glm::i64vec3(c);
+      return GridHasCell(h, g, cell)
+        ? static_cast<double>(CellValue(h, g, cell))
+        : SmoothCornerReference(h, locator, (c + 0.5) * cellSize, level, fallback);
+    });
 }
 } // namespace
 
@@ -74,7 +78,8 @@ PointLookup ReferencePointLookup(const Hierarchy& h, const FinestCellLocator& lo
   const Box root = h.RootCells();
   const glm::dvec3 lo(root.Lo), hi(root.Hi);
   const bool smoothCells = smooth && !h.VertexCentred;
-  return [&h, &locator, lo, hi, smoothCells](const glm::dvec3& q, glm::dvec3& cellSize) {
+  return [&h, &locator, lo, hi, smoothCells](const glm::dvec3& q, glm::dvec3& cellSize)
+  {
     glm::i64vec3 cell;
     const int32_t g = OutsideBox(q, lo, hi) ? -1 : locator.Find(q, cell);
     if (g < 0)
@@ -126,109 +131,109 @@ Image RenderReference(const Hierarchy& h, const RenderSettings& s)
     *s.Stats = RenderStats();
   }
 
-  ForEachRow(s.Height, s.Threads, [&](int j) {
-    RenderStats rowStats;
-    for (int i = 0; i < s.Width; ++i)
+  ForEachRow(s.Height, s.Threads,
+    [&](int j)
     {
-      glm::dvec3 wo, wd;
-      s.View.Ray(s.Width, s.Height, i + 0.5, j + 0.5, wo, wd);
-      const glm::dvec3 o = (wo - h.Origin) / h.Spacing0;
-      const glm::dvec3 d = wd / h.Spacing0;
-      double tEnter = -std::numeric_limits<double>::infinity();
-      double tExit = std::numeric_limits<double>::infinity();
-      bool hit = true;
-      for (int a = 0; a < 3 && hit; ++a)
+      RenderStats rowStats;
+      for (int i = 0; i < s.Width; ++i)
       {
-        if (d[a] == 0.0)
+        glm::dvec3 wo, wd;
+        s.View.Ray(s.Width, s.Height, i + 0.5, j + 0.5, wo, wd);
+        const glm::dvec3 o = (wo - h.Origin) / h.Spacing0;
+        const glm::dvec3 d = wd / h.Spacing0;
+        double tEnter = -std::numeric_limits<double>::infinity();
+        double tExit = std::numeric_limits<double>::infinity();
+        bool hit = true;
+        for (int a = 0; a < 3 && hit; ++a)
         {
-          hit = o[a] >= lo[a] && o[a] <= hi[a];
-          continue;
+          if (d[a] == 0.0)
+          {
+            hit = o[a] >= lo[a] && o[a] <= hi[a];
+            continue;
+          }
+          double t0 = (lo[a] - o[a]) / d[a], t1 = (hi[a] - o[a]) / d[a];
+          if (t0 > t1)
+          {
+            std::swap(t0, t1);
+          }
+          tEnter = std::max(tEnter, t0);
+          tExit = std::min(tExit, t1);
         }
-        double t0 = (lo[a] - o[a]) / d[a], t1 = (hi[a] - o[a]) / d[a];
-        if (t0 > t1)
+        double clip0, clip1;
+        hit = hit && ClipInterval(s, wo, wd, clip0, clip1);
+        tEnter = std::max(tEnter, clip0);
+        tExit = std::min(tExit, clip1);
+        Accumulator<double> acc(s.Blend);
+        IsoSurfaceTracker iso(shading, lookup, isoValues, -wd);
+        glm::dvec3 background = s.Background, opaqueColour;
+        double opaqueDistance = 0.0;
+        if (s.Opaque && s.Opaque(wo, wd, opaqueDistance, opaqueColour))
         {
-          std::swap(t0, t1);
+          tExit = std::min(tExit, opaqueDistance);
+          background = opaqueColour;
         }
-        tEnter = std::max(tEnter, t0);
-        tExit = std::min(tExit, t1);
-      }
-      double clip0, clip1;
-      hit = hit && ClipInterval(s, wo, wd, clip0, clip1);
-      tEnter = std::max(tEnter, clip0);
-      tExit = std::min(tExit, clip1);
-      Accumulator<double> acc(s.Blend);
-      IsoSurfaceTracker iso(shading, lookup, isoValues, -wd);
-      glm::dvec3 background = s.Background, opaqueColour;
-      double opaqueDistance = 0.0;
-      if (s.Opaque && s.Opaque(wo, wd, opaqueDistance, opaqueColour))
-      {
-        tExit = std::min(tExit, opaqueDistance);
-        background = opaqueColour;
-      }
-      double t = std::max(0.0, tEnter);
-      rowStats.Rays += hit && t < tExit ? 1 : 0;
-      while (hit && t < tExit)
-      {
-        if (acc.Done(s.OpacityThreshold))
+        double t = std::max(0.0, tEnter);
+        rowStats.Rays += hit && t < tExit ? 1 : 0;
+        while (hit && t < tExit)
         {
-          break;
-        }
-        // shrink the step until the level found at its midpoint does not ask for a smaller one
-        double dt = std::min(stepOfLevel[0], tExit - t);
-        int32_t g = -1;
-        glm::i64vec3 cell;
-        for (;;)
-        {
-          g = locator.Find(o + (t + 0.5 * dt) * d, cell);
-          const double wanted = g >= 0 ? stepOfLevel[h.Grids[g].Level] : stepOfLevel[0];
-          if (wanted >= dt * (1.0 - 1e-12))
+          if (acc.Done(s.OpacityThreshold))
           {
             break;
           }
-          dt = wanted;
-        }
-        if (g >= 0)
-        {
-          const double mid = t + 0.5 * dt;
-          const glm::dvec3 ratio(h.CumulativeRatio(h.Grids[g].Level));
-          const glm::dvec3 p = o + mid * d;
-          double v = SampleGrid(h, g, p, ratio);
-          if (s.SmoothCellData && !h.VertexCentred)
+          // shrink the step until the level found at its midpoint does not ask for a smaller one
+          double dt = std::min(stepOfLevel[0], tExit - t);
+          int32_t g = -1;
+          glm::i64vec3 cell;
+          for (;;)
           {
-            v = SmoothReference(h, locator, p, g, v);
-          }
-          ++rowStats.Samples;
-          if (s.Blend == BlendMode::IsoSurface)
-          {
-            if (std::isnan(v))
+            g = locator.Find(o + (t + 0.5 * dt) * d, cell);
+            const double wanted = g >= 0 ? stepOfLevel[h.Grids[g].Level] : stepOfLevel[0];
+            if (wanted >= dt * (1.0 - 1e-12))
             {
-              iso.Break();
+              break;
+            }
+            dt = wanted;
+          }
+          if (g >= 0)
+          {
+            const double mid = t + 0.5 * dt;
+            const glm::dvec3 ratio(h.CumulativeRatio(h.Grids[g].Level));
+            const glm::dvec3 p = o + mid * d;
+            double v = SampleGrid(h, g, p, ratio);
+            if (s.SmoothCellData && !h.VertexCentred)
+            {
+              v = SmoothReference(h, locator, p, g, v);
+            }
+            ++rowStats.Samples;
+            if (s.Blend == BlendMode::IsoSurface)
+            {
+              if (std::isnan(v))
+              {
+                iso.Break();
+              }
+              else
+              {
+                iso.Sample(p, v, acc.Color, acc.Alpha);
+              }
             }
             else
             {
-              iso.Sample(p, v, acc.Color, acc.Alpha);
+              const std::function<glm::dvec3(const glm::dvec3&)> shade = [&](const glm::dvec3& rgb)
+              { return ShadeSample(shading, lookup, rgb, p, v, 1.0 / ratio, -wd); };
+              acc.Add(s.Transfer, v, dt, shaded ? &shade : nullptr);
             }
           }
           else
           {
-            const std::function<glm::dvec3(const glm::dvec3&)> shade =
-              [&](const glm::dvec3& rgb) {
-                return ShadeSample(shading, lookup, rgb, p, v, 1.0 / ratio, -wd);
-              };
-            acc.Add(s.Transfer, v, dt, shaded ? &shade : nullptr);
+            iso.Break();
           }
+          t += dt;
         }
-        else
-        {
-          iso.Break();
-        }
-        t += dt;
+        rowStats.TerminatedRays += acc.Done(s.OpacityThreshold) ? 1 : 0;
+        img.Pixels[static_cast<std::size_t>(j) * s.Width + i] = acc.Pixel(s.Transfer, background);
       }
-      rowStats.TerminatedRays += acc.Done(s.OpacityThreshold) ? 1 : 0;
-      img.Pixels[static_cast<std::size_t>(j) * s.Width + i] = acc.Pixel(s.Transfer, background);
-    }
-    sink.Add(rowStats);
-  });
+      sink.Add(rowStats);
+    });
   return img;
 }
 } // namespace amrsp

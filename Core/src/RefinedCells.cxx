@@ -43,8 +43,8 @@ std::vector<std::vector<Box>> RefinedRegions(const Hierarchy& h)
     // Parents sorted by Lo.x: the candidates for a coarsened child box c are the parents with
     // Lo.x in (c.Lo.x - widest parent, c.Hi.x), found by binary search.
     std::vector<std::size_t> parents = byLevel[static_cast<std::size_t>(l)];
-    std::sort(parents.begin(), parents.end(), [&h](std::size_t a, std::size_t b)
-      { return h.Grids[a].Cells.Lo.x < h.Grids[b].Cells.Lo.x; });
+    std::sort(parents.begin(), parents.end(),
+      [&h](std::size_t a, std::size_t b) { return h.Grids[a].Cells.Lo.x < h.Grids[b].Cells.Lo.x; });
     int64_t widest = 0;
     for (std::size_t p : parents)
     {

@@ -9,8 +9,8 @@
 namespace amrsp
 {
 
-bool ClipInterval(const RenderSettings& s, const glm::dvec3& wo, const glm::dvec3& wd, double& t0,
-  double& t1)
+bool ClipInterval(
+  const RenderSettings& s, const glm::dvec3& wo, const glm::dvec3& wd, double& t0, double& t1)
 {
   t0 = -std::numeric_limits<double>::infinity();
   t1 = std::numeric_limits<double>::infinity();

@@ -17,8 +17,8 @@ glm::i64vec3 UniformDims(const Hierarchy& h, int level)
   return h.ToLevel(h.RootCells(), 0, level).Extent();
 }
 
-UniformGrid ResampleToLevel(const Hierarchy& h, int level, int64_t maxVoxels, int maxAxis,
-  int threads)
+UniformGrid ResampleToLevel(
+  const Hierarchy& h, int level, int64_t maxVoxels, int maxAxis, int threads)
 {
   if (!h.HasValues())
   {
@@ -45,7 +45,8 @@ UniformGrid ResampleToLevel(const Hierarchy& h, int level, int64_t maxVoxels, in
   // each slice k of voxels is written by one worker
   ParallelForInterleaved(
     u.Dims.z,
-    [&](int64_t slice) {
+    [&](int64_t slice)
+    {
       const int k = static_cast<int>(slice);
       for (int j = 0; j < u.Dims.y; ++j)
       {

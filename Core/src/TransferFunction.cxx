@@ -25,8 +25,8 @@ Value Interpolate(const std::vector<Point>& points, double s, Value fallback, Ge
   {
     return get(points.back());
   }
-  const auto upper = std::upper_bound(points.begin(), points.end(), s,
-    [](double v, const Point& p) { return v < p.X; });
+  const auto upper = std::upper_bound(
+    points.begin(), points.end(), s, [](double v, const Point& p) { return v < p.X; });
   const Point& b = *upper;
   const Point& a = *(upper - 1);
   const double w = b.X > a.X ? (s - a.X) / (b.X - a.X) : 0.0;
@@ -36,8 +36,7 @@ Value Interpolate(const std::vector<Point>& points, double s, Value fallback, Ge
 
 glm::dvec3 TransferFunction::EvaluateColor(double s) const
 {
-  return Interpolate(
-    Color, s, glm::dvec3(1.0), [](const ColorPoint& p) { return p.Rgb; });
+  return Interpolate(Color, s, glm::dvec3(1.0), [](const ColorPoint& p) { return p.Rgb; });
 }
 
 double TransferFunction::EvaluateOpacity(double s) const
@@ -50,8 +49,8 @@ std::vector<std::string> TransferFunction::PresetNames()
   return { "default", "grey", "hot", "grey-opaque", "sparse" };
 }
 
-TransferFunction TransferFunction::Preset(const std::string& name, double lo, double hi,
-  double unitDistance)
+TransferFunction TransferFunction::Preset(
+  const std::string& name, double lo, double hi, double unitDistance)
 {
   if (!(hi > lo))
   {

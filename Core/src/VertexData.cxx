@@ -91,7 +91,8 @@ float InterpolateVertices(const Hierarchy& h, int32_t g, glm::dvec3 u)
   {
     const glm::i64vec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
     const glm::i64vec3 at = glm::min(base + o, dims - glm::i64vec3(1));
-    const double weight = (o.x ? w.x : 1.0 - w.x) * (o.y ? w.y : 1.0 - w.y) * (o.z ? w.z : 1.0 - w.z);
+    const double weight =
+      (o.x ? w.x : 1.0 - w.x) * (o.y ? w.y : 1.0 - w.y) * (o.z ? w.z : 1.0 - w.z);
     if (weight != 0.0)
     {
       sum += weight * static_cast<double>(v[VertexIndex(dims, at)]);
@@ -130,8 +131,8 @@ void ConvertCellsToVertices(Hierarchy& h)
           {
             const glm::i64vec3 cell =
               box.Lo + glm::i64vec3(i - (c & 1), j - ((c >> 1) & 1), k - ((c >> 2) & 1));
-            const int32_t holder = CellInBox(box, cell) ? static_cast<int32_t>(g)
-                                                        : Holder(h, touching, cell);
+            const int32_t holder =
+              CellInBox(box, cell) ? static_cast<int32_t>(g) : Holder(h, touching, cell);
             if (holder < 0)
             {
               continue;
@@ -182,8 +183,8 @@ void MakeVertexDataContinuous(Hierarchy& h)
         for (int64_t i = 0; i < dims.x; ++i)
         {
           const glm::i64vec3 local(i, j, k);
-          const bool boundary = i == 0 || j == 0 || k == 0 || i == dims.x - 1 ||
-            j == dims.y - 1 || k == dims.z - 1;
+          const bool boundary =
+            i == 0 || j == 0 || k == 0 || i == dims.x - 1 || j == dims.y - 1 || k == dims.z - 1;
           if (!boundary)
           {
             continue;
@@ -209,7 +210,8 @@ void MakeVertexDataContinuous(Hierarchy& h)
           {
             const glm::dvec3 r(h.CumulativeRatio(cl));
             const glm::dvec3 u = p * r; // vertex coordinates of level cl
-            const auto contains = [&](int32_t o) {
+            const auto contains = [&](int32_t o)
+            {
               const Box& b = h.Grids[o].Cells;
               return u.x >= b.Lo.x && u.y >= b.Lo.y && u.z >= b.Lo.z && u.x <= b.Hi.x &&
                 u.y <= b.Hi.y && u.z <= b.Hi.z;

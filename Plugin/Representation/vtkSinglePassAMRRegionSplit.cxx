@@ -33,7 +33,8 @@ namespace
 long long MetadataDigest(vtkOverlappingAMR* amr)
 {
   uint64_t h = 1469598103934665603ull;
-  auto mix = [&h](const void* data, std::size_t bytes) {
+  auto mix = [&h](const void* data, std::size_t bytes)
+  {
     const unsigned char* p = static_cast<const unsigned char*>(data);
     for (std::size_t i = 0; i < bytes; ++i)
     {
@@ -238,7 +239,8 @@ vtkSmartPointer<vtkOverlappingAMR> vtkSinglePassAMRRegionSplit::SplitByRegion(
     firstBlock[l + 1] = firstBlock[l] + static_cast<int>(local->GetNumberOfDataSets(l));
   }
   const int total = firstBlock[levels];
-  std::vector<int> loaded(static_cast<std::size_t>(total)), supplier(static_cast<std::size_t>(total));
+  std::vector<int> loaded(static_cast<std::size_t>(total)),
+    supplier(static_cast<std::size_t>(total));
   for (unsigned int l = 0; l < levels; ++l)
   {
     for (unsigned int i = 0; i < local->GetNumberOfDataSets(l); ++i)
@@ -275,7 +277,8 @@ vtkSmartPointer<vtkOverlappingAMR> vtkSinglePassAMRRegionSplit::SplitByRegion(
           continue;
         }
         vtkNew<vtkCharArray> bytes;
-        vtkCommunicator::MarshalDataObject(ExtractPiece(local->GetDataSet(l, i), cells, piece), bytes);
+        vtkCommunicator::MarshalDataObject(
+          ExtractPiece(local->GetDataSet(l, i), cells, piece), bytes);
         PieceHeader header{ static_cast<int32_t>(l), static_cast<int32_t>(i),
           { piece.Lo.x, piece.Lo.y, piece.Lo.z }, { piece.Hi.x, piece.Hi.y, piece.Hi.z },
           static_cast<int64_t>(bytes->GetNumberOfValues()) };
@@ -314,10 +317,12 @@ vtkSmartPointer<vtkOverlappingAMR> vtkSinglePassAMRRegionSplit::SplitByRegion(
   {
     order[k] = k;
   }
-  std::sort(order.begin(), order.end(), [&received](std::size_t a, std::size_t b) {
-    return std::tie(received[a].Level, received[a].Block) <
-      std::tie(received[b].Level, received[b].Block);
-  });
+  std::sort(order.begin(), order.end(),
+    [&received](std::size_t a, std::size_t b)
+    {
+      return std::tie(received[a].Level, received[a].Block) <
+        std::tie(received[b].Level, received[b].Block);
+    });
   std::vector<int> blocksPerLevel(levels, 0);
   for (const PieceHeader& header : received)
   {

@@ -119,7 +119,8 @@ int vtkSinglePassAMRVolumeRepresentation::RequestData(
   {
     // one process holds all of the data: none at all is an empty or failed read (with several
     // ranks an empty local piece is normal)
-    this->InputProblem = "the AMR dataset holds no blocks (an empty or failed read): nothing to draw";
+    this->InputProblem =
+      "the AMR dataset holds no blocks (an empty or failed read): nothing to draw";
   }
   if (this->InputProblem != this->ReportedInputProblem)
   {
@@ -169,8 +170,7 @@ int vtkSinglePassAMRVolumeRepresentation::RequestData(
         "AMR single-pass: rank %d renders region [%g, %g] x [%g, %g] x [%g, %g]: %u blocks, "
         "%lld cells",
         controller->GetLocalProcessId(), regionBounds[0], regionBounds[1], regionBounds[2],
-        regionBounds[3], regionBounds[4], regionBounds[5], region->GetTotalNumberOfBlocks(),
-        cells);
+        regionBounds[3], regionBounds[4], regionBounds[5], region->GetTotalNumberOfBlocks(), cells);
       cache = region;
       haveRegion = true;
       // a region in a gap between level-0 grids holds nothing: draw nothing there (the mapper
@@ -179,8 +179,8 @@ int vtkSinglePassAMRVolumeRepresentation::RequestData(
     }
     else if (controller->GetLocalProcessId() == 0)
     {
-      vtkErrorMacro("cannot split the AMR hierarchy into per-rank regions (" << error
-                                                                            << "): rank 0 gathers every block and renders alone");
+      vtkErrorMacro("cannot split the AMR hierarchy into per-rank regions ("
+        << error << "): rank 0 gathers every block and renders alone");
     }
   }
   if (controller && controller->GetNumberOfProcesses() > 1 && !haveRegion)
@@ -200,8 +200,8 @@ int vtkSinglePassAMRVolumeRepresentation::RequestData(
 
   // A rank of a region split integrates its rays inside its region only: the ghost cells around
   // it serve smooth interpolation and gradients at the faces, and the next rank draws them.
-  for (vtkVolumeMapper* mapper :
-    { static_cast<vtkVolumeMapper*>(this->VolumeMapper), static_cast<vtkVolumeMapper*>(this->MultiPassMapper) })
+  for (vtkVolumeMapper* mapper : { static_cast<vtkVolumeMapper*>(this->VolumeMapper),
+         static_cast<vtkVolumeMapper*>(this->MultiPassMapper) })
   {
     mapper->SetCropping(haveRegion ? 1 : 0);
     if (haveRegion)
@@ -304,14 +304,15 @@ void vtkSinglePassAMRVolumeRepresentation::ReportParallelRenderingOff(vtkPVRende
   // communicator (MPI_Comm_dup, collective) while the other ranks wait for commands: ParaView
   // 5.11 deadlocks there whatever is shown. Say why before that happens.
   vtkProcessModule* pm = vtkProcessModule::GetProcessModule();
-  if (this->ReportedParallelRenderingOff || !view || view->GetRemoteRenderingAvailable() ||
-    !pm || vtkProcessModule::GetProcessType() != vtkProcessModule::PROCESS_BATCH ||
+  if (this->ReportedParallelRenderingOff || !view || view->GetRemoteRenderingAvailable() || !pm ||
+    vtkProcessModule::GetProcessType() != vtkProcessModule::PROCESS_BATCH ||
     pm->GetNumberOfLocalPartitions() < 2 || pm->GetPartitionId() != 0)
   {
     return;
   }
   this->ReportedParallelRenderingOff = true;
-  vtkErrorMacro("parallel rendering is off on these " << pm->GetNumberOfLocalPartitions()
+  vtkErrorMacro("parallel rendering is off on these "
+    << pm->GetNumberOfLocalPartitions()
     << " pvbatch ranks (a rank failed ParaView's X display/OpenGL check; pvbatch "
        "--disable-xdisplay-test skips it): ParaView 5.11 then deadlocks in IceT "
        "(MPI_Comm_dup) at the first render");
@@ -398,8 +399,8 @@ void vtkSinglePassAMRVolumeRepresentation::SetMethod(int method)
 {
   if (method < METHOD_AUTO || method > METHOD_BINDLESS)
   {
-    vtkErrorMacro("unknown method " << method << " (0 auto, 1 packing, 2 multi-pass, 3 bindless); keeping "
-                                    << this->Method);
+    vtkErrorMacro("unknown method "
+      << method << " (0 auto, 1 packing, 2 multi-pass, 3 bindless); keeping " << this->Method);
     return;
   }
   if (method != this->Method)

@@ -146,8 +146,8 @@ TEST(VertexData, ContinuousAcrossGridAndLevelInterfaces)
           // a field sampled exactly at each level's vertices, plus a level-dependent offset as
           // real simulations have (different resolution, different values)
           const glm::dvec3 p = glm::dvec3(unfixed.Grids[g].Cells.Lo + glm::i64vec3(i, j, k)) * cs;
-          v[static_cast<std::size_t>((k * e.y + j) * e.x + i)] = static_cast<float>(
-            std::sin(0.7 * p.x) + 0.1 * unfixed.Grids[g].Level);
+          v[static_cast<std::size_t>((k * e.y + j) * e.x + i)] =
+            static_cast<float>(std::sin(0.7 * p.x) + 0.1 * unfixed.Grids[g].Level);
         }
     unfixed.Values[g] = std::move(v);
   }

@@ -59,9 +59,10 @@ std::vector<glm::vec2> BruteForceRanges(const Hierarchy& h, const EncodedKdTree&
           {
             // a cell touches when it overlaps the region; a vertex when it lies on its closure
             touches = touches &&
-              (h.VertexCentred ? (c[a] * r[a] >= n.Region.Lo[a] - r[a] + 1 &&
-                                   c[a] * r[a] <= n.Region.Hi[a] + r[a] - 1)
-                               : (c[a] * r[a] < n.Region.Hi[a] && (c[a] + 1) * r[a] > n.Region.Lo[a]));
+              (h.VertexCentred
+                  ? (c[a] * r[a] >= n.Region.Lo[a] - r[a] + 1 &&
+                      c[a] * r[a] <= n.Region.Hi[a] + r[a] - 1)
+                  : (c[a] * r[a] < n.Region.Hi[a] && (c[a] + 1) * r[a] > n.Region.Lo[a]));
           }
           if (touches)
           {
@@ -125,10 +126,10 @@ TEST(EmptySpace, TransparentRangeIsExactForPiecewiseLinearOpacity)
 {
   TransferFunction tf = TransferFunction::Preset("sparse", 0.0, 1.0, 1.0);
   EXPECT_TRUE(TransparentRange(tf, 0.0, 0.6));
-  EXPECT_TRUE(TransparentRange(tf, -5.0, 0.3));  // clamped below the first point
+  EXPECT_TRUE(TransparentRange(tf, -5.0, 0.3)); // clamped below the first point
   EXPECT_FALSE(TransparentRange(tf, 0.0, 0.61));
-  EXPECT_FALSE(TransparentRange(tf, 2.0, 3.0));  // clamped above: opacity 0.9
-  EXPECT_TRUE(TransparentRange(tf, 1.0, 0.0));   // empty range
+  EXPECT_FALSE(TransparentRange(tf, 2.0, 3.0)); // clamped above: opacity 0.9
+  EXPECT_TRUE(TransparentRange(tf, 1.0, 0.0));  // empty range
   // a bump strictly inside the interval, zero at both ends
   tf.Opacity = { { 0.0, 0.0 }, { 0.4, 0.0 }, { 0.5, 0.2 }, { 0.6, 0.0 }, { 1.0, 0.0 } };
   EXPECT_FALSE(TransparentRange(tf, 0.3, 0.7));
@@ -175,7 +176,8 @@ TEST(EmptySpace, TableTestCoversEveryFilteredLookup)
     const int runs = 1 + static_cast<int>(rng() % 4);
     for (int r = 0; r < runs; ++r)
     {
-      const int a = static_cast<int>(rng() % n), b = std::min(n - 1, a + static_cast<int>(rng() % 20));
+      const int a = static_cast<int>(rng() % n),
+                b = std::min(n - 1, a + static_cast<int>(rng() % 20));
       for (int i = a; i <= b; ++i)
       {
         opacity[i] = 0.5f;
@@ -286,7 +288,8 @@ TEST(EarlyRayTermination, BoundedByTheThresholdInBothIntegrators)
   s.Threads = 2;
   for (bool reference : { false, true })
   {
-    auto render = [&](double threshold, RenderStats& stats) {
+    auto render = [&](double threshold, RenderStats& stats)
+    {
       s.OpacityThreshold = threshold;
       s.Stats = &stats;
       return reference ? RenderReference(h, s) : RenderKdTree(h, enc, s);

@@ -34,8 +34,8 @@ inline void FillValues(Hierarchy& h)
         for (int64_t i = 0; i < e.x; ++i)
         {
           const glm::dvec3 p = (glm::dvec3(g.Cells.Lo + glm::i64vec3(i, j, k)) + 0.5) * cs;
-          v[static_cast<std::size_t>((k * e.y + j) * e.x + i)] = static_cast<float>(
-            0.5 + 0.5 * std::sin(0.7 * p.x) * std::cos(0.5 * p.y) + 0.05 * p.z);
+          v[static_cast<std::size_t>((k * e.y + j) * e.x + i)] =
+            static_cast<float>(0.5 + 0.5 * std::sin(0.7 * p.x) * std::cos(0.5 * p.y) + 0.05 * p.z);
         }
     h.Values.push_back(std::move(v));
   }
@@ -107,9 +107,8 @@ inline Hierarchy PaperExample()
 /// coverage, or skip a level. Same-level grids never overlap.
 inline Hierarchy RandomHierarchy(std::mt19937_64& rng)
 { // structure only: the tree and traversal tests compare grids and cells, not values
-  auto uni = [&](int64_t lo, int64_t hi) {
-    return lo + static_cast<int64_t>(rng() % static_cast<uint64_t>(hi - lo + 1));
-  };
+  auto uni = [&](int64_t lo, int64_t hi)
+  { return lo + static_cast<int64_t>(rng() % static_cast<uint64_t>(hi - lo + 1)); };
   Hierarchy h;
   const int levels = static_cast<int>(uni(1, 5));
   h.RefinementRatio.assign(1, glm::ivec3(1));
@@ -142,7 +141,8 @@ inline Hierarchy RandomHierarchy(std::mt19937_64& rng)
       if (l > 0 && !previous.empty() && uni(0, 4) != 0)
       {
         // mostly near a grid of the previous level, possibly straddling its boundary
-        const Box& p = previous[static_cast<std::size_t>(uni(0, static_cast<int64_t>(previous.size()) - 1))];
+        const Box& p =
+          previous[static_cast<std::size_t>(uni(0, static_cast<int64_t>(previous.size()) - 1))];
         const Box pr = p.Refined(glm::i64vec3(h.RefinementRatio[l]));
         for (int c = 0; c < 3; ++c)
         {

@@ -38,7 +38,8 @@ TEST(Layout, FieldsRoundTrip)
     ASSERT_EQ(amrspNodeSplit(t), split);
     ASSERT_EQ(amrspNodeData(t), data);
     const uint brick = static_cast<uint>(rng() % MaxBricks);
-    const glm::uvec3 o(rng() % (MaxOffsetX + 1), rng() % (MaxOffsetY + 1), rng() % (MaxOffsetZ + 1));
+    const glm::uvec3 o(
+      rng() % (MaxOffsetX + 1), rng() % (MaxOffsetY + 1), rng() % (MaxOffsetZ + 1));
     const uvec2 d = amrspPackDataNode(level, brick, o.x, o.y, o.z);
     ASSERT_EQ(amrspDataLevel(d), level);
     ASSERT_EQ(amrspDataBrick(d), brick);
@@ -193,8 +194,7 @@ TEST(Traversal, AgreesWithReferenceLookupOnEverySample)
         }
         // A point exactly on a cell face (rays placed on cell corners) belongs to both sides;
         // the float ray of the traversal and the double point of the check may round apart.
-        const glm::dvec3 c =
-          ts.Position * glm::dvec3(h.CumulativeRatio(h.Grids[ts.Grid].Level));
+        const glm::dvec3 c = ts.Position * glm::dvec3(h.CumulativeRatio(h.Grids[ts.Grid].Level));
         const glm::dvec3 nearestFace = glm::abs(c - glm::round(c));
         ASSERT_LT(std::min(nearestFace.x, std::min(nearestFace.y, nearestFace.z)), 1e-4)
           << "trial " << trial << " ray " << r << ": tree grid " << ts.Grid << ", reference grid "
@@ -234,7 +234,8 @@ TEST(Traversal, SegmentsAreOrderedContiguousAndInsideTheirNodes)
       }
       const KdNode& n = tree.Nodes[segs[i].Node];
       ASSERT_TRUE(n.IsLeaf());
-      const glm::dvec3 mid = glm::dvec3(oi) + 0.5 * (double(segs[i].T0) + segs[i].T1) * glm::dvec3(di);
+      const glm::dvec3 mid =
+        glm::dvec3(oi) + 0.5 * (double(segs[i].T0) + segs[i].T1) * glm::dvec3(di);
       const glm::dvec3 lo = RegionLoIndex(h, tree, n.Region), hi = RegionHiIndex(h, tree, n.Region);
       for (int a = 0; a < 3; ++a)
       {
@@ -322,7 +323,8 @@ TEST(Encoding, LimitsGiveClearErrors)
 {
   // split position beyond 11 bits: a 5000-cell root grid with a level-0 neighbour at 3000
   Hierarchy wide;
-  wide.Grids = { Grid{ 0, MakeBox(0, 0, 0, 3000, 1, 1) }, Grid{ 0, MakeBox(3000, 0, 0, 5000, 1, 1) } };
+  wide.Grids = { Grid{ 0, MakeBox(0, 0, 0, 3000, 1, 1) },
+    Grid{ 0, MakeBox(3000, 0, 0, 5000, 1, 1) } };
   const KdTree t = BuildKdTree(wide);
   try
   {
@@ -443,4 +445,3 @@ TEST(Render, LevelOfDetailCoarsensFarAway)
 }
 
 } // namespace
-

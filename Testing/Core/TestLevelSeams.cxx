@@ -141,7 +141,8 @@ Measured Measure(const FieldCase& f)
   m.KdNearest = GradientErrors(h, KdTreePointLookup(h, tree, false), f.Exact);
   m.RefSmooth = GradientErrors(h, ReferencePointLookup(h, locator, true), f.Exact);
   m.RefNearest = GradientErrors(h, ReferencePointLookup(h, locator, false), f.Exact);
-  const auto print = [&](const char* what, const Errors& e) {
+  const auto print = [&](const char* what, const Errors& e)
+  {
     std::cout << f.Name << " " << what << ": largest relative gradient error inside a level "
               << e.Away << " (" << e.AwayPoints << " points), within 2 coarse cells of the level "
               << "boundary " << e.Band << " (" << e.BandPoints << " points, " << e.Straddling
@@ -211,7 +212,7 @@ TEST(LevelSeams, QuadraticFieldGradient)
   EXPECT_LT(m.RefSmooth.Away, 1e-5);
   EXPECT_GT(m.KdNearest.Away, 0.1); // measured 0.39
   EXPECT_GT(m.RefNearest.Away, 0.1);
-  EXPECT_LT(m.KdSmooth.Band, 0.1); // measured 0.083 (the earlier corner rule: 0.27; nearest 0.56)
+  EXPECT_LT(m.KdSmooth.Band, 0.1);  // measured 0.083 (the earlier corner rule: 0.27; nearest 0.56)
   EXPECT_LT(m.RefSmooth.Band, 0.1); // the same
   EXPECT_GT(m.KdNearest.Band, 0.3);
 }

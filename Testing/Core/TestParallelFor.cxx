@@ -26,7 +26,8 @@ TEST(ParallelFor, EveryItemOnce)
       for (int64_t n : { 0, 1, 5, 1000 })
       {
         std::vector<std::atomic<int>> seen(static_cast<std::size_t>(n));
-        ParallelFor(n, [&](int64_t i) { ++seen[static_cast<std::size_t>(i)]; }, threads, chunk);
+        ParallelFor(
+          n, [&](int64_t i) { ++seen[static_cast<std::size_t>(i)]; }, threads, chunk);
         for (const std::atomic<int>& s : seen)
         {
           EXPECT_EQ(s.load(), 1) << "threads " << threads << ", chunk " << chunk << ", n " << n;
@@ -45,7 +46,8 @@ TEST(ParallelFor, InterleavedPartition)
   std::mutex lock;
   ParallelForInterleaved(
     n,
-    [&](int64_t i) {
+    [&](int64_t i)
+    {
       owner[static_cast<std::size_t>(i)] = std::this_thread::get_id();
       std::lock_guard<std::mutex> guard(lock);
       order.push_back(i);
@@ -77,10 +79,12 @@ TEST(ParallelFor, SlicesCoverTheRange)
   {
     std::vector<std::pair<int64_t, int64_t>> slices;
     std::mutex lock;
-    ParallelForSlices(100, workers, [&](int64_t begin, int64_t end) {
-      std::lock_guard<std::mutex> guard(lock);
-      slices.emplace_back(begin, end);
-    });
+    ParallelForSlices(100, workers,
+      [&](int64_t begin, int64_t end)
+      {
+        std::lock_guard<std::mutex> guard(lock);
+        slices.emplace_back(begin, end);
+      });
     std::sort(slices.begin(), slices.end());
     ASSERT_EQ(slices.size(), static_cast<std::size_t>(workers));
     for (int w = 0; w < workers; ++w)
@@ -94,19 +98,23 @@ TEST(ParallelFor, SlicesCoverTheRange)
 TEST(ParallelFor, CallingThreadIsWorkerZero)
 {
   std::thread::id zero;
-  RunWorkers(3, [&](int w) {
-    if (w == 0)
+  RunWorkers(3,
+    [&](int w)
     {
-      zero = std::this_thread::get_id();
-    }
-  });
+      if (w == 0)
+      {
+        zero = std::this_thread::get_id();
+      }
+    });
   EXPECT_EQ(zero, std::this_thread::get_id());
 }
 
 TEST(ParallelFor, ExceptionsReachTheCaller)
 {
-  const auto throwAt = [](int64_t bad) {
-    return [bad](int64_t i) {
+  const auto throwAt = [](int64_t bad)
+  {
+    return [bad](int64_t i)
+    {
       if (i == bad)
       {
         throw std::runtime_error("item " + std::to_string(i));
@@ -116,23 +124,26 @@ TEST(ParallelFor, ExceptionsReachTheCaller)
   EXPECT_THROW(ParallelFor(500, throwAt(123), 4), std::runtime_error);
   EXPECT_THROW(ParallelFor(500, throwAt(0), 1), std::runtime_error);
   EXPECT_THROW(ParallelForInterleaved(500, throwAt(499), 4), std::runtime_error);
-  EXPECT_THROW(
-    ParallelForSlices(10, 4, [](int64_t begin, int64_t) {
-      if (begin > 0)
-      {
-        throw std::invalid_argument("slice");
-      }
-    }),
+  EXPECT_THROW(ParallelForSlices(10, 4,
+                 [](int64_t begin, int64_t)
+                 {
+                   if (begin > 0)
+                   {
+                     throw std::invalid_argument("slice");
+                   }
+                 }),
     std::invalid_argument);
   // the workers still running when one throws finish; nothing is left running afterwards
   std::atomic<int> done(0);
-  EXPECT_THROW(RunWorkers(4, [&](int w) {
-    ++done;
-    if (w == 2)
-    {
-      throw std::runtime_error("worker 2");
-    }
-  }),
+  EXPECT_THROW(RunWorkers(4,
+                 [&](int w)
+                 {
+                   ++done;
+                   if (w == 2)
+                   {
+                     throw std::runtime_error("worker 2");
+                   }
+                 }),
     std::runtime_error);
   EXPECT_EQ(done.load(), 4);
 }

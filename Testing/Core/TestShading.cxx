@@ -58,9 +58,8 @@ std::vector<glm::dvec3> TestPoints(const Hierarchy& h, std::mt19937_64& rng)
   const Box root = h.RootCells();
   const glm::dvec3 lo(root.Lo), hi(root.Hi);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  auto quantized = [&](int a) {
-    return std::floor((lo[a] + u(rng) * (hi[a] - lo[a])) * 64.0) / 64.0;
-  };
+  auto quantized = [&](int a)
+  { return std::floor((lo[a] + u(rng) * (hi[a] - lo[a])) * 64.0) / 64.0; };
   std::vector<glm::dvec3> points;
   for (int i = 0; i < 3000; ++i)
   {
@@ -118,8 +117,8 @@ void ExpectLookupsAgree(const Hierarchy& h, int& compared, int& onFace)
     }
     const bool face = (!std::isnan(expected) && OnFace(p, refSize)) ||
       (!std::isnan(got) && OnFace(p, glm::dvec3(treeSize)));
-    ASSERT_TRUE(face) << "lookups differ at " << p.x << " " << p.y << " " << p.z << ": tree "
-                      << got << ", reference " << expected;
+    ASSERT_TRUE(face) << "lookups differ at " << p.x << " " << p.y << " " << p.z << ": tree " << got
+                      << ", reference " << expected;
     ++onFace;
   }
 }
@@ -169,7 +168,8 @@ TEST(Shading, GradientHasNoSeamsAtBrickBoundaries)
     h.Values.push_back(v);
   }
   const EncodedKdTree tree = EncodeKdTree(h, BuildKdTree(h));
-  const PointLookup lookup = [&](const glm::dvec3& q, glm::dvec3& cellSize) {
+  const PointLookup lookup = [&](const glm::dvec3& q, glm::dvec3& cellSize)
+  {
     glm::vec3 size(1.0f);
     const double v = SampleKdTreeAtPoint(h, tree, glm::vec3(q), size);
     cellSize = glm::dvec3(size);
@@ -212,7 +212,8 @@ TEST(Shading, ShadowTransmittanceThroughTree)
   }
   h.Values.push_back(slab);
   const EncodedKdTree tree = EncodeKdTree(h, BuildKdTree(h));
-  const PointLookup lookup = [&](const glm::dvec3& q, glm::dvec3& cellSize) {
+  const PointLookup lookup = [&](const glm::dvec3& q, glm::dvec3& cellSize)
+  {
     glm::vec3 size(1.0f);
     const double v = SampleKdTreeAtPoint(h, tree, glm::vec3(q), size);
     cellSize = glm::dvec3(size);

@@ -103,8 +103,8 @@ TEST(SmoothCells, LinearFieldIsExactInsideTheDomain)
     worstSmooth = std::max(worstSmooth, std::abs(SampleKdTreePoint(h, enc, p, true) - exact));
     worstNearest = std::max(worstNearest, std::abs(SampleKdTreePoint(h, enc, p, false) - exact));
   }
-  EXPECT_LT(worstSmooth, 1e-5);    // across the two grids too
-  EXPECT_GT(worstNearest, 0.04);   // the test can fail: nearest is off by up to half a cell
+  EXPECT_LT(worstSmooth, 1e-5);  // across the two grids too
+  EXPECT_GT(worstNearest, 0.04); // the test can fail: nearest is off by up to half a cell
 }
 
 TEST(SmoothCells, JumpsAcrossGridsAndLevelsShrink)
@@ -118,7 +118,8 @@ TEST(SmoothCells, JumpsAcrossGridsAndLevelsShrink)
     }
     else
     {
-      Fill(h, [](const glm::dvec3& p) { return std::sin(0.4 * p.x) * std::cos(0.3 * p.y) + 0.05 * p.z; });
+      Fill(h,
+        [](const glm::dvec3& p) { return std::sin(0.4 * p.x) * std::cos(0.3 * p.y) + 0.05 * p.z; });
     }
     int nearestCrossings = 0, smoothCrossings = 0;
     const double nearest = LargestJump(h, false, nearestCrossings);
@@ -129,8 +130,8 @@ TEST(SmoothCells, JumpsAcrossGridsAndLevelsShrink)
     EXPECT_EQ(smoothCrossings, nearestCrossings);
     // nearest jumps by the field's change over half a coarse and half a fine cell; the dual-cell
     // reconstruction leaves the change over a fraction of a fine cell
-    EXPECT_LT(smooth, 0.5 * nearest) << "variant " << variant << ": smooth " << smooth
-                                      << ", nearest " << nearest;
+    EXPECT_LT(smooth, 0.5 * nearest)
+      << "variant " << variant << ": smooth " << smooth << ", nearest " << nearest;
   }
 }
 

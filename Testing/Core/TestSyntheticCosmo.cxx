@@ -45,13 +45,15 @@ public:
   std::vector<std::size_t> Near(const Box& b) const
   {
     std::vector<std::size_t> out;
-    this->ForBuckets(b, [&](uint64_t key) {
-      const auto it = this->Map.find(key);
-      if (it != this->Map.end())
+    this->ForBuckets(b,
+      [&](uint64_t key)
       {
-        out.insert(out.end(), it->second.begin(), it->second.end());
-      }
-    });
+        const auto it = this->Map.find(key);
+        if (it != this->Map.end())
+        {
+          out.insert(out.end(), it->second.begin(), it->second.end());
+        }
+      });
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
     return out;
@@ -537,9 +539,9 @@ TEST(SyntheticCosmo, GridSizesVary)
     const int64_t p10 = cells[cells.size() / 10];
     const int64_t p90 = cells[cells.size() * 9 / 10];
     EXPECT_GT(p90, 3 * p10) << "level " << l;
-    std::sort(extents.begin(), extents.end(), [](const glm::i64vec3& a, const glm::i64vec3& b) {
-      return a.x != b.x ? a.x < b.x : (a.y != b.y ? a.y < b.y : a.z < b.z);
-    });
+    std::sort(extents.begin(), extents.end(),
+      [](const glm::i64vec3& a, const glm::i64vec3& b)
+      { return a.x != b.x ? a.x < b.x : (a.y != b.y ? a.y < b.y : a.z < b.z); });
     const auto distinct = std::unique(extents.begin(), extents.end()) - extents.begin();
     EXPECT_GT(distinct, 20) << "level " << l;
   }

@@ -86,11 +86,11 @@ inline amrsp::RenderSettings Settings(amrsp::Hierarchy& h, std::vector<std::stri
   {
     argv.push_back(&o[0]);
   }
-  const amrsp::tool::Arguments a = amrsp::tool::ParseArguments(static_cast<int>(argv.size()),
-    argv.data(), 1,
-    { "size", "azimuth", "elevation", "zoom", "tf", "scale", "unit-distance", "sample-factor",
-      "reference-sample-factor" },
-    {});
+  const amrsp::tool::Arguments a =
+    amrsp::tool::ParseArguments(static_cast<int>(argv.size()), argv.data(), 1,
+      { "size", "azimuth", "elevation", "zoom", "tf", "scale", "unit-distance", "sample-factor",
+        "reference-sample-factor" },
+      {});
   return amrsp::tool::MakeSettings(h, a);
 }
 

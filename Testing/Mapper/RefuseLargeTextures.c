@@ -36,8 +36,7 @@ static void RefusingTexImage3D(unsigned int target, int level, int internalForma
     PendingError = OutOfMemory;
     return;
   }
-  RealTexImage3D(target, level, internalFormat, width, height, depth, border, format, type,
-    pixels);
+  RealTexImage3D(target, level, internalFormat, width, height, depth, border, format, type, pixels);
 }
 
 static unsigned int ReportingGetError(void)
@@ -83,14 +82,14 @@ unsigned int glGetError(void)
 }
 
 #define AMRSP_WRAP_LOADER(loader)                                                                  \
-  Function loader(const char* name)                                                              \
-  {                                                                                              \
-    static Function (*real)(const char*);                                                        \
-    if (!real)                                                                                   \
-    {                                                                                            \
-      real = (Function(*)(const char*))dlsym(RTLD_NEXT, #loader);                               \
-    }                                                                                            \
-    return Substitute(name, real ? real(name) : 0);                                              \
+  Function loader(const char* name)                                                                \
+  {                                                                                                \
+    static Function (*real)(const char*);                                                          \
+    if (!real)                                                                                     \
+    {                                                                                              \
+      real = (Function(*)(const char*))dlsym(RTLD_NEXT, #loader);                                  \
+    }                                                                                              \
+    return Substitute(name, real ? real(name) : 0);                                                \
   }
 
 AMRSP_WRAP_LOADER(glXGetProcAddress)

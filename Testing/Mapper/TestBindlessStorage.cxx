@@ -55,9 +55,6 @@ constexpr double BoundVsPacking = 0.05;
 constexpr double BoundVsKdTree = 1.0;
 constexpr double BoundVsReference = 2.0;
 
-
-
-
 Hierarchy Load(const std::string& spec, const std::string& centering = "auto")
 {
   DatasetRequest request;
@@ -133,13 +130,14 @@ void TestDataset(const std::string& name, Hierarchy h, bool uniformHandlesOnly)
   const long long bindlessBytes = m->GetTextureBytes();
   const glm::ivec3 handleDims = TextureDimsFor(h.Grids.size());
   // (the data nodes' empty-space flags: R8, one byte per data-node texel)
-  const long long expected = static_cast<long long>(enc.Tree.Bytes() + 9 * enc.DataNodes.Texels.size() +
-    SeparateBrickBytes(h) + static_cast<std::size_t>(handleDims.x) * handleDims.y * handleDims.z * 8);
-  Check(bindlessBytes == m->GetBindlessTextureBytes() && packedBytes == m->GetPackedTextureBytes() &&
-      bindlessBytes == expected,
+  const long long expected = static_cast<long long>(enc.Tree.Bytes() +
+    9 * enc.DataNodes.Texels.size() + SeparateBrickBytes(h) +
+    static_cast<std::size_t>(handleDims.x) * handleDims.y * handleDims.z * 8);
+  Check(bindlessBytes == m->GetBindlessTextureBytes() &&
+      packedBytes == m->GetPackedTextureBytes() && bindlessBytes == expected,
     "texture bytes: packing " + std::to_string(packedBytes) + ", bindless " +
-      std::to_string(bindlessBytes) + " (tree + flags + bricks + handles = " + std::to_string(expected) +
-      "), atlas waste " + Fixed(m->GetAtlasWaste()));
+      std::to_string(bindlessBytes) + " (tree + flags + bricks + handles = " +
+      std::to_string(expected) + "), atlas waste " + Fixed(m->GetAtlasWaste()));
 
   // the orbit: another view, no rebuild of the tree for it
   {
@@ -164,8 +162,8 @@ void TestDataset(const std::string& name, Hierarchy h, bool uniformHandlesOnly)
   {
     // GL_ARB_bindless_texture leaves non-uniform handles undefined without GL_NV_gpu_shader5;
     // on zink + lavapipe a subgroup reads its first invocation's brick (environment notes)
-    std::cout << "  info    direct access with " << h.Grids.size()
-              << " bricks vs packing RMSE " << Fixed(dVsP)
+    std::cout << "  info    direct access with " << h.Grids.size() << " bricks vs packing RMSE "
+              << Fixed(dVsP)
               << " (non-uniform handles; not defined by GL_ARB_bindless_texture alone)\n";
   }
 
@@ -178,7 +176,8 @@ void TestDataset(const std::string& name, Hierarchy h, bool uniformHandlesOnly)
   gpu.Render(0.0, ms);
   m->ReleaseGraphicsResources(gpu.GetRenderer()->GetRenderWindow());
   const Image again = gpu.Render(0.0, ms);
-  Check(m->GetLastDataStorage() == Mapper::BINDLESS_TEXTURES && Rmse(again, waterfall) < BoundVsPacking,
+  Check(
+    m->GetLastDataStorage() == Mapper::BINDLESS_TEXTURES && Rmse(again, waterfall) < BoundVsPacking,
     "bindless after ReleaseGraphicsResources renders the same image (" + StorageName(m) + ")");
 }
 
@@ -197,13 +196,14 @@ void TestAutomaticChoice()
     "auto with a fitting atlas (waste " + Fixed(m->GetAtlasWaste()) + " <= 1): " + StorageName(m));
   m->SetAutoBindlessWaste(0.0);
   const Image wasteful = gpu.Render(0.0, ms);
-  Check(m->GetLastDataStorage() == Mapper::BINDLESS_TEXTURES &&
-      Rmse(wasteful, packed) < BoundVsPacking,
+  Check(
+    m->GetLastDataStorage() == Mapper::BINDLESS_TEXTURES && Rmse(wasteful, packed) < BoundVsPacking,
     "auto when the atlas wastes more than AutoBindlessWaste = 0: " + StorageName(m));
   m->SetAutoBindlessWaste(1.0);
   m->SetMaximumAtlasSize(8); // no atlas can be packed
   const Image noAtlas = gpu.Render(0.0, ms);
-  Check(m->GetLastDataStorage() == Mapper::BINDLESS_TEXTURES && Rmse(noAtlas, packed) < BoundVsPacking,
+  Check(
+    m->GetLastDataStorage() == Mapper::BINDLESS_TEXTURES && Rmse(noAtlas, packed) < BoundVsPacking,
     "auto when no atlas fits MaximumAtlasSize = 8: " + StorageName(m));
   m->SetDataStorageToPackedAtlas();
   bool threw = false;
@@ -221,7 +221,7 @@ void TestAutomaticChoice()
 
   // a data change: new bricks and handles, the old ones made non-resident
   Hierarchy other = Load("synthetic:cosmo:grids=30,levels=3,cells=60k,seed=6");
-  Settings(other, { "--size", "64x64" }); // displays log10(Density) like `h`
+  Settings(other, { "--size", "64x64" });        // displays log10(Density) like `h`
   PackingRenderer fresh(other, s, ViewAngles()); // with the same transfer function and view
   fresh.GetMapper()->SetDataStorageToPackedAtlas();
   const Image expectedOther = fresh.Render(0.0, ms);
@@ -253,8 +253,10 @@ void TestDriverLimit()
   const std::string reason = m->GetBindlessFallbackReason();
   if (reason.find("zink") == std::string::npos)
   {
-    Check(m->GetLastDataStorage() == Mapper::BINDLESS_TEXTURES && Rmse(img, packed) < BoundVsPacking,
-      "this driver has no known bindless limit: 1100 grids render bindless (" + StorageName(m) + ")");
+    Check(
+      m->GetLastDataStorage() == Mapper::BINDLESS_TEXTURES && Rmse(img, packed) < BoundVsPacking,
+      "this driver has no known bindless limit: 1100 grids render bindless (" + StorageName(m) +
+        ")");
     return;
   }
   Check(m->GetLastDataStorage() == Mapper::PACKED_ATLAS && Rmse(img, packed) < BoundVsPacking &&
@@ -265,7 +267,8 @@ void TestDriverLimit()
 int RunBindless()
 {
   TestDataset("one grid", Load("synthetic:cosmo:grids=1,levels=1,cells=20k,seed=2"), true);
-  TestDataset("enzo_moving7", Load(std::string(AMRSP_DATA_DIR) + "/enzo_moving7/DD0010/moving7_0010.hierarchy"), false);
+  TestDataset("enzo_moving7",
+    Load(std::string(AMRSP_DATA_DIR) + "/enzo_moving7/DD0010/moving7_0010.hierarchy"), false);
   TestDataset("amrex_plt1_Y", Load(std::string(AMRSP_DATA_DIR) + "/amrex_plt1_Y"), false);
   TestDataset("synthetic, vertex-centred",
     Load("synthetic:cosmo:grids=60,levels=3,cells=100k,seed=4", "vertex"), false);

@@ -113,7 +113,8 @@ vtkSmartPointer<vtkOverlappingAMR> MakeAMR(int n0, const std::vector<int>& ratio
         for (int i = 0; i < b.Cells[0]; ++i)
         {
           density->SetValue(id++,
-            value(b.Level, (b.Lo[0] + i + 0.5) * hl, (b.Lo[1] + j + 0.5) * hl, (b.Lo[2] + k + 0.5) * hl));
+            value(b.Level, (b.Lo[0] + i + 0.5) * hl, (b.Lo[1] + j + 0.5) * hl,
+              (b.Lo[2] + k + 0.5) * hl));
         }
       }
     }
@@ -132,8 +133,8 @@ vtkSmartPointer<vtkOverlappingAMR> MakeAMR(int n0, const std::vector<int>& ratio
 vtkSmartPointer<vtkOverlappingAMR> MakeAMR(
   int n0, const std::vector<int>& ratios, const std::vector<Block>& blocks, const Field& value)
 {
-  return MakeAMR(n0, ratios, blocks,
-    [&value](int, double x, double y, double z) { return value(x, y, z); });
+  return MakeAMR(
+    n0, ratios, blocks, [&value](int, double x, double y, double z) { return value(x, y, z); });
 }
 
 double Blob(double x, double y, double z)
@@ -145,8 +146,8 @@ double Blob(double x, double y, double z)
 /// A level-0 grid of 8^3 cells and one ratio-2 block over its middle.
 vtkSmartPointer<vtkOverlappingAMR> GoodAMR()
 {
-  return MakeAMR(8, { 1, 2 }, { { 0, { 0, 0, 0 }, { 8, 8, 8 } }, { 1, { 4, 4, 4 }, { 8, 8, 8 } } },
-    Blob);
+  return MakeAMR(
+    8, { 1, 2 }, { { 0, { 0, 0, 0 }, { 8, 8, 8 } }, { 1, { 4, 4, 4 }, { 8, 8, 8 } } }, Blob);
 }
 
 /// The scene: an offscreen window, the mapper and a volume with a transfer function on [0, 1].
@@ -217,8 +218,8 @@ std::string Percent(double share)
 }
 
 /// An error naming `expected`, nothing drawn; then the good input renders again.
-void ExpectError(Scene& scene, vtkDataObject* data, const std::string& expected,
-  const std::string& what)
+void ExpectError(
+  Scene& scene, vtkDataObject* data, const std::string& expected, const std::string& what)
 {
   const double shown = scene.Render(data);
   const std::string error = scene.Error();
@@ -268,8 +269,8 @@ void TestInputs(Scene& scene)
       Blob),
     0.05, "level 1 without blocks, level 2 with one");
   ExpectImage(scene,
-    MakeAMR(8, { 1, 2, 2 }, { { 0, { 0, 0, 0 }, { 8, 8, 8 } }, { 1, { 4, 4, 4 }, { 8, 8, 8 } } },
-      Blob),
+    MakeAMR(
+      8, { 1, 2, 2 }, { { 0, { 0, 0, 0 }, { 8, 8, 8 } }, { 1, { 4, 4, 4 }, { 8, 8, 8 } } }, Blob),
     0.05, "the last level without blocks");
 
   // refinement ratio 1: level 1 has the spacing of level 0; its block (twice the field) replaces
@@ -290,9 +291,10 @@ void TestInputs(Scene& scene)
       Percent(ratioOne) + " of the pixels, RMSE " + std::to_string(same) +
       " to level 0 alone (bound 0.8)" +
       (ratioOneError.empty() ? std::string() : ", error '" + ratioOneError + "'"));
-  const double ratioOneChanged = scene.Render(MakeAMR(8, { 1, 1 },
-    { { 0, { 0, 0, 0 }, { 8, 8, 8 } }, { 1, { 2, 2, 2 }, { 4, 4, 4 } } },
-    [](int level, double x, double y, double z) { return level == 1 ? 0.0 : 2.0 * Blob(x, y, z); }));
+  const double ratioOneChanged = scene.Render(
+    MakeAMR(8, { 1, 1 }, { { 0, { 0, 0, 0 }, { 8, 8, 8 } }, { 1, { 2, 2, 2 }, { 4, 4, 4 } } },
+      [](int level, double x, double y, double z)
+      { return level == 1 ? 0.0 : 2.0 * Blob(x, y, z); }));
   const double changed = amrsp::Rmse8(scene.Pixels(), levelZero);
   Check(scene.Error().empty() && changed > 5.0 && ratioOneChanged > 0.0,
     "a refinement ratio of 1, the level-1 block empty (0): RMSE " + std::to_string(changed) +
@@ -352,7 +354,8 @@ void TestOutOfMemory(Scene& scene)
   if (!dlsym(RTLD_DEFAULT, "amrsp_refuse_large_textures_loaded"))
   {
     const bool required = mappertest::EverythingRequired();
-    Check(!required, std::string("out of GPU memory: RefuseLargeTextures is not preloaded (") +
+    Check(!required,
+      std::string("out of GPU memory: RefuseLargeTextures is not preloaded (") +
         (required ? "required here: AMRSP_REQUIRE_GPU=1)" : "left out)"));
     return;
   }
@@ -405,8 +408,8 @@ void TestShaderFailure(Scene& scene)
   shader->ClearAllFragmentShaderReplacements();
   ExpectImage(scene, amr, 0.05, "the replacement removed");
   // a replacement that compiles (an added, unused definition) renders
-  shader->AddFragmentShaderReplacement("//AMRSP::Defines", true,
-    "//AMRSP::Defines\n#define AMRSP_USER_DEFINITION 1", false);
+  shader->AddFragmentShaderReplacement(
+    "//AMRSP::Defines", true, "//AMRSP::Defines\n#define AMRSP_USER_DEFINITION 1", false);
   ExpectImage(scene, amr, 0.05, "a replacement that compiles");
   shader->ClearAllFragmentShaderReplacements();
 }

@@ -76,10 +76,6 @@ constexpr double BoundVsReference = 2.0;
 double LargestVsKdTree = 0.0;
 double LargestVsSinglePass = 0.0;
 
-
-
-
-
 /// Checks `img` against the CPU kD-tree integrator's image of `s` and records the largest RMSE.
 void CheckVsKdTree(const Image& img, const Hierarchy& h, const EncodedKdTree& enc,
   const RenderSettings& s, const std::string& what)
@@ -122,7 +118,7 @@ vtkSmartPointer<vtkActor> OpaqueSquare(const glm::dvec3& centre, const glm::dvec
 }
 
 /// Expects `render` to throw a GpuError whose message contains every string of `needles`.
-template<typename F>
+template <typename F>
 void CheckError(F render, const std::vector<std::string>& needles, const std::string& what)
 {
   std::string message;
@@ -467,7 +463,8 @@ int main()
     {
       // by hand the Enzo half is left out and said; in CI (AMRSP_REQUIRE_GPU=1) it must run
       const bool required = mappertest::EverythingRequired();
-      Check(!required, "the Enzo dataset " + enzo + " is " +
+      Check(!required,
+        "the Enzo dataset " + enzo + " is " +
           (required ? "missing (required here: AMRSP_REQUIRE_GPU=1)" : "missing: left out"));
     }
   }

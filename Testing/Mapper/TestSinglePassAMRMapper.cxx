@@ -76,16 +76,9 @@ using mappertest::Settings;
 constexpr double BoundVsReference = 2.0;
 constexpr double BoundVsKdTree = 1.0;
 
-
-
-
-
 /// A black, unlit, opaque square of half-size `half` centred at `centre`, facing `normal`.
-vtkSmartPointer<vtkActor> OpaqueSquare(const glm::dvec3& centre,
-  const glm::dvec3& normal,
-  const glm::dvec3& up,
-  double half,
-  double grey)
+vtkSmartPointer<vtkActor> OpaqueSquare(const glm::dvec3& centre, const glm::dvec3& normal,
+  const glm::dvec3& up, double half, double grey)
 {
   const glm::dvec3 n = glm::normalize(normal);
   const glm::dvec3 u = glm::normalize(up - glm::dot(up, n) * n);
@@ -152,8 +145,8 @@ void TestDataset(const std::string& spec)
   {
     vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
     mapper->SetBlendMode(mode == BlendMode::Maximum ? vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND
-        : mode == BlendMode::Minimum              ? vtkVolumeMapper::MINIMUM_INTENSITY_BLEND
-                                                  : vtkVolumeMapper::AVERAGE_INTENSITY_BLEND);
+        : mode == BlendMode::Minimum                ? vtkVolumeMapper::MINIMUM_INTENSITY_BLEND
+                                                    : vtkVolumeMapper::AVERAGE_INTENSITY_BLEND);
     RenderSettings bs = s;
     bs.Blend = mode;
     const double e = Rmse(gpu.Render(0.0, ms), RenderKdTree(h, enc, bs));
@@ -391,8 +384,8 @@ void FillSmoothField(Hierarchy& h, const std::function<bool(const Grid&, const g
 /// level (every level refines by the same 2^k on every axis, as in every dataset of the other
 /// tests), read from the per-level arrays with leaf cells by shifts (powers of two that differ
 /// by level or axis), or with leaf cells by integer division (other ratios).
-void TestRefinementRatios(const std::string& what, const std::vector<glm::ivec3>& ratios,
-  const std::vector<Grid>& grids)
+void TestRefinementRatios(
+  const std::string& what, const std::vector<glm::ivec3>& ratios, const std::vector<Grid>& grids)
 {
   std::cout << "hand-made hierarchy: refinement ratios " << what << "\n";
   Hierarchy h;
@@ -403,8 +396,9 @@ void TestRefinementRatios(const std::string& what, const std::vector<glm::ivec3>
   // reference two per finest cell) and opacity, the step alone puts the kD-tree integrator 7.6
   // RMSE from the reference on a single 6^3 grid. Finer steps and a thinner medium measure the
   // cells instead (GPU vs reference 0.92, GPU vs kD-tree 0.06 with ratios 3 x 2 x 3 and 3).
-  const RenderSettings s = Settings(h, { "--size", "96x96", "--scale", "linear", "--sample-factor",
-    "0.25", "--reference-sample-factor", "0.125", "--unit-distance", "2" });
+  const RenderSettings s = Settings(h,
+    { "--size", "96x96", "--scale", "linear", "--sample-factor", "0.25",
+      "--reference-sample-factor", "0.125", "--unit-distance", "2" });
   const EncodedKdTree enc = EncodeKdTree(h, BuildKdTree(h));
   PackingRenderer gpu(h, s, ViewAngles());
   double ms = 0.0;
@@ -450,7 +444,8 @@ void TestLevelOfDetailAndNaN()
   h.Grids = { Grid{ 0, Box{ glm::i64vec3(0), glm::i64vec3(8) } },
     Grid{ 1, Box{ glm::i64vec3(0), glm::i64vec3(16, 32, 32) } },
     Grid{ 1, Box{ glm::i64vec3(16, 0, 0), glm::i64vec3(32, 32, 32) } } };
-  FillSmoothField(h, [](const Grid& g, const glm::dvec3& p)
+  FillSmoothField(h,
+    [](const Grid& g, const glm::dvec3& p)
     { return g.Level == 1 && p.x < 2.0 && p.y < 2.0 && p.z < 2.0; });
   RenderSettings s = Settings(h, { "--size", "96x96", "--scale", "linear" });
   const EncodedKdTree enc = EncodeKdTree(h, BuildKdTree(h));
@@ -546,7 +541,8 @@ void TestTwoRenderersAndDataChanges()
   for (int k = 0; k < 2; ++k)
   {
     const double e = Rmse(Grab(window, 96 * k, 96, 96), images[k]);
-    Check(e < 0.5, "volume " + std::to_string(k) + " in a shared window matches its own image: RMSE " +
+    Check(e < 0.5,
+      "volume " + std::to_string(k) + " in a shared window matches its own image: RMSE " +
         Fixed(e));
   }
 
@@ -572,8 +568,8 @@ void TestTwoRenderersAndDataChanges()
   }
   mapper->ReleaseGraphicsResources(window);
   window->Render();
-  Check(std::string(mapper->GetLastError()).empty() &&
-      Rmse(Grab(window, 0, 96, 96), images[0]) < 0.5,
+  Check(
+    std::string(mapper->GetLastError()).empty() && Rmse(Grab(window, 0, 96, 96), images[0]) < 0.5,
     "after ReleaseGraphicsResources the textures are uploaded again and the image is unchanged");
   window->Finalize();
 }
@@ -604,7 +600,8 @@ int main()
     {
       // by hand the Enzo half is left out and said; in CI (AMRSP_REQUIRE_GPU=1) it must run
       const bool required = mappertest::EverythingRequired();
-      Check(!required, "the Enzo dataset " + enzo + " is " +
+      Check(!required,
+        "the Enzo dataset " + enzo + " is " +
           (required ? "missing (required here: AMRSP_REQUIRE_GPU=1)" : "missing: left out"));
     }
   }

@@ -180,8 +180,9 @@ TEST(Conversion, BlankingMatchesVtkBlankCells)
   // children not aligned to their parents' cells).
   amrsp::Hierarchy h;
   h.RefinementRatio = { glm::ivec3(1), glm::ivec3(2), glm::ivec3(2) };
-  auto box = [](int x0, int y0, int z0, int x1, int y1, int z1)
-  { return amrsp::Box{ glm::i64vec3(x0, y0, z0), glm::i64vec3(x1, y1, z1) }; };
+  auto box = [](int x0, int y0, int z0, int x1, int y1, int z1) {
+    return amrsp::Box{ glm::i64vec3(x0, y0, z0), glm::i64vec3(x1, y1, z1) };
+  };
   h.Grids = { { 0, box(0, 0, 0, 8, 8, 4) }, { 1, box(2, 2, 0, 8, 10, 8) },
     { 1, box(9, 3, 1, 15, 9, 7) }, { 2, box(5, 5, 1, 14, 12, 9) } };
   for (const amrsp::Grid& g : h.Grids)
@@ -197,8 +198,8 @@ TEST(Conversion, BlankingMatchesVtkBlankCells)
     for (unsigned int i = 0; i < vtks->GetNumberOfDataSets(l); ++i)
     {
       vtks->GetDataSet(l, i)->GetCellData()->RemoveArray(vtkDataSetAttributes::GhostArrayName());
-      ASSERT_EQ(vtks->GetDataSet(l, i)->GetCellData()->GetArray(
-                  vtkDataSetAttributes::GhostArrayName()),
+      ASSERT_EQ(
+        vtks->GetDataSet(l, i)->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName()),
         nullptr);
     }
   }
@@ -208,16 +209,17 @@ TEST(Conversion, BlankingMatchesVtkBlankCells)
   {
     for (unsigned int i = 0; i < ours->GetNumberOfDataSets(l); ++i)
     {
-      vtkDataArray* a = ours->GetDataSet(l, i)->GetCellData()->GetArray(
-        vtkDataSetAttributes::GhostArrayName());
-      vtkDataArray* b = vtks->GetDataSet(l, i)->GetCellData()->GetArray(
-        vtkDataSetAttributes::GhostArrayName());
+      vtkDataArray* a =
+        ours->GetDataSet(l, i)->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName());
+      vtkDataArray* b =
+        vtks->GetDataSet(l, i)->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName());
       ASSERT_NE(a, nullptr);
       ASSERT_NE(b, nullptr);
       ASSERT_EQ(a->GetNumberOfTuples(), b->GetNumberOfTuples());
       for (vtkIdType c = 0; c < a->GetNumberOfTuples(); ++c)
       {
-        EXPECT_EQ(a->GetTuple1(c), b->GetTuple1(c)) << "level " << l << " block " << i << " cell " << c;
+        EXPECT_EQ(a->GetTuple1(c), b->GetTuple1(c))
+          << "level " << l << " block " << i << " cell " << c;
         refined += a->GetTuple1(c) == vtkDataSetAttributes::REFINEDCELL ? 1 : 0;
       }
     }

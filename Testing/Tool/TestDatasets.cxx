@@ -132,7 +132,7 @@ void CheckTree(const Hierarchy& h)
     const LoadedDataset d = LoadOrSkip(E, skipped);                                                \
     if (skipped)                                                                                   \
     {                                                                                              \
-      GTEST_SKIP() << "SKIPPED: " << DataPath(E.Path) << " not found (set AMRSP_DATA_DIR)";       \
+      GTEST_SKIP() << "SKIPPED: " << DataPath(E.Path) << " not found (set AMRSP_DATA_DIR)";        \
     }                                                                                              \
     CheckCounts(E, d.Data);                                                                        \
     ASSERT_TRUE(d.Data.HasValues());                                                               \

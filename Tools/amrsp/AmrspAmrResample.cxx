@@ -205,8 +205,8 @@ AmrResampleRenderer::AmrResampleRenderer(vtkAmrspTimedAMRVolumeMapper* mapper, c
     if (need.x > 2048 || need.y > 2048 || need.z > 2048 || points > double(int64_t(1) << 29))
     {
       std::ostringstream why;
-      why << "does not fit: resolving the finest level takes " << need.x << " x " << need.y
-          << " x " << need.z << " samples (limits 2048 per axis, 2^29 in total)";
+      why << "does not fit: resolving the finest level takes " << need.x << " x " << need.y << " x "
+          << need.z << " samples (limits 2048 per axis, 2^29 in total)";
       throw GpuError(why.str());
     }
     n = glm::ivec3(need);

@@ -30,9 +30,9 @@ class AmrResampleRenderer : public GpuRenderer
 public:
   /// `samples` becomes NumberOfSamples: 0 keeps the mapper's default (128 per axis), -1 asks for
   /// the count that resolves the finest level: two samples per finest cell edge over the frustum
-  /// box the mapper resamples (computed here as the mapper does on its first frame). Throws GpuError when that grid
-  /// would exceed 2048 points per axis or 2^29 points (as uniform-gpu). The volume property's
-  /// interpolation is nearest, as for the other methods.
+  /// box the mapper resamples (computed here as the mapper does on its first frame). Throws
+  /// GpuError when that grid would exceed 2048 points per axis or 2^29 points (as uniform-gpu). The
+  /// volume property's interpolation is nearest, as for the other methods.
   AmrResampleRenderer(
     const Hierarchy& h, const RenderSettings& s, const ViewAngles& view, const glm::ivec3& samples);
 

@@ -187,8 +187,8 @@ struct Comparisons
 };
 
 /// cpu-kdtree: the tree and its encoding timed, then the orbit (no warm-up frame).
-Image BenchKdTree(const Hierarchy& h, const RenderSettings& s, const BenchOptions& o,
-  Comparisons& c, Json& r)
+Image BenchKdTree(
+  const Hierarchy& h, const RenderSettings& s, const BenchOptions& o, Comparisons& c, Json& r)
 {
   auto t0 = Clock::now();
   const KdTree tree = BuildKdTree(h);

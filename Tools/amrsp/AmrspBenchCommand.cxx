@@ -102,7 +102,8 @@ int RunBench(int argc, char** argv)
        "--scaling runs synthetic:cosmo at each GRIDS:LEVELS:CELLS of --scaling-sizes (default "
     << DefaultScalingSizes
     << ",\n"
-       "the paper's datasets 1-3 and a small one; default size 128x128, methods packing,multipass)\n"
+       "the paper's datasets 1-3 and a small one; default size 128x128, methods "
+       "packing,multipass)\n"
        "and reports how preprocessing and frame time grow; a size that cannot run is a row with\n"
        "its error.\n"
        "Methods (default "
@@ -112,8 +113,8 @@ int RunBench(int argc, char** argv)
   {
     const Arguments a = ParseArguments(argc, argv, 1,
       Concat({ DatasetOptions, ViewOptions,
-        { "frames", "methods", "json", "plot", "plot-size", "scaling-sizes", "seed",
-          "save-images", "driver", "backend", "rounds" } }),
+        { "frames", "methods", "json", "plot", "plot-size", "scaling-sizes", "seed", "save-images",
+          "driver", "backend", "rounds" } }),
       Concat({ DatasetFlags, { "scaling" } }));
     if (WantsHelp(a))
     {
@@ -170,8 +171,7 @@ int RunBench(int argc, char** argv)
       }
     }
     o.View = ViewOf(a);
-    o.Methods =
-      SplitList(a.Get("methods", scaling ? "packing,multipass" : DefaultBenchMethods()));
+    o.Methods = SplitList(a.Get("methods", scaling ? "packing,multipass" : DefaultBenchMethods()));
     if (o.Methods.empty())
     {
       throw UsageError{ "--methods is empty" };
@@ -180,8 +180,8 @@ int RunBench(int argc, char** argv)
     {
       if (!FindMethod(m, BenchCommand))
       {
-        throw UsageError{ "unknown method '" + m + "' in --methods (" +
-          MethodList(BenchCommand) + ")" };
+        throw UsageError{ "unknown method '" + m + "' in --methods (" + MethodList(BenchCommand) +
+          ")" };
       }
     }
     int plotWidth = 900, plotHeight = 600;

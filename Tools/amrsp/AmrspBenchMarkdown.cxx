@@ -190,7 +190,7 @@ std::string BenchMarkdown(const Json& bench)
        << bench["paraview_version"].get<std::string>() << ")";
   }
   md << (paper ? ", the size of the paper's dataset " + std::to_string(paper) +
-             " (the hierarchy is the project's synthetic one, not the paper's data)"
+              " (the hierarchy is the project's synthetic one, not the paper's data)"
                : "")
      << ".\n\n";
   md << "Table 1 (dataset)\n\n"
@@ -240,15 +240,15 @@ std::string BenchMarkdown(const Json& bench)
       md << (tree > 0 ? Mb(tree) + " + " + Mb(data - tree) : Mb(data)) << " | "
          << Fixed(PreprocessTotal(r), 3) << " (" << PreprocessDetail(r) << ") | "
          << Fixed(r["fps"].get<double>(), 2) << " | " << Fixed(r["ms_median"].get<double>(), 1)
-         << " | " << Fixed(r["rmse"].get<double>(), 3) << " | "
-         << Fixed(r["psnr"].get<double>(), 1) << " |";
+         << " | " << Fixed(r["rmse"].get<double>(), 3) << " | " << Fixed(r["psnr"].get<double>(), 1)
+         << " |";
     }
     if (paper)
     {
       if (pt)
       {
-        md << " " << pt->Memory[paper - 1] << " | " << Fixed(pt->Preprocess[paper - 1], 1)
-           << " | " << Fixed(pt->Fps[paper - 1], 1) << " |";
+        md << " " << pt->Memory[paper - 1] << " | " << Fixed(pt->Preprocess[paper - 1], 1) << " | "
+           << Fixed(pt->Fps[paper - 1], 1) << " |";
       }
       else
       {
@@ -281,8 +281,8 @@ std::string ScalingMarkdownRow(const Json& row)
   std::ostringstream md;
   if (row.contains("error"))
   {
-    md << "| " << row["dataset"].get<std::string>() << " | | | | | | | | | cannot run: "
-       << row["error"].get<std::string>() << " | | | |\n";
+    md << "| " << row["dataset"].get<std::string>()
+       << " | | | | | | | | | cannot run: " << row["error"].get<std::string>() << " | | | |\n";
     return md.str();
   }
   const Json& st = row["statistics"];

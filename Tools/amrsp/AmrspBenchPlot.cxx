@@ -166,8 +166,8 @@ void WriteBenchPlot(const BenchJson& bench, const std::string& path, int width, 
   {
     name = name.substr(name.find_last_of('/') + 1); // the file, not its folders
   }
-  title << "amrsp bench: " << name << ", " << bench["image"][0]
-        << "x" << bench["image"][1] << ", " << bench["frames"] << " frames";
+  title << "amrsp bench: " << name << ", " << bench["image"][0] << "x" << bench["image"][1] << ", "
+        << bench["frames"] << " frames";
   c.Text(title.str(), 10, height - titleSize - 8, titleSize, true);
 
   const std::vector<Panel> panels = { { "frames per second (higher is better)", "fps", 1.0, "" },
@@ -208,15 +208,14 @@ void WriteBenchPlot(const BenchJson& bench, const std::string& path, int width, 
       const BenchJson& r = m.value();
       if (!r.contains(panel.Key))
       {
-        c.Text(r.contains("error") ? "cannot run" : "n/a", barLeft + 6, mid, fontSize, false,
-          false, true, 128);
+        c.Text(r.contains("error") ? "cannot run" : "n/a", barLeft + 6, mid, fontSize, false, false,
+          true, 128);
       }
       else
       {
         const double v = r[panel.Key].get<double>() * panel.Scale;
-        const int length = maxValue > 0.0
-          ? static_cast<int>(std::lround((barRight - barLeft) * v / maxValue))
-          : 0;
+        const int length =
+          maxValue > 0.0 ? static_cast<int>(std::lround((barRight - barLeft) * v / maxValue)) : 0;
         const int* col = colours[p];
         c.Box(barLeft, y + rowHeight / 6, barLeft + std::max(length, 1),
           y + rowHeight - rowHeight / 6, col[0], col[1], col[2]);

@@ -22,7 +22,6 @@ namespace tool
 
 const char* const DefaultDataset = "synthetic:cosmo:grids=200,levels=4,cells=1M,seed=7";
 
-
 std::string Arguments::Get(const std::string& key, const std::string& fallback) const
 {
   const auto it = Options.find(key);
@@ -97,7 +96,8 @@ Arguments ParseArguments(int argc, char** argv, int first,
       }
       const bool takesValue =
         std::find(valueOptions.begin(), valueOptions.end(), key) != valueOptions.end();
-      const bool isFlag = std::find(flags.begin(), flags.end(), key) != flags.end() || key == "help";
+      const bool isFlag =
+        std::find(flags.begin(), flags.end(), key) != flags.end() || key == "help";
       if (!takesValue && !isFlag)
       {
         throw UsageError{ "unknown option --" + key };
@@ -120,7 +120,6 @@ Arguments ParseArguments(int argc, char** argv, int first,
   return a;
 }
 
-
 double Seconds(Clock::time_point since)
 {
   return std::chrono::duration<double>(Clock::now() - since).count();
@@ -135,7 +134,8 @@ int Fail(const std::string& message)
 const std::vector<std::string> DatasetOptions = { "array", "component", "centering",
   "read-timeout" };
 const std::vector<std::string> DatasetFlags = { "allow-partial", "strict" };
-const std::vector<std::string> AtlasOptions = { "packer", "max-3d-texture-size", "atlas-budget-mb" };
+const std::vector<std::string> AtlasOptions = { "packer", "max-3d-texture-size",
+  "atlas-budget-mb" };
 const std::vector<std::string> ViewOptions = { "size", "azimuth", "elevation", "zoom", "tf",
   "scale", "unit-distance", "sample-factor", "reference-sample-factor", "lod", "threads", "blend",
   "view-json", "opacity-threshold", "empty-space-skipping", "interpolation", "shade", "iso",
@@ -173,7 +173,8 @@ const char* const DatasetHelp =
 
 const char* const AtlasHelp =
   "Atlas options (packed storage of the grid bricks):\n"
-  "  --packer nfdh|best          the paper's next-fit-decreasing-height, or the guillotine-bestfit\n"
+  "  --packer nfdh|best          the paper's next-fit-decreasing-height, or the "
+  "guillotine-bestfit\n"
   "                              packer (default best)\n"
   "  --max-3d-texture-size N     per-axis texture limit (default 2048, GL_MAX_3D_TEXTURE_SIZE)\n"
   "  --atlas-budget-mb M         largest atlas in MiB of float texels (default: no limit)\n";
@@ -233,7 +234,8 @@ const char* const ViewHelp =
   "                              dual-cell reconstruction across grids and levels (packing,\n"
   "                              CPU methods and the reference)\n"
   "  --view-json FILE            camera, transfer function and background from a JSON file\n"
-  "                              (e.g. written from ParaView; see docs/command-line.md) instead of the\n"
+  "                              (e.g. written from ParaView; see docs/command-line.md) instead of "
+  "the\n"
   "                              conventions above; its transfer function implies --scale linear\n"
   "  --shade on|off              gradient shading, vtkVolumeProperty's defaults (default off)\n"
   "  --iso F[,F...]              with --blend iso: iso-values as fractions of the transfer\n"
@@ -270,7 +272,6 @@ void Bounds(const Hierarchy& h, glm::dvec3& lo, glm::dvec3& hi)
   lo = h.WorldLo(h.RootCells(), 0);
   hi = h.WorldHi(h.RootCells(), 0);
 }
-
 
 void WritePng(const Image& img, const std::string& path)
 {

@@ -111,17 +111,19 @@ public:
       "amrsp: error: %s did not finish within %g s: VTK's reader is stuck on this file (a "
       "damaged or unusual file the reader loops on; --read-timeout changes the limit)\n",
       what.c_str(), timeoutSeconds);
-    Watchdog = std::thread([this, timeoutSeconds] {
-      std::unique_lock<std::mutex> lock(Mutex);
-      if (!Finished.wait_for(lock, std::chrono::duration<double>(timeoutSeconds),
-            [this] { return Done; }))
+    Watchdog = std::thread(
+      [this, timeoutSeconds]
       {
-        const int fd = SavedStderr >= 0 ? SavedStderr : 2;
-        const ssize_t ignored = write(fd, TimeoutMessage, std::strlen(TimeoutMessage));
-        (void)ignored;
-        _exit(75);
-      }
-    });
+        std::unique_lock<std::mutex> lock(Mutex);
+        if (!Finished.wait_for(
+              lock, std::chrono::duration<double>(timeoutSeconds), [this] { return Done; }))
+        {
+          const int fd = SavedStderr >= 0 ? SavedStderr : 2;
+          const ssize_t ignored = write(fd, TimeoutMessage, std::strlen(TimeoutMessage));
+          (void)ignored;
+          _exit(75);
+        }
+      });
     std::snprintf(Message, sizeof(Message),
       "amrsp: error: %s crashed inside VTK's reader (a reader bug, not ours)\n", what.c_str());
     std::fflush(stderr);
@@ -209,8 +211,8 @@ vtkSmartPointer<vtkOverlappingAMR> ReadHierarchicalBoxV01(const std::string& pat
   {
     throw DatasetError("cannot parse the XML of " + path);
   }
-  vtkXMLDataElement* root = parser->GetRootElement()->FindNestedElementWithName(
-    "vtkHierarchicalBoxDataSet");
+  vtkXMLDataElement* root =
+    parser->GetRootElement()->FindNestedElementWithName("vtkHierarchicalBoxDataSet");
   if (!root)
   {
     throw DatasetError(path + " has no vtkHierarchicalBoxDataSet element");
@@ -327,8 +329,7 @@ vtkSmartPointer<vtkOverlappingAMR> RunAlgorithm(
 
 /// Enzo and AMReX readers share vtkAMRBaseReader: enable only the requested cell array.
 std::string SelectReaderArray(vtkAMRBaseReader* reader, const DatasetRequest& request,
-  const std::string& what, CaptureVTKMessages& capture,
-  const std::vector<std::string>& listed = {})
+  const std::string& what, CaptureVTKMessages& capture, const std::vector<std::string>& listed = {})
 {
   reader->SetMaxLevel(1000);
   reader->UpdateInformation();
@@ -341,11 +342,11 @@ std::string SelectReaderArray(vtkAMRBaseReader* reader, const DatasetRequest& re
     {
       variables += (variables.empty() ? "" : ", ") + v;
     }
-    throw DatasetError(what + (listed.empty()
-        ? (why.empty() ? std::string(" has no cell arrays") : " failed: " + why)
-        : ": VTK's reader finds no cell arrays although the files list " +
-          std::to_string(listed.size()) + " variables (" + variables + ")" +
-          (why.empty() ? std::string() : "; the reader said: " + why)));
+    throw DatasetError(what +
+      (listed.empty() ? (why.empty() ? std::string(" has no cell arrays") : " failed: " + why)
+                      : ": VTK's reader finds no cell arrays although the files list " +
+            std::to_string(listed.size()) + " variables (" + variables + ")" +
+            (why.empty() ? std::string() : "; the reader said: " + why)));
   }
   std::string names;
   bool found = false;
@@ -357,8 +358,8 @@ std::string SelectReaderArray(vtkAMRBaseReader* reader, const DatasetRequest& re
   }
   if (!request.Array.empty() && !found)
   {
-    throw DatasetError("no cell array named '" + request.Array + "' in " + what +
-      " (available: " + names + ")");
+    throw DatasetError(
+      "no cell array named '" + request.Array + "' in " + what + " (available: " + names + ")");
   }
   for (int i = 0; i < n; ++i)
   {
@@ -573,8 +574,8 @@ LoadedDataset LoadStored(const DatasetRequest& request)
     {
       if (!fs::exists(path / "Header", ec))
       {
-        throw DatasetError("unknown format: " + spec +
-          " is a folder without an AMReX plotfile Header");
+        throw DatasetError(
+          "unknown format: " + spec + " is a folder without an AMReX plotfile Header");
       }
       out.Format = "amrex";
       ReaderGuard guard("reading the AMReX plotfile " + spec, request.ReadTimeoutSeconds);
@@ -651,8 +652,7 @@ LoadedDataset LoadStored(const DatasetRequest& request)
   {
     throw DatasetError(error + " (" + spec + ")");
   }
-  out.LoadSeconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.LoadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
 } // namespace

@@ -45,7 +45,8 @@ void SelectDriver(const std::string& name)
     return;
   }
   const std::string folder = "/tmp/amrsp-runtime-" + std::to_string(getuid());
-  if (mkdir(folder.c_str(), 0700) != 0 && !(stat(folder.c_str(), &info) == 0 && S_ISDIR(info.st_mode)))
+  if (mkdir(folder.c_str(), 0700) != 0 &&
+    !(stat(folder.c_str(), &info) == 0 && S_ISDIR(info.st_mode)))
   {
     throw std::invalid_argument("--driver zink: cannot create the runtime folder " + folder);
   }

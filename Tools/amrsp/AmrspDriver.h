@@ -20,7 +20,7 @@ class vtkRenderWindow;
 
 /// 1 when this VTK renders through GLX only (its windows abort the process when no X display
 /// answers, so the tool probes the display first).
-#if !AMRSP_RUNTIME_WINDOW_CHOICE && defined(VTK_USE_X) && !defined(VTK_OPENGL_HAS_EGL) &&         \
+#if !AMRSP_RUNTIME_WINDOW_CHOICE && defined(VTK_USE_X) && !defined(VTK_OPENGL_HAS_EGL) &&          \
   !defined(VTK_OPENGL_HAS_OSMESA)
 #define AMRSP_GLX_ONLY 1
 #else

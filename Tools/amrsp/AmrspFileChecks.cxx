@@ -210,8 +210,8 @@ ExpectedBlocks CheckEnzoFiles(const std::string& hierarchy)
       if (open == std::string::npos || close == std::string::npos || grid < 1 ||
         grid > static_cast<long long>(entries.size()))
       {
-        throw DatasetError("the Enzo hierarchy " + name + " is damaged: '" + line +
-          "' at byte " + std::to_string(lineStart) + " names no grid described before it");
+        throw DatasetError("the Enzo hierarchy " + name + " is damaged: '" + line + "' at byte " +
+          std::to_string(lineStart) + " names no grid described before it");
       }
       EnzoEntry& owner = entries[static_cast<std::size_t>(grid - 1)];
       ++owner.PointerLines;
@@ -242,8 +242,10 @@ ExpectedBlocks CheckEnzoFiles(const std::string& hierarchy)
     }
     if (!missing.empty())
     {
-      throw DatasetError("the Enzo hierarchy " + name + " is truncated or damaged: the entry of "
-        "grid " + std::to_string(e.Number) + " (from byte " + std::to_string(e.Offset) + " of " +
+      throw DatasetError("the Enzo hierarchy " + name +
+        " is truncated or damaged: the entry of "
+        "grid " +
+        std::to_string(e.Number) + " (from byte " + std::to_string(e.Offset) + " of " +
         std::to_string(text.size()) + ") lacks " + missing);
     }
     if (e.PointerLines < 2)
@@ -393,8 +395,8 @@ ExpectedBlocks CheckAMReXFiles(const std::string& folder)
   const int variables = h.Next<int>("the number of variables");
   if (variables < 1 || variables > 100000)
   {
-    throw DatasetError("the AMReX Header " + headerPath.string() + " is damaged: " +
-      std::to_string(variables) + " variables");
+    throw DatasetError("the AMReX Header " + headerPath.string() +
+      " is damaged: " + std::to_string(variables) + " variables");
   }
   std::vector<std::string> names;
   for (int i = 0; i < variables; ++i)
@@ -404,8 +406,8 @@ ExpectedBlocks CheckAMReXFiles(const std::string& folder)
   const int dim = h.Next<int>("the dimension");
   if (dim < 1 || dim > 3)
   {
-    throw DatasetError("the AMReX Header " + headerPath.string() + " is damaged: dimension " +
-      std::to_string(dim));
+    throw DatasetError(
+      "the AMReX Header " + headerPath.string() + " is damaged: dimension " + std::to_string(dim));
   }
   h.Next<double>("the time");
   const int finest = h.Next<int>("the finest level");
@@ -461,8 +463,8 @@ ExpectedBlocks CheckAMReXFiles(const std::string& folder)
     std::error_code ec;
     if (!fs::exists(cellH, ec))
     {
-      throw DatasetError("the AMReX multifab header " + cellH.string() + " of " + level +
-        " is missing");
+      throw DatasetError(
+        "the AMReX multifab header " + cellH.string() + " of " + level + " is missing");
     }
     HeaderTokens c(ReadWhole(cellH), cellH.string());
     c.Next<int>("the version");
@@ -471,8 +473,8 @@ ExpectedBlocks CheckAMReXFiles(const std::string& folder)
     if (components != variables)
     {
       throw DatasetError("the AMReX multifab header " + cellH.string() + " has " +
-        std::to_string(components) + " components, the Header " + headerPath.string() +
-        " lists " + std::to_string(variables) + " variables; one of them is damaged");
+        std::to_string(components) + " components, the Header " + headerPath.string() + " lists " +
+        std::to_string(variables) + " variables; one of them is damaged");
     }
     c.Next<int>("the number of ghost cells");
     c.Skip('(', "the box list");
@@ -514,9 +516,9 @@ ExpectedBlocks CheckAMReXFiles(const std::string& folder)
       if (offset < 0 || static_cast<unsigned long long>(offset) >= size ||
         !std::getline(in, line) || line.rfind("FAB ((", 0) != 0)
       {
-        throw DatasetError("the AMReX data file " + data.string() + " is truncated or damaged: " +
-          "no FAB header at byte " + std::to_string(offset) + " (" + box + "; the file has " +
-          Bytes(size) + ")");
+        throw DatasetError("the AMReX data file " + data.string() +
+          " is truncated or damaged: " + "no FAB header at byte " + std::to_string(offset) + " (" +
+          box + "; the file has " + Bytes(size) + ")");
       }
       HeaderTokens f(line.substr(3), data.string());
       f.Skip('(', "the FAB header of " + box);
@@ -552,8 +554,9 @@ ExpectedBlocks CheckVTKXMLAMRFiles(const std::string& path)
   parser->SetFileName(path.c_str());
   if (!parser->Parse() || !parser->GetRootElement())
   {
-    throw DatasetError("the VTK XML AMR file " + path + " is truncated or damaged: its XML does "
-                       "not parse");
+    throw DatasetError("the VTK XML AMR file " + path +
+      " is truncated or damaged: its XML does "
+      "not parse");
   }
   vtkXMLDataElement* top = parser->GetRootElement();
   vtkXMLDataElement* root = top->GetNumberOfNestedElements() > 0 ? top->GetNestedElement(0) : top;

@@ -151,9 +151,8 @@ GpuRenderer::GpuRenderer(const std::string& method, vtkVolumeMapper* mapper, con
   std::string why;
   if (!Available(why))
   {
-    throw GpuError(
-      (scene.Unavailable.empty() ? "the " + method + " method cannot render here: "
-                                 : scene.Unavailable) +
+    throw GpuError((scene.Unavailable.empty() ? "the " + method + " method cannot render here: "
+                                              : scene.Unavailable) +
       why);
   }
   I->Width = s.Width;
@@ -197,7 +196,8 @@ GpuRenderer::GpuRenderer(const std::string& method, vtkVolumeMapper* mapper, con
   I->Window->SetSize(s.Width, s.Height);
   I->Window->AddRenderer(I->Renderer);
 
-  // the camera of docs/design.md, "Rendering conventions": ResetCamera on the level-0 bounds, Azimuth, Elevation, OrthogonalizeViewUp, Zoom
+  // the camera of docs/design.md, "Rendering conventions": ResetCamera on the level-0 bounds,
+  // Azimuth, Elevation, OrthogonalizeViewUp, Zoom
   double bounds[6];
   Level0Bounds(h, bounds);
   I->Renderer->ResetCamera(bounds);

@@ -26,11 +26,11 @@ int RunInspect(int argc, char** argv)
     "usage: amrsp inspect [DATASET] [--json] [--array NAME] [--packer P] [--compare-packers]\n"
     "Loads the hierarchy, builds and encodes the kD-tree, checks its invariants, packs the\n"
     "bricks (layout only, no data copied) and prints the statistics (with --json: one JSON\n"
-    "object; docs/command-line.md lists the fields). --compare-packers adds the layout of every packer.\n";
+    "object; docs/command-line.md lists the fields). --compare-packers adds the layout of every "
+    "packer.\n";
   try
   {
-    const Arguments a = ParseArguments(
-      argc, argv, 1, Concat({ DatasetOptions, AtlasOptions }),
+    const Arguments a = ParseArguments(argc, argv, 1, Concat({ DatasetOptions, AtlasOptions }),
       Concat({ DatasetFlags, { "json", "compare-packers" } }));
     if (WantsHelp(a))
     {
@@ -167,8 +167,8 @@ int RunInspect(int argc, char** argv)
                 << "atlas        " << atlas.dump() << "\n"
                 << "GPU memory   " << j["gpu_bytes"].dump()
                 << " (bytes: tree textures + grid data, per storage)\n"
-                << "times (s)    load " << d.LoadSeconds << ", kD-tree " << kdSeconds
-                << ", encode " << encodeSeconds << ", pack " << packSeconds << "\n"
+                << "times (s)    load " << d.LoadSeconds << ", kD-tree " << kdSeconds << ", encode "
+                << encodeSeconds << ", pack " << packSeconds << "\n"
                 << "invariants   " << (inv.Ok ? "ok" : "FAILED") << "\n";
       for (const std::string& f : inv.Failures)
       {

@@ -35,13 +35,13 @@ PackingRenderer::PackingRenderer(vtkSinglePassAMRVolumeMapper* mapper, const Hie
   using M = vtkSinglePassAMRVolumeMapper;
   if (storage != "packing" && storage != "bindless" && storage != "auto")
   {
-    throw std::invalid_argument("unknown data storage '" + storage +
-      "' (packing, bindless or auto)");
+    throw std::invalid_argument(
+      "unknown data storage '" + storage + "' (packing, bindless or auto)");
   }
   if (bindlessAccess != "auto" && bindlessAccess != "direct" && bindlessAccess != "waterfall")
   {
-    throw std::invalid_argument("unknown bindless access '" + bindlessAccess +
-      "' (auto, direct or waterfall)");
+    throw std::invalid_argument(
+      "unknown bindless access '" + bindlessAccess + "' (auto, direct or waterfall)");
   }
   this->Mapper->SetDataStorage(storage == "packing" ? M::PACKED_ATLAS
       : storage == "bindless"                       ? M::BINDLESS_TEXTURES

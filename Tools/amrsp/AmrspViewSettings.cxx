@@ -203,8 +203,8 @@ ExplicitView ReadViewJson(const std::string& path)
       v.LightPosition = JsonVector3(l.at("position"), "light.position");
       v.LightFocalPoint = JsonVector3(l.at("focal_point"), "light.focal_point");
       v.LightPositional = l.value("positional", false);
-      v.LightColour = l.contains("colour") ? JsonVector3(l.at("colour"), "light.colour")
-                                           : glm::dvec3(1.0);
+      v.LightColour =
+        l.contains("colour") ? JsonVector3(l.at("colour"), "light.colour") : glm::dvec3(1.0);
     }
     if (j.contains("material"))
     {
@@ -270,7 +270,6 @@ void ApplyExplicitLighting(const ExplicitView& v, const Arguments& a, RenderSett
     s.IsoValues = v.IsoValues;
   }
 }
-
 
 } // namespace
 

@@ -36,8 +36,8 @@ constexpr std::size_t AtlasTexelBytes = sizeof(float);
 /// Packs the grids of `h` and copies their values (cell- or vertex-centred). `maxBytes`
 /// bounds the atlas memory (0 = no bound); it is checked before anything is allocated.
 /// @throws PackingError (from PackBricks) when the atlas does not fit.
-BrickAtlas BuildBrickAtlas(const Hierarchy& h, Packer packer, const glm::ivec3& maxDims,
-  std::size_t maxBytes = 0);
+BrickAtlas BuildBrickAtlas(
+  const Hierarchy& h, Packer packer, const glm::ivec3& maxDims, std::size_t maxBytes = 0);
 
 /// Copies the values of `h` into an atlas laid out by `layout` (PackBricks of BrickExtents(h,
 /// h.VertexCentred)), for callers that decide on the storage after packing.

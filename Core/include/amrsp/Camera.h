@@ -21,8 +21,8 @@ struct Camera
   double ParallelScale = 1.0;
 
   /// World-space ray through the pixel position (px, py) in [0, width] x [0, height].
-  void Ray(int width, int height, double px, double py, glm::dvec3& origin,
-    glm::dvec3& direction) const;
+  void Ray(
+    int width, int height, double px, double py, glm::dvec3& origin, glm::dvec3& direction) const;
 
   /// vtkRenderer::ResetCamera for the box [lo, hi] seen along -z with +y up: focal point at the
   /// centre, distance = half diagonal / sin(ViewAngle / 2), ParallelScale = half diagonal.

@@ -42,7 +42,7 @@ bool TransparentRange(const TransferFunction& tf, double lo, double hi);
  * gives the shader the verdicts (one flag per data node).
  */
 std::vector<float> OpacityPrefixCounts(const std::vector<float>& opacity);
-bool TableRangeTransparent(const std::vector<float>& prefix, const float range[2], float lo,
-  float hi);
+bool TableRangeTransparent(
+  const std::vector<float>& prefix, const float range[2], float lo, float hi);
 
 } // namespace amrsp

@@ -40,18 +40,15 @@ struct Box
   }
   bool Contains(const Box& o) const
   {
-    return o.Lo.x >= Lo.x && o.Lo.y >= Lo.y && o.Lo.z >= Lo.z && o.Hi.x <= Hi.x &&
-      o.Hi.y <= Hi.y && o.Hi.z <= Hi.z;
+    return o.Lo.x >= Lo.x && o.Lo.y >= Lo.y && o.Lo.z >= Lo.z && o.Hi.x <= Hi.x && o.Hi.y <= Hi.y &&
+      o.Hi.z <= Hi.z;
   }
   bool Overlaps(const Box& o) const
   {
     return o.Lo.x < Hi.x && o.Lo.y < Hi.y && o.Lo.z < Hi.z && Lo.x < o.Hi.x && Lo.y < o.Hi.y &&
       Lo.z < o.Hi.z;
   }
-  Box Intersection(const Box& o) const
-  {
-    return Box{ glm::max(Lo, o.Lo), glm::min(Hi, o.Hi) };
-  }
+  Box Intersection(const Box& o) const { return Box{ glm::max(Lo, o.Lo), glm::min(Hi, o.Hi) }; }
   bool operator==(const Box& o) const { return Lo == o.Lo && Hi == o.Hi; }
   /// The same region in the cells of a level refined by `ratio` relative to this box's level.
   Box Refined(const glm::i64vec3& ratio) const { return Box{ Lo * ratio, Hi * ratio }; }
@@ -61,8 +58,9 @@ struct Box
 struct Grid
 {
   int Level = 0;
-  Box Cells;             ///< in cells of `Level`
-  int64_t SourceId = -1; ///< caller's identifier (e.g. the flat VTK block index); not used by the core
+  Box Cells; ///< in cells of `Level`
+  int64_t SourceId =
+    -1; ///< caller's identifier (e.g. the flat VTK block index); not used by the core
 };
 
 /// Per-grid scalar values, x fastest, then y, then z: one float per cell of Grid::Cells for
@@ -130,7 +128,8 @@ struct Hierarchy
     {
       if (g.Level == 0)
       {
-        root = first ? g.Cells : Box{ glm::min(root.Lo, g.Cells.Lo), glm::max(root.Hi, g.Cells.Hi) };
+        root =
+          first ? g.Cells : Box{ glm::min(root.Lo, g.Cells.Lo), glm::max(root.Hi, g.Cells.Hi) };
         first = false;
       }
     }

@@ -31,7 +31,7 @@ struct InvariantReport
 ///   (it shows the finest cells available there); every empty leaf overlaps no grid;
 /// - every type (a) node lies inside its grid and only finer levels are shown below it;
 /// - decoding the encoding gives back the same nodes (when `encoded` is given).
-InvariantReport CheckKdTree(const Hierarchy& h, const KdTree& tree,
-  const EncodedKdTree* encoded = nullptr);
+InvariantReport CheckKdTree(
+  const Hierarchy& h, const KdTree& tree, const EncodedKdTree* encoded = nullptr);
 
 } // namespace amrsp

@@ -20,9 +20,9 @@ struct RaySegment
 {
   float T0 = 0.0f;
   float T1 = 0.0f;
-  uint32_t Node = 0;  ///< linear tree-texel index
-  uint32_t Data = 0;  ///< data-nodes index; 0 for empty space
-  int Level = 0;      ///< data level (of the grid sampled); -1 for empty space
+  uint32_t Node = 0;        ///< linear tree-texel index
+  uint32_t Data = 0;        ///< data-nodes index; 0 for empty space
+  int Level = 0;            ///< data level (of the grid sampled); -1 for empty space
   glm::vec3 NodeLo{ 0.0f }; ///< the node's box in level-0 index units, as the shader computes it
   glm::vec3 NodeHi{ 0.0f };
   uint32_t Descent = 0; ///< tree levels descended by the restart that found this segment
@@ -32,10 +32,10 @@ struct RaySegment
 /// the node's data level projects to fewer than ThresholdPixels pixels at the segment's entry.
 struct LevelOfDetail
 {
-  float ThresholdPixels = 0.0f;    ///< 0 disables LOD (always the finest level)
+  float ThresholdPixels = 0.0f;      ///< 0 disables LOD (always the finest level)
   float PixelSizePerDistance = 0.0f; ///< perspective: world size of a pixel at distance 1
-  float ParallelPixelSize = 0.0f;  ///< parallel projection: world size of a pixel (used if > 0)
-  glm::vec3 Spacing0{ 1.0f };      ///< world size of a level-0 cell
+  float ParallelPixelSize = 0.0f;    ///< parallel projection: world size of a pixel (used if > 0)
+  glm::vec3 Spacing0{ 1.0f };        ///< world size of a level-0 cell
 };
 
 /// Ray: origin + t * direction in level-0 index units. When direction is a unit world direction

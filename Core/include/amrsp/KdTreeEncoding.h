@@ -59,8 +59,8 @@ std::size_t KdTreeTextureBytes(const UIntTexture3D& tree, const UIntTexture3D& d
 /// Throws EncodingError when a field would overflow: more than 64 levels, more than 2^24 nodes,
 /// more than 2^21 - 1 data nodes, a split position beyond 2047 cells, more than 2^26 grids, or an
 /// atlas offset beyond 2047 x 2047 x 1023.
-EncodedKdTree EncodeKdTree(const Hierarchy& h, const KdTree& tree,
-  const std::vector<glm::ivec3>* brickOrigins = nullptr);
+EncodedKdTree EncodeKdTree(
+  const Hierarchy& h, const KdTree& tree, const std::vector<glm::ivec3>* brickOrigins = nullptr);
 
 /// Rebuilds a KdTree from its encoding (node regions by exact integer arithmetic), for the
 /// encode -> decode round-trip check. Node types are re-derived from the encoded fields.

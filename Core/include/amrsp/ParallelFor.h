@@ -38,7 +38,8 @@ void RunWorkers(int workers, const Work& work)
 {
   workers = std::max(1, workers);
   std::vector<std::exception_ptr> errors(static_cast<std::size_t>(workers));
-  auto run = [&work, &errors](int w) {
+  auto run = [&work, &errors](int w)
+  {
     try
     {
       work(w);
@@ -90,29 +91,31 @@ void ParallelFor(int64_t n, const F& f, int threads = 0, int64_t chunk = 1)
   const int workers = static_cast<int>(std::min<int64_t>(WorkerCount(threads), chunks));
   std::atomic<int64_t> next(0);
   std::atomic<bool> failed(false);
-  RunWorkers(workers, [&](int) {
-    while (!failed.load(std::memory_order_relaxed))
+  RunWorkers(workers,
+    [&](int)
     {
-      const int64_t begin = next.fetch_add(chunk);
-      if (begin >= n)
+      while (!failed.load(std::memory_order_relaxed))
       {
-        return;
-      }
-      const int64_t end = std::min(n, begin + chunk);
-      try
-      {
-        for (int64_t i = begin; i < end; ++i)
+        const int64_t begin = next.fetch_add(chunk);
+        if (begin >= n)
         {
-          f(i);
+          return;
+        }
+        const int64_t end = std::min(n, begin + chunk);
+        try
+        {
+          for (int64_t i = begin; i < end; ++i)
+          {
+            f(i);
+          }
+        }
+        catch (...)
+        {
+          failed = true;
+          throw;
         }
       }
-      catch (...)
-      {
-        failed = true;
-        throw;
-      }
-    }
-  });
+    });
 }
 
 /// f(i) for every i in [0, n); with W = min(WorkerCount(threads), n) workers, worker w runs the
@@ -122,20 +125,22 @@ void ParallelForInterleaved(int64_t n, const F& f, int threads = 0)
 {
   const int workers = static_cast<int>(std::min<int64_t>(WorkerCount(threads), n));
   std::atomic<bool> failed(false);
-  RunWorkers(workers, [&](int w) {
-    try
+  RunWorkers(workers,
+    [&](int w)
     {
-      for (int64_t i = w; i < n && !failed.load(std::memory_order_relaxed); i += workers)
+      try
       {
-        f(i);
+        for (int64_t i = w; i < n && !failed.load(std::memory_order_relaxed); i += workers)
+        {
+          f(i);
+        }
       }
-    }
-    catch (...)
-    {
-      failed = true;
-      throw;
-    }
-  });
+      catch (...)
+      {
+        failed = true;
+        throw;
+      }
+    });
 }
 
 /// body(begin, end) once per worker w in [0, max(1, workers)), on the contiguous slices

@@ -66,7 +66,7 @@ struct RayCastingData
   /// The converted hierarchy; its Values are the bricks (FreeBricks drops them after upload).
   Hierarchy Data;
   UIntTexture3D TreeTexels;
-  UIntTexture3D PackedDataNodeTexels;   ///< empty when the bricks could not be packed
+  UIntTexture3D PackedDataNodeTexels; ///< empty when the bricks could not be packed
   UIntTexture3D BindlessDataNodeTexels;
   /// Cell size of each level in index units (float, as in GLSL), and the float root box.
   std::vector<glm::vec3> LevelCellSize;
@@ -75,10 +75,10 @@ struct RayCastingData
   LevelTable Levels;
   /// min, max scalar per data node, indexed like the data-node texels (entry 0 unused).
   std::vector<glm::vec2> NodeRanges;
-  AtlasLayout Layout;       ///< Dims (0,0,0) when the bricks could not be packed
+  AtlasLayout Layout;        ///< Dims (0,0,0) when the bricks could not be packed
   glm::ivec3 AtlasDims{ 0 }; ///< Layout.Dims, kept after FreeUploadData
-  std::string PackingError; ///< why no atlas could be packed (empty when packed)
-  double AtlasWaste = 0.0;  ///< unused fraction of the atlas's texels
+  std::string PackingError;  ///< why no atlas could be packed (empty when packed)
+  double AtlasWaste = 0.0;   ///< unused fraction of the atlas's texels
   double ScalarRange[2] = { 0.0, 1.0 };
   long long KdNodes = 0;
   long long DataNodes = 0;

@@ -37,8 +37,8 @@ namespace amrsp
 /// p[axis] < the node's float split plane) and samples that leaf's grid as the integrator does.
 /// Returns NaN outside the root box or in a leaf without data; cellSize is the leaf's data-level
 /// cell size (level-0 index units).
-double SampleKdTreeAtPoint(const Hierarchy& h, const EncodedKdTree& tree, const glm::vec3& p,
-  glm::vec3& cellSize);
+double SampleKdTreeAtPoint(
+  const Hierarchy& h, const EncodedKdTree& tree, const glm::vec3& p, glm::vec3& cellSize);
 
 /// The kD-tree integrator's point lookup for the shading rules (PointLookup): point location in
 /// the encoded tree (as the shader's amrspLocateDataNode; outside the root box or in a leaf without
@@ -47,8 +47,8 @@ double SampleKdTreeAtPoint(const Hierarchy& h, const EncodedKdTree& tree, const 
 /// the smooth reconstruction of RenderSettings::SmoothCellData at the leaf's level, as the
 /// sample loop computes it (the gradient's neighbours under SmoothCellData); otherwise the same
 /// value as SampleKdTreeAtPoint. The lookup refers to h, tree and atlas, which must outlive it.
-PointLookup KdTreePointLookup(const Hierarchy& h, const EncodedKdTree& tree, bool smooth,
-  const BrickAtlas* atlas = nullptr);
+PointLookup KdTreePointLookup(
+  const Hierarchy& h, const EncodedKdTree& tree, bool smooth, const BrickAtlas* atlas = nullptr);
 
 /// The reference's point lookup: the finest grid containing the point, found by `locator` (no
 /// kD-tree); NaN outside the root box and every grid; cellSize: that grid's cell size. `smooth`
@@ -65,8 +65,8 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
 /// The scalar the kD-tree integrator samples at p (level-0 index units; cell-centred data),
 /// nearest-cell or smooth (RenderSettings::SmoothCellData), at the finest level there. NaN
 /// outside every grid.
-float SampleKdTreePoint(const Hierarchy& h, const EncodedKdTree& tree, const glm::vec3& p,
-  bool smooth);
+float SampleKdTreePoint(
+  const Hierarchy& h, const EncodedKdTree& tree, const glm::vec3& p, bool smooth);
 
 /// Renders the independent reference (no kD-tree).
 Image RenderReference(const Hierarchy& h, const RenderSettings& s);

@@ -33,14 +33,14 @@ enum class BlendMode
 /// Work counters of one render (summed over all rays), to show what the accelerations did.
 struct RenderStats
 {
-  long long Rays = 0;             ///< rays that entered the root box
-  long long Samples = 0;          ///< samples taken (transfer function evaluated or kept)
-  long long DataSegments = 0;     ///< segments through data nodes reached by a ray
-  long long SkippedSegments = 0;  ///< ... of which skipped as transparent (empty-space skipping)
-  long long SkippedSamples = 0;   ///< samples those skipped segments would have taken
-  long long TerminatedRays = 0;   ///< rays stopped early at the opacity threshold
-  long long Segments = 0;         ///< kD-tree integrator: all traversal segments, empty included
-  long long DescentLevels = 0;    ///< ... and the tree levels their descents went down in all
+  long long Rays = 0;            ///< rays that entered the root box
+  long long Samples = 0;         ///< samples taken (transfer function evaluated or kept)
+  long long DataSegments = 0;    ///< segments through data nodes reached by a ray
+  long long SkippedSegments = 0; ///< ... of which skipped as transparent (empty-space skipping)
+  long long SkippedSamples = 0;  ///< samples those skipped segments would have taken
+  long long TerminatedRays = 0;  ///< rays stopped early at the opacity threshold
+  long long Segments = 0;        ///< kD-tree integrator: all traversal segments, empty included
+  long long DescentLevels = 0;   ///< ... and the tree levels their descents went down in all
 };
 
 struct RenderSettings
@@ -57,10 +57,10 @@ struct RenderSettings
   /// Optional opaque geometry in the scene (as the depth buffer the GPU mapper reads): for a
   /// world ray (origin, unit direction) it returns true with the distance and the colour of the
   /// nearest opaque hit; the ray then ends there and that colour replaces the background.
-  std::function<bool(const glm::dvec3& origin, const glm::dvec3& direction, double& distance,
-    glm::dvec3& colour)>
+  std::function<bool(
+    const glm::dvec3& origin, const glm::dvec3& direction, double& distance, glm::dvec3& colour)>
     Opaque;
-  int Threads = 0;                 ///< 0 = hardware concurrency
+  int Threads = 0; ///< 0 = hardware concurrency
   /// Early ray termination (composite blending): a ray stops once its accumulated opacity
   /// reaches this value. 1 (the default here) never stops a ray early; the GPU mapper's default
   /// is 0.999.
@@ -83,9 +83,9 @@ struct RenderSettings
   /// nearest cell when the leaf's level m >= d, else the trilinear value of level m at x from
   /// the leaf's grid's cells (or, where that grid has none, the nearest cell of the leaf there).
   /// A corner outside every grid takes the nearest-cell value at p. Linear-exact across level
-  /// boundaries where covered cells hold the field at their centres (docs/design.md, "Smooth cell-centred
-  /// data"). With shading, the gradient's central differences, iso-surface bisection and shadow
-  /// rays read the same reconstruction (each at the level of the finest data there):
+  /// boundaries where covered cells hold the field at their centres (docs/design.md, "Smooth
+  /// cell-centred data"). With shading, the gradient's central differences, iso-surface bisection
+  /// and shadow rays read the same reconstruction (each at the level of the finest data there):
   /// ShadingContext::Neighbours and the integrators' point lookup.
   bool SmoothCellData = false;
   /// Gradient shading and shadow rays (composite and iso-surface blending; amrsp/Shading.h).
@@ -104,7 +104,7 @@ struct RenderSettings
 
 /// The ray parameter interval [t0, t1] (world distance along the unit direction `wd` from `wo`)
 /// inside the settings' clip box: false when the ray misses it; (-inf, inf) without Clip.
-bool ClipInterval(const RenderSettings& s, const glm::dvec3& wo, const glm::dvec3& wd, double& t0,
-  double& t1);
+bool ClipInterval(
+  const RenderSettings& s, const glm::dvec3& wo, const glm::dvec3& wd, double& t0, double& t1);
 
 } // namespace amrsp

@@ -16,10 +16,10 @@ namespace amrsp
 
 struct UniformGrid
 {
-  glm::ivec3 Dims{ 0 };       ///< voxels (cells) per axis
-  glm::dvec3 Origin{ 0.0 };   ///< world position of the first voxel's lower corner
-  glm::dvec3 Spacing{ 1.0 };  ///< world size of a voxel
-  std::vector<float> Values;  ///< voxel values, x fastest; NaN outside every grid
+  glm::ivec3 Dims{ 0 };      ///< voxels (cells) per axis
+  glm::dvec3 Origin{ 0.0 };  ///< world position of the first voxel's lower corner
+  glm::dvec3 Spacing{ 1.0 }; ///< world size of a voxel
+  std::vector<float> Values; ///< voxel values, x fastest; NaN outside every grid
 
   std::size_t Bytes() const { return Values.size() * sizeof(float); }
 };
@@ -38,7 +38,7 @@ glm::i64vec3 UniformDims(const Hierarchy& h, int level);
 /// of the finest cell containing it (cell-centred) or the trilinear value of that cell's grid
 /// (vertex-centred). Throws ResampleError, naming the size, when a dimension exceeds `maxAxis`
 /// or the voxel count exceeds `maxVoxels`; nothing is allocated then.
-UniformGrid ResampleToLevel(const Hierarchy& h, int level, int64_t maxVoxels, int maxAxis,
-  int threads = 0);
+UniformGrid ResampleToLevel(
+  const Hierarchy& h, int level, int64_t maxVoxels, int maxAxis, int threads = 0);
 
 } // namespace amrsp

@@ -31,12 +31,12 @@
 ///   ShadowMaxSteps samples.
 /// - Iso-surfaces: between two consecutive present samples a (value va) and b (vb) along the ray,
 ///   an iso-value c is crossed when (va < c) != (vb < c); the crossings of one pair are taken in
-///   the order the ray meets them (ascending values when vb > va). Each is refined by IsoRefineSteps
-///   bisections on the segment [a, b] with the lookup (absent midpoint: refinement stops); the hit
-///   is the far end of the final interval. Its colour is the transfer function's colour at c,
-///   shaded at the hit (with the level found there), and its opacity the transfer function's
-///   opacity at c (no unit-distance correction, as VTK's iso-surface blend). Missing data between
-///   two samples (absent sample or empty space) breaks the pairing.
+///   the order the ray meets them (ascending values when vb > va). Each is refined by
+///   IsoRefineSteps bisections on the segment [a, b] with the lookup (absent midpoint: refinement
+///   stops); the hit is the far end of the final interval. Its colour is the transfer function's
+///   colour at c, shaded at the hit (with the level found there), and its opacity the transfer
+///   function's opacity at c (no unit-distance correction, as VTK's iso-surface blend). Missing
+///   data between two samples (absent sample or empty space) breaks the pairing.
 
 #include "amrsp/Lighting.h"
 

@@ -37,8 +37,8 @@ struct TransferFunction
   /// "hot", "grey-opaque" (grey levels at opacity 1, for the intensity projections), "sparse"
   /// ("hot" colours, zero opacity below 60 % of the range: for empty-space skipping). Throws
   /// std::invalid_argument for an unknown name.
-  static TransferFunction Preset(const std::string& name, double lo, double hi,
-    double unitDistance);
+  static TransferFunction Preset(
+    const std::string& name, double lo, double hi, double unitDistance);
   static std::vector<std::string> PresetNames();
 };
 

@@ -83,8 +83,8 @@ bool HitSquares(const std::vector<BaselineCase::Square>& squares, const glm::dve
     }
     const double t = glm::dot(q.Centre - origin, n) / denominator;
     const glm::dvec3 local = origin + t * direction - q.Centre;
-    if (t > 0.0 && std::abs(glm::dot(local, r)) <= q.Half && std::abs(glm::dot(local, u)) <= q.Half &&
-      (!any || t < distance))
+    if (t > 0.0 && std::abs(glm::dot(local, r)) <= q.Half &&
+      std::abs(glm::dot(local, u)) <= q.Half && (!any || t < distance))
     {
       any = true;
       distance = t;
@@ -134,7 +134,8 @@ bool CompareWorkCounters(
   vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
   const WorkCounts w = RenderWorkCounts(gpu);
   bool ok = true;
-  auto report = [&](bool pass, const std::string& what) {
+  auto report = [&](bool pass, const std::string& what)
+  {
     log << (pass ? "ok" : "FAILED") << ": " << what << "\n";
     ok = ok && pass;
   };
@@ -178,8 +179,8 @@ bool CompareWorkCounters(
 
 namespace
 {
-bool Report(std::ostream& log, const std::string& what, const ImageDifference& d,
-  const BaselineCase& c)
+bool Report(
+  std::ostream& log, const std::string& what, const ImageDifference& d, const BaselineCase& c)
 {
   const bool ok = d.Rmse <= c.ReferenceBound && d.OffShare <= c.ReferenceOffBound;
   log << (ok ? "ok" : "FAILED") << ": " << what << ": " << d.Describe() << " (bounds "
@@ -293,7 +294,8 @@ bool CompareWithStoredBaseline(int argc, char* argv[], const Image& image, const
         << path << "'\n";
     return false;
   }
-  bool ok = Report(log, "stored baseline vs CPU reference", CompareRgb8(baseline, reference.Rgb8()), c);
+  bool ok =
+    Report(log, "stored baseline vs CPU reference", CompareRgb8(baseline, reference.Rgb8()), c);
   const ImageDifference d = CompareRgb8(image.Rgb8(), baseline);
   const bool same = d.Rmse <= c.BaselineBound;
   log << (same ? "ok" : "FAILED") << ": GPU image vs stored baseline: " << d.Describe()
@@ -333,9 +335,9 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
   }
   try
   {
-    std::vector<std::string> known = { "array", "centering", "size", "azimuth", "elevation",
-      "zoom", "tf", "scale", "unit-distance", "sample-factor", "reference-sample-factor", "lod",
-      "blend", "opacity-threshold", "empty-space-skipping", "interpolation", "crop" };
+    std::vector<std::string> known = { "array", "centering", "size", "azimuth", "elevation", "zoom",
+      "tf", "scale", "unit-distance", "sample-factor", "reference-sample-factor", "lod", "blend",
+      "opacity-threshold", "empty-space-skipping", "interpolation", "crop" };
     known.insert(known.end(), LightingOptions.begin(), LightingOptions.end());
     const Arguments a = ParseArguments(static_cast<int>(args.size()), args.data(), 1, known, {});
     DatasetRequest request;
@@ -369,9 +371,8 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
     }
     if (!c.Squares.empty())
     {
-      s.Opaque = [&c](const glm::dvec3& o, const glm::dvec3& dir, double& t, glm::dvec3& colour) {
-        return HitSquares(c.Squares, o, dir, t, colour);
-      };
+      s.Opaque = [&c](const glm::dvec3& o, const glm::dvec3& dir, double& t, glm::dvec3& colour)
+      { return HitSquares(c.Squares, o, dir, t, colour); };
     }
     double ms = 0.0;
     gpu.Render(0.0, ms);
@@ -395,8 +396,9 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
     const ImageDifference mirror = Compare(image, mirrorImage);
     bool agrees = Report(std::cout, "GPU image vs CPU reference", Compare(image, reference), c);
     const bool mirrorAgrees = mirror.Rmse <= c.MirrorBound;
-    std::cout << (mirrorAgrees ? "ok" : "FAILED") << ": GPU image vs CPU kD-tree integrator: "
-              << mirror.Describe() << " (RMSE bound " << c.MirrorBound << ")\n";
+    std::cout << (mirrorAgrees ? "ok" : "FAILED")
+              << ": GPU image vs CPU kD-tree integrator: " << mirror.Describe() << " (RMSE bound "
+              << c.MirrorBound << ")\n";
     agrees = mirrorAgrees && agrees;
     agrees = RejectsWrongImages(d.Data, ref, reference, mirrorImage, c, std::cout) && agrees;
     agrees = CompareWithStoredBaseline(argc, argv, image, reference, c, std::cout) && agrees;

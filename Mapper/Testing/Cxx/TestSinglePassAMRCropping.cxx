@@ -25,10 +25,11 @@ int TestSinglePassAMRCropping(int argc, char* argv[])
   c.ReferenceOffBound = 0.005;
   c.MirrorBound = 0.3;
   c.BaselineBound = 0.3;
-  c.WrongImages.push_back({ "no cropping", [](amrsp::RenderSettings& s) { s.Clip = false; },
-    nullptr });
+  c.WrongImages.push_back(
+    { "no cropping", [](amrsp::RenderSettings& s) { s.Clip = false; }, nullptr });
   c.Check = [](amrsp::tool::PackingRenderer& gpu, const amrsp::Image& image,
-    const amrsp::RenderSettings&, std::ostream& log) {
+              const amrsp::RenderSettings&, std::ostream& log)
+  {
     vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
     double ms = 0.0;
     mapper->SetCropping(0);
@@ -39,8 +40,8 @@ int TestSinglePassAMRCropping(int argc, char* argv[])
     const double unsupported = amrsp::Rmse(whole, gpu.RenderAsIs(ms));
     mapper->SetCroppingRegionFlagsToSubVolume();
     const bool ok = uncropped > 3.0 && unsupported < 0.01;
-    log << (uncropped > 3.0 ? "ok" : "FAILED") << ": cropped vs uncropped image RMSE "
-        << uncropped << " (must exceed 3)\n"
+    log << (uncropped > 3.0 ? "ok" : "FAILED") << ": cropped vs uncropped image RMSE " << uncropped
+        << " (must exceed 3)\n"
         << (unsupported < 0.01 ? "ok" : "FAILED")
         << ": unsupported cropping flags (fence) vs uncropped RMSE " << unsupported
         << " (must be below 0.01: ignored)\n";

@@ -34,7 +34,8 @@ int TestSinglePassAMREarlyTermination(int argc, char* argv[])
   c.CheckWorkCounters = true;
   c.ExpectTerminated = true;
   c.Check = [](amrsp::tool::PackingRenderer& gpu, const amrsp::Image& image,
-    const amrsp::RenderSettings&, std::ostream& log) {
+              const amrsp::RenderSettings&, std::ostream& log)
+  {
     vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
     double ms = 0.0;
     mapper->SetOpacityThreshold(1.0);

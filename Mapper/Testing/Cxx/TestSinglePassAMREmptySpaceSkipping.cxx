@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Empty-space skipping on a real Enzo hierarchy (dark-matter density, log scale) with the
-// "sparse" transfer function, transparent below 60 % of the range: the skipped image equals the unskipped one, the mapper
-// reports the data nodes it skips, a transfer-function change updates them without a rebuild,
-// and the CPU mirror of the shader counts the samples skipping saves.
+// "sparse" transfer function, transparent below 60 % of the range: the skipped image equals the
+// unskipped one, the mapper reports the data nodes it skips, a transfer-function change updates
+// them without a rebuild, and the CPU mirror of the shader counts the samples skipping saves.
 #include "SinglePassAMRBaselineTest.h"
 
 #include "AmrspPacking.h"
@@ -33,7 +33,8 @@ int TestSinglePassAMREmptySpaceSkipping(int argc, char* argv[])
   c.CheckWorkCounters = true;
   c.ExpectSkipped = true;
   c.Check = [](amrsp::tool::PackingRenderer& gpu, const amrsp::Image& image,
-    const amrsp::RenderSettings&, std::ostream& log) {
+              const amrsp::RenderSettings&, std::ostream& log)
+  {
     vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
     bool ok = true;
     const long long transparent = mapper->GetNumberOfTransparentDataNodes();
@@ -49,8 +50,7 @@ int TestSinglePassAMREmptySpaceSkipping(int argc, char* argv[])
     mapper->EmptySpaceSkippingOff();
     const double offRmse = amrsp::Rmse(image, gpu.RenderAsIs(ms));
     const bool same = offRmse <= 0.05;
-    log << (same ? "ok" : "FAILED") << ": skipping on vs off RMSE " << offRmse
-        << " (bound 0.05)\n";
+    log << (same ? "ok" : "FAILED") << ": skipping on vs off RMSE " << offRmse << " (bound 0.05)\n";
     ok = ok && same && mapper->GetNumberOfTransparentDataNodes() == 0;
     mapper->EmptySpaceSkippingOn();
 
@@ -73,8 +73,8 @@ int TestSinglePassAMREmptySpaceSkipping(int argc, char* argv[])
         << ": with opacity everywhere, transparent data nodes " << opaqueTransparent << "\n";
     opacity->DeepCopy(saved);
     gpu.RenderAsIs(ms);
-    const bool noRebuild =
-      mapper->GetNumberOfBuilds() == builds && mapper->GetNumberOfTransparentDataNodes() == transparent;
+    const bool noRebuild = mapper->GetNumberOfBuilds() == builds &&
+      mapper->GetNumberOfTransparentDataNodes() == transparent;
     log << (noRebuild ? "ok" : "FAILED")
         << ": transfer-function changes rebuilt nothing and restored the skipped nodes\n";
     return ok && opaqueTransparent == 0 && noRebuild;

@@ -10,8 +10,8 @@ int TestSinglePassAMRIsoSurface(int argc, char* argv[])
   amrsp::test::BaselineCase c;
   c.Dataset = "synthetic:cosmo:grids=60,levels=3,cells=100k,seed=3";
   // iso-values at 0.4 and 0.7 of the transfer function's range (log10 of the density)
-  c.Options = { "--size", "128x128", "--zoom", "1.5", "--unit-distance", "0.005", "--blend",
-    "iso", "--iso", "0.4,0.7", "--tf", "grey", "--shade", "on" };
+  c.Options = { "--size", "128x128", "--zoom", "1.5", "--unit-distance", "0.005", "--blend", "iso",
+    "--iso", "0.4,0.7", "--tf", "grey", "--shade", "on" };
   // covered-pixel bounds, about 1.5-2x what llvmpipe (LLVM 15) measures: reference 6.42, 16.03 % of
   // the pixels off by more than 8 levels, mirror 0.00, stored baseline 0.00;
   // bisected surface positions differ at silhouettes
@@ -19,8 +19,8 @@ int TestSinglePassAMRIsoSurface(int argc, char* argv[])
   c.ReferenceOffBound = 0.321;
   c.MirrorBound = 0.3;
   c.BaselineBound = 0.3;
-  c.WrongImages.push_back({ "no shading",
-    [](amrsp::RenderSettings& s) { s.Light.Shade = false; }, nullptr });
+  c.WrongImages.push_back(
+    { "no shading", [](amrsp::RenderSettings& s) { s.Light.Shade = false; }, nullptr });
   c.WrongImages.push_back({ "the second iso-value left out",
     [](amrsp::RenderSettings& s) { s.IsoValues.resize(1); }, nullptr });
   return amrsp::test::RunBaselineTest(argc, argv, c);

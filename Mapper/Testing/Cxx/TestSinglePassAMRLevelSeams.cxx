@@ -61,10 +61,11 @@ int TestSinglePassAMRLevelSeams(int argc, char* argv[])
   c.MirrorBound = 0.3;
   c.BaselineBound = 0.3;
   c.Settings = Transfer;
-  c.WrongImages.push_back({ "nearest-cell values",
-    [](RenderSettings& s) { s.SmoothCellData = false; }, nullptr });
-  c.Check = [](tool::PackingRenderer& gpu, const Image& image, const RenderSettings& s,
-              std::ostream& log) {
+  c.WrongImages.push_back(
+    { "nearest-cell values", [](RenderSettings& s) { s.SmoothCellData = false; }, nullptr });
+  c.Check =
+    [](tool::PackingRenderer& gpu, const Image& image, const RenderSettings& s, std::ostream& log)
+  {
     const Hierarchy two = test::LevelPatch(2, Finest, Field);
     const Hierarchy one = test::LevelPatch(1, Finest, Field);
     tool::ViewAngles same;

@@ -6,7 +6,8 @@ int TestSinglePassAMRMaximumIntensity(int argc, char* argv[])
 {
   amrsp::test::BaselineCase c;
   c.Dataset = "data:enzo_moving7/DD0010/moving7_0010.hierarchy";
-  c.Options = { "--array", "Density", "--size", "200x200", "--blend", "maximum", "--tf", "grey-opaque" };
+  c.Options = { "--array", "Density", "--size", "200x200", "--blend", "maximum", "--tf",
+    "grey-opaque" };
   // covered-pixel bounds, about 1.5-2x what llvmpipe (LLVM 15) measures: reference 8.29, 4.45 % of
   // the pixels off by more than 8 levels, mirror 0.12, stored baseline 0.13;
   // one sample per cell misses maxima the reference's two find

@@ -15,9 +15,9 @@ int TestSinglePassAMROpaqueGeometry(int argc, char* argv[])
   c.ReferenceOffBound = 0.013;
   c.MirrorBound = 0.6;
   c.BaselineBound = 0.3;
-  c.Squares.push_back({ glm::dvec3(0.5, 0.5, 0.5), glm::dvec3(0.3, 0.2, 1.0),
-    glm::dvec3(0.0, 1.0, 0.0), 0.3, 1.0 });
-  c.WrongImages.push_back({ "the square ignored",
-    [](amrsp::RenderSettings& s) { s.Opaque = nullptr; }, nullptr });
+  c.Squares.push_back(
+    { glm::dvec3(0.5, 0.5, 0.5), glm::dvec3(0.3, 0.2, 1.0), glm::dvec3(0.0, 1.0, 0.0), 0.3, 1.0 });
+  c.WrongImages.push_back(
+    { "the square ignored", [](amrsp::RenderSettings& s) { s.Opaque = nullptr; }, nullptr });
   return amrsp::test::RunBaselineTest(argc, argv, c);
 }

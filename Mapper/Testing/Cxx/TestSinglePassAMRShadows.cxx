@@ -17,7 +17,7 @@ int TestSinglePassAMRShadows(int argc, char* argv[])
   c.ReferenceOffBound = 0.034;
   c.MirrorBound = 0.3;
   c.BaselineBound = 0.3;
-  c.WrongImages.push_back({ "no shadows",
-    [](amrsp::RenderSettings& s) { s.Light.Shadows = false; }, nullptr });
+  c.WrongImages.push_back(
+    { "no shadows", [](amrsp::RenderSettings& s) { s.Light.Shadows = false; }, nullptr });
   return amrsp::test::RunBaselineTest(argc, argv, c);
 }

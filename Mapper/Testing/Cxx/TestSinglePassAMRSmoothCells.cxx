@@ -21,10 +21,11 @@ int TestSinglePassAMRSmoothCells(int argc, char* argv[])
   c.ReferenceOffBound = 0.005;
   c.MirrorBound = 0.3;
   c.BaselineBound = 0.3;
-  c.WrongImages.push_back({ "nearest-cell values",
-    [](amrsp::RenderSettings& s) { s.SmoothCellData = false; }, nullptr });
+  c.WrongImages.push_back(
+    { "nearest-cell values", [](amrsp::RenderSettings& s) { s.SmoothCellData = false; }, nullptr });
   c.Check = [](amrsp::tool::PackingRenderer& gpu, const amrsp::Image& image,
-    const amrsp::RenderSettings&, std::ostream& log) {
+              const amrsp::RenderSettings&, std::ostream& log)
+  {
     vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
     const bool smooth = mapper->GetCellInterpolation() == vtkSinglePassAMRVolumeMapper::SMOOTH_CELL;
     double ms = 0.0;
