@@ -77,7 +77,10 @@ std::vector<std::string> ScalingDatasets(const std::string& text, const std::str
 const char* const DefaultScalingSizes = "200:4:1M,2666:4:19M,18528:4:33M,39061:13:140M";
 } // namespace
 
-int RunBench(int argc, char** argv)
+namespace
+{
+/// The usage text of `amrsp bench` (without the shared view, driver and dataset options).
+std::string BenchHelp()
 {
   std::ostringstream help;
   help
@@ -109,6 +112,232 @@ int RunBench(int argc, char** argv)
        "Methods (default "
     << DefaultBenchMethods() << "):\n";
   PrintMethodHelp(help, BenchCommand);
+  return help.str();
+}
+
+/// What `amrsp bench` was asked for, checked.
+struct BenchRequest
+{
+  bool Scaling = false;
+  BenchOptions Options;
+  /// The dataset and view arguments, with the default image size filled in.
+  Arguments ViewArguments;
+  std::string Plot; // PNG of the bar charts ("" for none)
+  int PlotWidth = 900;
+  int PlotHeight = 600;
+  std::string JsonPath; // "" for none, "-" for stdout
+};
+
+/// Checks the options of `a` (UsageError naming the problem) and creates the --save-images
+/// folder, so that a bad path fails before a long run.
+BenchRequest ParseBenchRequest(const Arguments& a)
+{
+  BenchRequest r;
+  const bool scaling = a.Has("scaling");
+  r.Scaling = scaling;
+  if (scaling && a.Positional.size() > 1)
+  {
+    throw UsageError{ "--scaling takes no DATASET (it generates synthetic:cosmo at "
+                      "--scaling-sizes)" };
+  }
+  if (!scaling && (a.Has("scaling-sizes") || a.Has("seed")))
+  {
+    throw UsageError{ "--scaling-sizes and --seed need --scaling" };
+  }
+  if (scaling && a.Has("plot"))
+  {
+    throw UsageError{ "--plot draws one dataset's methods; it does not apply to --scaling" };
+  }
+  if (a.Has("plot-size") && !a.Has("plot"))
+  {
+    throw UsageError{ "--plot-size needs --plot FILE.png" };
+  }
+  const double framesValue = a.GetNumber("frames", scaling ? 2 : 8);
+  if (framesValue < 1 || framesValue != std::floor(framesValue))
+  {
+    throw UsageError{ "--frames must be a whole number of at least 1" };
+  }
+  const double roundsValue = a.GetNumber("rounds", 1);
+  if (roundsValue < 1 || roundsValue > 1000 || roundsValue != std::floor(roundsValue))
+  {
+    throw UsageError{ "--rounds must be a whole number from 1 to 1000" };
+  }
+  BenchOptions& o = r.Options;
+  o.Frames = static_cast<int>(framesValue);
+  o.Rounds = static_cast<int>(roundsValue);
+  o.ImageFolder = a.Get("save-images", "");
+  if (a.Has("save-images") && (scaling || o.ImageFolder.empty()))
+  {
+    throw UsageError{ "--save-images needs a folder and does not apply to --scaling" };
+  }
+  if (!o.ImageFolder.empty())
+  {
+    std::error_code error; // created before the (possibly long) run, so a bad path fails now
+    std::filesystem::create_directories(o.ImageFolder, error);
+    if (error)
+    {
+      throw std::runtime_error(
+        "cannot create the --save-images folder '" + o.ImageFolder + "': " + error.message());
+    }
+  }
+  o.View = ViewOf(a);
+  o.Methods = SplitList(a.Get("methods", scaling ? "packing,multipass" : DefaultBenchMethods()));
+  if (o.Methods.empty())
+  {
+    throw UsageError{ "--methods is empty" };
+  }
+  for (const std::string& m : o.Methods)
+  {
+    if (!FindMethod(m, BenchCommand))
+    {
+      throw UsageError{ "unknown method '" + m + "' in --methods (" + MethodList(BenchCommand) +
+        ")" };
+    }
+  }
+  if (a.Has("plot-size"))
+  {
+    ParseSize(a.Get("plot-size", ""), "plot-size", 1, r.PlotWidth, r.PlotHeight);
+    if (r.PlotWidth < 300 || r.PlotHeight < 200)
+    {
+      throw UsageError{ "--plot-size must be at least 300x200" };
+    }
+  }
+  r.Plot = a.Get("plot", "");
+  if (a.Has("plot") && (r.Plot.size() < 5 || r.Plot.substr(r.Plot.size() - 4) != ".png"))
+  {
+    throw UsageError{ "--plot expects a file name ending in .png, got '" + r.Plot + "'" };
+  }
+  r.JsonPath = a.Get("json", "");
+  if (a.Has("json") && r.JsonPath.empty())
+  {
+    throw UsageError{ "--json needs a file name (or - for stdout)" };
+  }
+  r.ViewArguments = a;
+  if (!a.Has("size"))
+  {
+    r.ViewArguments.Options["size"] = scaling ? "128x128" : "256x256";
+  }
+  return r;
+}
+
+/// The methods of one dataset against its CPU reference.
+Json BenchDataset(const BenchRequest& r)
+{
+  LoadedDataset d = Load(r.ViewArguments, true, false);
+  RenderSettings s = MakeSettings(d.Data, r.ViewArguments);
+  const Image reference = RenderReference(d.Data, s);
+  Json j;
+  j["dataset"] = d.Spec;
+  j["image"] = { s.Width, s.Height };
+  j["frames"] = r.Options.Frames;
+  j["statistics"] = DatasetStatistics(d.Data);
+  j["methods"] = RunBenchMethods(d.Data, s, reference, r.Options, j["statistics"]);
+  return j;
+}
+
+/// The methods' timings on synthetic:cosmo at each --scaling-sizes entry, one row each; with
+/// Markdown output the table grows row by row on stdout (a size that exhausts memory may end
+/// the process).
+Json BenchScaling(const BenchRequest& r, const Arguments& a)
+{
+  Json j;
+  j["dataset"] = "synthetic:cosmo (scaling)";
+  j["frames"] = r.Options.Frames;
+  j["rows"] = Json::array();
+  const std::vector<std::string> specs =
+    ScalingDatasets(a.Get("scaling-sizes", DefaultScalingSizes), a.Get("seed", "7"));
+  int width = 0, height = 0; // checked before the first row (rows catch their own errors)
+  ParseSize(r.ViewArguments.Get("size", ""), "size", 1, width, height);
+  const bool progressive = r.JsonPath != "-";
+  if (progressive)
+  {
+    std::string size = r.ViewArguments.Get("size", "");
+    if (size.find('x') != std::string::npos)
+    {
+      size.replace(size.find('x'), 1, "×");
+    }
+    std::cout << ScalingMarkdownHeader(size, r.Options.Frames) << std::flush;
+  }
+  for (const std::string& spec : specs)
+  {
+    Json row;
+    row["dataset"] = spec;
+    try
+    {
+      Arguments rowArgs = r.ViewArguments;
+      rowArgs.Positional = { "bench", spec };
+      LoadedDataset d = Load(rowArgs, true, false);
+      RenderSettings s = MakeSettings(d.Data, rowArgs);
+      j["image"] = { s.Width, s.Height };
+      row["load_s"] = d.LoadSeconds;
+      row["statistics"] = DatasetStatistics(d.Data);
+      // timings only: no CPU reference image (the plain bench measures the RMSE)
+      BenchOptions timingOnly = r.Options;
+      timingOnly.CompareImages = false;
+      row["methods"] = RunBenchMethods(d.Data, s, Image(), timingOnly, row["statistics"]);
+    }
+    catch (const std::exception& e)
+    {
+      row["error"] = e.what();
+    }
+    catch (const UsageError& e)
+    {
+      row["error"] = e.Message;
+    }
+    if (progressive)
+    {
+      std::cout << ScalingMarkdownRow(row) << std::flush;
+    }
+    j["rows"].push_back(row);
+  }
+  if (progressive)
+  {
+    for (const Json& row : j["rows"])
+    {
+      if (row.contains("methods") && !RoundsMarkdown(row["methods"]).empty())
+      {
+        std::cout << "\n`" << row["dataset"].get<std::string>() << "`:\n"
+                  << RoundsMarkdown(row["methods"]);
+      }
+    }
+  }
+  return j;
+}
+
+/// Where the run rendered: the device (or why there was none), the window system of the GPU
+/// methods and the library versions.
+void AddRunContext(Json& j, const std::string& noDevice, bool scaling)
+{
+  const auto firstMethodWith = [&j](const char* key)
+  {
+    for (const auto& m : j["methods"].items())
+    {
+      if (m.value().contains(key))
+      {
+        j[key] = m.value()[key];
+        break;
+      }
+    }
+  };
+  if (!noDevice.empty())
+  {
+    j["device"] = noDevice;
+  }
+  else if (!scaling)
+  {
+    firstMethodWith("device");
+  }
+  if (!scaling)
+  {
+    firstMethodWith("backend");
+  }
+  j["vtk_version"] = VtkVersion();
+  j["paraview_version"] = ParaViewVersion();
+}
+} // namespace
+
+int RunBench(int argc, char** argv)
+{
   try
   {
     const Arguments a = ParseArguments(argc, argv, 1,
@@ -118,233 +347,44 @@ int RunBench(int argc, char** argv)
       Concat({ DatasetFlags, { "scaling" } }));
     if (WantsHelp(a))
     {
-      std::cout << help.str() << ViewHelp << DriverHelp << DatasetHelp;
+      std::cout << BenchHelp() << ViewHelp << DriverHelp << DatasetHelp;
       return 0;
     }
     // every method of the run renders in contexts of this driver (comparable timings)
     SelectDriver(a.Get("driver", "default"));
     SelectBackend(a.Get("backend", "auto"));
-    const bool scaling = a.Has("scaling");
-    if (scaling && a.Positional.size() > 1)
+    const BenchRequest r = ParseBenchRequest(a);
+    if (!r.Plot.empty() && !std::ofstream(r.Plot, std::ios::app))
     {
-      throw UsageError{ "--scaling takes no DATASET (it generates synthetic:cosmo at "
-                        "--scaling-sizes)" };
+      return Fail("cannot write the plot file '" + r.Plot + "'");
     }
-    if (!scaling && (a.Has("scaling-sizes") || a.Has("seed")))
-    {
-      throw UsageError{ "--scaling-sizes and --seed need --scaling" };
-    }
-    if (scaling && a.Has("plot"))
-    {
-      throw UsageError{ "--plot draws one dataset's methods; it does not apply to --scaling" };
-    }
-    if (a.Has("plot-size") && !a.Has("plot"))
-    {
-      throw UsageError{ "--plot-size needs --plot FILE.png" };
-    }
-    const double framesValue = a.GetNumber("frames", scaling ? 2 : 8);
-    if (framesValue < 1 || framesValue != std::floor(framesValue))
-    {
-      throw UsageError{ "--frames must be a whole number of at least 1" };
-    }
-    const double roundsValue = a.GetNumber("rounds", 1);
-    if (roundsValue < 1 || roundsValue > 1000 || roundsValue != std::floor(roundsValue))
-    {
-      throw UsageError{ "--rounds must be a whole number from 1 to 1000" };
-    }
-    BenchOptions o;
-    o.Frames = static_cast<int>(framesValue);
-    o.Rounds = static_cast<int>(roundsValue);
-    o.ImageFolder = a.Get("save-images", "");
-    if (a.Has("save-images") && (scaling || o.ImageFolder.empty()))
-    {
-      throw UsageError{ "--save-images needs a folder and does not apply to --scaling" };
-    }
-    if (!o.ImageFolder.empty())
-    {
-      std::error_code error; // created before the (possibly long) run, so a bad path fails now
-      std::filesystem::create_directories(o.ImageFolder, error);
-      if (error)
-      {
-        throw std::runtime_error(
-          "cannot create the --save-images folder '" + o.ImageFolder + "': " + error.message());
-      }
-    }
-    o.View = ViewOf(a);
-    o.Methods = SplitList(a.Get("methods", scaling ? "packing,multipass" : DefaultBenchMethods()));
-    if (o.Methods.empty())
-    {
-      throw UsageError{ "--methods is empty" };
-    }
-    for (const std::string& m : o.Methods)
-    {
-      if (!FindMethod(m, BenchCommand))
-      {
-        throw UsageError{ "unknown method '" + m + "' in --methods (" + MethodList(BenchCommand) +
-          ")" };
-      }
-    }
-    int plotWidth = 900, plotHeight = 600;
-    if (a.Has("plot-size"))
-    {
-      ParseSize(a.Get("plot-size", ""), "plot-size", 1, plotWidth, plotHeight);
-      if (plotWidth < 300 || plotHeight < 200)
-      {
-        throw UsageError{ "--plot-size must be at least 300x200" };
-      }
-    }
-    const std::string plot = a.Get("plot", "");
-    if (a.Has("plot") && (plot.size() < 5 || plot.substr(plot.size() - 4) != ".png"))
-    {
-      throw UsageError{ "--plot expects a file name ending in .png, got '" + plot + "'" };
-    }
-    if (a.Has("plot") && !std::ofstream(plot, std::ios::app))
-    {
-      return Fail("cannot write the plot file '" + plot + "'");
-    }
-    const std::string jsonPath = a.Get("json", "");
-    if (a.Has("json") && jsonPath.empty())
-    {
-      throw UsageError{ "--json needs a file name (or - for stdout)" };
-    }
-    Arguments viewArgs = a;
-    if (!a.Has("size"))
-    {
-      viewArgs.Options["size"] = scaling ? "128x128" : "256x256";
-    }
-    std::string device;
+    std::string noDevice;
     {
       std::string why;
-      device = GpuRenderer::Available(why) ? "" : "no OpenGL here: " + why;
+      noDevice = GpuRenderer::Available(why) ? "" : "no OpenGL here: " + why;
     }
-
-    Json j;
-    if (!scaling)
+    Json j = r.Scaling ? BenchScaling(r, a) : BenchDataset(r);
+    AddRunContext(j, noDevice, r.Scaling);
+    if (!r.Plot.empty())
     {
-      LoadedDataset d = Load(viewArgs, true, false);
-      RenderSettings s = MakeSettings(d.Data, viewArgs);
-      const Image reference = RenderReference(d.Data, s);
-      j["dataset"] = d.Spec;
-      j["image"] = { s.Width, s.Height };
-      j["frames"] = o.Frames;
-      j["statistics"] = DatasetStatistics(d.Data);
-      j["methods"] = RunBenchMethods(d.Data, s, reference, o, j["statistics"]);
+      WriteBenchPlot(j, r.Plot, r.PlotWidth, r.PlotHeight);
     }
-    else
-    {
-      j["dataset"] = "synthetic:cosmo (scaling)";
-      j["frames"] = o.Frames;
-      j["rows"] = Json::array();
-      // the table grows row by row on stdout (a size that exhausts memory may end the process)
-      const std::vector<std::string> specs =
-        ScalingDatasets(a.Get("scaling-sizes", DefaultScalingSizes), a.Get("seed", "7"));
-      int width = 0, height = 0; // checked before the first row (rows catch their own errors)
-      ParseSize(viewArgs.Get("size", ""), "size", 1, width, height);
-      const bool progressive = jsonPath != "-";
-      if (progressive)
-      {
-        std::string size = viewArgs.Get("size", "");
-        if (size.find('x') != std::string::npos)
-        {
-          size.replace(size.find('x'), 1, "×");
-        }
-        std::cout << ScalingMarkdownHeader(size, o.Frames) << std::flush;
-      }
-      for (const std::string& spec : specs)
-      {
-        Json row;
-        row["dataset"] = spec;
-        try
-        {
-          Arguments rowArgs = viewArgs;
-          rowArgs.Positional = { "bench", spec };
-          LoadedDataset d = Load(rowArgs, true, false);
-          RenderSettings s = MakeSettings(d.Data, rowArgs);
-          j["image"] = { s.Width, s.Height };
-          row["load_s"] = d.LoadSeconds;
-          row["statistics"] = DatasetStatistics(d.Data);
-          // timings only: no CPU reference image (the plain bench measures the RMSE)
-          BenchOptions timingOnly = o;
-          timingOnly.CompareImages = false;
-          row["methods"] = RunBenchMethods(d.Data, s, Image(), timingOnly, row["statistics"]);
-        }
-        catch (const std::exception& e)
-        {
-          row["error"] = e.what();
-        }
-        catch (const UsageError& e)
-        {
-          row["error"] = e.Message;
-        }
-        if (progressive)
-        {
-          std::cout << ScalingMarkdownRow(row) << std::flush;
-        }
-        j["rows"].push_back(row);
-      }
-      if (progressive)
-      {
-        for (const Json& row : j["rows"])
-        {
-          if (row.contains("methods") && !RoundsMarkdown(row["methods"]).empty())
-          {
-            std::cout << "\n`" << row["dataset"].get<std::string>() << "`:\n"
-                      << RoundsMarkdown(row["methods"]);
-          }
-        }
-      }
-    }
-    if (!device.empty())
-    {
-      j["device"] = device;
-    }
-    else if (!scaling)
-    {
-      for (const auto& m : j["methods"].items())
-      {
-        if (m.value().contains("device"))
-        {
-          j["device"] = m.value()["device"];
-          break;
-        }
-      }
-    }
-    // where the run rendered: the window system of the GPU methods and the library versions
-    if (!scaling)
-    {
-      for (const auto& m : j["methods"].items())
-      {
-        if (m.value().contains("backend"))
-        {
-          j["backend"] = m.value()["backend"];
-          break;
-        }
-      }
-    }
-    j["vtk_version"] = VtkVersion();
-    j["paraview_version"] = ParaViewVersion();
-    if (a.Has("plot"))
-    {
-      WriteBenchPlot(j, plot, plotWidth, plotHeight);
-    }
-    if (jsonPath == "-")
+    if (r.JsonPath == "-")
     {
       std::cout << j.dump(2) << "\n";
+      return 0;
     }
-    else
+    if (!r.JsonPath.empty())
     {
-      if (!jsonPath.empty())
+      std::ofstream out(r.JsonPath);
+      if (!(out << j.dump(2) << "\n"))
       {
-        std::ofstream out(jsonPath);
-        if (!(out << j.dump(2) << "\n"))
-        {
-          return Fail("cannot write the JSON file '" + jsonPath + "'");
-        }
+        return Fail("cannot write the JSON file '" + r.JsonPath + "'");
       }
-      if (!scaling)
-      {
-        std::cout << BenchMarkdown(j);
-      }
+    }
+    if (!r.Scaling)
+    {
+      std::cout << BenchMarkdown(j);
     }
     return 0;
   }
