@@ -95,6 +95,7 @@ public:
 
 private:
   void QueryCapabilities(vtkOpenGLRenderWindow* renWin);
+  bool UploadAtlas(vtkOpenGLRenderWindow* renWin, const amrsp::RayCastingData& data);
   bool UploadBindless(
     vtkOpenGLRenderWindow* renWin, const amrsp::RayCastingData& data, std::string& error);
   void ReleaseBindless(vtkWindow* window);

@@ -57,6 +57,46 @@ BrickAtlas FillBrickAtlas(const Hierarchy& h, AtlasLayout layout)
   return atlas;
 }
 
+void FillAtlasSlab(const Hierarchy& h, const AtlasLayout& layout, int z0, int z1, float* out)
+{
+  if (!h.HasValues())
+  {
+    throw std::invalid_argument("the packed atlas needs values for every grid");
+  }
+  const std::vector<glm::ivec3> extents = BrickExtents(h, h.VertexCentred);
+  if (layout.Origins.size() != extents.size())
+  {
+    throw std::invalid_argument("the atlas layout has " + std::to_string(layout.Origins.size()) +
+      " bricks for " + std::to_string(extents.size()) + " grids");
+  }
+  const glm::ivec3 d = layout.Dims;
+  if (z0 < 0 || z1 < z0 || z1 > d.z)
+  {
+    throw std::invalid_argument("the atlas slab [" + std::to_string(z0) + ", " +
+      std::to_string(z1) + ") is outside the atlas's " + std::to_string(d.z) + " layers");
+  }
+  const std::size_t layer = static_cast<std::size_t>(d.x) * static_cast<std::size_t>(d.y);
+  std::fill(out, out + layer * static_cast<std::size_t>(z1 - z0), 0.0f);
+  for (std::size_t g = 0; g < h.Grids.size(); ++g)
+  {
+    const glm::ivec3 e = extents[g];
+    const glm::ivec3 o = layout.Origins[g];
+    const int k0 = std::max(z0, o.z), k1 = std::min(z1, o.z + e.z);
+    for (int z = k0; z < k1; ++z)
+    {
+      const float* src = h.Values[g].data() +
+        static_cast<std::size_t>(z - o.z) * static_cast<std::size_t>(e.y) * e.x;
+      float* dst = out + static_cast<std::size_t>(z - z0) * layer;
+      for (int j = 0; j < e.y; ++j)
+      {
+        std::copy(src, src + e.x,
+          dst + static_cast<std::size_t>(o.y + j) * static_cast<std::size_t>(d.x) + o.x);
+        src += e.x;
+      }
+    }
+  }
+}
+
 std::size_t SeparateBrickBytes(const Hierarchy& h)
 {
   std::size_t texels = 0;

@@ -58,6 +58,49 @@ TEST(Atlas, EveryTexelHoldsItsCellAndThePackingPathMatches)
   }
 }
 
+TEST(Atlas, SlabsConcatenateToTheWholeAtlas)
+{
+  std::mt19937_64 rng(5);
+  for (int trial = 0; trial < 6; ++trial)
+  {
+    Hierarchy h = trial == 0 ? PaperExample() : RandomHierarchy(rng);
+    if (trial > 0)
+    {
+      FillValues(h);
+    }
+    h.VertexCentred = trial == 1;
+    if (h.VertexCentred)
+    {
+      // one value per vertex: extent + 1 per axis
+      for (std::size_t g = 0; g < h.Grids.size(); ++g)
+      {
+        const glm::i64vec3 e = h.Grids[g].Cells.Extent() + glm::i64vec3(1);
+        h.Values[g].assign(static_cast<std::size_t>(e.x * e.y * e.z), 0.0f);
+        for (std::size_t i = 0; i < h.Values[g].size(); ++i)
+        {
+          h.Values[g][i] = static_cast<float>(g) + 0.001f * static_cast<float>(i);
+        }
+      }
+    }
+    const BrickAtlas whole = BuildBrickAtlas(h, Packer::Best, glm::ivec3(2048, 2048, 1024));
+    const glm::ivec3 d = whole.Layout.Dims;
+    const std::size_t layer = static_cast<std::size_t>(d.x) * d.y;
+    for (int slab : { 1, 3, d.z })
+    {
+      // NaN-filled first: every texel of the slab must be written (bricks or 0)
+      std::vector<float> joined(whole.Texels.size(), std::numeric_limits<float>::quiet_NaN());
+      for (int z0 = 0; z0 < d.z; z0 += slab)
+      {
+        const int z1 = std::min(d.z, z0 + slab);
+        FillAtlasSlab(h, whole.Layout, z0, z1, joined.data() + static_cast<std::size_t>(z0) * layer);
+      }
+      ASSERT_EQ(joined, whole.Texels) << "trial " << trial << ", slabs of " << slab;
+    }
+    std::vector<float> out(layer);
+    EXPECT_THROW(FillAtlasSlab(h, whole.Layout, d.z, d.z + 1, out.data()), std::invalid_argument);
+  }
+}
+
 TEST(Render, NaNSamplesAreTransparent)
 {
   Hierarchy h = PaperExample();

@@ -44,6 +44,12 @@ BrickAtlas BuildBrickAtlas(
 /// @throws std::invalid_argument when `h` has no values or the layout has another brick count.
 BrickAtlas FillBrickAtlas(const Hierarchy& h, AtlasLayout layout);
 
+/// The atlas texels of the slab z0 <= z < z1 (Layout.Dims.x * Layout.Dims.y * (z1 - z0) floats,
+/// x fastest) into `out`: what FillBrickAtlas would hold there, texels outside every brick 0. For
+/// an upload slab by slab, without the whole atlas in memory.
+/// @throws std::invalid_argument as FillBrickAtlas, or for a slab outside [0, Layout.Dims.z].
+void FillAtlasSlab(const Hierarchy& h, const AtlasLayout& layout, int z0, int z1, float* out);
+
 /// Bytes of the grid data when every brick is its own texture (the bindless strategy): the sum
 /// of the brick volumes (cells, or vertices when h.VertexCentred) times AtlasTexelBytes.
 std::size_t SeparateBrickBytes(const Hierarchy& h);
