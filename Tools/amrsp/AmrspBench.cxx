@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <map>
 #include <memory>
@@ -39,6 +40,27 @@ using Clock = std::chrono::steady_clock;
 
 namespace
 {
+/// Starts a new peak of this process's resident memory (Linux: "5" to /proc/self/clear_refs
+/// resets VmHWM to the current resident size). False where that cannot be done.
+bool ResetPeakResidentMemory()
+{
+  std::ofstream clear("/proc/self/clear_refs");
+  return static_cast<bool>(clear << "5" << std::flush);
+}
+
+/// This process's peak resident memory in bytes (VmHWM of /proc/self/status), -1 if unknown.
+long long PeakResidentBytes()
+{
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);)
+  {
+    if (line.rfind("VmHWM:", 0) == 0)
+    {
+      return 1024LL * std::stoll(line.substr(6)); // "VmHWM:   1234 kB"
+    }
+  }
+  return -1;
+}
 
 double Seconds(Clock::time_point since)
 {
@@ -402,8 +424,21 @@ Json RunBenchMethods(const Hierarchy& h, const RenderSettings& s, const Image& r
       }
       else
       {
+        // from the hierarchy in memory to the first image: the renderer's set-up (conversion,
+        // build), then the warm-up frame (upload, shader compile, render); the peak resident
+        // memory of the process from here to the end of the first orbit
+        const bool peakReset = ResetPeakResidentMemory();
+        const auto t0 = std::chrono::steady_clock::now();
         std::shared_ptr<GpuRenderer> gpu = method->Make(m, MethodRequest{ h, s, o.View });
+        const double setupS =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         const Image first = Orbit(*gpu, o.Frames, r);
+        r["time_to_first_image_s"] = setupS + r["first_frame_ms"].get<double>() / 1000.0;
+        const long long peak = PeakResidentBytes();
+        if (peakReset && peak > 0)
+        {
+          r["peak_rss_bytes"] = peak;
+        }
         if (o.Rounds > 1)
         {
           const int frames = o.Frames;
