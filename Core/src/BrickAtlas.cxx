@@ -22,18 +22,29 @@ BrickAtlas BuildBrickAtlas(
       static_cast<int64_t>(maxBytes / AtlasTexelBytes)));
 }
 
-BrickAtlas FillBrickAtlas(const Hierarchy& h, AtlasLayout layout)
+namespace
+{
+/// The brick extents of `h` after checking that it has values for every grid and that `layout`
+/// places one brick per grid (std::invalid_argument otherwise).
+std::vector<glm::ivec3> CheckedBrickExtents(const Hierarchy& h, const AtlasLayout& layout)
 {
   if (!h.HasValues())
   {
     throw std::invalid_argument("the packed atlas needs values for every grid");
   }
-  const std::vector<glm::ivec3> extents = BrickExtents(h, h.VertexCentred);
+  std::vector<glm::ivec3> extents = BrickExtents(h, h.VertexCentred);
   if (layout.Origins.size() != extents.size())
   {
     throw std::invalid_argument("the atlas layout has " + std::to_string(layout.Origins.size()) +
       " bricks for " + std::to_string(extents.size()) + " grids");
   }
+  return extents;
+}
+} // namespace
+
+BrickAtlas FillBrickAtlas(const Hierarchy& h, AtlasLayout layout)
+{
+  const std::vector<glm::ivec3> extents = CheckedBrickExtents(h, layout);
   BrickAtlas atlas;
   atlas.Layout = std::move(layout);
   const glm::ivec3 d = atlas.Layout.Dims;
@@ -59,16 +70,7 @@ BrickAtlas FillBrickAtlas(const Hierarchy& h, AtlasLayout layout)
 
 void FillAtlasSlab(const Hierarchy& h, const AtlasLayout& layout, int z0, int z1, float* out)
 {
-  if (!h.HasValues())
-  {
-    throw std::invalid_argument("the packed atlas needs values for every grid");
-  }
-  const std::vector<glm::ivec3> extents = BrickExtents(h, h.VertexCentred);
-  if (layout.Origins.size() != extents.size())
-  {
-    throw std::invalid_argument("the atlas layout has " + std::to_string(layout.Origins.size()) +
-      " bricks for " + std::to_string(extents.size()) + " grids");
-  }
+  const std::vector<glm::ivec3> extents = CheckedBrickExtents(h, layout);
   const glm::ivec3 d = layout.Dims;
   if (z0 < 0 || z1 < z0 || z1 > d.z)
   {
