@@ -19,7 +19,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <mutex>
 #include <sstream>
+#include <utility>
 
 namespace
 {
@@ -36,6 +39,53 @@ vtkUniformGrid* FirstBlock(vtkOverlappingAMR* amr)
     }
   }
   return nullptr;
+}
+
+// Values lent to VTK arrays by ToOverlappingAMR, by data pointer: each entry keeps its floats
+// alive until every VTK array sharing that buffer is gone (VTK then calls ReturnLentValues
+// once per lending array, shallow copies included, since they share the array's buffer).
+std::mutex LentMutex;
+std::map<const void*, std::pair<amrsp::GridValues, int>>& LentValues()
+{
+  static std::map<const void*, std::pair<amrsp::GridValues, int>> lent;
+  return lent;
+}
+
+void ReturnLentValues(void* data)
+{
+  std::lock_guard<std::mutex> lock(LentMutex);
+  auto& lent = LentValues();
+  auto it = lent.find(data);
+  if (it != lent.end() && --it->second.second == 0)
+  {
+    lent.erase(it);
+  }
+}
+
+/// A vtkFloatArray over `values` without copying them; VTK never writes or frees the floats.
+void LendValues(const amrsp::GridValues& values, vtkFloatArray* array)
+{
+  float* data = const_cast<float*>(values.data());
+  {
+    std::lock_guard<std::mutex> lock(LentMutex);
+    auto& entry = LentValues()[data];
+    entry.first = values;
+    ++entry.second;
+  }
+  array->SetArray(
+    data, static_cast<vtkIdType>(values.size()), 0, vtkFloatArray::VTK_DATA_ARRAY_USER_DEFINED);
+  array->SetArrayFreeFunction(&ReturnLentValues);
+}
+
+/// The values of a one-component float array without ghost layers, borrowed (no copy): the
+/// array is held until the last copy of the returned values is gone.
+amrsp::GridValues BorrowValues(vtkFloatArray* array)
+{
+  array->Register(nullptr);
+  std::shared_ptr<const void> owner(array,
+    [](const void* a) { static_cast<vtkFloatArray*>(const_cast<void*>(a))->UnRegister(nullptr); });
+  return amrsp::GridValues::Borrow(
+    array->GetPointer(0), static_cast<std::size_t>(array->GetNumberOfTuples()), std::move(owner));
 }
 
 std::string Join(const std::vector<std::string>& names)
@@ -223,8 +273,16 @@ bool vtkSinglePassAMRConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
       const int components = arr->GetNumberOfComponents();
       const int component =
         components == 1 ? 0 : (selection.Component < components ? selection.Component : -1);
-      amrsp::GridValues values(static_cast<std::size_t>(extent.x * extent.y * extent.z));
       vtkFloatArray* fast = vtkFloatArray::SafeDownCast(arr);
+      const std::size_t count = static_cast<std::size_t>(extent.x * extent.y * extent.z);
+      if (fast && components == 1 && ghost == glm::i64vec3(0) &&
+        static_cast<std::size_t>(fast->GetNumberOfTuples()) == count)
+      {
+        out.Values.push_back(BorrowValues(fast)); // the block's own floats, in the core's order
+        continue;
+      }
+      amrsp::GridValues values(count);
+      float* written = values.data();
       std::size_t k = 0;
       for (int64_t z = 0; z < extent.z; ++z)
       {
@@ -236,11 +294,11 @@ bool vtkSinglePassAMRConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
               ((z + ghost.z) * cellDims.y + (y + ghost.y)) * cellDims.x + x + ghost.x;
             if (fast && components == 1)
             {
-              values[k] = fast->GetValue(c);
+              written[k] = fast->GetValue(c);
             }
             else if (component >= 0)
             {
-              values[k] = static_cast<float>(arr->GetComponent(c, component));
+              written[k] = static_cast<float>(arr->GetComponent(c, component));
             }
             else
             {
@@ -250,7 +308,7 @@ bool vtkSinglePassAMRConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
                 const double v = arr->GetComponent(c, q);
                 sum += v * v;
               }
-              values[k] = static_cast<float>(std::sqrt(sum));
+              written[k] = static_cast<float>(std::sqrt(sum));
             }
           }
         }
@@ -270,7 +328,8 @@ bool vtkSinglePassAMRConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
   return true;
 }
 
-void vtkSinglePassAMRConversion::ToOverlappingAMR(const amrsp::Hierarchy& h, vtkOverlappingAMR* out)
+void vtkSinglePassAMRConversion::ToOverlappingAMR(
+  const amrsp::Hierarchy& h, vtkOverlappingAMR* out, bool blanking)
 {
   const int levels = h.NumberOfLevels();
   std::vector<int> blocksPerLevel(static_cast<std::size_t>(levels), 0);
@@ -293,7 +352,8 @@ void vtkSinglePassAMRConversion::ToOverlappingAMR(const amrsp::Hierarchy& h, vtk
   // Blanking as vtkAMRUtilities::BlankCells writes it (REFINEDCELL in vtkGhostType), computed
   // from the boxes: BlankCells' parent-child search bins each level's whole index space and
   // runs out of memory on deep, sparse hierarchies (13 levels: tens of GB).
-  const std::vector<std::vector<amrsp::Box>> refined = amrsp::RefinedRegions(h);
+  const std::vector<std::vector<amrsp::Box>> refined =
+    blanking ? amrsp::RefinedRegions(h) : std::vector<std::vector<amrsp::Box>>();
   std::vector<int> next(static_cast<std::size_t>(levels), 0);
   for (std::size_t gi = 0; gi < h.Grids.size(); ++gi)
   {
@@ -318,8 +378,7 @@ void vtkSinglePassAMRConversion::ToOverlappingAMR(const amrsp::Hierarchy& h, vtk
     {
       vtkNew<vtkFloatArray> values;
       values->SetName(h.ArrayName.empty() ? "values" : h.ArrayName.c_str());
-      values->SetNumberOfTuples(static_cast<vtkIdType>(h.Values[gi].size()));
-      std::copy(h.Values[gi].begin(), h.Values[gi].end(), values->GetPointer(0));
+      LendValues(h.Values[gi], values);
       if (h.VertexCentred)
       {
         grid->GetPointData()->AddArray(values);
@@ -328,6 +387,11 @@ void vtkSinglePassAMRConversion::ToOverlappingAMR(const amrsp::Hierarchy& h, vtk
       {
         grid->GetCellData()->AddArray(values);
       }
+    }
+    if (!blanking)
+    {
+      out->SetDataSet(g.Level, index, grid);
+      continue;
     }
     const std::vector<unsigned char> mask = amrsp::RefinedCellMask(g.Cells, refined[gi]);
     vtkNew<vtkUnsignedCharArray> ghosts;

@@ -37,14 +37,20 @@ public:
 
   /// Fills `out` from `amr`. Returns false and a one-line `error` naming the problem (no blocks,
   /// missing array, non-integer refinement, 2D data, missing block data, bad ghost layers).
+  /// One-component vtkFloatArray blocks without ghost layers are borrowed, not copied: `out`
+  /// holds those arrays until its values are released; other arrays are copied to floats.
   static bool FromOverlappingAMR(vtkOverlappingAMR* amr, const ArraySelection& selection,
     amrsp::Hierarchy& out, std::string& error);
 
-  /// Writes `h` into `out` as vtkUniformGrid blocks: cell-centred values as a cell array,
+  /// Writes `h` into `out` as vtkUniformGrid blocks sharing `h`'s values (no copy; the arrays
+  /// keep them alive after `h` is gone): cell-centred values as a cell array,
   /// vertex-centred values as a point array, and blanking as a vtkGhostType cell array (REFINEDCELL
   /// where the next level refines a cell), as vtkAMRUtilities::BlankCells writes it. Parent-child
   /// information is not generated (VTK code that needs it generates it).
-  static void ToOverlappingAMR(const amrsp::Hierarchy& h, vtkOverlappingAMR* out);
+  /// `blanking` false leaves the vtkGhostType array out (1 byte per cell): for consumers that do
+  /// not read it, such as this module's mappers.
+  static void ToOverlappingAMR(
+    const amrsp::Hierarchy& h, vtkOverlappingAMR* out, bool blanking = true);
 
   /// Names of the cell arrays of the first non-empty block.
   static std::vector<std::string> CellArrayNames(vtkOverlappingAMR* amr);

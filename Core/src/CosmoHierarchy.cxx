@@ -144,7 +144,9 @@ Hierarchy GenerateCosmo(const CosmoParameters& p)
         const Grid& grid = h.Grids[g];
         // Cell size of the grid's level in world units: Spacing0 / 2^level (exact scaling).
         const double cs = std::ldexp(h.Spacing0.x, -grid.Level);
-        field.Sample(grid.Cells, cs, h.Values[g]);
+        std::vector<float> values;
+        field.Sample(grid.Cells, cs, values);
+        h.Values[g] = GridValues(std::move(values));
       },
       CosmoWorkers());
   }

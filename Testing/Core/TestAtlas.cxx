@@ -75,7 +75,7 @@ TEST(Atlas, SlabsConcatenateToTheWholeAtlas)
       for (std::size_t g = 0; g < h.Grids.size(); ++g)
       {
         const glm::i64vec3 e = h.Grids[g].Cells.Extent() + glm::i64vec3(1);
-        h.Values[g].assign(static_cast<std::size_t>(e.x * e.y * e.z), 0.0f);
+        h.Values[g] = GridValues(static_cast<std::size_t>(e.x * e.y * e.z));
         for (std::size_t i = 0; i < h.Values[g].size(); ++i)
         {
           h.Values[g][i] = static_cast<float>(g) + 0.001f * static_cast<float>(i);
@@ -92,7 +92,8 @@ TEST(Atlas, SlabsConcatenateToTheWholeAtlas)
       for (int z0 = 0; z0 < d.z; z0 += slab)
       {
         const int z1 = std::min(d.z, z0 + slab);
-        FillAtlasSlab(h, whole.Layout, z0, z1, joined.data() + static_cast<std::size_t>(z0) * layer);
+        FillAtlasSlab(
+          h, whole.Layout, z0, z1, joined.data() + static_cast<std::size_t>(z0) * layer);
       }
       ASSERT_EQ(joined, whole.Texels) << "trial " << trial << ", slabs of " << slab;
     }
@@ -210,7 +211,8 @@ TEST(VertexData, AtlasPathMatchesDirectTrilinearSampling)
   for (std::size_t g = 0; g < h.Grids.size(); ++g)
   {
     const glm::i64vec3 e = h.Grids[g].Cells.Extent() + glm::i64vec3(1);
-    EXPECT_EQ(atlas.At(atlas.Layout.Origins[g] + glm::ivec3(e) - 1), h.Values[g].back());
+    EXPECT_EQ(
+      atlas.At(atlas.Layout.Origins[g] + glm::ivec3(e) - 1), h.Values[g][h.Values[g].size() - 1]);
   }
   const KdTree tree = BuildKdTree(h);
   const EncodedKdTree plain = EncodeKdTree(h, tree);

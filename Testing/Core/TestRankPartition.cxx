@@ -34,7 +34,7 @@ Hierarchy PiecesOf(const Hierarchy& h, Piece piece)
       continue;
     }
     const glm::i64vec3 e = grid.Cells.Extent(), pe = p.Extent();
-    GridValues values;
+    std::vector<float> values;
     for (int64_t k = p.Lo.z; k < p.Hi.z; ++k)
       for (int64_t j = p.Lo.y; j < p.Hi.y; ++j)
         for (int64_t i = p.Lo.x; i < p.Hi.x; ++i)

@@ -160,7 +160,7 @@ TEST(Shading, GradientHasNoSeamsAtBrickBoundaries)
   {
     h.Grids[g].SourceId = static_cast<int64_t>(g);
     const Box& b = h.Grids[g].Cells;
-    GridValues v;
+    std::vector<float> v;
     for (int64_t k = b.Lo.z; k < b.Hi.z; ++k)
       for (int64_t j = b.Lo.y; j < b.Hi.y; ++j)
         for (int64_t i = b.Lo.x; i < b.Hi.x; ++i)

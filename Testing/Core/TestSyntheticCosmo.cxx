@@ -446,7 +446,7 @@ TEST(SyntheticCosmo, ValuesAreTheFieldAtCellCentres)
   for (std::size_t g = 0; g < h.Grids.size(); ++g)
   {
     const Grid& grid = h.Grids[g];
-    const std::vector<float>& v = h.Values[g];
+    const amrsp::GridValues& v = h.Values[g];
     ASSERT_EQ(static_cast<int64_t>(v.size()), grid.Cells.Cells());
     const glm::i64vec3 e = grid.Cells.Extent();
     const glm::dvec3 cell = h.CellSize(grid.Level);

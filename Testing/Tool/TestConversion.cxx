@@ -7,6 +7,7 @@
 #include "vtkDataSetAttributes.h"
 #include "vtkCellData.h"
 #include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
 #include "vtkIntArray.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkNew.h"
@@ -172,6 +173,81 @@ TEST(Conversion, BadInputGivesOneClearError)
 }
 
 } // namespace
+
+namespace
+{
+/// Two levels of float cell data, 4^3 cells each, values 100 * grid + cell index.
+amrsp::Hierarchy FloatHierarchy()
+{
+  amrsp::Hierarchy h;
+  h.RefinementRatio = { glm::ivec3(1), glm::ivec3(2) };
+  h.ArrayName = "density";
+  h.Grids = { { 0, amrsp::Box{ glm::i64vec3(0), glm::i64vec3(4) } },
+    { 1, amrsp::Box{ glm::i64vec3(2), glm::i64vec3(6) } } };
+  for (std::size_t g = 0; g < h.Grids.size(); ++g)
+  {
+    std::vector<float> v(64);
+    for (std::size_t i = 0; i < v.size(); ++i)
+    {
+      v[i] = static_cast<float>(100 * g + i);
+    }
+    h.Values.emplace_back(std::move(v));
+  }
+  return h;
+}
+
+vtkFloatArray* BlockArray(vtkOverlappingAMR* amr, unsigned int level)
+{
+  return vtkFloatArray::SafeDownCast(amr->GetDataSet(level, 0)->GetCellData()->GetArray("density"));
+}
+} // namespace
+
+TEST(Conversion, ToOverlappingAMRSharesTheValuesAndKeepsThemAlive)
+{
+  vtkNew<vtkOverlappingAMR> amr;
+  const float* level1 = nullptr;
+  {
+    amrsp::Hierarchy h = FloatHierarchy();
+    level1 = static_cast<const amrsp::Hierarchy&>(h).Values[1].data();
+    vtkSinglePassAMRConversion::ToOverlappingAMR(h, amr, false);
+    ASSERT_NE(BlockArray(amr, 1), nullptr);
+    EXPECT_EQ(BlockArray(amr, 1)->GetPointer(0), level1); // no copy
+    EXPECT_EQ(
+      amr->GetDataSet(1, 0)->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName()),
+      nullptr); // blanking left out on request
+    // writing the hierarchy afterwards copies its values first: VTK's array is unchanged
+    h.Values[1][0] = -1.0f;
+    EXPECT_EQ(BlockArray(amr, 1)->GetValue(0), 100.0f);
+  } // h is gone: the arrays still hold the values
+  // a shallow copy shares the lent buffer and outlives the original array
+  vtkNew<vtkFloatArray> copy;
+  copy->ShallowCopy(BlockArray(amr, 1));
+  amr->Initialize();
+  EXPECT_EQ(copy->GetPointer(0), level1);
+  EXPECT_EQ(copy->GetValue(63), 163.0f);
+}
+
+TEST(Conversion, FromOverlappingAMRBorrowsFloatArraysWithoutGhosts)
+{
+  vtkNew<vtkOverlappingAMR> amr;
+  vtkSinglePassAMRConversion::ToOverlappingAMR(FloatHierarchy(), amr);
+  vtkSinglePassAMRConversion::ArraySelection sel;
+  sel.Name = "density";
+  amrsp::Hierarchy h;
+  std::string error;
+  ASSERT_TRUE(vtkSinglePassAMRConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
+  const amrsp::Hierarchy& read = h;
+  EXPECT_TRUE(read.Values[0].IsBorrowed());
+  EXPECT_EQ(read.Values[0].data(), BlockArray(amr, 0)->GetPointer(0));
+  EXPECT_EQ(read.Values[1][63], 163.0f);
+  // the borrowed values hold their arrays: the hierarchy outlives the AMR dataset
+  vtkFloatArray* array = BlockArray(amr, 1);
+  const int references = array->GetReferenceCount();
+  amr->Initialize();
+  EXPECT_EQ(array->GetReferenceCount(), references - 1);
+  EXPECT_EQ(read.Values[1][62], 162.0f);
+  h = amrsp::Hierarchy();
+}
 
 TEST(Conversion, BlankingMatchesVtkBlankCells)
 {

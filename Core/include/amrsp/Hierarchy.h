@@ -14,7 +14,10 @@
 
 #include <glm/glm.hpp>
 
+#include <cstddef>
 #include <cstdint>
+#include <initializer_list>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -65,8 +68,51 @@ struct Grid
 
 /// Per-grid scalar values, x fastest, then y, then z: one float per cell of Grid::Cells for
 /// cell-centred data, or one per vertex ((extent + 1) per axis) when Hierarchy::VertexCentred.
-/// An empty vector means "no data loaded" (structure-only hierarchies, e.g. for tree statistics).
-using GridValues = std::vector<float>;
+/// Empty means "no data loaded" (structure-only hierarchies, e.g. for tree statistics).
+///
+/// The values are either owned or borrowed from memory the caller keeps alive through a
+/// type-erased owner (e.g. a VTK array), so that converting a hierarchy does not copy its cells.
+/// Copies share the values. Reading never copies; every non-const accessor first makes the
+/// values this object's own and unshared (copy on write), so writing never reaches borrowed
+/// memory or another copy. Read through a const reference in loops over many values.
+class GridValues
+{
+public:
+  GridValues() = default;
+  GridValues(std::vector<float> values);
+  explicit GridValues(std::size_t count, float value = 0.0f);
+  GridValues(std::initializer_list<float> values);
+
+  /// `count` floats at `values`, valid as long as `owner` is held (never written through).
+  static GridValues Borrow(
+    const float* values, std::size_t count, std::shared_ptr<const void> owner);
+
+  std::size_t size() const { return this->Owned ? this->Owned->size() : this->Count; }
+  bool empty() const { return this->size() == 0; }
+  const float* data() const { return this->Owned ? this->Owned->data() : this->Borrowed; }
+  const float* begin() const { return this->data(); }
+  const float* end() const { return this->data() + this->size(); }
+  const float& operator[](std::size_t i) const { return this->data()[i]; }
+  /// True when the values live in memory this object does not own.
+  bool IsBorrowed() const { return !this->Owned && this->Count > 0; }
+
+  /// Writable access (copy on write, see above).
+  float* data() { return this->Writable().data(); }
+  float* begin() { return this->data(); }
+  float* end() { return this->data() + this->size(); }
+  float& operator[](std::size_t i) { return this->Writable()[i]; }
+
+  bool operator==(const GridValues& o) const;
+  bool operator!=(const GridValues& o) const { return !(*this == o); }
+
+private:
+  std::vector<float>& Writable();
+
+  std::shared_ptr<std::vector<float>> Owned;
+  const float* Borrowed = nullptr;
+  std::size_t Count = 0;
+  std::shared_ptr<const void> Owner;
+};
 
 /// A structured AMR hierarchy. Grids are stored level by level (non-decreasing Level).
 struct Hierarchy
