@@ -95,7 +95,7 @@ public:
   vtkMultiPassAMRVolumeMapper* Self;
 
   // ---- CPU results of the build
-  utilities::PackedHierarchy Data; // Data.Atlas.Texels is freed once uploaded
+  utilities::PackedHierarchy Data; // Data.Structure.Values are dropped once uploaded
   std::vector<NodeDraw> Draws;     // one per leaf with data
   std::vector<int32_t> DrawOfNode; // kD node index -> index into Draws, -1 for none
   long long DataNodes = 0;         // types (a) and (b)
@@ -206,7 +206,7 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
     }
     const amrsp::Grid& grid = h.Grids[static_cast<std::size_t>(node.Grid)];
     const glm::i64vec3 toData = finest / h.CumulativeRatio(grid.Level);
-    const glm::ivec3 origin = this->Data.Atlas.Layout.Origins[static_cast<std::size_t>(node.Grid)];
+    const glm::ivec3 origin = this->Data.Layout.Origins[static_cast<std::size_t>(node.Grid)];
     NodeDraw d;
     d.Level = grid.Level;
     for (int a = 0; a < 3; ++a)
@@ -223,7 +223,7 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
     this->DrawOfNode[static_cast<std::size_t>(p.Node)] = static_cast<int32_t>(this->Draws.size());
     this->Draws.push_back(d);
   }
-  this->TextureBytes = static_cast<long long>(this->Data.Atlas.Bytes());
+  this->TextureBytes = this->Data.Layout.TotalTexels * static_cast<long long>(sizeof(float));
   return true;
 }
 
@@ -579,21 +579,21 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::UploadAtlas(
   }
   this->UploadLimit = self->MaximumAtlasSize;
   // the CPU copy is dropped after an upload: uploading to another context rebuilds it
-  if (this->Data.Atlas.Texels.empty() && !self->Rebuild(amr))
+  if (!this->Data.Structure.HasValues() && !self->Rebuild(amr))
   {
     self->ReportError(self->GetBuildError());
     return false;
   }
   const auto t0 = std::chrono::steady_clock::now();
   std::string error;
-  if (!utilities::UploadAtlas(renWin, this->Data.Atlas, this->Data.VertexCentred,
-        self->MaximumAtlasSize, this->Atlas, error))
+  if (!utilities::UploadAtlas(renWin, this->Data.Structure, this->Data.Layout,
+        this->Data.VertexCentred, self->MaximumAtlasSize, this->Atlas, error))
   {
     // keep the CPU data: a later context (or a smaller input) may succeed
     self->ReportError(error);
     return false;
   }
-  std::vector<float>().swap(this->Data.Atlas.Texels);
+  std::vector<amrsp::GridValues>().swap(this->Data.Structure.Values); // the atlas holds them
   this->Context = renWin;
   this->UploadedBuildTime = self->GetBuildTime().GetMTime();
   self->UploadSeconds =
@@ -681,7 +681,7 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::SetFrameUniforms(
     static_cast<float>(view.Height) };
   float transferRange[2];
   this->Transfer.GetShaderRange(transferRange);
-  const glm::vec3 atlasSize(this->Data.Atlas.Layout.Dims);
+  const glm::vec3 atlasSize(this->Data.Layout.Dims);
 
   this->Atlas->Activate();
   this->Transfer.GetTexture()->Activate();
@@ -722,7 +722,7 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::ClipBox(glm::vec3& clipLo, glm::
 void vtkMultiPassAMRVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Internals->ReleaseGraphicsResources(window);
-  if (this->Internals->Data.Atlas.Texels.empty())
+  if (!this->Internals->Data.Structure.HasValues())
   {
     // the CPU copy of the atlas was freed after the upload: rebuild from the input next time
     this->InvalidateBuild();
@@ -733,7 +733,7 @@ void vtkMultiPassAMRVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 //------------------------------------------------------------------------------
 void vtkMultiPassAMRVolumeMapper::GetAtlasDimensions(int dims[3])
 {
-  const glm::ivec3 d = this->Internals->Data.Atlas.Layout.Dims;
+  const glm::ivec3 d = this->Internals->Data.Layout.Dims;
   dims[0] = d.x;
   dims[1] = d.y;
   dims[2] = d.z;
@@ -777,7 +777,7 @@ void vtkMultiPassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   const vtkInternals& in = *this->Internals;
   os << indent << "KdNodes: " << in.Data.Tree.Nodes.size() << ", DataNodes: " << in.DataNodes
      << ", drawn leaves: " << in.Draws.size() << "\n";
-  const glm::ivec3 d = in.Data.Atlas.Layout.Dims;
+  const glm::ivec3 d = in.Data.Layout.Dims;
   os << indent << "AtlasDimensions: " << d.x << " x " << d.y << " x " << d.z << "\n";
   os << indent << "LastNumberOfPasses: " << in.Passes << "\n";
 }

@@ -220,29 +220,8 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, int stor
 bool vtkSinglePassAMRGridStorage::UploadAtlas(
   vtkOpenGLRenderWindow* renWin, const amrsp::RayCastingData& data)
 {
-  // The texture is allocated empty and filled slab by slab (amrsp::FillAtlasSlab: the bricks and
-  // zeros between them), so the whole atlas never exists in host memory; a slab is about 16 MiB.
-  const glm::ivec3 d = data.Layout.Dims;
-  this->Atlas = utilities::MakeScalarTexture(renWin, d, nullptr, data.VertexCentred);
-  if (!this->Atlas)
-  {
-    return false;
-  }
-  const std::size_t layer = static_cast<std::size_t>(d.x) * static_cast<std::size_t>(d.y);
-  const int slab = static_cast<int>(std::max<std::size_t>(
-    1, std::min<std::size_t>(d.z, (std::size_t(16) << 20) / (layer * sizeof(float)))));
-  std::vector<float> texels(layer * static_cast<std::size_t>(slab));
-  this->Atlas->Activate(); // bound to a texture unit of its own for the uploads
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  for (int z0 = 0; z0 < d.z; z0 += slab)
-  {
-    const int z1 = std::min(d.z, z0 + slab);
-    amrsp::FillAtlasSlab(data.Data, data.Layout, z0, z1, texels.data());
-    glTexSubImage3D(
-      GL_TEXTURE_3D, 0, 0, 0, z0, d.x, d.y, z1 - z0, GL_RED, GL_FLOAT, texels.data());
-  }
-  this->Atlas->Deactivate();
-  return true;
+  this->Atlas = utilities::UploadAtlasBySlabs(renWin, data.Data, data.Layout, data.VertexCentred);
+  return this->Atlas != nullptr;
 }
 
 //------------------------------------------------------------------------------

@@ -31,6 +31,8 @@
 #include "vtkSinglePassAMROpenGL.h"
 
 #include <algorithm>
+#include <functional>
+#include <future>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -236,8 +238,8 @@ bool BuildPackedHierarchy(vtkOverlappingAMR* amr, const std::string& array, int 
     out.Tree = amrsp::BuildKdTree(h);
     // one brick per grid (cells, or vertices one texel larger), packed within the per-axis limit
     // the data-node offsets can address and MaximumAtlasSize when set
-    out.Atlas = amrsp::BuildBrickAtlas(
-      h, amrsp::Packer::Best, amrsp::AtlasLimits(packLimit > 0 ? std::min(packLimit, 2048) : 2048));
+    out.Layout = amrsp::PackBricks(amrsp::BrickExtents(h, h.VertexCentred), amrsp::Packer::Best,
+      amrsp::AtlasLimits(packLimit > 0 ? std::min(packLimit, 2048) : 2048));
     out.VertexCentred = h.VertexCentred;
 
     // the level table and the finite range as the single-pass build computes them
@@ -245,8 +247,6 @@ bool BuildPackedHierarchy(vtkOverlappingAMR* amr, const std::string& array, int 
     out.LevelMinEdge = levels.LevelMinEdge;
     std::copy(levels.Bounds, levels.Bounds + 6, out.Bounds);
     amrsp::FiniteValueRange(h, out.ScalarRange);
-    // the atlas holds the values now
-    std::vector<amrsp::GridValues>().swap(h.Values);
   }
   catch (const std::exception& e)
   {
@@ -283,11 +283,49 @@ bool AtlasFitsContext(
 }
 
 //------------------------------------------------------------------------------
-bool UploadAtlas(vtkOpenGLRenderWindow* renWin, const amrsp::BrickAtlas& atlas, bool vertexCentred,
-  int atlasLimit, vtkSmartPointer<vtkTextureObject>& texture, std::string& error)
+vtkSmartPointer<vtkTextureObject> UploadAtlasBySlabs(vtkOpenGLRenderWindow* renWin,
+  const amrsp::Hierarchy& h, const amrsp::AtlasLayout& layout, bool vertexCentred)
+{
+  const glm::ivec3 d = layout.Dims;
+  vtkSmartPointer<vtkTextureObject> atlas = MakeScalarTexture(renWin, d, nullptr, vertexCentred);
+  if (!atlas)
+  {
+    return nullptr;
+  }
+  const std::size_t layer = static_cast<std::size_t>(d.x) * static_cast<std::size_t>(d.y);
+  const int slab = static_cast<int>(std::max<std::size_t>(
+    1, std::min<std::size_t>(d.z, (std::size_t(16) << 20) / (layer * sizeof(float)))));
+  std::vector<float> buffers[2] = { std::vector<float>(layer * static_cast<std::size_t>(slab)),
+    std::vector<float>(layer * static_cast<std::size_t>(slab)) };
+  const auto fill = [&h, &layout, &d, slab](int z0, std::vector<float>& texels)
+  { amrsp::FillAtlasSlab(h, layout, z0, std::min(d.z, z0 + slab), texels.data()); };
+  atlas->Activate(); // bound to a texture unit of its own for the uploads
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  fill(0, buffers[0]);
+  for (int z0 = 0, k = 0; z0 < d.z; z0 += slab, k ^= 1)
+  {
+    std::future<void> next;
+    if (z0 + slab < d.z)
+    {
+      next = std::async(std::launch::async, fill, z0 + slab, std::ref(buffers[k ^ 1]));
+    }
+    glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, z0, d.x, d.y, std::min(d.z, z0 + slab) - z0, GL_RED,
+      GL_FLOAT, buffers[k].data());
+    if (next.valid())
+    {
+      next.get(); // rethrows what the fill threw
+    }
+  }
+  atlas->Deactivate();
+  return atlas;
+}
+
+bool UploadAtlas(vtkOpenGLRenderWindow* renWin, const amrsp::Hierarchy& h,
+  const amrsp::AtlasLayout& layout, bool vertexCentred, int atlasLimit,
+  vtkSmartPointer<vtkTextureObject>& texture, std::string& error)
 {
   texture = nullptr;
-  const glm::ivec3 d = atlas.Layout.Dims;
+  const glm::ivec3 d = layout.Dims;
   if (!AtlasFitsContext(renWin, d, atlasLimit, error))
   {
     return false;
@@ -295,14 +333,15 @@ bool UploadAtlas(vtkOpenGLRenderWindow* renWin, const amrsp::BrickAtlas& atlas, 
   while (glGetError() != GL_NO_ERROR)
   {
   }
-  texture = MakeScalarTexture(renWin, d, atlas.Texels.data(), vertexCentred);
+  texture = UploadAtlasBySlabs(renWin, h, layout, vertexCentred);
   const bool ok = texture != nullptr;
   const GLenum glError = glGetError();
   if (!ok || glError != GL_NO_ERROR)
   {
     std::ostringstream msg;
-    msg << "uploading the atlas texture (" << atlas.Bytes() / (1024.0 * 1024.0) << " MiB) failed"
-        << (glError == GL_OUT_OF_MEMORY ? ": out of GPU memory" : "")
+    msg << "uploading the atlas texture ("
+        << static_cast<double>(layout.TotalTexels) * sizeof(float) / (1024.0 * 1024.0)
+        << " MiB) failed" << (glError == GL_OUT_OF_MEMORY ? ": out of GPU memory" : "")
         << (glError == GL_NO_ERROR ? ": the driver refused the texture allocation (out of GPU "
                                      "memory, or over one of its limits)"
                                    : "")

@@ -73,11 +73,12 @@ void ClipBox(vtkVolumeMapper* mapper, const glm::dvec3& origin, const glm::dvec3
  */
 struct PackedHierarchy
 {
-  /// Grids, ratios, origin and spacing; Values are dropped once the atlas holds them.
+  /// Grids, ratios, origin and spacing, and the values until the atlas holds them.
   amrsp::Hierarchy Structure;
   amrsp::KdTree Tree;
-  /// The atlas layout and its texels (Texels may be freed by the caller after the upload).
-  amrsp::BrickAtlas Atlas;
+  /// Where each grid's brick lies in the atlas; Structure.Values are the bricks (borrowed from
+  /// the input where possible), dropped by the caller after the upload.
+  amrsp::AtlasLayout Layout;
   bool VertexCentred = false; ///< vertex bricks (trilinear) instead of cell bricks (nearest)
   /// Smallest model-space edge of a cell of each level (the sampling rule's D for factor 1).
   std::vector<double> LevelMinEdge;
@@ -129,13 +130,22 @@ struct ModelLight
 ModelLight FirstLightInModel(vtkRenderer* ren, vtkVolume* vol);
 
 /**
- * Uploads the atlas as an R32F 3D texture (nearest filtering for cell bricks, linear for vertex
- * bricks, clamped). Fails with a one-line `error` when an edge exceeds GL_MAX_3D_TEXTURE_SIZE or
- * `atlasLimit` (> 0), or when OpenGL reports an error (e.g. out of memory); `texture` is then
- * null.
+ * The atlas of `h`'s bricks placed by `layout` as an R32F 3D texture (MakeScalarTexture's
+ * filtering), allocated empty and filled slab by slab (amrsp::FillAtlasSlab, about 16 MiB per
+ * glTexSubImage3D, the next slab filled on a worker thread meanwhile): the whole atlas never
+ * exists in host memory. Null when OpenGL refused the allocation.
  */
-bool UploadAtlas(vtkOpenGLRenderWindow* renWin, const amrsp::BrickAtlas& atlas, bool vertexCentred,
-  int atlasLimit, vtkSmartPointer<vtkTextureObject>& texture, std::string& error);
+vtkSmartPointer<vtkTextureObject> UploadAtlasBySlabs(vtkOpenGLRenderWindow* renWin,
+  const amrsp::Hierarchy& h, const amrsp::AtlasLayout& layout, bool vertexCentred);
+
+/**
+ * UploadAtlasBySlabs with checks: fails with a one-line `error` when an edge exceeds
+ * GL_MAX_3D_TEXTURE_SIZE or `atlasLimit` (> 0), or when OpenGL reports an error (e.g. out of
+ * memory); `texture` is then null.
+ */
+bool UploadAtlas(vtkOpenGLRenderWindow* renWin, const amrsp::Hierarchy& h,
+  const amrsp::AtlasLayout& layout, bool vertexCentred, int atlasLimit,
+  vtkSmartPointer<vtkTextureObject>& texture, std::string& error);
 
 /**
  * The transfer function of component 0 of a vtkVolumeProperty as an RGBA32F table of

@@ -4,6 +4,7 @@
 #include "amrsp/IntegerMath.h"
 #include "amrsp/KdTree.h"
 #include "amrsp/KdTreeLayout.h"
+#include "amrsp/ParallelFor.h"
 #include "amrsp/TransferFunction.h"
 
 #include <algorithm>
@@ -26,50 +27,53 @@ std::vector<glm::vec2> ComputeDataNodeRanges(const Hierarchy& h, const EncodedKd
     return ranges;
   }
   const glm::i64vec3 finest = h.CumulativeRatio(decoded.FinestLevel);
-  for (std::size_t i = 0; i < decoded.Nodes.size(); ++i)
-  {
-    const KdNode& n = decoded.Nodes[i];
-    const uint data = amrspNodeData(tree.Tree.Texels[i]);
-    if (data == 0 || !n.HasData())
+  // one node per item (each writes its own entry); the large nodes dominate, so small chunks
+  ParallelFor(
+    static_cast<int64_t>(decoded.Nodes.size()),
+    [&](int64_t i)
     {
-      continue;
-    }
-    const Grid& g = h.Grids[n.Grid];
-    const glm::i64vec3 toData = finest / h.CumulativeRatio(g.Level);
-    glm::i64vec3 first, last;
-    for (int a = 0; a < 3; ++a)
-    {
-      first[a] = FloorDiv(n.Region.Lo[a], toData[a]);
-      last[a] = CeilDiv(n.Region.Hi[a], toData[a]) - 1;
-    }
-    first = glm::clamp(first, g.Cells.Lo, g.Cells.Hi - glm::i64vec3(1)) - g.Cells.Lo;
-    last = glm::clamp(last, g.Cells.Lo, g.Cells.Hi - glm::i64vec3(1)) - g.Cells.Lo;
-    glm::i64vec3 extent = g.Cells.Extent();
-    if (h.VertexCentred)
-    {
-      last += glm::i64vec3(1); // the vertices of the node's cells
-      extent += glm::i64vec3(1);
-    }
-    const GridValues& values = h.Values[n.Grid];
-    glm::vec2 r(FLT_MAX, -FLT_MAX);
-    for (int64_t z = first.z; z <= last.z; ++z)
-    {
-      for (int64_t y = first.y; y <= last.y; ++y)
+      const KdNode& n = decoded.Nodes[static_cast<std::size_t>(i)];
+      const uint data = amrspNodeData(tree.Tree.Texels[static_cast<std::size_t>(i)]);
+      if (data == 0 || !n.HasData())
       {
-        const float* row = values.data() + static_cast<std::size_t>((z * extent.y + y) * extent.x);
-        for (int64_t x = first.x; x <= last.x; ++x)
+        return;
+      }
+      const Grid& g = h.Grids[n.Grid];
+      const glm::i64vec3 toData = finest / h.CumulativeRatio(g.Level);
+      glm::i64vec3 first, last;
+      for (int a = 0; a < 3; ++a)
+      {
+        first[a] = FloorDiv(n.Region.Lo[a], toData[a]);
+        last[a] = CeilDiv(n.Region.Hi[a], toData[a]) - 1;
+      }
+      first = glm::clamp(first, g.Cells.Lo, g.Cells.Hi - glm::i64vec3(1)) - g.Cells.Lo;
+      last = glm::clamp(last, g.Cells.Lo, g.Cells.Hi - glm::i64vec3(1)) - g.Cells.Lo;
+      glm::i64vec3 extent = g.Cells.Extent();
+      if (h.VertexCentred)
+      {
+        last += glm::i64vec3(1); // the vertices of the node's cells
+        extent += glm::i64vec3(1);
+      }
+      const GridValues& values = h.Values[n.Grid];
+      // NaN is skipped: a comparison with NaN is false, so neither bound takes it
+      float lo = FLT_MAX, hi = -FLT_MAX;
+      for (int64_t z = first.z; z <= last.z; ++z)
+      {
+        for (int64_t y = first.y; y <= last.y; ++y)
         {
-          const float v = row[x];
-          if (!std::isnan(v))
+          const float* row =
+            values.data() + static_cast<std::size_t>((z * extent.y + y) * extent.x);
+          for (int64_t x = first.x; x <= last.x; ++x)
           {
-            r.x = std::min(r.x, v);
-            r.y = std::max(r.y, v);
+            const float v = row[x];
+            lo = v < lo ? v : lo;
+            hi = v > hi ? v : hi;
           }
         }
       }
-    }
-    ranges[data] = r;
-  }
+      ranges[data] = glm::vec2(lo, hi);
+    },
+    0, 16);
   return ranges;
 }
 

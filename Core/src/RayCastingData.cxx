@@ -3,9 +3,11 @@
 
 #include "amrsp/BrickAtlas.h"
 #include "amrsp/EmptySpace.h"
+#include "amrsp/ParallelFor.h"
 #include "amrsp/SampleStep.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -101,20 +103,33 @@ LevelTable ComputeLevelTable(const Hierarchy& h, const KdTree& tree)
 
 bool FiniteValueRange(const Hierarchy& h, double range[2])
 {
-  double vmin = std::numeric_limits<double>::max();
-  double vmax = -std::numeric_limits<double>::max();
-  for (const GridValues& values : h.Values)
-  {
-    for (float v : values)
+  // per grid, then reduced: min and max are exact in float whatever the order
+  std::vector<glm::vec2> perGrid(h.Values.size(), glm::vec2(FLT_MAX, -FLT_MAX));
+  ParallelFor(
+    static_cast<int64_t>(h.Values.size()),
+    [&](int64_t g)
     {
-      if (std::isfinite(v))
+      float lo = FLT_MAX, hi = -FLT_MAX;
+      for (const float v : h.Values[static_cast<std::size_t>(g)])
       {
-        vmin = std::min(vmin, static_cast<double>(v));
-        vmax = std::max(vmax, static_cast<double>(v));
+        const bool finite = v >= -FLT_MAX && v <= FLT_MAX; // false for NaN and +-Inf
+        lo = finite && v < lo ? v : lo;
+        hi = finite && v > hi ? v : hi;
       }
+      perGrid[static_cast<std::size_t>(g)] = glm::vec2(lo, hi);
+    },
+    0, 16);
+  float vmin = FLT_MAX, vmax = -FLT_MAX;
+  bool found = false;
+  for (std::size_t g = 0; g < perGrid.size(); ++g)
+  {
+    if (perGrid[g].x <= perGrid[g].y)
+    {
+      found = true;
+      vmin = std::min(vmin, perGrid[g].x);
+      vmax = std::max(vmax, perGrid[g].y);
     }
   }
-  const bool found = vmin <= vmax;
   range[0] = found ? vmin : 0.0;
   range[1] = found ? vmax : 1.0;
   return found;

@@ -271,8 +271,9 @@ std::string ScalingMarkdownHeader(const std::string& size, int frames)
   std::ostringstream md;
   md << "Scaling (`synthetic:cosmo`, " << size << ", " << frames << " frames per method)\n\n"
      << "| grids | levels | cells | kD nodes | paper dataset | tree [s] | encode [s] | pack [s] | "
-        "method | build [s] | upload [s] | ms/frame (mean) | GPU memory [MB] |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "method | build [s] | upload [s] | first image [s] | ms/frame (mean) | GPU memory [MB] | "
+        "peak RSS [MB] |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   return md.str();
 }
 
@@ -282,7 +283,7 @@ std::string ScalingMarkdownRow(const Json& row)
   if (row.contains("error"))
   {
     md << "| " << row["dataset"].get<std::string>()
-       << " | | | | | | | | | cannot run: " << row["error"].get<std::string>() << " | | | |\n";
+       << " | | | | | | | | | cannot run: " << row["error"].get<std::string>() << " | | | | | |\n";
     return md.str();
   }
   const Json& st = row["statistics"];
@@ -299,13 +300,16 @@ std::string ScalingMarkdownRow(const Json& row)
     md << head << item.key() << " | ";
     if (r.contains("error"))
     {
-      md << "cannot run: " << r["error"].get<std::string>() << " | | | |\n";
+      md << "cannot run: " << r["error"].get<std::string>() << " | | | | | |\n";
       continue;
     }
     const Json& p = r["preprocess_s"];
     md << (p.contains("build") ? Fixed(p["build"].get<double>(), 3) : "—") << " | "
        << (p.contains("upload") ? Fixed(p["upload"].get<double>(), 3) : "—") << " | "
-       << Fixed(r["ms_mean"].get<double>(), 1) << " | " << Mb(r["gpu_bytes"].get<double>())
+       << (r.contains("time_to_first_image_s") ? Fixed(r["time_to_first_image_s"].get<double>(), 3)
+                                               : "—")
+       << " | " << Fixed(r["ms_mean"].get<double>(), 1) << " | " << Mb(r["gpu_bytes"].get<double>())
+       << " | " << (r.contains("peak_rss_bytes") ? Mb(r["peak_rss_bytes"].get<double>()) : "—")
        << " |\n";
   }
   return md.str();
