@@ -63,6 +63,7 @@ struct NodeDraw
   int FirstCell[3];
   int LastCell[3];
   int AtlasOffset[3];
+  int Page = 0; ///< the atlas page (texture) holding the node's brick
 };
 
 } // namespace
@@ -110,7 +111,7 @@ public:
   vtkOpenGLRenderWindow* Context = nullptr;
   int UploadLimit = 0;                // MaximumAtlasSize of the last upload attempt
   vtkMTimeType UploadedBuildTime = 0; // the build the atlas on the GPU holds
-  vtkSmartPointer<vtkTextureObject> Atlas;
+  std::vector<vtkSmartPointer<vtkTextureObject>> AtlasPages; // one per atlas page
   vtkSinglePassAMRRenderingUtilities::DepthCopy Depth;
   vtkSmartPointer<vtkTextureObject> Accumulation; // RGBA32F, viewport-sized
   vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffer;
@@ -125,7 +126,7 @@ public:
   /// CPU side: convert, build the tree, pack, and list the nodes' draws. Returns false with
   /// `error` set on failure.
   bool Build(vtkOverlappingAMR* amr, const std::string& array, int component, int packLimit,
-    std::string& error);
+    int64_t maxPageTexels, std::string& error);
 
   /// Fills Order with the data leaves front to back for rays from `view` (see the class comment).
   void OrderNodes(const utilities::ViewGeometry& view);
@@ -151,11 +152,12 @@ public:
 
 //------------------------------------------------------------------------------
 bool vtkMultiPassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
-  const std::string& array, int component, int packLimit, std::string& error)
+  const std::string& array, int component, int packLimit, int64_t maxPageTexels, std::string& error)
 {
   this->Draws.clear();
   this->DrawOfNode.clear();
-  if (!utilities::BuildPackedHierarchy(amr, array, component, packLimit, this->Data, error))
+  if (!utilities::BuildPackedHierarchy(
+        amr, array, component, packLimit, maxPageTexels, this->Data, error))
   {
     return false;
   }
@@ -206,9 +208,10 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
     }
     const amrsp::Grid& grid = h.Grids[static_cast<std::size_t>(node.Grid)];
     const glm::i64vec3 toData = finest / h.CumulativeRatio(grid.Level);
-    const glm::ivec3 origin = this->Data.Layout.Origins[static_cast<std::size_t>(node.Grid)];
+    const glm::ivec3 origin = this->Data.Atlas.Origins[static_cast<std::size_t>(node.Grid)];
     NodeDraw d;
     d.Level = grid.Level;
+    d.Page = this->Data.Atlas.PageOfGrid[static_cast<std::size_t>(node.Grid)];
     for (int a = 0; a < 3; ++a)
     {
       d.Lo[a] = p.Lo[a];
@@ -223,7 +226,7 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
     this->DrawOfNode[static_cast<std::size_t>(p.Node)] = static_cast<int32_t>(this->Draws.size());
     this->Draws.push_back(d);
   }
-  this->TextureBytes = this->Data.Layout.TotalTexels * static_cast<long long>(sizeof(float));
+  this->TextureBytes = this->Data.Atlas.TotalTexels() * static_cast<long long>(sizeof(float));
   return true;
 }
 
@@ -338,6 +341,9 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::DrawNodes(vtkOpenGLState* state,
   const GLint firstCell = program->FindUniform("amrspFirstCell");
   const GLint lastCell = program->FindUniform("amrspLastCell");
   const GLint atlasOffset = program->FindUniform("amrspAtlasOffset");
+  const GLint atlas = program->FindUniform("amrspAtlas");
+  const GLint atlasSize = program->FindUniform("amrspAtlasSize");
+  int boundPage = 0; // SetFrameUniforms bound page 0
 
   // one draw per data node, blended front to back ("under") into the cleared target
   vtkOpenGLState::ScopedglViewport viewportSaved(state);
@@ -394,6 +400,14 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::DrawNodes(vtkOpenGLState* state,
     glUniform3iv(firstCell, 1, node.FirstCell);
     glUniform3iv(lastCell, 1, node.LastCell);
     glUniform3iv(atlasOffset, 1, node.AtlasOffset);
+    if (node.Page != boundPage)
+    {
+      // several atlas pages: every page is active on a unit of its own
+      const glm::vec3 size(this->Data.Atlas.Pages[static_cast<std::size_t>(node.Page)].Dims);
+      glUniform1i(atlas, this->AtlasPages[static_cast<std::size_t>(node.Page)]->GetTextureUnit());
+      glUniform3fv(atlasSize, 1, &size.x);
+      boundPage = node.Page;
+    }
     glDrawArrays(GL_TRIANGLES, 0, 36);
   }
   this->Passes = static_cast<long long>(this->Order.size());
@@ -432,7 +446,12 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::CompositeOver(vtkOpenGLRenderWin
 void vtkMultiPassAMRVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Depth.ReleaseGraphicsResources(window);
-  for (vtkSmartPointer<vtkTextureObject>* t : { &this->Atlas, &this->Accumulation })
+  for (vtkSmartPointer<vtkTextureObject>& page : this->AtlasPages)
+  {
+    page->ReleaseGraphicsResources(window);
+  }
+  this->AtlasPages.clear();
+  for (vtkSmartPointer<vtkTextureObject>* t : { &this->Accumulation })
   {
     if (*t)
     {
@@ -476,7 +495,8 @@ vtkMultiPassAMRVolumeMapper::~vtkMultiPassAMRVolumeMapper()
 bool vtkMultiPassAMRVolumeMapper::BuildData(
   vtkOverlappingAMR* amr, const std::string& array, std::string& error)
 {
-  return this->Internals->Build(amr, array, this->ArrayComponent, this->MaximumAtlasSize, error);
+  return this->Internals->Build(amr, array, this->ArrayComponent, this->MaximumAtlasSize,
+    static_cast<int64_t>(this->MaximumAtlasPageBytes / amrsp::AtlasTexelBytes), error);
 }
 
 //------------------------------------------------------------------------------
@@ -556,7 +576,10 @@ void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   glm::vec3 clipLo, clipHi;
   in.ClipBox(clipLo, clipHi);
   in.DrawNodes(renWin->GetState(), program, view, steps, clipLo, clipHi);
-  in.Atlas->Deactivate();
+  for (vtkTextureObject* page : in.AtlasPages)
+  {
+    page->Deactivate();
+  }
   in.Transfer.GetTexture()->Deactivate();
   if (this->UseDepthBuffer)
   {
@@ -572,7 +595,8 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::UploadAtlas(
   vtkOpenGLRenderWindow* renWin, vtkOverlappingAMR* amr)
 {
   vtkMultiPassAMRVolumeMapper* self = this->Self;
-  if (this->Atlas && this->Context == renWin && this->UploadLimit == self->MaximumAtlasSize &&
+  if (!this->AtlasPages.empty() && this->Context == renWin &&
+    this->UploadLimit == self->MaximumAtlasSize &&
     this->UploadedBuildTime == self->GetBuildTime().GetMTime())
   {
     return true;
@@ -586,12 +610,23 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::UploadAtlas(
   }
   const auto t0 = std::chrono::steady_clock::now();
   std::string error;
-  if (!utilities::UploadAtlas(renWin, this->Data.Structure, this->Data.Layout,
-        this->Data.VertexCentred, self->MaximumAtlasSize, this->Atlas, error))
+  this->AtlasPages.clear();
+  const amrsp::AtlasPages& pages = this->Data.Atlas;
+  for (std::size_t p = 0; p < pages.Pages.size(); ++p)
   {
-    // keep the CPU data: a later context (or a smaller input) may succeed
-    self->ReportError(error);
-    return false;
+    vtkSmartPointer<vtkTextureObject> page;
+    if (!utilities::UploadAtlas(renWin,
+          pages.Pages.size() == 1
+            ? this->Data.Structure
+            : amrsp::PageHierarchy(this->Data.Structure, pages, static_cast<int>(p)),
+          pages.Pages[p], this->Data.VertexCentred, self->MaximumAtlasSize, page, error))
+    {
+      // keep the CPU data: a later context (or a smaller input) may succeed
+      this->AtlasPages.clear();
+      self->ReportError(error);
+      return false;
+    }
+    this->AtlasPages.push_back(page);
   }
   std::vector<amrsp::GridValues>().swap(this->Data.Structure.Values); // the atlas holds them
   this->Context = renWin;
@@ -681,11 +716,14 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::SetFrameUniforms(
     static_cast<float>(view.Height) };
   float transferRange[2];
   this->Transfer.GetShaderRange(transferRange);
-  const glm::vec3 atlasSize(this->Data.Layout.Dims);
+  const glm::vec3 atlasSize(this->Data.Atlas.Pages[0].Dims);
 
-  this->Atlas->Activate();
+  for (vtkTextureObject* page : this->AtlasPages)
+  {
+    page->Activate();
+  }
   this->Transfer.GetTexture()->Activate();
-  program->SetUniformi("amrspAtlas", this->Atlas->GetTextureUnit());
+  program->SetUniformi("amrspAtlas", this->AtlasPages[0]->GetTextureUnit());
   program->SetUniformi("amrspTransfer", this->Transfer.GetTexture()->GetTextureUnit());
   if (this->Self->UseDepthBuffer)
   {
@@ -733,7 +771,9 @@ void vtkMultiPassAMRVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 //------------------------------------------------------------------------------
 void vtkMultiPassAMRVolumeMapper::GetAtlasDimensions(int dims[3])
 {
-  const glm::ivec3 d = this->Internals->Data.Layout.Dims;
+  const glm::ivec3 d =
+    (this->Internals->Data.Atlas.Pages.empty() ? glm::ivec3(0)
+                                               : this->Internals->Data.Atlas.Pages[0].Dims);
   dims[0] = d.x;
   dims[1] = d.y;
   dims[2] = d.z;
@@ -777,7 +817,7 @@ void vtkMultiPassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   const vtkInternals& in = *this->Internals;
   os << indent << "KdNodes: " << in.Data.Tree.Nodes.size() << ", DataNodes: " << in.DataNodes
      << ", drawn leaves: " << in.Draws.size() << "\n";
-  const glm::ivec3 d = in.Data.Layout.Dims;
+  const glm::ivec3 d = (in.Data.Atlas.Pages.empty() ? glm::ivec3(0) : in.Data.Atlas.Pages[0].Dims);
   os << indent << "AtlasDimensions: " << d.x << " x " << d.y << " x " << d.z << "\n";
   os << indent << "LastNumberOfPasses: " << in.Passes << "\n";
 }

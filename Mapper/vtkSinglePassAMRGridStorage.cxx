@@ -4,6 +4,7 @@
 #include "vtkSinglePassAMRRenderingUtilities.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
 
+#include "amrsp/AtlasPages.h"
 #include "amrsp/BrickAtlas.h"
 #include "amrsp/EmptySpace.h"
 
@@ -76,8 +77,11 @@ vtkSinglePassAMRGridStorage::Choice vtkSinglePassAMRGridStorage::Choose(
     resolved = -1;
   }
   std::string noAtlas = data.PackingError;
-  const bool atlasFits =
-    noAtlas.empty() && utilities::AtlasFitsContext(renWin, data.Layout.Dims, atlasLimit, noAtlas);
+  bool atlasFits = noAtlas.empty();
+  for (const glm::ivec3& dims : data.PageDims)
+  {
+    atlasFits = atlasFits && utilities::AtlasFitsContext(renWin, dims, atlasLimit, noAtlas);
+  }
   int storage = vtkSinglePassAMRVolumeMapper::PACKED_ATLAS;
   if (requested == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES)
   {
@@ -121,7 +125,7 @@ vtkTextureObject* vtkSinglePassAMRGridStorage::GetGridData() const
 {
   return this->UploadedStorage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES
     ? this->HandlesTexture.Get()
-    : this->Atlas.Get();
+    : (this->AtlasPages.empty() ? nullptr : this->AtlasPages[0].Get());
 }
 
 //------------------------------------------------------------------------------
@@ -149,7 +153,7 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, int stor
   this->Bricks.clear();
   this->ResidentHandles.clear();
   this->HandlesTexture = nullptr;
-  this->Atlas = nullptr;
+  this->AtlasPages.clear();
   this->TransparentFlags = nullptr; // the data nodes may have changed: flagged again per frame
   this->UploadedStorage = -1;
   while (glGetError() != GL_NO_ERROR)
@@ -206,7 +210,7 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, int stor
     this->ReleaseBindless(renWin);
     this->Tree = nullptr;
     this->DataNodes = nullptr;
-    this->Atlas = nullptr;
+    this->AtlasPages.clear();
     this->BrickBoxes = nullptr;
     return false;
   }
@@ -220,8 +224,20 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, int stor
 bool vtkSinglePassAMRGridStorage::UploadAtlas(
   vtkOpenGLRenderWindow* renWin, const amrsp::RayCastingData& data)
 {
-  this->Atlas = utilities::UploadAtlasBySlabs(renWin, data.Data, data.Layout, data.VertexCentred);
-  return this->Atlas != nullptr;
+  const amrsp::AtlasPages& atlas = data.Atlas;
+  for (std::size_t p = 0; p < atlas.Pages.size(); ++p)
+  {
+    vtkSmartPointer<vtkTextureObject> page = utilities::UploadAtlasBySlabs(renWin,
+      atlas.Pages.size() == 1 ? data.Data
+                              : amrsp::PageHierarchy(data.Data, atlas, static_cast<int>(p)),
+      atlas.Pages[p], data.VertexCentred);
+    if (!page)
+    {
+      return false;
+    }
+    this->AtlasPages.push_back(page);
+  }
+  return !this->AtlasPages.empty();
 }
 
 //------------------------------------------------------------------------------
@@ -341,7 +357,12 @@ void vtkSinglePassAMRGridStorage::ReleaseGraphicsResources(vtkWindow* window)
   this->Bricks.clear();
   this->ResidentHandles.clear();
   this->UploadedStorage = -1;
-  for (vtkSmartPointer<vtkTextureObject>* t : { &this->Tree, &this->DataNodes, &this->Atlas,
+  for (vtkSmartPointer<vtkTextureObject>& page : this->AtlasPages)
+  {
+    page->ReleaseGraphicsResources(window);
+  }
+  this->AtlasPages.clear();
+  for (vtkSmartPointer<vtkTextureObject>* t : { &this->Tree, &this->DataNodes,
          &this->HandlesTexture, &this->BrickBoxes, &this->TransparentFlags })
   {
     if (*t)

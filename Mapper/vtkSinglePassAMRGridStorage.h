@@ -81,6 +81,9 @@ public:
   vtkTextureObject* GetTree() const { return this->Tree; }
   vtkTextureObject* GetDataNodes() const { return this->DataNodes; }
   vtkTextureObject* GetGridData() const;
+  /// Packing: the atlas pages (GetGridData is page 0).
+  int GetNumberOfAtlasPages() const { return static_cast<int>(this->AtlasPages.size()); }
+  vtkTextureObject* GetAtlasPage(int page) const { return this->AtlasPages[page]; }
   vtkTextureObject* GetBrickBoxes() const { return this->BrickBoxes; }
   vtkTextureObject* GetTransparentFlags() const { return this->TransparentFlags; }
   ///@}
@@ -102,7 +105,7 @@ private:
 
   vtkSmartPointer<vtkTextureObject> Tree;
   vtkSmartPointer<vtkTextureObject> DataNodes;
-  vtkSmartPointer<vtkTextureObject> Atlas;          // packing
+  std::vector<vtkSmartPointer<vtkTextureObject>> AtlasPages; // packing: one per atlas page
   vtkSmartPointer<vtkTextureObject> HandlesTexture; // bindless: RG32UI, one handle per brick
   std::vector<vtkSmartPointer<vtkTextureObject>> Bricks;
   std::vector<std::uint64_t> ResidentHandles;

@@ -102,13 +102,15 @@ bool vtkSinglePassAMRMapperBase::EnsureBuilt(vtkOverlappingAMR* amr)
     amr, this->ArrayAccessMode, this->ArrayName, this->ArrayId);
   if (!this->Built || this->BuiltInput != amr || this->BuiltInputMTime != amr->GetMTime() ||
     this->BuiltArray != array || this->BuiltComponent != this->ArrayComponent ||
-    this->BuiltPackLimit != this->MaximumAtlasSize)
+    this->BuiltPackLimit != this->MaximumAtlasSize ||
+    this->BuiltPageBytes != this->MaximumAtlasPageBytes)
   {
     this->BuiltInput = amr;
     this->BuiltInputMTime = amr->GetMTime();
     this->BuiltArray = array;
     this->BuiltComponent = this->ArrayComponent;
     this->BuiltPackLimit = this->MaximumAtlasSize;
+    this->BuiltPageBytes = this->MaximumAtlasPageBytes;
     this->RunBuild(amr);
   }
   return this->DataValid;
@@ -220,6 +222,7 @@ void vtkSinglePassAMRMapperBase::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ArrayComponent: " << this->ArrayComponent << "\n";
   os << indent << "SampleDistanceFactor: " << this->SampleDistanceFactor << "\n";
   os << indent << "MaximumAtlasSize: " << this->MaximumAtlasSize << "\n";
+  os << indent << "MaximumAtlasPageBytes: " << this->MaximumAtlasPageBytes << "\n";
   os << indent << "UseDepthBuffer: " << (this->UseDepthBuffer ? "on" : "off") << "\n";
   os << indent << "NumberOfBuilds: " << this->NumberOfBuilds << "\n";
   os << indent << "LastError: " << (this->LastError.empty() ? "(none)" : this->LastError) << "\n";

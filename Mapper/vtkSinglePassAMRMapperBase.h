@@ -10,7 +10,8 @@
  *   rejected with an error) and the bounds of its root box;
  * - the array selection: vtkAbstractVolumeMapper's SelectScalarArray, and ArrayComponent;
  * - the rebuild policy: the CPU build (conversion, kD-tree, packing, encoding) runs only when the
- *   input object, its modification time, the array selection or MaximumAtlasSize change;
+ *   input object, its modification time, the array selection, MaximumAtlasSize or
+ *   MaximumAtlasPageBytes change;
  * - the settings both mappers honour (SampleDistanceFactor, UseDepthBuffer, MaximumAtlasSize);
  * - error reporting: a frame that cannot be drawn says why once with vtkErrorMacro (the same
  *   message is not repeated every frame) and in GetLastError; fallbacks warn once;
@@ -79,6 +80,15 @@ public:
   /// to exercise the error path in tests).
   vtkSetClampMacro(MaximumAtlasSize, int, 0, VTK_INT_MAX);
   vtkGetMacro(MaximumAtlasSize, int);
+  ///@}
+
+  ///@{
+  /// Largest atlas texture, in bytes: bricks that would make one atlas larger are spread over up
+  /// to four atlas pages (textures) of at most this size, each read by the shaders through the
+  /// data node's page. The default, 2 GiB - 64 MiB, stays below what Mesa's llvmpipe allocates
+  /// per texture (2 GiB); 0 packs one atlas whatever its size.
+  vtkSetClampMacro(MaximumAtlasPageBytes, vtkIdType, 0, VTK_ID_MAX);
+  vtkGetMacro(MaximumAtlasPageBytes, vtkIdType);
   ///@}
 
   ///@{
@@ -151,6 +161,7 @@ protected:
   double SampleDistanceFactor = 1.0;
   bool UseDepthBuffer = true;
   int MaximumAtlasSize = 0;
+  vtkIdType MaximumAtlasPageBytes = (vtkIdType(2048) - 64) << 20;
   /// Seconds of the last upload (set by the subclass).
   double UploadSeconds = 0.0;
 
@@ -166,6 +177,7 @@ private:
   std::string BuiltArray;
   int BuiltComponent = -1;
   int BuiltPackLimit = -1;
+  vtkIdType BuiltPageBytes = -1;
   bool Built = false;     // a build was attempted for the key above
   bool DataValid = false; // ... and succeeded
   std::string BuildError; // ... or failed with this message

@@ -222,7 +222,7 @@ ModelLight FirstLightInModel(vtkRenderer* ren, vtkVolume* vol)
 
 //------------------------------------------------------------------------------
 bool BuildPackedHierarchy(vtkOverlappingAMR* amr, const std::string& array, int component,
-  int packLimit, PackedHierarchy& out, std::string& error)
+  int packLimit, int64_t maxPageTexels, PackedHierarchy& out, std::string& error)
 {
   out = PackedHierarchy();
   try
@@ -238,8 +238,9 @@ bool BuildPackedHierarchy(vtkOverlappingAMR* amr, const std::string& array, int 
     out.Tree = amrsp::BuildKdTree(h);
     // one brick per grid (cells, or vertices one texel larger), packed within the per-axis limit
     // the data-node offsets can address and MaximumAtlasSize when set
-    out.Layout = amrsp::PackBricks(amrsp::BrickExtents(h, h.VertexCentred), amrsp::Packer::Best,
-      amrsp::AtlasLimits(packLimit > 0 ? std::min(packLimit, 2048) : 2048));
+    out.Atlas =
+      amrsp::PackBricksInPages(amrsp::BrickExtents(h, h.VertexCentred), amrsp::Packer::Best,
+        amrsp::AtlasLimits(packLimit > 0 ? std::min(packLimit, 2048) : 2048), maxPageTexels);
     out.VertexCentred = h.VertexCentred;
 
     // the level table and the finite range as the single-pass build computes them

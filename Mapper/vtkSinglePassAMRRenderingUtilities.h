@@ -17,6 +17,7 @@
 #ifndef vtkSinglePassAMRRenderingUtilities_h
 #define vtkSinglePassAMRRenderingUtilities_h
 
+#include "amrsp/AtlasPages.h"
 #include "amrsp/BrickAtlas.h"
 #include "amrsp/Hierarchy.h"
 #include "amrsp/KdTree.h"
@@ -76,9 +77,9 @@ struct PackedHierarchy
   /// Grids, ratios, origin and spacing, and the values until the atlas holds them.
   amrsp::Hierarchy Structure;
   amrsp::KdTree Tree;
-  /// Where each grid's brick lies in the atlas; Structure.Values are the bricks (borrowed from
-  /// the input where possible), dropped by the caller after the upload.
-  amrsp::AtlasLayout Layout;
+  /// Where each grid's brick lies in the atlas pages (usually one); Structure.Values are the
+  /// bricks (borrowed from the input where possible), dropped by the caller after the upload.
+  amrsp::AtlasPages Atlas;
   bool VertexCentred = false; ///< vertex bricks (trilinear) instead of cell bricks (nearest)
   /// Smallest model-space edge of a cell of each level (the sampling rule's D for factor 1).
   std::vector<double> LevelMinEdge;
@@ -91,11 +92,11 @@ struct PackedHierarchy
 /**
  * Converts `amr` (array `array`, component `component`), builds the kD-tree and packs the bricks
  * with the better packer within `packLimit` texels per axis (0: the 2048 the data-node offsets
- * address; a positive value lowers it). Returns false with a one-line `error` (conversion,
- * tree or packing failure).
+ * address; a positive value lowers it), over atlas pages of at most `maxPageTexels` texels (0:
+ * one atlas). Returns false with a one-line `error` (conversion, tree or packing failure).
  */
 bool BuildPackedHierarchy(vtkOverlappingAMR* amr, const std::string& array, int component,
-  int packLimit, PackedHierarchy& out, std::string& error);
+  int packLimit, int64_t maxPageTexels, PackedHierarchy& out, std::string& error);
 
 /**
  * Whether an atlas of `dims` texels fits `renWin`'s GL_MAX_3D_TEXTURE_SIZE and `atlasLimit`

@@ -158,7 +158,8 @@ bool vtkSinglePassAMRVolumeMapper::BuildData(
     {
       return false;
     }
-    in.Data = amrsp::PrepareRayCasting(std::move(h), this->MaximumAtlasSize);
+    in.Data = amrsp::PrepareRayCasting(std::move(h), this->MaximumAtlasSize,
+      static_cast<int64_t>(this->MaximumAtlasPageBytes / amrsp::AtlasTexelBytes));
   }
   catch (const std::exception& e)
   {
@@ -374,6 +375,8 @@ vtkShaderProgram* vtkSinglePassAMRVolumeMapper::vtkInternals::ReadyShader(
     }
   };
   define(frame.Access == WATERFALL_ACCESS, "AMRSP_WATERFALL 1");
+  const int pages = static_cast<int>(this->Data.PageDims.size());
+  define(!frame.Bindless() && pages > 1, "AMRSP_ATLAS_PAGES " + std::to_string(pages));
   define(frame.UseDepth, "AMRSP_USE_DEPTH 1");
   define(!levels.LevelToFinestLog2.empty(), "AMRSP_POWER_OF_TWO_REFINEMENT 1");
   define(levels.UniformRefinementLog2 > 0,
@@ -472,6 +475,16 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::ActivateTextures(
   program->SetUniformi(
     frame.Bindless() ? "amrspHandles" : "amrspAtlas", s.GetGridData()->GetTextureUnit());
   program->SetUniformi("amrspTransfer", this->Transfer.GetTexture()->GetTextureUnit());
+  if (!frame.Bindless())
+  {
+    // atlas pages after the first: amrspAtlas1, amrspAtlas2, ...
+    for (int p = 1; p < s.GetNumberOfAtlasPages(); ++p)
+    {
+      s.GetAtlasPage(p)->Activate();
+      program->SetUniformi(
+        ("amrspAtlas" + std::to_string(p)).c_str(), s.GetAtlasPage(p)->GetTextureUnit());
+    }
+  }
   if (frame.SmoothCells)
   {
     s.GetBrickBoxes()->Activate();
@@ -557,6 +570,16 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::SetDataUniforms(vtkShaderProgra
   {
     const glm::vec3 atlasSize(d.AtlasDims);
     program->SetUniform3f("amrspAtlasSize", &atlasSize.x);
+    if (d.PageDims.size() > 1)
+    {
+      std::vector<float> sizes;
+      for (const glm::ivec3& dims : d.PageDims)
+      {
+        sizes.insert(sizes.end(), { float(dims.x), float(dims.y), float(dims.z) });
+      }
+      program->SetUniform3fv(
+        "amrspAtlasPageSize", static_cast<int>(d.PageDims.size()), sizes.data());
+    }
   }
   // level of detail: world size of a pixel at distance 1 (perspective) or everywhere (parallel),
   // as amrsp::LevelOfDetail
@@ -647,6 +670,10 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::DeactivateTextures(const FrameS
   s.GetTree()->Deactivate();
   s.GetDataNodes()->Deactivate();
   s.GetGridData()->Deactivate();
+  for (int p = 1; !frame.Bindless() && p < s.GetNumberOfAtlasPages(); ++p)
+  {
+    s.GetAtlasPage(p)->Deactivate();
+  }
   this->Transfer.GetTexture()->Deactivate();
   if (frame.SmoothCells)
   {
@@ -702,6 +729,11 @@ long long vtkSinglePassAMRVolumeMapper::GetPackedTextureBytes()
 long long vtkSinglePassAMRVolumeMapper::GetBindlessTextureBytes()
 {
   return this->Internals->Data.BindlessBytes;
+}
+
+int vtkSinglePassAMRVolumeMapper::GetNumberOfAtlasPages()
+{
+  return static_cast<int>(this->Internals->Data.PageDims.size());
 }
 
 double vtkSinglePassAMRVolumeMapper::GetAtlasWaste()
@@ -810,4 +842,5 @@ void vtkSinglePassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "KdNodes: " << in.Data.KdNodes << ", DataNodes: " << in.Data.DataNodes << "\n";
   const glm::ivec3 d = in.Data.AtlasDims;
   os << indent << "AtlasDimensions: " << d.x << " x " << d.y << " x " << d.z << "\n";
+  os << indent << "AtlasPages: " << in.Data.PageDims.size() << "\n";
 }

@@ -150,6 +150,8 @@ public:
   long long GetBindlessTextureBytes();
   /// Fraction of the packed atlas's texels that hold no brick (0 when no atlas).
   double GetAtlasWaste();
+  /// Atlas textures (pages) of the packed storage (MaximumAtlasPageBytes); 0 before a build.
+  int GetNumberOfAtlasPages();
   /// kD-tree nodes and data nodes of the current hierarchy.
   long long GetNumberOfKdNodes() override;
   long long GetNumberOfDataNodes() override;

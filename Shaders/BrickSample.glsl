@@ -26,6 +26,38 @@ void amrspBrickPosition(vec3 p, vec3 cellSize, ivec3 firstCell, ivec3 lastCell, 
 #endif
 }
 
+#if !defined(AMRSP_BINDLESS) && defined(AMRSP_ATLAS_PAGES)
+// amrspReadAtlas from atlas page `page`. The page varies from ray to ray, so each page's texture
+// has a branch of its own (a sampler cannot be chosen by a non-uniform index in GLSL 1.50).
+float amrspReadAtlasPage(uint page, ivec3 texel, vec3 where)
+{
+#ifdef AMRSP_VERTEX_CENTRED
+  vec3 t = where / amrspAtlasPageSize[page];
+#define AMRSP_READ_PAGE(atlas) textureLod(atlas, t, 0.0).r
+#else
+#define AMRSP_READ_PAGE(atlas) texelFetch(atlas, texel, 0).r
+#endif
+  if (page == 0u)
+  {
+    return AMRSP_READ_PAGE(amrspAtlas);
+  }
+#if AMRSP_ATLAS_PAGES > 2
+  if (page == 2u)
+  {
+    return AMRSP_READ_PAGE(amrspAtlas2);
+  }
+#endif
+#if AMRSP_ATLAS_PAGES > 3
+  if (page == 3u)
+  {
+    return AMRSP_READ_PAGE(amrspAtlas3);
+  }
+#endif
+  return AMRSP_READ_PAGE(amrspAtlas1);
+#undef AMRSP_READ_PAGE
+}
+#endif
+
 #ifndef AMRSP_BINDLESS
 // The packed atlas's value at amrspBrickPosition's texel (cells) or where (vertices).
 float amrspReadAtlas(ivec3 texel, vec3 where)

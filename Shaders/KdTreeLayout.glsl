@@ -21,7 +21,8 @@
 //         corner (x bits 0-10, y bits 11-21, z bits 22-31); bindless stores the same offset inside
 //         the node's own brick texture.
 //   green bits  0- 5  data level (the level of the grid whose cells the node shows)
-//         bits  6-31  brick index (the AMR grid; the index into the bindless handles texture)
+//         bits  6-29  brick index (the AMR grid; the index into the bindless handles texture)
+//         bits 30-31  packing: the atlas page (texture) holding the brick; 0 with one atlas
 // Linear texel index i maps to the texel (i % 256, (i / 256) % 256, i / 65536) in both textures.
 
 #define AMRSP_TEXTURE_ROW 256u
@@ -39,7 +40,9 @@
 #define AMRSP_DN_LEVEL_SHIFT 0u
 #define AMRSP_DN_LEVEL_BITS 6u
 #define AMRSP_DN_BRICK_SHIFT 6u
-#define AMRSP_DN_BRICK_BITS 26u
+#define AMRSP_DN_BRICK_BITS 24u
+#define AMRSP_DN_PAGE_SHIFT 30u
+#define AMRSP_DN_PAGE_BITS 2u
 #define AMRSP_DN_OFFSET_X_SHIFT 0u
 #define AMRSP_DN_OFFSET_X_BITS 11u
 #define AMRSP_DN_OFFSET_Y_SHIFT 11u
@@ -101,6 +104,11 @@ AMRSP_FN uint amrspDataBrick(uvec2 dataNode)
   return amrspField(dataNode.y, AMRSP_DN_BRICK_SHIFT, AMRSP_DN_BRICK_BITS);
 }
 
+AMRSP_FN uint amrspDataPage(uvec2 dataNode)
+{
+  return amrspField(dataNode.y, AMRSP_DN_PAGE_SHIFT, AMRSP_DN_PAGE_BITS);
+}
+
 AMRSP_FN ivec3 amrspDataOffset(uvec2 dataNode)
 {
   return ivec3(int(amrspField(dataNode.x, AMRSP_DN_OFFSET_X_SHIFT, AMRSP_DN_OFFSET_X_BITS)),
@@ -108,13 +116,14 @@ AMRSP_FN ivec3 amrspDataOffset(uvec2 dataNode)
     int(amrspField(dataNode.x, AMRSP_DN_OFFSET_Z_SHIFT, AMRSP_DN_OFFSET_Z_BITS)));
 }
 
-AMRSP_FN uvec2 amrspPackDataNode(uint level, uint brick, uint ox, uint oy, uint oz)
+AMRSP_FN uvec2 amrspPackDataNode(uint level, uint brick, uint ox, uint oy, uint oz, uint page)
 {
   return uvec2(amrspPutField(ox, AMRSP_DN_OFFSET_X_SHIFT, AMRSP_DN_OFFSET_X_BITS) |
       amrspPutField(oy, AMRSP_DN_OFFSET_Y_SHIFT, AMRSP_DN_OFFSET_Y_BITS) |
       amrspPutField(oz, AMRSP_DN_OFFSET_Z_SHIFT, AMRSP_DN_OFFSET_Z_BITS),
     amrspPutField(level, AMRSP_DN_LEVEL_SHIFT, AMRSP_DN_LEVEL_BITS) |
-      amrspPutField(brick, AMRSP_DN_BRICK_SHIFT, AMRSP_DN_BRICK_BITS));
+      amrspPutField(brick, AMRSP_DN_BRICK_SHIFT, AMRSP_DN_BRICK_BITS) |
+      amrspPutField(page, AMRSP_DN_PAGE_SHIFT, AMRSP_DN_PAGE_BITS));
 }
 
 AMRSP_FN ivec3 amrspTexelOf(uint linearIndex)

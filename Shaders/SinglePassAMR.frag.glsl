@@ -71,6 +71,17 @@ uniform usampler3D amrspDataNodes; // RG32UI, one texel per data node (texel 0 u
 #ifdef AMRSP_PACKING
 uniform sampler3D amrspAtlas;      // R32F, one brick per grid (nearest filtering)
 uniform vec3 amrspAtlasSize;       // atlas dimensions, texels
+#ifdef AMRSP_ATLAS_PAGES
+// the bricks fill several atlas textures (pages); amrspAtlas is page 0
+uniform sampler3D amrspAtlas1;
+#if AMRSP_ATLAS_PAGES > 2
+uniform sampler3D amrspAtlas2;
+#endif
+#if AMRSP_ATLAS_PAGES > 3
+uniform sampler3D amrspAtlas3;
+#endif
+uniform vec3 amrspAtlasPageSize[AMRSP_ATLAS_PAGES]; // every page's dimensions, texels
+#endif
 #else
 uniform usampler3D amrspHandles;   // RG32UI, one texel per brick: its 64-bit handle (low, high)
 #endif
@@ -305,7 +316,9 @@ float amrspSampleDataNode(uvec2 dataNode, vec3 p, vec3 cellSize, ivec3 firstCell
   ivec3 texel;
   vec3 where;
   amrspBrickPosition(p, cellSize, firstCell, lastCell, amrspDataOffset(dataNode), texel, where);
-#ifdef AMRSP_PACKING
+#if defined(AMRSP_PACKING) && defined(AMRSP_ATLAS_PAGES)
+  return amrspReadAtlasPage(amrspDataPage(dataNode), texel, where);
+#elif defined(AMRSP_PACKING)
   return amrspReadAtlas(texel, where);
 #else
   return amrspReadDataNodeBrick(dataNode, texel, where);

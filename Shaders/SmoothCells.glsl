@@ -11,7 +11,9 @@
 float amrspFetchGridCell(uvec2 dataNode, ivec3 cell, ivec3 firstCell)
 {
   ivec3 texel = amrspDataOffset(dataNode) + (cell - firstCell);
-#ifdef AMRSP_PACKING
+#if defined(AMRSP_PACKING) && defined(AMRSP_ATLAS_PAGES)
+  return amrspReadAtlasPage(amrspDataPage(dataNode), texel, vec3(0.0));
+#elif defined(AMRSP_PACKING)
   return texelFetch(amrspAtlas, texel, 0).r;
 #else
   return amrspReadDataNodeBrick(dataNode, texel, vec3(0.0));

@@ -41,8 +41,8 @@ void Resize(UIntTexture3D& t, std::size_t texels)
 }
 } // namespace
 
-EncodedKdTree EncodeKdTree(
-  const Hierarchy& h, const KdTree& tree, const std::vector<glm::ivec3>* brickOrigins)
+EncodedKdTree EncodeKdTree(const Hierarchy& h, const KdTree& tree,
+  const std::vector<glm::ivec3>* brickOrigins, const std::vector<int>* brickPages)
 {
   using namespace layout;
   EncodedKdTree e;
@@ -54,9 +54,11 @@ EncodedKdTree EncodeKdTree(
     "the kD-tree has " + std::to_string(nodes) + " nodes; the tree texture addresses at most " +
       std::to_string(MaxNodes) + " (2^24)");
   Require(h.Grids.size() <= MaxBricks,
-    "the hierarchy has " + std::to_string(h.Grids.size()) + " grids; at most 2^26 are supported");
+    "the hierarchy has " + std::to_string(h.Grids.size()) + " grids; at most 2^24 are supported");
   Require(brickOrigins == nullptr || brickOrigins->size() == h.Grids.size(),
     "one brick origin per grid is required");
+  Require(brickPages == nullptr || brickPages->size() == h.Grids.size(),
+    "one atlas page per grid is required");
 
   std::size_t dataNodes = 0;
   for (const KdNode& n : tree.Nodes)
@@ -99,9 +101,16 @@ EncodedKdTree EncodeKdTree(
           "texture can address");
         offset = glm::ivec3(texel);
       }
-      e.DataNodes.Texels[data] =
-        amrspPackDataNode(static_cast<uint>(g.Level), static_cast<uint>(n.Grid),
-          static_cast<uint>(offset.x), static_cast<uint>(offset.y), static_cast<uint>(offset.z));
+      const int page = brickPages ? (*brickPages)[n.Grid] : 0;
+      if (page < 0 || page >= static_cast<int>(MaxAtlasPages))
+      {
+        Require(false,
+          "a brick's atlas page " + std::to_string(page) + " is beyond the " +
+            std::to_string(MaxAtlasPages) + " pages the data-nodes texture can address");
+      }
+      e.DataNodes.Texels[data] = amrspPackDataNode(static_cast<uint>(g.Level),
+        static_cast<uint>(n.Grid), static_cast<uint>(offset.x), static_cast<uint>(offset.y),
+        static_cast<uint>(offset.z), static_cast<uint>(page));
     }
     uint axis = AMRSP_AXIS_NONE, child = 0, split = 0;
     if (!n.IsLeaf())

@@ -138,13 +138,13 @@ bool FiniteValueRange(const Hierarchy& h, double range[2])
 void RayCastingData::FreeUploadData()
 {
   this->Data.Values = std::vector<GridValues>();
-  this->Layout = AtlasLayout();
+  this->Atlas = AtlasPages();
   this->TreeTexels = UIntTexture3D();
   this->PackedDataNodeTexels = UIntTexture3D();
   this->BindlessDataNodeTexels = UIntTexture3D();
 }
 
-RayCastingData PrepareRayCasting(Hierarchy h, int packLimit)
+RayCastingData PrepareRayCasting(Hierarchy h, int packLimit, int64_t maxPageTexels)
 {
   RayCastingData out;
   const KdTree tree = BuildKdTree(h);
@@ -158,14 +158,16 @@ RayCastingData PrepareRayCasting(Hierarchy h, int packLimit)
   // the data-node offsets can address and packLimit when set
   try
   {
-    out.Layout = PackBricks(BrickExtents(h, h.VertexCentred), Packer::Best,
-      AtlasLimits(packLimit > 0 ? std::min(packLimit, 2048) : 2048));
-    out.PackedDataNodeTexels = EncodeKdTree(h, tree, &out.Layout.Origins).DataNodes;
+    out.Atlas = PackBricksInPages(BrickExtents(h, h.VertexCentred), Packer::Best,
+      AtlasLimits(packLimit > 0 ? std::min(packLimit, 2048) : 2048), maxPageTexels);
+    out.PackedDataNodeTexels = EncodeKdTree(
+      h, tree, &out.Atlas.Origins, out.Atlas.Pages.size() > 1 ? &out.Atlas.PageOfGrid : nullptr)
+                                 .DataNodes;
   }
   catch (const std::exception& e)
   {
     out.PackingError = e.what();
-    out.Layout = AtlasLayout();
+    out.Atlas = AtlasPages();
     out.PackedDataNodeTexels = UIntTexture3D();
   }
   out.Levels = ComputeLevelTable(h, tree);
@@ -179,8 +181,18 @@ RayCastingData PrepareRayCasting(Hierarchy h, int packLimit)
   out.RootHi = enc.RootHi;
   out.KdNodes = enc.NodeCount;
   out.DataNodes = enc.DataNodeCount;
-  out.AtlasDims = out.Layout.Dims;
-  out.AtlasWaste = out.Layout.TotalTexels > 0 ? 1.0 - out.Layout.Efficiency : 0.0;
+  int64_t usedTexels = 0;
+  for (const AtlasLayout& page : out.Atlas.Pages)
+  {
+    out.PageDims.push_back(page.Dims);
+    usedTexels += page.UsedTexels;
+  }
+  out.AtlasDims = out.PageDims.empty() ? glm::ivec3(0) : out.PageDims[0];
+  const int64_t totalTexels = out.Atlas.TotalTexels();
+  out.AtlasWaste = totalTexels > 0
+    ? (out.Atlas.Pages.size() == 1 ? 1.0 - out.Atlas.Pages[0].Efficiency
+                                   : 1.0 - static_cast<double>(usedTexels) / totalTexels)
+    : 0.0;
   if (!FiniteValueRange(h, out.ScalarRange) && !h.Grids.empty())
   {
     throw std::runtime_error("the array '" + h.ArrayName +
@@ -191,7 +203,7 @@ RayCastingData PrepareRayCasting(Hierarchy h, int packLimit)
   out.BindlessBytes =
     treeBytes + static_cast<long long>(SeparateBrickBytes(h) + HandleTextureBytes(h.Grids.size()));
   out.PackedBytes = out.PackingError.empty()
-    ? treeBytes + out.Layout.TotalTexels * static_cast<long long>(AtlasTexelBytes)
+    ? treeBytes + totalTexels * static_cast<long long>(AtlasTexelBytes)
     : 0;
   out.Grids = static_cast<long long>(h.Grids.size());
   out.TreeTexels = std::move(enc.Tree);

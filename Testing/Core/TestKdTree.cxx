@@ -40,9 +40,11 @@ TEST(Layout, FieldsRoundTrip)
     const uint brick = static_cast<uint>(rng() % MaxBricks);
     const glm::uvec3 o(
       rng() % (MaxOffsetX + 1), rng() % (MaxOffsetY + 1), rng() % (MaxOffsetZ + 1));
-    const uvec2 d = amrspPackDataNode(level, brick, o.x, o.y, o.z);
+    const uint page = static_cast<uint>(rng() % MaxAtlasPages);
+    const uvec2 d = amrspPackDataNode(level, brick, o.x, o.y, o.z, page);
     ASSERT_EQ(amrspDataLevel(d), level);
     ASSERT_EQ(amrspDataBrick(d), brick);
+    ASSERT_EQ(amrspDataPage(d), page);
     ASSERT_EQ(glm::uvec3(amrspDataOffset(d)), o);
   }
   EXPECT_EQ(amrspTexelOf(0), glm::ivec3(0));

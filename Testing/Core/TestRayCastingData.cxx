@@ -4,6 +4,7 @@
 // that stop a hierarchy from being rendered.
 #include "TestHierarchies.h"
 #include "amrsp/KdTree.h"
+#include "amrsp/KdTreeLayout.h"
 #include "amrsp/RayCastingData.h"
 
 #include <gtest/gtest.h>
@@ -116,7 +117,8 @@ TEST(RayCastingData, BothEncodingsAndTheFigures)
   EXPECT_EQ(d.NodeRanges.size(), static_cast<std::size_t>(d.DataNodes) + 1); // texel 0 unused
   EXPECT_EQ(d.PackedDataNodeTexels.Dims, d.BindlessDataNodeTexels.Dims);
   EXPECT_NE(d.PackedDataNodeTexels.Texels, d.BindlessDataNodeTexels.Texels); // offsets differ
-  EXPECT_GT(d.Layout.Dims.x, 0);
+  ASSERT_EQ(d.Atlas.Pages.size(), 1u); // one page without a page budget
+  EXPECT_GT(d.Atlas.Pages[0].Dims.x, 0);
   EXPECT_GT(d.PackedBytes, 0);
   EXPECT_GT(d.BindlessBytes, 0);
   double range[2];
@@ -130,7 +132,8 @@ TEST(RayCastingData, BothEncodingsAndTheFigures)
   EXPECT_TRUE(freed.Data.Values.empty());
   EXPECT_TRUE(freed.TreeTexels.Texels.empty());
   EXPECT_EQ(freed.KdNodes, d.KdNodes); // the figures stay
-  EXPECT_EQ(freed.AtlasDims, d.Layout.Dims);
+  EXPECT_EQ(freed.AtlasDims, d.Atlas.Pages[0].Dims);
+  EXPECT_EQ(freed.PageDims, d.PageDims);
 }
 
 TEST(RayCastingData, UnpackableBricksLeaveTheBindlessEncoding)
@@ -139,8 +142,67 @@ TEST(RayCastingData, UnpackableBricksLeaveTheBindlessEncoding)
   // a 4-texel atlas cannot hold the 16 x 16 x 4 root brick
   const RayCastingData d = PrepareRayCasting(h, 4);
   EXPECT_FALSE(d.PackingError.empty());
-  EXPECT_EQ(d.Layout.Dims, glm::ivec3(0));
+  EXPECT_TRUE(d.Atlas.Pages.empty());
+  EXPECT_EQ(d.AtlasDims, glm::ivec3(0));
   EXPECT_TRUE(d.PackedDataNodeTexels.Texels.empty());
   EXPECT_EQ(d.PackedBytes, 0);
   EXPECT_FALSE(d.BindlessDataNodeTexels.Texels.empty());
+}
+
+TEST(RayCastingData, APageBudgetSpreadsTheBricksOverPagesThatEncodeTheirPage)
+{
+  const Hierarchy h = amrsp::test::PaperExample();
+  const RayCastingData one = PrepareRayCasting(h, 0);
+  ASSERT_EQ(one.Atlas.Pages.size(), 1u);
+  // a budget below the one atlas: several pages, each within it
+  const int64_t budget = one.Atlas.Pages[0].TotalTexels * 2 / 3;
+  const RayCastingData paged = PrepareRayCasting(h, 0, budget);
+  ASSERT_TRUE(paged.PackingError.empty()) << paged.PackingError;
+  ASSERT_GE(paged.Atlas.Pages.size(), 2u);
+  ASSERT_EQ(paged.PageDims.size(), paged.Atlas.Pages.size());
+  std::size_t grids = 0;
+  for (std::size_t p = 0; p < paged.Atlas.Pages.size(); ++p)
+  {
+    EXPECT_LE(paged.Atlas.Pages[p].TotalTexels, budget) << "page " << p;
+    grids += paged.Atlas.GridsOfPage[p].size();
+    const Hierarchy page = PageHierarchy(h, paged.Atlas, static_cast<int>(p));
+    ASSERT_EQ(page.Grids.size(), paged.Atlas.GridsOfPage[p].size());
+    for (std::size_t i = 0; i < page.Grids.size(); ++i)
+    {
+      const std::size_t g = paged.Atlas.GridsOfPage[p][i];
+      EXPECT_EQ(paged.Atlas.PageOfGrid[g], static_cast<int>(p));
+      EXPECT_EQ(paged.Atlas.Origins[g], paged.Atlas.Pages[p].Origins[i]);
+      // the page's hierarchy shares the values
+      EXPECT_EQ(page.Values[i].data(), h.Values[g].data());
+    }
+  }
+  EXPECT_EQ(grids, h.Grids.size());
+  // every data node names its brick's page and its offset in that page; nothing else changes
+  using namespace amrsp::layout;
+  ASSERT_EQ(paged.PackedDataNodeTexels.Texels.size(), one.PackedDataNodeTexels.Texels.size());
+  bool pageBeyondZero = false;
+  for (std::size_t i = 1; i < paged.PackedDataNodeTexels.Texels.size(); ++i)
+  {
+    const uvec2 a = paged.PackedDataNodeTexels.Texels[i];
+    const uvec2 b = one.PackedDataNodeTexels.Texels[i];
+    if (a == uvec2(0u) && b == uvec2(0u))
+    {
+      continue; // padding texels
+    }
+    const uint brick = amrspDataBrick(a);
+    EXPECT_EQ(brick, amrspDataBrick(b));
+    EXPECT_EQ(amrspDataLevel(a), amrspDataLevel(b));
+    EXPECT_EQ(amrspDataPage(a), static_cast<uint>(paged.Atlas.PageOfGrid[brick]));
+    EXPECT_EQ(amrspDataPage(b), 0u);
+    pageBeyondZero = pageBeyondZero || amrspDataPage(a) > 0u;
+  }
+  EXPECT_TRUE(pageBeyondZero);
+}
+
+TEST(RayCastingData, TooSmallAPageBudgetIsAPackingErrorNamingThePages)
+{
+  const Hierarchy h = amrsp::test::PaperExample();
+  const RayCastingData d = PrepareRayCasting(h, 0, 64);
+  EXPECT_NE(d.PackingError.find("atlas pages"), std::string::npos) << d.PackingError;
+  EXPECT_TRUE(d.Atlas.Pages.empty());
 }

@@ -24,12 +24,14 @@
 #include "AmrspCommands.h"
 #include "MapperTestHelpers.h"
 #include "AmrspDataset.h"
+#include "AmrspMultipass.h"
 #include "AmrspPacking.h"
 
 #include "amrsp/KdTree.h"
 #include "amrsp/KdTreeEncoding.h"
 #include "amrsp/Render.h"
 
+#include "vtkMultiPassAMRVolumeMapper.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
 
 #include "vtkActor.h"
@@ -466,6 +468,58 @@ void TestLevelOfDetailAndNaN()
   Check(gpu.NumberOfBuilds() == 1, "changing the LOD threshold rebuilds nothing");
 }
 
+/// Bricks spread over several atlas pages (MaximumAtlasPageBytes below the one atlas's size)
+/// give the one atlas's image bit for bit: nearest and smooth cells, vertex data, multipass.
+void TestAtlasPages()
+{
+  std::cout << "atlas pages\n";
+  for (const char* centering : { "cell", "vertex" })
+  {
+    DatasetRequest request;
+    request.Spec = "synthetic:cosmo:grids=60,levels=3,cells=200k,seed=3";
+    request.NeedVTK = false;
+    if (std::string(centering) == "vertex")
+    {
+      request.Centering = "vertex";
+    }
+    LoadedDataset d = LoadDataset(request);
+    Hierarchy& h = d.Data;
+    const std::string name = std::string(centering) + " data";
+    const RenderSettings base = Settings(h, { "--size", "96x96" });
+    for (const char* interpolation : { "nearest", "smooth" })
+    {
+      RenderSettings s = base;
+      s.SmoothCellData = std::string(interpolation) == "smooth";
+      if (h.VertexCentred && s.SmoothCellData)
+      {
+        continue; // the smooth reconstruction is for cell data
+      }
+      double ms = 0.0;
+      PackingRenderer one(h, s, ViewAngles(), "packing");
+      const Image single = one.Render(0.0, ms);
+      PackingRenderer paged(h, s, ViewAngles(), "packing");
+      paged.GetMapper()->SetMaximumAtlasPageBytes(one.GetMapper()->GetTextureBytes() / 2);
+      const Image pages = paged.Render(0.0, ms);
+      const int count = paged.GetMapper()->GetNumberOfAtlasPages();
+      Check(one.GetMapper()->GetNumberOfAtlasPages() == 1 && count >= 2,
+        name + ", " + interpolation + ": " + std::to_string(count) +
+          " atlas pages under half the one atlas's bytes");
+      Check(Coverage(single) > 0.05 && Rmse(single, pages) == 0.0,
+        name + ", " + interpolation + ": the pages' image equals the one atlas's (RMSE " +
+          Fixed(Rmse(single, pages)) + ", coverage " + Fixed(Coverage(single)) + ")");
+    }
+    double ms = 0.0;
+    MultipassRenderer one(h, base, ViewAngles());
+    const Image single = one.Render(0.0, ms);
+    MultipassRenderer paged(h, base, ViewAngles());
+    paged.GetMapper()->SetMaximumAtlasPageBytes(one.GetMapper()->GetTextureBytes() / 2);
+    const Image pages = paged.Render(0.0, ms);
+    Check(Coverage(single) > 0.05 && Rmse(single, pages) == 0.0,
+      name + ", multipass: the pages' image equals the one atlas's (RMSE " +
+        Fixed(Rmse(single, pages)) + ")");
+  }
+}
+
 /// Reads the window back as an amrsp::Image of the pixels [x0, x0 + w) x [0, h).
 Image Grab(vtkRenderWindow* window, int x0, int w, int h)
 {
@@ -585,6 +639,7 @@ int main()
   {
     TestDataset("synthetic:cosmo:grids=60,levels=3,cells=200k,seed=3");
     TestLevelOfDetailAndNaN();
+    TestAtlasPages();
     TestRefinementRatios();
     TestTwoRenderersAndDataChanges();
     TestVertexCentred("synthetic:cosmo:grids=40,levels=3,cells=100k,seed=5");

@@ -55,12 +55,15 @@ std::size_t KdTreeTextureBytes(const UIntTexture3D& tree, const UIntTexture3D& d
 
 /// Encodes the tree. `brickOrigins`, when given (one per grid), is the texel of each grid's first
 /// cell inside the packed atlas; every data node then stores the atlas texel holding its own
-/// lower corner. Without it the offsets are 0 (storage not decided yet).
+/// lower corner. Without it the offsets are 0 (storage not decided yet). `brickPages`, when given
+/// (one per grid, each below layout::MaxAtlasPages), is the atlas page (texture) holding each
+/// grid's brick when the bricks fill several atlases; without it every page is 0.
 /// Throws EncodingError when a field would overflow: more than 64 levels, more than 2^24 nodes,
-/// more than 2^21 - 1 data nodes, a split position beyond 2047 cells, more than 2^26 grids, or an
-/// atlas offset beyond 2047 x 2047 x 1023.
-EncodedKdTree EncodeKdTree(
-  const Hierarchy& h, const KdTree& tree, const std::vector<glm::ivec3>* brickOrigins = nullptr);
+/// more than 2^21 - 1 data nodes, a split position beyond 2047 cells, more than 2^24 grids, an
+/// atlas offset beyond 2047 x 2047 x 1023, or a page beyond 3.
+EncodedKdTree EncodeKdTree(const Hierarchy& h, const KdTree& tree,
+  const std::vector<glm::ivec3>* brickOrigins = nullptr,
+  const std::vector<int>* brickPages = nullptr);
 
 /// Rebuilds a KdTree from its encoding (node regions by exact integer arithmetic), for the
 /// encode -> decode round-trip check. Node types are re-derived from the encoded fields.

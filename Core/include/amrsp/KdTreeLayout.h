@@ -26,6 +26,7 @@ constexpr uint MaxNodes = 1u << AMRSP_CHILD_BITS;
 constexpr uint MaxSplit = (1u << AMRSP_SPLIT_BITS) - 1u;
 constexpr uint MaxDataNodes = (1u << AMRSP_DATA_BITS) - 1u; // index 0 is reserved
 constexpr uint MaxBricks = 1u << AMRSP_DN_BRICK_BITS;
+constexpr uint MaxAtlasPages = 1u << AMRSP_DN_PAGE_BITS;
 constexpr uint MaxOffsetX = (1u << AMRSP_DN_OFFSET_X_BITS) - 1u;
 constexpr uint MaxOffsetY = (1u << AMRSP_DN_OFFSET_Y_BITS) - 1u;
 constexpr uint MaxOffsetZ = (1u << AMRSP_DN_OFFSET_Z_BITS) - 1u;

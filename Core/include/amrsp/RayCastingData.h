@@ -10,6 +10,7 @@
 /// coordinates are the volume's own; "finest cells" are cells of the hierarchy's finest level,
 /// in which kD-tree regions are exact integers.
 
+#include "amrsp/AtlasPages.h"
 #include "amrsp/BrickPacking.h"
 #include "amrsp/Hierarchy.h"
 #include "amrsp/KdTree.h"
@@ -75,10 +76,13 @@ struct RayCastingData
   LevelTable Levels;
   /// min, max scalar per data node, indexed like the data-node texels (entry 0 unused).
   std::vector<glm::vec2> NodeRanges;
-  AtlasLayout Layout;        ///< Dims (0,0,0) when the bricks could not be packed
-  glm::ivec3 AtlasDims{ 0 }; ///< Layout.Dims, kept after FreeUploadData
-  std::string PackingError;  ///< why no atlas could be packed (empty when packed)
-  double AtlasWaste = 0.0;   ///< unused fraction of the atlas's texels
+  /// The bricks' atlas pages (one texture each; usually one page); no page when the bricks could
+  /// not be packed.
+  AtlasPages Atlas;
+  glm::ivec3 AtlasDims{ 0 };        ///< page 0's Dims, kept after FreeUploadData
+  std::vector<glm::ivec3> PageDims; ///< every page's Dims, kept after FreeUploadData
+  std::string PackingError;         ///< why no atlas could be packed (empty when packed)
+  double AtlasWaste = 0.0;          ///< unused fraction of the atlas's texels
   double ScalarRange[2] = { 0.0, 1.0 };
   long long KdNodes = 0;
   long long DataNodes = 0;
@@ -100,6 +104,8 @@ struct RayCastingData
 /// bindless storage can render it). Throws std::runtime_error with a one-line message when it
 /// cannot be rendered at all: an encoding limit, a root box over 2^30 finest cells, or no finite
 /// value in any cell.
-RayCastingData PrepareRayCasting(Hierarchy h, int packLimit);
+/// `maxPageTexels` (> 0) spreads the bricks over several atlas pages of at most that many
+/// texels each when one atlas would be larger (PackBricksInPages); 0 packs one atlas.
+RayCastingData PrepareRayCasting(Hierarchy h, int packLimit, int64_t maxPageTexels = 0);
 
 } // namespace amrsp
