@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <future>
 #include <limits>
 #include <stdexcept>
 #include <utility>
@@ -147,6 +148,14 @@ void RayCastingData::FreeUploadData()
 RayCastingData PrepareRayCasting(Hierarchy h, int packLimit, int64_t maxPageTexels)
 {
   RayCastingData out;
+  // the packing needs the grid boxes only: it runs beside the tree, its encoding and the value
+  // scans (its result does not depend on the timing)
+  std::future<AtlasPages> packing = std::async(std::launch::async,
+    [&h, packLimit, maxPageTexels]
+    {
+      return PackBricksInPages(BrickExtents(h, h.VertexCentred), Packer::Best,
+        AtlasLimits(packLimit > 0 ? std::min(packLimit, 2048) : 2048), maxPageTexels);
+    });
   const KdTree tree = BuildKdTree(h);
   out.VertexCentred = h.VertexCentred;
   // bindless: every data node stores the offset of its lower corner inside its own brick
@@ -158,8 +167,7 @@ RayCastingData PrepareRayCasting(Hierarchy h, int packLimit, int64_t maxPageTexe
   // the data-node offsets can address and packLimit when set
   try
   {
-    out.Atlas = PackBricksInPages(BrickExtents(h, h.VertexCentred), Packer::Best,
-      AtlasLimits(packLimit > 0 ? std::min(packLimit, 2048) : 2048), maxPageTexels);
+    out.Atlas = packing.get();
     out.PackedDataNodeTexels = EncodeKdTree(
       h, tree, &out.Atlas.Origins, out.Atlas.Pages.size() > 1 ? &out.Atlas.PageOfGrid : nullptr)
                                  .DataNodes;
