@@ -27,43 +27,74 @@ std::vector<glm::vec2> ComputeDataNodeRanges(const Hierarchy& h, const EncodedKd
     return ranges;
   }
   const glm::i64vec3 finest = h.CumulativeRatio(decoded.FinestLevel);
-  // one node per item (each writes its own entry); the large nodes dominate, so small chunks
+  // each data node's block of values: its grid's values [first, last] (vertices: one more)
+  struct Block
+  {
+    uint Data;
+    std::size_t Grid;
+    glm::i64vec3 First, Last, Extent;
+  };
+  std::vector<Block> blocks;
+  for (std::size_t i = 0; i < decoded.Nodes.size(); ++i)
+  {
+    const KdNode& n = decoded.Nodes[i];
+    const uint data = amrspNodeData(tree.Tree.Texels[i]);
+    if (data == 0 || !n.HasData())
+    {
+      continue;
+    }
+    const Grid& g = h.Grids[n.Grid];
+    const glm::i64vec3 toData = finest / h.CumulativeRatio(g.Level);
+    Block b{ data, static_cast<std::size_t>(n.Grid), glm::i64vec3(0), glm::i64vec3(0),
+      g.Cells.Extent() };
+    for (int a = 0; a < 3; ++a)
+    {
+      b.First[a] = FloorDiv(n.Region.Lo[a], toData[a]);
+      b.Last[a] = CeilDiv(n.Region.Hi[a], toData[a]) - 1;
+    }
+    b.First = glm::clamp(b.First, g.Cells.Lo, g.Cells.Hi - glm::i64vec3(1)) - g.Cells.Lo;
+    b.Last = glm::clamp(b.Last, g.Cells.Lo, g.Cells.Hi - glm::i64vec3(1)) - g.Cells.Lo;
+    if (h.VertexCentred)
+    {
+      b.Last += glm::i64vec3(1); // the vertices of the node's cells
+      b.Extent += glm::i64vec3(1);
+    }
+    blocks.push_back(b);
+  }
+  // work items of at most about 2^18 values (slabs of a block's layers), so that the few large
+  // blocks of the coarse levels spread over the workers too
+  struct Item
+  {
+    std::size_t Block;
+    int64_t Z0, Z1;
+  };
+  std::vector<Item> items;
+  for (std::size_t k = 0; k < blocks.size(); ++k)
+  {
+    const Block& b = blocks[k];
+    const int64_t layer = (b.Last.x - b.First.x + 1) * (b.Last.y - b.First.y + 1);
+    const int64_t step = std::max<int64_t>(1, (int64_t(1) << 18) / std::max<int64_t>(1, layer));
+    for (int64_t z = b.First.z; z <= b.Last.z; z += step)
+    {
+      items.push_back(Item{ k, z, std::min(b.Last.z, z + step - 1) });
+    }
+  }
+  std::vector<glm::vec2> partial(items.size());
   ParallelFor(
-    static_cast<int64_t>(decoded.Nodes.size()),
+    static_cast<int64_t>(items.size()),
     [&](int64_t i)
     {
-      const KdNode& n = decoded.Nodes[static_cast<std::size_t>(i)];
-      const uint data = amrspNodeData(tree.Tree.Texels[static_cast<std::size_t>(i)]);
-      if (data == 0 || !n.HasData())
-      {
-        return;
-      }
-      const Grid& g = h.Grids[n.Grid];
-      const glm::i64vec3 toData = finest / h.CumulativeRatio(g.Level);
-      glm::i64vec3 first, last;
-      for (int a = 0; a < 3; ++a)
-      {
-        first[a] = FloorDiv(n.Region.Lo[a], toData[a]);
-        last[a] = CeilDiv(n.Region.Hi[a], toData[a]) - 1;
-      }
-      first = glm::clamp(first, g.Cells.Lo, g.Cells.Hi - glm::i64vec3(1)) - g.Cells.Lo;
-      last = glm::clamp(last, g.Cells.Lo, g.Cells.Hi - glm::i64vec3(1)) - g.Cells.Lo;
-      glm::i64vec3 extent = g.Cells.Extent();
-      if (h.VertexCentred)
-      {
-        last += glm::i64vec3(1); // the vertices of the node's cells
-        extent += glm::i64vec3(1);
-      }
-      const GridValues& values = h.Values[n.Grid];
+      const Item& item = items[static_cast<std::size_t>(i)];
+      const Block& b = blocks[item.Block];
+      const float* values = h.Values[b.Grid].data();
       // NaN is skipped: a comparison with NaN is false, so neither bound takes it
       float lo = FLT_MAX, hi = -FLT_MAX;
-      for (int64_t z = first.z; z <= last.z; ++z)
+      for (int64_t z = item.Z0; z <= item.Z1; ++z)
       {
-        for (int64_t y = first.y; y <= last.y; ++y)
+        for (int64_t y = b.First.y; y <= b.Last.y; ++y)
         {
-          const float* row =
-            values.data() + static_cast<std::size_t>((z * extent.y + y) * extent.x);
-          for (int64_t x = first.x; x <= last.x; ++x)
+          const float* row = values + static_cast<std::size_t>((z * b.Extent.y + y) * b.Extent.x);
+          for (int64_t x = b.First.x; x <= b.Last.x; ++x)
           {
             const float v = row[x];
             lo = v < lo ? v : lo;
@@ -71,9 +102,16 @@ std::vector<glm::vec2> ComputeDataNodeRanges(const Hierarchy& h, const EncodedKd
           }
         }
       }
-      ranges[data] = glm::vec2(lo, hi);
+      partial[static_cast<std::size_t>(i)] = glm::vec2(lo, hi);
     },
-    0, 16);
+    0, 32);
+  // min and max are exact in any order
+  for (std::size_t i = 0; i < items.size(); ++i)
+  {
+    glm::vec2& r = ranges[blocks[items[i].Block].Data];
+    r.x = std::min(r.x, partial[i].x);
+    r.y = std::max(r.y, partial[i].y);
+  }
   return ranges;
 }
 
