@@ -134,8 +134,8 @@ int Fail(const std::string& message)
 const std::vector<std::string> DatasetOptions = { "array", "component", "centering",
   "read-timeout" };
 const std::vector<std::string> DatasetFlags = { "allow-partial", "strict" };
-const std::vector<std::string> AtlasOptions = { "packer", "max-3d-texture-size",
-  "atlas-budget-mb" };
+const std::vector<std::string> AtlasOptions = { "packer", "max-3d-texture-size", "atlas-budget-mb",
+  "atlas-page-mib" };
 const std::vector<std::string> ViewOptions = { "size", "azimuth", "elevation", "zoom", "tf",
   "scale", "unit-distance", "sample-factor", "reference-sample-factor", "lod", "threads", "blend",
   "view-json", "opacity-threshold", "empty-space-skipping", "interpolation", "shade", "iso",
@@ -177,7 +177,9 @@ const char* const AtlasHelp =
   "guillotine-bestfit\n"
   "                              packer (default best)\n"
   "  --max-3d-texture-size N     per-axis texture limit (default 2048, GL_MAX_3D_TEXTURE_SIZE)\n"
-  "  --atlas-budget-mb M         largest atlas in MiB of float texels (default: no limit)\n";
+  "  --atlas-budget-mb M         largest atlas in MiB of float texels (default: no limit)\n"
+  "  --atlas-page-mib M          GPU methods: largest atlas texture in MiB; a larger atlas is\n"
+  "                              split into up to 4 pages (default 1984, below llvmpipe's 2 GiB)\n";
 
 AtlasRequest ParseAtlasRequest(const Arguments& a)
 {

@@ -33,6 +33,10 @@ MultipassRenderer::MultipassRenderer(vtkMultiPassAMRVolumeMapper* mapper, const 
   , Mapper(mapper)
 {
   this->Mapper->SetSampleDistanceFactor(s.SampleDistanceFactor);
+  if (s.AtlasPageBytes > 0)
+  {
+    this->Mapper->SetMaximumAtlasPageBytes(s.AtlasPageBytes);
+  }
 }
 
 vtkMultiPassAMRVolumeMapper* MultipassRenderer::GetMapper() const

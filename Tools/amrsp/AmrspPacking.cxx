@@ -50,6 +50,10 @@ PackingRenderer::PackingRenderer(vtkSinglePassAMRVolumeMapper* mapper, const Hie
       : bindlessAccess == "waterfall"                        ? M::WATERFALL_ACCESS
                                                              : M::AUTO_ACCESS);
   this->Mapper->SetSampleDistanceFactor(s.SampleDistanceFactor);
+  if (s.AtlasPageBytes > 0)
+  {
+    this->Mapper->SetMaximumAtlasPageBytes(s.AtlasPageBytes);
+  }
   this->Mapper->SetLODThreshold(s.LodThresholdPixels);
   this->Mapper->SetOpacityThreshold(s.OpacityThreshold);
   this->Mapper->SetEmptySpaceSkipping(s.SkipEmptySpace);

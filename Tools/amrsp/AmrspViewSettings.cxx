@@ -363,6 +363,12 @@ RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range)
     throw UsageError{ "sample factors must be positive" };
   }
   s.LodThresholdPixels = static_cast<float>(a.GetNumber("lod", 0.0));
+  const double pageMiB = a.GetNumber("atlas-page-mib", 0.0);
+  if (pageMiB < 0.0)
+  {
+    throw UsageError{ "--atlas-page-mib must be positive" };
+  }
+  s.AtlasPageBytes = static_cast<long long>(pageMiB * 1024.0 * 1024.0);
   const std::string blend = a.Get("blend", "composite");
   if (blend == "composite")
   {

@@ -61,6 +61,9 @@ struct RenderSettings
     const glm::dvec3& origin, const glm::dvec3& direction, double& distance, glm::dvec3& colour)>
     Opaque;
   int Threads = 0; ///< 0 = hardware concurrency
+  /// GPU mappers' MaximumAtlasPageBytes (the largest atlas texture; larger atlases are split
+  /// into pages); 0 keeps the mapper's default. Not used by the CPU integrators.
+  long long AtlasPageBytes = 0;
   /// Early ray termination (composite blending): a ray stops once its accumulated opacity
   /// reaches this value. 1 (the default here) never stops a ray early; the GPU mapper's default
   /// is 0.999.
