@@ -89,16 +89,30 @@ std::vector<glm::vec2> ComputeDataNodeRanges(const Hierarchy& h, const EncodedKd
       const float* values = h.Values[b.Grid].data();
       // NaN is skipped: a comparison with NaN is false, so neither bound takes it
       float lo = FLT_MAX, hi = -FLT_MAX;
-      for (int64_t z = item.Z0; z <= item.Z1; ++z)
+      const auto scan = [&lo, &hi](const float* first, int64_t count)
       {
-        for (int64_t y = b.First.y; y <= b.Last.y; ++y)
+        for (int64_t k = 0; k < count; ++k)
         {
-          const float* row = values + static_cast<std::size_t>((z * b.Extent.y + y) * b.Extent.x);
-          for (int64_t x = b.First.x; x <= b.Last.x; ++x)
+          const float v = first[k];
+          lo = v < lo ? v : lo;
+          hi = v > hi ? v : hi;
+        }
+      };
+      const int64_t rowLength = b.Last.x - b.First.x + 1;
+      if (rowLength == b.Extent.x && b.Last.y - b.First.y + 1 == b.Extent.y)
+      {
+        // whole layers of the grid: one contiguous run
+        scan(values + static_cast<std::size_t>(item.Z0 * b.Extent.y * b.Extent.x),
+          (item.Z1 - item.Z0 + 1) * b.Extent.y * b.Extent.x);
+      }
+      else
+      {
+        for (int64_t z = item.Z0; z <= item.Z1; ++z)
+        {
+          for (int64_t y = b.First.y; y <= b.Last.y; ++y)
           {
-            const float v = row[x];
-            lo = v < lo ? v : lo;
-            hi = v > hi ? v : hi;
+            scan(values + static_cast<std::size_t>((z * b.Extent.y + y) * b.Extent.x + b.First.x),
+              rowLength);
           }
         }
       }
