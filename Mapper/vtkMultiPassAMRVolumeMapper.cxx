@@ -544,6 +544,10 @@ void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     this->ReportError("uploading the transfer-function table failed");
     return;
   }
+  if (!in.Transfer.GetWarning().empty())
+  {
+    this->WarnOnce(in.Transfer.GetWarning());
+  }
   vtkShaderProgram* program = in.ReadyShaders(renWin, vol);
   if (!program)
   {
@@ -646,6 +650,10 @@ vtkShaderProgram* vtkMultiPassAMRVolumeMapper::vtkInternals::ReadyShaders(
   if (self->UseDepthBuffer)
   {
     defines += "#define AMRSP_USE_DEPTH 1\n";
+  }
+  if (this->Transfer.IsLogarithmic())
+  {
+    defines += "#define AMRSP_LOG_TRANSFER 1\n";
   }
   const std::string fragment =
     utilities::ComposeFragmentShader(amrsp_MultiPassAMR_frag_glsl, defines,

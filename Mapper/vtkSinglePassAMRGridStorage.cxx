@@ -288,7 +288,7 @@ bool vtkSinglePassAMRGridStorage::UploadBindless(
 //------------------------------------------------------------------------------
 bool vtkSinglePassAMRGridStorage::UpdateTransparentFlags(vtkOpenGLRenderWindow* renWin,
   const std::vector<glm::vec2>& nodeRanges, const std::vector<float>& opacity,
-  const float tableRange[2], vtkMTimeType tableTime)
+  const float tableRange[2], vtkMTimeType tableTime, const std::function<float(float)>& toTable)
 {
   if (this->TransparentFlags && this->TransparentFlags->GetContext() == renWin &&
     this->FlagsTableTime == tableTime)
@@ -302,7 +302,9 @@ bool vtkSinglePassAMRGridStorage::UpdateTransparentFlags(vtkOpenGLRenderWindow* 
   this->FlaggedDataNodes = 0;
   for (std::size_t k = 1; k < nodeRanges.size(); ++k)
   {
-    if (amrsp::TableRangeTransparent(prefix, tableRange, nodeRanges[k].x, nodeRanges[k].y))
+    // the table index grows with the scalar, so the range's ends bound it
+    if (amrsp::TableRangeTransparent(
+          prefix, tableRange, toTable(nodeRanges[k].x), toTable(nodeRanges[k].y)))
     {
       flags[k] = 255;
       ++this->FlaggedDataNodes;

@@ -24,6 +24,7 @@
 #include "vtkType.h"
 
 #include <cstdint>
+#include <functional> // for UpdateTransparentFlags
 #include <string>
 #include <vector>
 
@@ -70,9 +71,10 @@ public:
   /// the tabulated opacities `opacity` over [tableRange[0], tableRange[0] + 1 / tableRange[1]]
   /// (amrsp::TableRangeTransparent), when `tableTime` differs from the last call's or the flags
   /// are missing. Returns false when the flag texture cannot be created.
+  /// `toTable` maps a scalar to the table's units (identity, or log10 for a log-scaled table).
   bool UpdateTransparentFlags(vtkOpenGLRenderWindow* renWin,
     const std::vector<glm::vec2>& nodeRanges, const std::vector<float>& opacity,
-    const float tableRange[2], vtkMTimeType tableTime);
+    const float tableRange[2], vtkMTimeType tableTime, const std::function<float(float)>& toTable);
   /// Data nodes flagged transparent by the last UpdateTransparentFlags.
   long long GetFlaggedDataNodes() const { return this->FlaggedDataNodes; }
 

@@ -31,10 +31,11 @@
 #include "vtkSinglePassAMROpenGL.h"
 
 #include <algorithm>
-#include <functional>
-#include <future>
+#include <cfloat>
 #include <cmath>
 #include <exception>
+#include <functional>
+#include <future>
 #include <limits>
 #include <sstream>
 #include <utility>
@@ -397,22 +398,65 @@ bool TransferFunctionTable::Update(vtkOpenGLRenderWindow* renWin, vtkVolumePrope
     }
   }
 
+  // log-scaled colours or opacities (docs/paraview.md): the table is indexed by log10 of the
+  // scalar, its entries at log-spaced scalars; that needs a positive range
+  const bool logRequested = (colour && colour->GetScale() == VTK_CTF_LOG10) ||
+    (greyFunction && greyFunction->GetUseLogScale()) || opacity->GetUseLogScale();
+  this->Logarithmic = logRequested && range[0] > 0.0;
+  this->Warning.clear();
+  if (logRequested && !this->Logarithmic)
+  {
+    std::ostringstream msg;
+    msg << "the log-scaled transfer function spans [" << range[0] << ", " << range[1]
+        << "], which is not positive: it is drawn on a linear scale";
+    this->Warning = msg.str();
+  }
+
   const int n = TransferTableSize;
   std::vector<float> rgb(static_cast<std::size_t>(3 * n)), alpha(static_cast<std::size_t>(n));
   std::vector<float> rgba(static_cast<std::size_t>(4 * n));
-  if (colour)
+  if (this->Logarithmic)
   {
-    colour->GetTable(range[0], range[1], n, rgb.data());
+    // entry i at 10^(log a + i (log b - log a) / (n - 1)), as vtkColorTransferFunction::GetTable
+    // samples a log-scaled function; each function evaluated with its own interpolation
+    const double l0 = std::log10(range[0]), l1 = std::log10(range[1]);
+    for (int i = 0; i < n; ++i)
+    {
+      const double x = i == 0 ? range[0]
+        : i == n - 1          ? range[1]
+                              : std::pow(10.0, l0 + i * (l1 - l0) / (n - 1));
+      double c[3];
+      if (colour)
+      {
+        colour->vtkColorTransferFunction::GetTable(x, x, 1, c);
+      }
+      else
+      {
+        c[0] = c[1] = c[2] = greyFunction->GetValue(x);
+      }
+      for (int k = 0; k < 3; ++k)
+      {
+        rgb[static_cast<std::size_t>(3 * i + k)] = static_cast<float>(c[k]);
+      }
+      alpha[static_cast<std::size_t>(i)] = static_cast<float>(opacity->GetValue(x));
+    }
   }
   else
   {
-    greyFunction->GetTable(range[0], range[1], n, rgb.data(), 3);
-    for (int i = 0; i < n; ++i)
+    if (colour)
     {
-      rgb[3 * i + 1] = rgb[3 * i + 2] = rgb[3 * i];
+      colour->GetTable(range[0], range[1], n, rgb.data());
     }
+    else
+    {
+      greyFunction->GetTable(range[0], range[1], n, rgb.data(), 3);
+      for (int i = 0; i < n; ++i)
+      {
+        rgb[3 * i + 1] = rgb[3 * i + 2] = rgb[3 * i];
+      }
+    }
+    opacity->GetTable(range[0], range[1], n, alpha.data());
   }
-  opacity->GetTable(range[0], range[1], n, alpha.data());
   for (int i = 0; i < n; ++i)
   {
     rgba[4 * i + 0] = rgb[3 * i + 0];
@@ -447,8 +491,20 @@ bool TransferFunctionTable::Update(vtkOpenGLRenderWindow* renWin, vtkVolumePrope
 
 void TransferFunctionTable::GetShaderRange(float range[2]) const
 {
-  range[0] = static_cast<float>(this->Range[0]);
-  range[1] = static_cast<float>(1.0 / (this->Range[1] - this->Range[0]));
+  const double lo = this->Logarithmic ? std::log10(this->Range[0]) : this->Range[0];
+  const double hi = this->Logarithmic ? std::log10(this->Range[1]) : this->Range[1];
+  range[0] = static_cast<float>(lo);
+  range[1] = static_cast<float>(1.0 / (hi - lo));
+}
+
+float TransferFunctionTable::TableScalar(float scalar) const
+{
+  if (!this->Logarithmic)
+  {
+    return scalar;
+  }
+  // as the shader's amrspTableScalar: at or below 0 before every entry
+  return scalar > 0.0f ? std::log10(scalar) : -FLT_MAX;
 }
 
 void TransferFunctionTable::ReleaseGraphicsResources(vtkWindow* window)

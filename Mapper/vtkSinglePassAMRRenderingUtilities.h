@@ -165,8 +165,16 @@ public:
   /// The opacity column of the table (TransferTableSize entries) and when it was last tabulated.
   const std::vector<float>& GetOpacityTable() const { return this->Opacity; }
   vtkMTimeType GetTableTime() const { return this->Time.GetMTime(); }
-  /// Scalar at the first entry and 1 / (last - first): the shader's amrspTransferRange.
+  /// Scalar at the first entry and 1 / (last - first): the shader's amrspTransferRange (in
+  /// log10 of the scalar when IsLogarithmic).
   void GetShaderRange(float range[2]) const;
+  /// Whether the table is indexed by log10 of the scalar (a log-scaled colour or opacity
+  /// function over a positive range): the shaders then need AMRSP_LOG_TRANSFER.
+  bool IsLogarithmic() const { return this->Logarithmic; }
+  /// The scalar in the table's units (its log10 when IsLogarithmic; -FLT_MAX at or below 0).
+  float TableScalar(float scalar) const;
+  /// Why a requested log scale was not used by the last Update (empty when none).
+  const std::string& GetWarning() const { return this->Warning; }
   void ReleaseGraphicsResources(vtkWindow* window);
 
 private:
@@ -176,6 +184,8 @@ private:
   vtkTimeStamp Time;
   double Range[2] = { 0.0, 1.0 };
   std::vector<float> Opacity;
+  bool Logarithmic = false;
+  std::string Warning;
 };
 
 /**

@@ -305,6 +305,10 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareAppearance(
     self->ReportError("uploading the transfer-function table failed");
     return false;
   }
+  if (!this->Transfer.GetWarning().empty())
+  {
+    self->WarnOnce(this->Transfer.GetWarning());
+  }
   switch (self->GetBlendMode())
   {
     case vtkVolumeMapper::COMPOSITE_BLEND:
@@ -375,6 +379,7 @@ vtkShaderProgram* vtkSinglePassAMRVolumeMapper::vtkInternals::ReadyShader(
     }
   };
   define(frame.Access == WATERFALL_ACCESS, "AMRSP_WATERFALL 1");
+  define(this->Transfer.IsLogarithmic(), "AMRSP_LOG_TRANSFER 1");
   const int pages = static_cast<int>(this->Data.PageDims.size());
   define(!frame.Bindless() && pages > 1, "AMRSP_ATLAS_PAGES " + std::to_string(pages));
   define(frame.UseDepth, "AMRSP_USE_DEPTH 1");
@@ -451,8 +456,9 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::UpdateEmptySpaceFlags(
   }
   float tableRange[2];
   this->Transfer.GetShaderRange(tableRange);
-  if (!this->Storage.UpdateTransparentFlags(renWin, this->Data.NodeRanges,
-        this->Transfer.GetOpacityTable(), tableRange, this->Transfer.GetTableTime()))
+  const utilities::TransferFunctionTable& table = this->Transfer;
+  if (!this->Storage.UpdateTransparentFlags(renWin, this->Data.NodeRanges, table.GetOpacityTable(),
+        tableRange, table.GetTableTime(), [&table](float s) { return table.TableScalar(s); }))
   {
     this->Self->ReportError("uploading the empty-space skipping flags failed");
     return false;

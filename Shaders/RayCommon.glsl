@@ -37,9 +37,15 @@ bool amrspIntersectBox(vec3 lo, vec3 hi, vec3 o, vec3 d, out float tEnter, out f
 }
 
 // Colour and unit-distance opacity of a scalar: the table's entries span amrspTransferRange,
-// sampled linearly between entry centres and clamped at both ends.
+// sampled linearly between entry centres and clamped at both ends. With AMRSP_LOG_TRANSFER (a
+// log-scaled colour or opacity function) the table is indexed by log10 of the scalar and its
+// range is in log10 units; a scalar at or below 0 takes the first entry (GLSL's log2 is
+// undefined there).
 vec4 amrspTransferFunction(float scalar)
 {
+#ifdef AMRSP_LOG_TRANSFER
+  scalar = scalar > 0.0 ? log2(scalar) * 0.30102999566398120 : -3.0e38;
+#endif
   float u = clamp((scalar - amrspTransferRange.x) * amrspTransferRange.y, 0.0, 1.0);
   float x = (u * (amrspTransferSize - 1.0) + 0.5) / amrspTransferSize;
   return texture(amrspTransfer, vec2(x, 0.5));

@@ -3,6 +3,7 @@
 #include "amrsp/TransferFunction.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace amrsp
@@ -11,13 +12,14 @@ namespace amrsp
 namespace
 {
 template <typename Point, typename Value, typename Get>
-Value Interpolate(const std::vector<Point>& points, double s, Value fallback, Get get)
+Value Interpolate(
+  const std::vector<Point>& points, double s, bool logScale, Value fallback, Get get)
 {
   if (points.empty())
   {
     return fallback;
   }
-  if (s <= points.front().X)
+  if (s <= points.front().X || (logScale && !(s > 0.0)))
   {
     return get(points.front());
   }
@@ -29,19 +31,25 @@ Value Interpolate(const std::vector<Point>& points, double s, Value fallback, Ge
     points.begin(), points.end(), s, [](double v, const Point& p) { return v < p.X; });
   const Point& b = *upper;
   const Point& a = *(upper - 1);
-  const double w = b.X > a.X ? (s - a.X) / (b.X - a.X) : 0.0;
+  double w = b.X > a.X ? (s - a.X) / (b.X - a.X) : 0.0;
+  if (logScale && a.X > 0.0 && b.X > a.X)
+  {
+    w = (std::log10(s) - std::log10(a.X)) / (std::log10(b.X) - std::log10(a.X));
+  }
   return get(a) * (1.0 - w) + get(b) * w;
 }
 } // namespace
 
 glm::dvec3 TransferFunction::EvaluateColor(double s) const
 {
-  return Interpolate(Color, s, glm::dvec3(1.0), [](const ColorPoint& p) { return p.Rgb; });
+  return Interpolate(
+    Color, s, ColorLogScale, glm::dvec3(1.0), [](const ColorPoint& p) { return p.Rgb; });
 }
 
 double TransferFunction::EvaluateOpacity(double s) const
 {
-  return Interpolate(Opacity, s, 0.0, [](const OpacityPoint& p) { return p.Opacity; });
+  return Interpolate(
+    Opacity, s, OpacityLogScale, 0.0, [](const OpacityPoint& p) { return p.Opacity; });
 }
 
 std::vector<std::string> TransferFunction::PresetNames()

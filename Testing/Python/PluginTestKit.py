@@ -167,6 +167,8 @@ def write_view_json(view, display, array, path, iso_values=None):
             "rgb_points": [list(lut.RGBPoints[i:i + 4]) for i in range(0, len(lut.RGBPoints), 4)],
             "opacity_points": [list(pwf.Points[i:i + 2]) for i in range(0, len(pwf.Points), 4)],
             "unit_distance": display.ScalarOpacityUnitDistance,
+            "color_log_scale": bool(lut.UseLogScale),
+            "opacity_log_scale": bool(pwf.UseLogScale),
         },
         "background": list(view.Background),
         "material": {"ambient": display.Ambient, "diffuse": display.Diffuse,

@@ -167,6 +167,11 @@ GpuRenderer::GpuRenderer(const std::string& method, vtkVolumeMapper* mapper, con
   {
     I->Opacity->AddPoint(p.X, p.Opacity);
   }
+  if (s.Transfer.ColorLogScale)
+  {
+    I->Colour->SetScaleToLog10();
+  }
+  I->Opacity->SetUseLogScale(s.Transfer.OpacityLogScale);
   I->Colour->SetColorSpaceToRGB();
   I->Colour->ClampingOn();
   I->Opacity->ClampingOn();

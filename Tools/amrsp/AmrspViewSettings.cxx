@@ -113,7 +113,8 @@ glm::dvec3 JsonVector3(const Json& j, const std::string& what)
 ///   { "camera": { "position": [x,y,z], "focal_point": [x,y,z], "view_up": [x,y,z],
 ///                 "view_angle": degrees, "parallel_projection": false, "parallel_scale": s },
 ///     "transfer_function": { "rgb_points": [[x,r,g,b], ...], "opacity_points": [[x,a], ...],
-///                            "unit_distance": u },
+///                            "unit_distance": u, "color_log_scale": false,
+///                            "opacity_log_scale": false },
 ///     "background": [r,g,b],
 ///     "light": { "position": [x,y,z], "focal_point": [x,y,z], "positional": false,
 ///                "colour": [r,g,b] },                       (colour: diffuse colour x intensity)
@@ -195,6 +196,9 @@ ExplicitView ReadViewJson(const std::string& path)
         [](const TransferFunction::OpacityPoint& a, const TransferFunction::OpacityPoint& b)
         { return a.X < b.X; });
       v.Transfer.UnitDistance = t.value("unit_distance", 0.0); // 0: the usual default
+      // ParaView's UseLogScale of the colour map and of the opacity function
+      v.Transfer.ColorLogScale = t.value("color_log_scale", false);
+      v.Transfer.OpacityLogScale = t.value("opacity_log_scale", false);
     }
     if (j.contains("light"))
     {
