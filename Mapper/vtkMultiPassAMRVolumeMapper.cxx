@@ -495,8 +495,14 @@ vtkMultiPassAMRVolumeMapper::~vtkMultiPassAMRVolumeMapper()
 bool vtkMultiPassAMRVolumeMapper::BuildData(
   vtkOverlappingAMR* amr, const std::string& array, std::string& error)
 {
-  return this->Internals->Build(amr, array, this->ArrayComponent, this->MaximumAtlasSize,
-    static_cast<int64_t>(this->MaximumAtlasPageBytes / amrsp::AtlasTexelBytes), error);
+  // ProgressEvent: 0 and 1 around the build; the upload in the first render 0 to 1 again
+  this->SetProgressText("converting the AMR blocks, kD-tree and packing");
+  this->UpdateProgress(0.0);
+  const bool built =
+    this->Internals->Build(amr, array, this->ArrayComponent, this->MaximumAtlasSize,
+      static_cast<int64_t>(this->MaximumAtlasPageBytes / amrsp::AtlasTexelBytes), error);
+  this->UpdateProgress(1.0);
+  return built;
 }
 
 //------------------------------------------------------------------------------
@@ -616,14 +622,19 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::UploadAtlas(
   std::string error;
   this->AtlasPages.clear();
   const amrsp::AtlasPages& pages = this->Data.Atlas;
+  self->SetProgressText("uploading the atlas");
+  self->UpdateProgress(0.0);
   for (std::size_t p = 0; p < pages.Pages.size(); ++p)
   {
     vtkSmartPointer<vtkTextureObject> page;
+    const double share = 1.0 / static_cast<double>(pages.Pages.size());
     if (!utilities::UploadAtlas(renWin,
           pages.Pages.size() == 1
             ? this->Data.Structure
             : amrsp::PageHierarchy(this->Data.Structure, pages, static_cast<int>(p)),
-          pages.Pages[p], this->Data.VertexCentred, self->MaximumAtlasSize, page, error))
+          pages.Pages[p], this->Data.VertexCentred, self->MaximumAtlasSize, page, error,
+          [self, p, share](double f)
+          { self->UpdateProgress((static_cast<double>(p) + f) * share); }))
     {
       // keep the CPU data: a later context (or a smaller input) may succeed
       this->AtlasPages.clear();

@@ -130,7 +130,8 @@ vtkTextureObject* vtkSinglePassAMRGridStorage::GetGridData() const
 
 //------------------------------------------------------------------------------
 bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, int storage, int atlasLimit,
-  const amrsp::RayCastingData& data, std::string& error)
+  const amrsp::RayCastingData& data, std::string& error,
+  const std::function<void(double)>& progress)
 {
   this->UploadLimit = atlasLimit;
   const bool bindless = storage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES;
@@ -170,7 +171,7 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, int stor
   }
   else if (ok)
   {
-    ok = this->UploadAtlas(renWin, data);
+    ok = this->UploadAtlas(renWin, data, progress);
   }
   if (ok)
   {
@@ -221,8 +222,8 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, int stor
 }
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMRGridStorage::UploadAtlas(
-  vtkOpenGLRenderWindow* renWin, const amrsp::RayCastingData& data)
+bool vtkSinglePassAMRGridStorage::UploadAtlas(vtkOpenGLRenderWindow* renWin,
+  const amrsp::RayCastingData& data, const std::function<void(double)>& progress)
 {
   const amrsp::AtlasPages& atlas = data.Atlas;
   for (std::size_t p = 0; p < atlas.Pages.size(); ++p)
@@ -230,7 +231,14 @@ bool vtkSinglePassAMRGridStorage::UploadAtlas(
     vtkSmartPointer<vtkTextureObject> page = utilities::UploadAtlasBySlabs(renWin,
       atlas.Pages.size() == 1 ? data.Data
                               : amrsp::PageHierarchy(data.Data, atlas, static_cast<int>(p)),
-      atlas.Pages[p], data.VertexCentred);
+      atlas.Pages[p], data.VertexCentred,
+      [&progress, &atlas, p](double f)
+      {
+        if (progress)
+        {
+          progress((static_cast<double>(p) + f) / static_cast<double>(atlas.Pages.size()));
+        }
+      });
     if (!page)
     {
       return false;

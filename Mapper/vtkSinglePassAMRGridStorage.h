@@ -24,7 +24,7 @@
 #include "vtkType.h"
 
 #include <cstdint>
-#include <functional> // for UpdateTransparentFlags
+#include <functional> // for UpdateTransparentFlags and Upload
 #include <string>
 #include <vector>
 
@@ -64,8 +64,10 @@ public:
   /// Uploads the tree and the grid data of `data` in `storage`; the previous textures are freed
   /// first. Returns false with a one-line `error` (a texture over GL_MAX_3D_TEXTURE_SIZE, the
   /// driver refusing an allocation); the caller keeps `data` to try again.
+  /// `progress` gets the fraction of the grid data uploaded (0 to 1).
   bool Upload(vtkOpenGLRenderWindow* renWin, int storage, int atlasLimit,
-    const amrsp::RayCastingData& data, std::string& error);
+    const amrsp::RayCastingData& data, std::string& error,
+    const std::function<void(double)>& progress = nullptr);
 
   /// Flags the data nodes whose value range (`nodeRanges`, entry 0 unused) is transparent under
   /// the tabulated opacities `opacity` over [tableRange[0], tableRange[0] + 1 / tableRange[1]]
@@ -100,7 +102,8 @@ public:
 
 private:
   void QueryCapabilities(vtkOpenGLRenderWindow* renWin);
-  bool UploadAtlas(vtkOpenGLRenderWindow* renWin, const amrsp::RayCastingData& data);
+  bool UploadAtlas(vtkOpenGLRenderWindow* renWin, const amrsp::RayCastingData& data,
+    const std::function<void(double)>& progress);
   bool UploadBindless(
     vtkOpenGLRenderWindow* renWin, const amrsp::RayCastingData& data, std::string& error);
   void ReleaseBindless(vtkWindow* window);

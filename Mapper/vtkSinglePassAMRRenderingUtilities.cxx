@@ -286,7 +286,8 @@ bool AtlasFitsContext(
 
 //------------------------------------------------------------------------------
 vtkSmartPointer<vtkTextureObject> UploadAtlasBySlabs(vtkOpenGLRenderWindow* renWin,
-  const amrsp::Hierarchy& h, const amrsp::AtlasLayout& layout, bool vertexCentred)
+  const amrsp::Hierarchy& h, const amrsp::AtlasLayout& layout, bool vertexCentred,
+  const std::function<void(double)>& progress)
 {
   const glm::ivec3 d = layout.Dims;
   vtkSmartPointer<vtkTextureObject> atlas = MakeScalarTexture(renWin, d, nullptr, vertexCentred);
@@ -317,6 +318,10 @@ vtkSmartPointer<vtkTextureObject> UploadAtlasBySlabs(vtkOpenGLRenderWindow* renW
     {
       next.get(); // rethrows what the fill threw
     }
+    if (progress)
+    {
+      progress(static_cast<double>(std::min(d.z, z0 + slab)) / d.z);
+    }
   }
   atlas->Deactivate();
   return atlas;
@@ -324,7 +329,8 @@ vtkSmartPointer<vtkTextureObject> UploadAtlasBySlabs(vtkOpenGLRenderWindow* renW
 
 bool UploadAtlas(vtkOpenGLRenderWindow* renWin, const amrsp::Hierarchy& h,
   const amrsp::AtlasLayout& layout, bool vertexCentred, int atlasLimit,
-  vtkSmartPointer<vtkTextureObject>& texture, std::string& error)
+  vtkSmartPointer<vtkTextureObject>& texture, std::string& error,
+  const std::function<void(double)>& progress)
 {
   texture = nullptr;
   const glm::ivec3 d = layout.Dims;
@@ -335,7 +341,7 @@ bool UploadAtlas(vtkOpenGLRenderWindow* renWin, const amrsp::Hierarchy& h,
   while (glGetError() != GL_NO_ERROR)
   {
   }
-  texture = UploadAtlasBySlabs(renWin, h, layout, vertexCentred);
+  texture = UploadAtlasBySlabs(renWin, h, layout, vertexCentred, progress);
   const bool ok = texture != nullptr;
   const GLenum glError = glGetError();
   if (!ok || glError != GL_NO_ERROR)

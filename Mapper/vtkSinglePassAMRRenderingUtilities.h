@@ -28,6 +28,7 @@
 #include "vtkTimeStamp.h"
 #include "vtkType.h"
 
+#include <functional> // for UploadAtlasBySlabs
 #include <string>
 #include <utility>
 #include <vector>
@@ -134,10 +135,12 @@ ModelLight FirstLightInModel(vtkRenderer* ren, vtkVolume* vol);
  * The atlas of `h`'s bricks placed by `layout` as an R32F 3D texture (MakeScalarTexture's
  * filtering), allocated empty and filled slab by slab (amrsp::FillAtlasSlab, about 16 MiB per
  * glTexSubImage3D, the next slab filled on a worker thread meanwhile): the whole atlas never
- * exists in host memory. Null when OpenGL refused the allocation.
+ * exists in host memory. `progress` gets the fraction of the layers uploaded after each slab.
+ * Null when OpenGL refused the allocation.
  */
 vtkSmartPointer<vtkTextureObject> UploadAtlasBySlabs(vtkOpenGLRenderWindow* renWin,
-  const amrsp::Hierarchy& h, const amrsp::AtlasLayout& layout, bool vertexCentred);
+  const amrsp::Hierarchy& h, const amrsp::AtlasLayout& layout, bool vertexCentred,
+  const std::function<void(double)>& progress = nullptr);
 
 /**
  * UploadAtlasBySlabs with checks: fails with a one-line `error` when an edge exceeds
@@ -146,7 +149,8 @@ vtkSmartPointer<vtkTextureObject> UploadAtlasBySlabs(vtkOpenGLRenderWindow* renW
  */
 bool UploadAtlas(vtkOpenGLRenderWindow* renWin, const amrsp::Hierarchy& h,
   const amrsp::AtlasLayout& layout, bool vertexCentred, int atlasLimit,
-  vtkSmartPointer<vtkTextureObject>& texture, std::string& error);
+  vtkSmartPointer<vtkTextureObject>& texture, std::string& error,
+  const std::function<void(double)>& progress = nullptr);
 
 /**
  * The transfer function of component 0 of a vtkVolumeProperty as an RGBA32F table of

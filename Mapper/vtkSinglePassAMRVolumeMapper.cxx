@@ -154,12 +154,21 @@ bool vtkSinglePassAMRVolumeMapper::BuildData(
     selection.Name = array;
     selection.Component = this->ArrayComponent;
     amrsp::Hierarchy h;
+    // ProgressEvent: the build reports 0 to 1 (conversion, then PrepareRayCasting's steps), the
+    // upload in the first render 0 to 1 again
+    this->SetProgressText("converting the AMR blocks");
+    this->UpdateProgress(0.0);
     if (!vtkSinglePassAMRConversion::FromOverlappingAMR(amr, selection, h, error))
     {
       return false;
     }
     in.Data = amrsp::PrepareRayCasting(std::move(h), this->MaximumAtlasSize,
-      static_cast<int64_t>(this->MaximumAtlasPageBytes / amrsp::AtlasTexelBytes));
+      static_cast<int64_t>(this->MaximumAtlasPageBytes / amrsp::AtlasTexelBytes),
+      [this](double f, const char* step)
+      {
+        this->SetProgressText(step);
+        this->UpdateProgress(0.05 + 0.95 * f);
+      });
   }
   catch (const std::exception& e)
   {
@@ -277,12 +286,16 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareStorage(
   }
   const auto t0 = std::chrono::steady_clock::now();
   std::string error;
-  if (!this->Storage.Upload(renWin, frame.Storage, self->MaximumAtlasSize, this->Data, error))
+  self->SetProgressText("uploading the grid data");
+  self->UpdateProgress(0.0);
+  if (!this->Storage.Upload(renWin, frame.Storage, self->MaximumAtlasSize, this->Data, error,
+        [self](double f) { self->UpdateProgress(f); }))
   {
     // keep the CPU data: a later context (or a smaller input) may succeed
     self->ReportError(error);
     return false;
   }
+  self->UpdateProgress(1.0);
   this->Data.FreeUploadData();
   this->PendingUpload = false;
   self->UploadSeconds =

@@ -35,6 +35,8 @@
 #include "vtkSinglePassAMRVolumeMapper.h"
 
 #include "vtkActor.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkImageData.h"
 #include "vtkPointData.h"
 #include "vtkRenderWindow.h"
@@ -520,6 +522,89 @@ void TestAtlasPages()
   }
 }
 
+/// The mappers' ProgressEvents: the build from 0 to 1 through named steps, then the upload from
+/// 0 to 1, never decreasing within either.
+void TestProgressEvents()
+{
+  std::cout << "progress events\n";
+  DatasetRequest request;
+  request.Spec = "synthetic:cosmo:grids=60,levels=3,cells=200k,seed=3";
+  request.NeedVTK = false;
+  LoadedDataset d = LoadDataset(request);
+  const RenderSettings s = Settings(d.Data, { "--size", "48x48" });
+  struct Event
+  {
+    double Fraction;
+    std::string Text;
+  };
+  const auto watch = [](vtkAlgorithm* mapper, std::vector<Event>& events)
+  {
+    vtkNew<vtkCallbackCommand> record;
+    record->SetClientData(&events);
+    record->SetCallback(
+      [](vtkObject* caller, unsigned long, void* client, void* call)
+      {
+        const char* text = static_cast<vtkAlgorithm*>(caller)->GetProgressText();
+        static_cast<std::vector<Event>*>(client)->push_back(
+          { *static_cast<double*>(call), text ? text : "" });
+      });
+    mapper->AddObserver(vtkCommand::ProgressEvent, record);
+  };
+  const auto check = [](const std::vector<Event>& all, const std::string& name,
+                       const std::vector<std::string>& steps)
+  {
+    // VTK's pipeline reports 0 and 1 without text around the mapper's own update: left out
+    std::vector<Event> events;
+    for (const Event& e : all)
+    {
+      if (!e.Text.empty())
+      {
+        events.push_back(e);
+      }
+    }
+    // two passes: the build, then the upload (which starts again at 0)
+    std::size_t upload = events.size();
+    for (std::size_t i = 1; i < events.size(); ++i)
+    {
+      if (events[i].Text.rfind("uploading", 0) == 0)
+      {
+        upload = i;
+        break;
+      }
+    }
+    bool monotone = true;
+    for (std::size_t i = 1; i < events.size(); ++i)
+    {
+      monotone = monotone && (i == upload || events[i].Fraction >= events[i - 1].Fraction);
+    }
+    std::string texts;
+    for (const Event& e : events)
+    {
+      texts += (texts.empty() ? "" : ", ") + e.Text + " " + Fixed(e.Fraction);
+    }
+    bool named = true;
+    for (const std::string& step : steps)
+    {
+      named = named && texts.find(step) != std::string::npos;
+    }
+    Check(!events.empty() && upload < events.size() && events.front().Fraction == 0.0 &&
+        events[upload - 1].Fraction == 1.0 && events[upload].Fraction == 0.0 &&
+        events.back().Fraction == 1.0 && monotone && named,
+      name + ": " + std::to_string(events.size()) +
+        " ProgressEvents, build 0 to 1 then upload 0 to 1, never decreasing (" + texts + ")");
+  };
+  double ms = 0.0;
+  std::vector<Event> single, multi;
+  PackingRenderer packing(d.Data, s, ViewAngles(), "packing");
+  watch(packing.GetMapper(), single);
+  packing.Render(0.0, ms);
+  check(single, "single-pass", { "converting", "kD-tree", "packing the bricks", "uploading" });
+  MultipassRenderer multipass(d.Data, s, ViewAngles());
+  watch(multipass.GetMapper(), multi);
+  multipass.Render(0.0, ms);
+  check(multi, "multi-pass", { "converting", "uploading" });
+}
+
 /// Reads the window back as an amrsp::Image of the pixels [x0, x0 + w) x [0, h).
 Image Grab(vtkRenderWindow* window, int x0, int w, int h)
 {
@@ -640,6 +725,7 @@ int main()
     TestDataset("synthetic:cosmo:grids=60,levels=3,cells=200k,seed=3");
     TestLevelOfDetailAndNaN();
     TestAtlasPages();
+    TestProgressEvents();
     TestRefinementRatios();
     TestTwoRenderersAndDataChanges();
     TestVertexCentred("synthetic:cosmo:grids=40,levels=3,cells=100k,seed=5");

@@ -3,6 +3,7 @@
 #include "AmrspCommandShared.h"
 
 #include "AmrspDriver.h"
+#include "AmrspProgress.h"
 
 #include "vtkImageData.h"
 #include "vtkNew.h"
@@ -133,7 +134,7 @@ int Fail(const std::string& message)
 
 const std::vector<std::string> DatasetOptions = { "array", "component", "centering",
   "read-timeout" };
-const std::vector<std::string> DatasetFlags = { "allow-partial", "strict" };
+const std::vector<std::string> DatasetFlags = { "allow-partial", "strict", "quiet" };
 const std::vector<std::string> AtlasOptions = { "packer", "max-3d-texture-size", "atlas-budget-mb",
   "atlas-page-mib" };
 const std::vector<std::string> ViewOptions = { "size", "azimuth", "elevation", "zoom", "tf",
@@ -169,7 +170,9 @@ const char* const DatasetHelp =
   "                              dataset's own files describe is an error naming them\n"
   "  --allow-partial             render the blocks that could be read, with a warning\n"
   "  --read-timeout S            end with an error when VTK's reader is still busy after S\n"
-  "                              seconds (default 120; exit code 75)\n";
+  "                              seconds (default 120; exit code 75)\n"
+  "  --quiet                     no progress bar on the terminal (one is drawn on stderr for\n"
+  "                              the mappers' build and upload when they take over a second)\n";
 
 const char* const AtlasHelp =
   "Atlas options (packed storage of the grid bricks):\n"
@@ -249,6 +252,7 @@ const char* const ViewHelp =
 
 LoadedDataset Load(const Arguments& a, bool needValues, bool needVTK)
 {
+  SetProgressQuiet(a.Has("quiet"));
   DatasetRequest r;
   r.Spec = a.Positional.size() > 1 ? a.Positional[1] : DefaultDataset;
   r.Array = a.Get("array", "");

@@ -3,6 +3,7 @@
 
 #include "AmrspDriver.h"
 #include "AmrspLighting.h"
+#include "AmrspProgress.h"
 
 #include "vtkSinglePassAMRConversion.h"
 #include "vtkSinglePassAMRMapperBase.h"
@@ -10,8 +11,10 @@
 #include "vtkSmartPointer.h"
 #include "vtkVolumeMapper.h"
 
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
+#include "vtkCommand.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkOverlappingAMR.h"
@@ -148,6 +151,20 @@ GpuRenderer::GpuRenderer(const std::string& method, vtkVolumeMapper* mapper, con
   I->Method = method;
   I->Mapper = mapper;
   I->AmrMapper = vtkSinglePassAMRMapperBase::SafeDownCast(mapper);
+  if (I->AmrMapper)
+  {
+    // the mapper's build and upload on the terminal's progress bar (AmrspProgress.h)
+    vtkNew<vtkCallbackCommand> progress;
+    progress->SetCallback(
+      [](vtkObject* caller, unsigned long, void*, void* call)
+      {
+        const char* text = static_cast<vtkAlgorithm*>(caller)->GetProgressText();
+        const std::string detail = text ? text : "";
+        ReportProgress(detail.rfind("uploading", 0) == 0 ? "upload" : "build", detail,
+          *static_cast<double*>(call));
+      });
+    I->AmrMapper->AddObserver(vtkCommand::ProgressEvent, progress);
+  }
   std::string why;
   if (!Available(why))
   {

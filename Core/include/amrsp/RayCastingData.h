@@ -18,6 +18,7 @@
 
 #include <glm/glm.hpp>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -104,8 +105,13 @@ struct RayCastingData
 /// bindless storage can render it). Throws std::runtime_error with a one-line message when it
 /// cannot be rendered at all: an encoding limit, a root box over 2^30 finest cells, or no finite
 /// value in any cell.
+/// Progress of PrepareRayCasting: the fraction done (0 to 1, never decreasing) and the step that
+/// starts there; called on the calling thread.
+using BuildProgress = std::function<void(double fraction, const char* step)>;
+
 /// `maxPageTexels` (> 0) spreads the bricks over several atlas pages of at most that many
 /// texels each when one atlas would be larger (PackBricksInPages); 0 packs one atlas.
-RayCastingData PrepareRayCasting(Hierarchy h, int packLimit, int64_t maxPageTexels = 0);
+RayCastingData PrepareRayCasting(
+  Hierarchy h, int packLimit, int64_t maxPageTexels = 0, const BuildProgress& progress = nullptr);
 
 } // namespace amrsp
