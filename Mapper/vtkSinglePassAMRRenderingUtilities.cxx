@@ -410,12 +410,31 @@ bool TransferFunctionTable::Update(vtkOpenGLRenderWindow* renWin, vtkVolumePrope
     (greyFunction && greyFunction->GetUseLogScale()) || opacity->GetUseLogScale();
   this->Logarithmic = logRequested && range[0] > 0.0;
   this->Warning.clear();
+  // a log scale over a range that is not positive: copies of the functions on a linear scale
+  // (VTK 9.3 and later tabulate a log-scaled map over such a range as NaN)
+  vtkNew<vtkColorTransferFunction> linearColour;
+  vtkNew<vtkPiecewiseFunction> linearGrey, linearOpacity;
   if (logRequested && !this->Logarithmic)
   {
     std::ostringstream msg;
     msg << "the log-scaled transfer function spans [" << range[0] << ", " << range[1]
         << "], which is not positive: it is drawn on a linear scale";
     this->Warning = msg.str();
+    if (colour)
+    {
+      linearColour->DeepCopy(colour);
+      linearColour->SetScaleToLinear();
+      colour = linearColour;
+    }
+    if (greyFunction)
+    {
+      linearGrey->DeepCopy(greyFunction);
+      linearGrey->SetUseLogScale(false);
+      greyFunction = linearGrey;
+    }
+    linearOpacity->DeepCopy(opacity);
+    linearOpacity->SetUseLogScale(false);
+    opacity = linearOpacity;
   }
 
   const int n = TransferTableSize;
