@@ -3,6 +3,7 @@
 
 #include "vtkAlgorithmOutput.h"
 #include "vtkColorTransferFunction.h"
+#include "vtkCommand.h"
 #include "vtkDataObject.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -27,6 +28,8 @@
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
+#include <cstring>
+#include <string>
 
 namespace
 {
@@ -87,6 +90,33 @@ vtkSinglePassAMRVolumeRepresentation::vtkSinglePassAMRVolumeRepresentation()
   // No LOD mapper: while interacting the full mapper renders (its cost does not depend on the
   // data size the view's LOD threshold looks at, and SetLODThreshold is the mapper's own LOD).
   this->Actor->SetEnableLOD(0);
+  for (vtkAlgorithm* mapper : { static_cast<vtkAlgorithm*>(this->VolumeMapper),
+         static_cast<vtkAlgorithm*>(this->MultiPassMapper) })
+  {
+    mapper->AddObserver(
+      vtkCommand::ProgressEvent, this, &vtkSinglePassAMRVolumeRepresentation::OnMapperProgress);
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeRepresentation::OnMapperProgress(
+  vtkObject* caller, unsigned long, void* callData)
+{
+  const char* step = vtkAlgorithm::SafeDownCast(caller)->GetProgressText();
+  if (!step)
+  {
+    return; // the executive's events around the mapper's input update, not a preparation's
+  }
+  // the mapper reports its build 0 to 1, then its upload 0 to 1: one run here, the build in
+  // [0, 0.5] and the upload in [0.5, 1]
+  const bool upload = std::strncmp(step, "uploading", 9) == 0;
+  const double fraction = 0.5 * (*static_cast<const double*>(callData) + (upload ? 1.0 : 0.0));
+  this->SetProgressText((std::string("AMR Single-Pass Volume: ") + step).c_str());
+  this->UpdateProgress(fraction);
+  if (fraction >= 1.0)
+  {
+    this->SetProgressText(nullptr);
+  }
 }
 
 //------------------------------------------------------------------------------

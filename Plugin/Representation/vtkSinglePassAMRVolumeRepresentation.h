@@ -190,6 +190,12 @@ protected:
   /// Points the prop at the mapper Method selects (and sets that mapper's storage).
   void UpdateMethod();
 
+  /// A mapper's ProgressEvent during its build and upload (which run inside the view's render),
+  /// reported as this representation's progress with the text "AMR Single-Pass Volume: STEP".
+  /// ParaView registers the representation, not its mappers, with its progress handler
+  /// (vtkSIProxy::CreateVTKObjects), which forwards it to the GUI's progress bar.
+  void OnMapperProgress(vtkObject* caller, unsigned long event, void* callData);
+
   /// Reports once (rank 0) when several pvbatch ranks cannot render in parallel, a state in
   /// which ParaView 5.11 deadlocks at the first render (see the .cxx).
   void ReportParallelRenderingOff(vtkPVRenderView* view);
