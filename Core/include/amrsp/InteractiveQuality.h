@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/// @file
+/// The frame-time budget of interactive frames: which image sample distance (pixels between
+/// rays, per axis) and sample-distance scale (multiplies every level's step along the ray) an
+/// interactive frame uses so that it fits the seconds allocated to it.
+///
+/// The cost model: a frame drawn at image sample distance d with sample-distance scale s takes
+///   FullSeconds * (1 / d^2) * (RayShare + (1 - RayShare) / s),
+/// rays falling with the pixel count and, of each ray's cost, the share (1 - RayShare) that is
+/// the samples falling with s (RayShare is the kD-tree walk and set-up per ray). FullSeconds, the
+/// estimated full-quality frame, is updated from every measured frame (the mean of the old
+/// estimate and the new one, so that one slow frame does not swing the choice).
+///
+/// The rungs go coarser step by step (d = 1, 1.5, 2, 3, 4, 6, 8, 12, 16, each within
+/// [MinimumImageSampleDistance, MaximumImageSampleDistance]); an interactive frame takes the
+/// finest rung predicted to fit its budget, or the coarsest. With AdjustSampleDistance the
+/// sample distance grows with the image sample distance (s = d, as VTK's GPU ray cast mapper
+/// scales its sample distance by its reduction factor), else s = 1. Still frames are always full
+/// quality (d = s = 1) and only feed the estimate.
+
+namespace amrsp
+{
+
+/// How one frame samples: d and s of the file comment. Full quality is {1, 1}.
+struct FrameQuality
+{
+  double ImageSampleDistance = 1.0;
+  double SampleDistanceScale = 1.0;
+  bool IsFull() const
+  {
+    return this->ImageSampleDistance == 1.0 && this->SampleDistanceScale == 1.0;
+  }
+};
+
+class InteractiveQuality
+{
+public:
+  struct Limits
+  {
+    double MinimumImageSampleDistance = 1.0;
+    double MaximumImageSampleDistance = 10.0;
+    bool AdjustSampleDistance = true;
+  };
+
+  /// The share of a ray's cost that does not fall with the sample distance (the model above).
+  static constexpr double RayShare = 0.3;
+
+  /// The quality for an interactive frame with `budgetSeconds` allocated. Without an estimate
+  /// yet (no frame measured), the coarsest rung within the limits.
+  FrameQuality Choose(double budgetSeconds, const Limits& limits) const;
+
+  /// The seconds a frame of quality `q` is predicted to take (0 without an estimate).
+  double Predict(const FrameQuality& q) const;
+
+  /// Feeds the measured seconds of a frame drawn with quality `q` into the estimate.
+  void Record(const FrameQuality& q, double seconds);
+
+  /// Forgets the estimate (new data, new size of the image).
+  void Reset() { this->FullSeconds = 0.0; }
+
+  /// The estimated seconds of a full-quality frame (0 without an estimate).
+  double GetFullSeconds() const { return this->FullSeconds; }
+
+  /// The fraction of a full frame's cost that quality `q` costs in the model.
+  static double CostFraction(const FrameQuality& q);
+
+private:
+  double FullSeconds = 0.0;
+};
+
+} // namespace amrsp
