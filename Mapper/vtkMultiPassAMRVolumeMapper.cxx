@@ -14,8 +14,6 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLError.h"
-#include "vtkOpenGLFramebufferObject.h"
-#include "vtkOpenGLQuadHelper.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
@@ -27,10 +25,10 @@
 #include "vtkTextureObject.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
+#include "vtkSinglePassAMROffscreenImage.h"
 #include "vtkSinglePassAMROpenGL.h"
 
 // GLSL embedded at build time (vtk_encode_string)
-#include "amrsp_MultiPassAMRComposite_frag_glsl.h"
 #include "amrsp_MultiPassAMR_frag_glsl.h"
 #include "amrsp_MultiPassAMR_vert_glsl.h"
 #include "amrsp_BrickSample_glsl.h"
@@ -113,13 +111,11 @@ public:
   vtkMTimeType UploadedBuildTime = 0; // the build the atlas on the GPU holds
   std::vector<vtkSmartPointer<vtkTextureObject>> AtlasPages; // one per atlas page
   vtkSinglePassAMRRenderingUtilities::DepthCopy Depth;
-  vtkSmartPointer<vtkTextureObject> Accumulation; // RGBA32F, viewport-sized
-  vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffer;
+  vtkSinglePassAMROffscreenImage Accumulation; // viewport-sized, nearest filtering
   utilities::TransferFunctionTable Transfer;
   vtkNew<vtkOpenGLBufferObject> CubeBuffer;
   vtkNew<vtkOpenGLVertexArrayObject> CubeArray;
   vtkShaderProgram* CubeArrayProgram = nullptr;
-  std::unique_ptr<vtkOpenGLQuadHelper> Composite;
 
   std::string FailedFragmentSource; // do not retry a program that failed to compile
 
@@ -139,13 +135,6 @@ public:
   void DrawNodes(vtkOpenGLState* state, vtkShaderProgram* program,
     const utilities::ViewGeometry& view, const std::vector<float>& steps, const glm::vec3& clipLo,
     const glm::vec3& clipHi);
-
-  /// Composites the accumulation target over the current framebuffer's viewport with one
-  /// full-screen quad (premultiplied "over": ONE, ONE_MINUS_SRC_ALPHA).
-  void CompositeOver(vtkOpenGLRenderWindow* renWin);
-
-  /// (Re)creates the accumulation texture and its framebuffer for a viewport of w x h pixels.
-  bool EnsureAccumulation(vtkOpenGLRenderWindow* renWin, int w, int h, std::string& error);
 
   void ReleaseGraphicsResources(vtkWindow* window);
 };
@@ -274,61 +263,6 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::OrderNodes(const utilities::View
 }
 
 //------------------------------------------------------------------------------
-bool vtkMultiPassAMRVolumeMapper::vtkInternals::EnsureAccumulation(
-  vtkOpenGLRenderWindow* renWin, int w, int h, std::string& error)
-{
-  if (this->Accumulation && this->Framebuffer && this->Accumulation->GetContext() == renWin &&
-    this->Accumulation->GetWidth() == static_cast<unsigned int>(w) &&
-    this->Accumulation->GetHeight() == static_cast<unsigned int>(h))
-  {
-    return true;
-  }
-  if (this->Framebuffer)
-  {
-    this->Framebuffer->ReleaseGraphicsResources(renWin);
-  }
-  this->Accumulation = vtkSmartPointer<vtkTextureObject>::New();
-  this->Accumulation->SetContext(renWin);
-  this->Accumulation->SetInternalFormat(GL_RGBA32F);
-  this->Accumulation->SetFormat(GL_RGBA);
-  this->Accumulation->SetDataType(GL_FLOAT);
-  this->Accumulation->SetMinificationFilter(vtkTextureObject::Nearest);
-  this->Accumulation->SetMagnificationFilter(vtkTextureObject::Nearest);
-  this->Accumulation->SetWrapS(vtkTextureObject::ClampToEdge);
-  this->Accumulation->SetWrapT(vtkTextureObject::ClampToEdge);
-  bool ok = this->Accumulation->Allocate2D(
-    static_cast<unsigned int>(w), static_cast<unsigned int>(h), 4, VTK_FLOAT);
-  if (ok)
-  {
-    this->Framebuffer = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
-    this->Framebuffer->SetContext(renWin);
-    this->Framebuffer->SaveCurrentBindingsAndBuffers();
-    this->Framebuffer->Bind();
-    this->Framebuffer->AddColorAttachment(0, this->Accumulation);
-    this->Framebuffer->ActivateDrawBuffer(0);
-    const char* description = nullptr;
-    ok = vtkOpenGLFramebufferObject::GetFrameBufferStatus(GL_FRAMEBUFFER, description);
-    this->Framebuffer->RestorePreviousBindingsAndBuffers();
-    if (!ok)
-    {
-      error = std::string("the RGBA32F accumulation framebuffer is incomplete: ") +
-        (description ? description : "unknown reason");
-    }
-  }
-  else
-  {
-    error = "cannot allocate the RGBA32F accumulation texture of " + std::to_string(w) + " x " +
-      std::to_string(h) + " pixels";
-  }
-  if (!ok)
-  {
-    this->Accumulation = nullptr;
-    this->Framebuffer = nullptr;
-  }
-  return ok;
-}
-
-//------------------------------------------------------------------------------
 void vtkMultiPassAMRVolumeMapper::vtkInternals::DrawNodes(vtkOpenGLState* state,
   vtkShaderProgram* program, const utilities::ViewGeometry& view, const std::vector<float>& steps,
   const glm::vec3& clipLo, const glm::vec3& clipHi)
@@ -355,13 +289,7 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::DrawNodes(vtkOpenGLState* state,
   vtkOpenGLState::ScopedglDepthMask depthMaskSaved(state);
   vtkOpenGLState::ScopedglBlendFuncSeparate blendFuncSaved(state);
 
-  this->Framebuffer->SaveCurrentBindingsAndBuffers(GL_DRAW_FRAMEBUFFER);
-  this->Framebuffer->Bind(GL_DRAW_FRAMEBUFFER);
-  this->Framebuffer->ActivateDrawBuffer(0);
-  state->vtkglViewport(0, 0, view.Width, view.Height);
-  state->vtkglDisable(GL_SCISSOR_TEST);
-  state->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-  state->vtkglClear(GL_COLOR_BUFFER_BIT);
+  this->Accumulation.BeginDrawing(state);
 
   state->vtkglEnable(GL_CULL_FACE);
   // back faces: one fragment per covered pixel, also with the eye inside the box; a mirroring
@@ -418,28 +346,7 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::DrawNodes(vtkOpenGLState* state,
   }
   state->vtkglCullFace(GL_BACK);
   this->CubeArray->Release();
-  this->Framebuffer->RestorePreviousBindingsAndBuffers(GL_DRAW_FRAMEBUFFER);
-}
-
-//------------------------------------------------------------------------------
-void vtkMultiPassAMRVolumeMapper::vtkInternals::CompositeOver(vtkOpenGLRenderWindow* renWin)
-{
-  vtkOpenGLState* state = renWin->GetState();
-  vtkOpenGLState::ScopedglEnableDisable cullSaved(state, GL_CULL_FACE);
-  vtkOpenGLState::ScopedglEnableDisable depthSaved(state, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglEnableDisable blendSaved(state, GL_BLEND);
-  vtkOpenGLState::ScopedglDepthMask depthMaskSaved(state);
-  vtkOpenGLState::ScopedglBlendFuncSeparate blendFuncSaved(state);
-  state->vtkglDisable(GL_CULL_FACE);
-  state->vtkglDisable(GL_DEPTH_TEST);
-  state->vtkglDepthMask(GL_FALSE);
-  state->vtkglEnable(GL_BLEND);
-  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-  renWin->GetShaderCache()->ReadyShaderProgram(this->Composite->Program);
-  this->Accumulation->Activate();
-  this->Composite->Program->SetUniformi("amrspAccumulated", this->Accumulation->GetTextureUnit());
-  this->Composite->Render();
-  this->Accumulation->Deactivate();
+  this->Accumulation.EndDrawing();
 }
 
 //------------------------------------------------------------------------------
@@ -451,28 +358,11 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWind
     page->ReleaseGraphicsResources(window);
   }
   this->AtlasPages.clear();
-  for (vtkSmartPointer<vtkTextureObject>* t : { &this->Accumulation })
-  {
-    if (*t)
-    {
-      (*t)->ReleaseGraphicsResources(window);
-      *t = nullptr;
-    }
-  }
-  if (this->Framebuffer)
-  {
-    this->Framebuffer->ReleaseGraphicsResources(window);
-    this->Framebuffer = nullptr;
-  }
+  this->Accumulation.ReleaseGraphicsResources(window);
   this->Transfer.ReleaseGraphicsResources(window);
   this->CubeBuffer->ReleaseGraphicsResources();
   this->CubeArray->ReleaseGraphicsResources();
   this->CubeArrayProgram = nullptr;
-  if (this->Composite)
-  {
-    this->Composite->ReleaseGraphicsResources(window);
-    this->Composite.reset();
-  }
   this->Context = nullptr;
 }
 
@@ -562,7 +452,7 @@ void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   utilities::ViewGeometry view;
   std::string error;
   if (!utilities::ComputeViewGeometry(ren, vol, view, error) ||
-    !in.EnsureAccumulation(renWin, view.Width, view.Height, error))
+    !in.Accumulation.Ensure(renWin, view.Width, view.Height, false, error))
   {
     this->ReportError(error);
     return;
@@ -596,7 +486,11 @@ void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     in.Depth.Depth->Deactivate();
   }
   // the accumulated image over the renderer's framebuffer (premultiplied "over")
-  in.CompositeOver(renWin);
+  if (!in.Accumulation.CompositeOver(renWin, error))
+  {
+    this->ReportError(error);
+    return;
+  }
   vtkOpenGLCheckErrorMacro("failed after vtkMultiPassAMRVolumeMapper::Render");
 }
 
@@ -673,18 +567,6 @@ vtkShaderProgram* vtkMultiPassAMRVolumeMapper::vtkInternals::ReadyShaders(
   {
     self->ReportError(
       "the multi-pass AMR shader failed to compile or link (see the earlier error)");
-    return nullptr;
-  }
-  if (!this->Composite)
-  {
-    this->Composite.reset(
-      new vtkOpenGLQuadHelper(renWin, nullptr, amrsp_MultiPassAMRComposite_frag_glsl, ""));
-  }
-  if (!this->Composite->Program)
-  {
-    this->Composite.reset();
-    self->ReportError(
-      "the multi-pass AMR composite shader failed to compile or link (see the error above)");
     return nullptr;
   }
   vtkShaderProgram* program = renWin->GetShaderCache()->ReadyShaderProgram(
@@ -805,8 +687,8 @@ long long vtkMultiPassAMRVolumeMapper::GetTextureBytes()
 
 long long vtkMultiPassAMRVolumeMapper::GetAccumulationBytes()
 {
-  vtkTextureObject* t = this->Internals->Accumulation;
-  return t ? 16LL * t->GetWidth() * t->GetHeight() : 0LL;
+  const vtkSinglePassAMROffscreenImage& a = this->Internals->Accumulation;
+  return 16LL * a.GetWidth() * a.GetHeight();
 }
 
 long long vtkMultiPassAMRVolumeMapper::GetNumberOfKdNodes()
