@@ -384,3 +384,53 @@ void vtkSinglePassAMRGridStorage::ReleaseGraphicsResources(vtkWindow* window)
   this->Context = nullptr;
   this->CapsContext = nullptr;
 }
+
+//------------------------------------------------------------------------------
+// The names of vtkSinglePassAMRVolumeMapper's storage and access modes, which this class resolves.
+const char* vtkSinglePassAMRVolumeMapper::GetDataStorageName(int storage)
+{
+  switch (storage)
+  {
+    case PACKED_ATLAS:
+      return "packing";
+    case BINDLESS_TEXTURES:
+      return "bindless";
+    case AUTO_STORAGE:
+      return "auto";
+    default:
+      return "none";
+  }
+}
+
+const char* vtkSinglePassAMRVolumeMapper::GetBindlessAccessName(int access)
+{
+  switch (access)
+  {
+    case DIRECT_ACCESS:
+      return "direct";
+    case WATERFALL_ACCESS:
+      return "waterfall";
+    case AUTO_ACCESS:
+      return "auto";
+    default:
+      return "none";
+  }
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRVolumeMapper::IsBindlessSupported(vtkRenderWindow* window, std::string* why)
+{
+  std::string reason;
+  bool supported = IsRenderSupported(window, &reason);
+  if (supported)
+  {
+    vtkSinglePassAMRGridStorage capabilities;
+    supported = capabilities.ResolveAccess(
+                  vtkOpenGLRenderWindow::SafeDownCast(window), AUTO_ACCESS, reason) >= 0;
+  }
+  if (!supported && why)
+  {
+    *why = reason;
+  }
+  return supported;
+}

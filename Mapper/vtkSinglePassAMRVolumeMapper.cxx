@@ -2,6 +2,7 @@
 #include "vtkSinglePassAMRVolumeMapper.h"
 
 #include "vtkSinglePassAMRConversion.h"
+#include "vtkSinglePassAMRFrameBudget.h"
 #include "vtkSinglePassAMRGridStorage.h"
 #include "vtkSinglePassAMRRenderingUtilities.h"
 
@@ -61,7 +62,9 @@ struct FrameSettings
   bool SkipEmpty = false;   // empty-space skipping (composite blending)
   bool SmoothCells = false; // trilinear cell reconstruction (cell data)
   bool UseDepth = false;
+  amrsp::FrameQuality Quality; // image sample distance and sample-distance scale
 
+  bool Reduced() const { return this->Quality.ImageSampleDistance > 1.0; }
   bool Bindless() const { return this->Storage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES; }
 };
 } // namespace
@@ -110,6 +113,7 @@ public:
   vtkSinglePassAMRGridStorage Storage;
   utilities::TransferFunctionTable Transfer;
   utilities::DepthCopy Depth;
+  vtkSinglePassAMRFrameBudget Budget;
 
   // proxy geometry: the root box's 12 triangles, for the build of BoxBufferTime
   vtkNew<vtkOpenGLBufferObject> BoxBuffer;
@@ -212,16 +216,34 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     return;
   }
-  vtkShaderProgram* program = in.ReadyShader(renWin, vol, frame);
-  if (!program)
-  {
-    return;
-  }
   utilities::ViewGeometry view;
   std::string viewError;
   if (!utilities::ComputeViewGeometry(ren, vol, view, viewError))
   {
     this->ReportError(viewError);
+    return;
+  }
+  const vtkSinglePassAMRFrameBudget::Settings budget{ this->AutoAdjustSampleDistances != 0,
+    this->ImageSampleDistance, this->MinimumImageSampleDistance, this->MaximumImageSampleDistance,
+    this->InteractiveAdjustSampleDistances != 0 };
+  frame.Quality =
+    in.Budget.Begin(vol, budget, view.Width, view.Height, this->GetBuildTime().GetMTime());
+  // the rays' image: the viewport, or at (0, 0) the reduced image of this frame
+  utilities::ViewGeometry rays = view;
+  if (frame.Reduced())
+  {
+    rays.X0 = rays.Y0 = 0;
+    vtkSinglePassAMRFrameBudget::ReducedSize(
+      view.Width, view.Height, frame.Quality.ImageSampleDistance, rays.Width, rays.Height);
+    if (!in.Budget.Image.Ensure(renWin, rays.Width, rays.Height, true, viewError))
+    {
+      this->ReportError(viewError);
+      return;
+    }
+  }
+  vtkShaderProgram* program = in.ReadyShader(renWin, vol, frame);
+  if (!program)
+  {
     return;
   }
   if (!in.BindProxyBox(program))
@@ -237,15 +259,28 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     return;
   }
   in.ActivateTextures(program, frame);
-  in.SetDataUniforms(program, ren, property, view, frame);
+  in.SetDataUniforms(program, ren, property, rays, frame);
+  if (frame.Reduced() && frame.UseDepth)
+  {
+    const float scale[2] = { static_cast<float>(view.Width) / static_cast<float>(rays.Width),
+      static_cast<float>(view.Height) / static_cast<float>(rays.Height) };
+    program->SetUniform2f("amrspDepthScale", scale);
+  }
   if (frame.Shade || frame.Shadows || frame.Blend == 4)
   {
     in.SetLightingUniforms(program, ren, vol, property, frame);
   }
-  in.DrawBackFaces(renWin, view);
+  in.Budget.DrawRays(
+    renWin, frame.Reduced(), [&in, renWin, &view] { in.DrawBackFaces(renWin, view); });
   in.DeactivateTextures(frame);
   in.LastStorage = frame.Storage;
   in.LastAccess = frame.Access;
+  if (frame.Reduced() && !in.Budget.Image.CompositeOver(renWin, viewError))
+  {
+    this->ReportError(viewError);
+    return;
+  }
+  in.Budget.End(budget, frame.Quality);
   vtkOpenGLCheckErrorMacro("failed after vtkSinglePassAMRVolumeMapper::Render");
 }
 
@@ -396,6 +431,7 @@ vtkShaderProgram* vtkSinglePassAMRVolumeMapper::vtkInternals::ReadyShader(
   const int pages = static_cast<int>(this->Data.PageDims.size());
   define(!frame.Bindless() && pages > 1, "AMRSP_ATLAS_PAGES " + std::to_string(pages));
   define(frame.UseDepth, "AMRSP_USE_DEPTH 1");
+  define(frame.UseDepth && frame.Reduced(), "AMRSP_REDUCED_IMAGE 1");
   define(!levels.LevelToFinestLog2.empty(), "AMRSP_POWER_OF_TWO_REFINEMENT 1");
   define(levels.UniformRefinementLog2 > 0,
     "AMRSP_UNIFORM_REFINEMENT_LOG2 " + std::to_string(levels.UniformRefinementLog2));
@@ -532,7 +568,8 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::SetDataUniforms(vtkShaderProgra
   std::vector<float> steps;
   for (double edge : levels.LevelMinEdge)
   {
-    steps.push_back(static_cast<float>(amrsp::LevelSampleStep(self->SampleDistanceFactor, edge)));
+    steps.push_back(static_cast<float>(amrsp::LevelSampleStep(
+      self->SampleDistanceFactor * frame.Quality.SampleDistanceScale, edge)));
   }
   const glm::vec3 origin(d.Data.Origin);
   const glm::vec3 spacing(d.Data.Spacing0);
@@ -713,6 +750,7 @@ void vtkSinglePassAMRVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   vtkInternals& in = *this->Internals;
   in.Storage.ReleaseGraphicsResources(window);
+  in.Budget.Image.ReleaseGraphicsResources(window);
   in.Depth.ReleaseGraphicsResources(window);
   in.Transfer.ReleaseGraphicsResources(window);
   in.BoxBuffer->ReleaseGraphicsResources();
@@ -748,6 +786,31 @@ long long vtkSinglePassAMRVolumeMapper::GetPackedTextureBytes()
 long long vtkSinglePassAMRVolumeMapper::GetBindlessTextureBytes()
 {
   return this->Internals->Data.BindlessBytes;
+}
+
+bool vtkSinglePassAMRVolumeMapper::GetLastFrameInteractive()
+{
+  return this->Internals->Budget.LastInteractive;
+}
+
+double vtkSinglePassAMRVolumeMapper::GetLastImageSampleDistance()
+{
+  return this->Internals->Budget.LastQuality.ImageSampleDistance;
+}
+
+double vtkSinglePassAMRVolumeMapper::GetLastSampleDistanceScale()
+{
+  return this->Internals->Budget.LastQuality.SampleDistanceScale;
+}
+
+double vtkSinglePassAMRVolumeMapper::GetLastFrameSeconds()
+{
+  return this->Internals->Budget.LastSeconds;
+}
+
+double vtkSinglePassAMRVolumeMapper::GetLastFrameBudget()
+{
+  return this->Internals->Budget.LastBudget;
 }
 
 int vtkSinglePassAMRVolumeMapper::GetNumberOfAtlasPages()
@@ -790,60 +853,18 @@ int vtkSinglePassAMRVolumeMapper::GetLastBindlessAccess()
   return this->Internals->LastAccess;
 }
 
-const char* vtkSinglePassAMRVolumeMapper::GetDataStorageName(int storage)
-{
-  switch (storage)
-  {
-    case PACKED_ATLAS:
-      return "packing";
-    case BINDLESS_TEXTURES:
-      return "bindless";
-    case AUTO_STORAGE:
-      return "auto";
-    default:
-      return "none";
-  }
-}
-
-const char* vtkSinglePassAMRVolumeMapper::GetBindlessAccessName(int access)
-{
-  switch (access)
-  {
-    case DIRECT_ACCESS:
-      return "direct";
-    case WATERFALL_ACCESS:
-      return "waterfall";
-    case AUTO_ACCESS:
-      return "auto";
-    default:
-      return "none";
-  }
-}
-
-//------------------------------------------------------------------------------
-bool vtkSinglePassAMRVolumeMapper::IsBindlessSupported(vtkRenderWindow* window, std::string* why)
-{
-  std::string reason;
-  bool supported = IsRenderSupported(window, &reason);
-  if (supported)
-  {
-    vtkSinglePassAMRGridStorage capabilities;
-    supported = capabilities.ResolveAccess(
-                  vtkOpenGLRenderWindow::SafeDownCast(window), AUTO_ACCESS, reason) >= 0;
-  }
-  if (!supported && why)
-  {
-    *why = reason;
-  }
-  return supported;
-}
-
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   const vtkInternals& in = *this->Internals;
   os << indent << "LODThreshold: " << this->LODThreshold << "\n";
+  os << indent << "AutoAdjustSampleDistances: " << this->AutoAdjustSampleDistances << "\n";
+  os << indent << "ImageSampleDistance: " << this->ImageSampleDistance << " (minimum "
+     << this->MinimumImageSampleDistance << ", maximum " << this->MaximumImageSampleDistance
+     << ")\n";
+  os << indent << "InteractiveAdjustSampleDistances: " << this->InteractiveAdjustSampleDistances
+     << "\n";
   os << indent << "DataStorage: " << GetDataStorageName(this->DataStorage) << "\n";
   os << indent << "BindlessAccess: " << GetBindlessAccessName(this->BindlessAccess) << "\n";
   os << indent << "AutoBindlessWaste: " << this->AutoBindlessWaste << "\n";

@@ -170,6 +170,49 @@ public:
 
   ///@{
   /**
+   * Interactive frames, with VTK's names and meanings (vtkGPUVolumeRayCastMapper,
+   * vtkSmartVolumeMapper). With AutoAdjustSampleDistances on (the default), a frame for which the
+   * volume has less than one second allocated (vtkRenderer gives it 1 / DesiredUpdateRate of the
+   * render window, shared among the props: ParaView's interactive renders ask 5 frames a second,
+   * VTK's interactor 15) holds that budget: it casts one ray every ImageSampleDistance pixels per
+   * axis (between MinimumImageSampleDistance and MaximumImageSampleDistance, the finest of the
+   * rungs 1, 1.5, 2, 3, 4, 6, 8, 12, 16 that the previous frames' measured times predict to fit),
+   * magnifies that image bilinearly over the viewport, and with InteractiveAdjustSampleDistances
+   * on (the default) also multiplies the sample distance along the rays by the same factor. Still
+   * frames (one second or more allocated) are drawn at full quality, unchanged. With
+   * AutoAdjustSampleDistances off, every frame casts its rays every ImageSampleDistance pixels
+   * (default 1: one ray per pixel). The cost model is amrsp::InteractiveQuality's.
+   */
+  vtkSetMacro(AutoAdjustSampleDistances, vtkTypeBool);
+  vtkGetMacro(AutoAdjustSampleDistances, vtkTypeBool);
+  vtkBooleanMacro(AutoAdjustSampleDistances, vtkTypeBool);
+  vtkSetClampMacro(ImageSampleDistance, float, 1.0f, 100.0f);
+  vtkGetMacro(ImageSampleDistance, float);
+  vtkSetClampMacro(MinimumImageSampleDistance, float, 1.0f, 100.0f);
+  vtkGetMacro(MinimumImageSampleDistance, float);
+  vtkSetClampMacro(MaximumImageSampleDistance, float, 1.0f, 100.0f);
+  vtkGetMacro(MaximumImageSampleDistance, float);
+  vtkSetMacro(InteractiveAdjustSampleDistances, vtkTypeBool);
+  vtkGetMacro(InteractiveAdjustSampleDistances, vtkTypeBool);
+  vtkBooleanMacro(InteractiveAdjustSampleDistances, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * What the last frame did: whether it was interactive (see AutoAdjustSampleDistances), its
+   * image sample distance and sample-distance scale (1 and 1 at full quality), its measured
+   * seconds from the start of the ray casting to its glFinish (0 with AutoAdjustSampleDistances
+   * off), and the seconds allocated to it.
+   */
+  bool GetLastFrameInteractive();
+  double GetLastImageSampleDistance();
+  double GetLastSampleDistanceScale();
+  double GetLastFrameSeconds();
+  double GetLastFrameBudget();
+  ///@}
+
+  ///@{
+  /**
    * Early ray termination (composite blending): a ray stops once its accumulated opacity reaches
    * this value, in [0, 1]. The default 0.999 changes no 8-bit channel by more than 0.26 of 255;
    * 1 never stops a ray early. A pixel whose ray stopped at opacity A misses at most (1 - A) of
@@ -272,6 +315,11 @@ protected:
   void GetBuiltBounds(double bounds[6]) override;
 
   double LODThreshold = 0.0;
+  vtkTypeBool AutoAdjustSampleDistances = 1;
+  float ImageSampleDistance = 1.0f;
+  float MinimumImageSampleDistance = 1.0f;
+  float MaximumImageSampleDistance = 10.0f;
+  vtkTypeBool InteractiveAdjustSampleDistances = 1;
   int DataStorage = AUTO_STORAGE;
   int BindlessAccess = AUTO_ACCESS;
   double AutoBindlessWaste = 0.25;

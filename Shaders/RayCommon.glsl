@@ -4,6 +4,14 @@
 // fragment shaders (spliced in by the mappers at their //AMRSP::RayCommon marker, after the
 // uniforms it reads are declared: amrspDCMCMatrix, amrspViewport, amrspEyeMC, amrspTransfer,
 // amrspTransferRange, amrspTransferSize and, with AMRSP_USE_DEPTH, amrspDepth).
+//
+// AMRSP_REDUCED_IMAGE (with AMRSP_USE_DEPTH): the rays go into an image smaller than the viewport
+// (an interactive frame of the single-pass mapper); amrspViewport is that image, and the
+// viewport-sized depth is read at the pixel amrspDepthScale (viewport / image size) times farther.
+
+#ifdef AMRSP_REDUCED_IMAGE
+uniform vec2 amrspDepthScale;
+#endif
 
 #define AMRSP_INF 3.0e38
 
@@ -65,7 +73,11 @@ void amrspPixelRay(out vec3 entry, out vec3 dirMC, out float tMax)
   entry = amrspEyeMC.w != 0.0 ? amrspEyeMC.xyz : nearPoint;
   tMax = AMRSP_INF;
 #ifdef AMRSP_USE_DEPTH
+#ifdef AMRSP_REDUCED_IMAGE
+  float depth = texelFetch(amrspDepth, ivec2((gl_FragCoord.xy - amrspViewport.xy) * amrspDepthScale), 0).r;
+#else
   float depth = texelFetch(amrspDepth, ivec2(gl_FragCoord.xy - amrspViewport.xy), 0).r;
+#endif
   if (depth < 1.0)
   {
     vec4 hitMC = amrspDCMCMatrix * vec4(ndc, 2.0 * depth - 1.0, 1.0);
