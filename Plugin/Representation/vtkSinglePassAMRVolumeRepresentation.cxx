@@ -562,6 +562,42 @@ double vtkSinglePassAMRVolumeRepresentation::GetLODThreshold()
   return this->VolumeMapper->GetLODThreshold();
 }
 
+double* vtkSinglePassAMRVolumeRepresentation::GetLastFrameQuality()
+{
+  vtkSinglePassAMRVolumeMapper* m = this->VolumeMapper;
+  this->LastFrameQuality[0] = m->GetLastFrameInteractive() ? 1.0 : 0.0;
+  this->LastFrameQuality[1] = m->GetLastImageSampleDistance();
+  this->LastFrameQuality[2] = m->GetLastSampleDistanceScale();
+  this->LastFrameQuality[3] = m->GetLastFrameBudget();
+  this->LastFrameQuality[4] = m->GetLastFrameSeconds();
+  return this->LastFrameQuality;
+}
+
+void vtkSinglePassAMRVolumeRepresentation::SetAutoAdjustSampleDistances(int on)
+{
+  this->VolumeMapper->SetAutoAdjustSampleDistances(on);
+}
+
+void vtkSinglePassAMRVolumeRepresentation::SetImageSampleDistance(double pixels)
+{
+  this->VolumeMapper->SetImageSampleDistance(static_cast<float>(pixels));
+}
+
+void vtkSinglePassAMRVolumeRepresentation::SetMinimumImageSampleDistance(double pixels)
+{
+  this->VolumeMapper->SetMinimumImageSampleDistance(static_cast<float>(pixels));
+}
+
+void vtkSinglePassAMRVolumeRepresentation::SetMaximumImageSampleDistance(double pixels)
+{
+  this->VolumeMapper->SetMaximumImageSampleDistance(static_cast<float>(pixels));
+}
+
+void vtkSinglePassAMRVolumeRepresentation::SetInteractiveAdjustSampleDistances(int on)
+{
+  this->VolumeMapper->SetInteractiveAdjustSampleDistances(on);
+}
+
 void vtkSinglePassAMRVolumeRepresentation::SetBlendMode(int mode)
 {
   this->VolumeMapper->SetBlendMode(mode);

@@ -81,6 +81,14 @@ public:
   double GetSampleDistanceFactor();
   void SetLODThreshold(double pixels);
   double GetLODThreshold();
+  /// Interactive frames of the single-pass mapper, forwarded as they are named there
+  /// (vtkSinglePassAMRVolumeMapper::SetAutoAdjustSampleDistances and the rest): while ParaView
+  /// renders interactively (5 frames a second asked) a frame casts fewer rays and samples.
+  void SetAutoAdjustSampleDistances(int on);
+  void SetImageSampleDistance(double pixels);
+  void SetMinimumImageSampleDistance(double pixels);
+  void SetMaximumImageSampleDistance(double pixels);
+  void SetInteractiveAdjustSampleDistances(int on);
   void SetBlendMode(int mode);
   int GetBlendMode();
   /// Single-pass mapper options (see vtkSinglePassAMRVolumeMapper): early ray termination,
@@ -170,6 +178,10 @@ public:
    */
   const char* GetLastRenderError();
   int GetNumberOfTextureBuilds();
+  /// The single-pass mapper's last frame (vtkSinglePassAMRVolumeMapper::GetLastFrameInteractive
+  /// and the rest): { interactive (0 or 1), image sample distance, sample-distance scale,
+  /// allocated seconds, measured seconds }.
+  double* GetLastFrameQuality() VTK_SIZEHINT(5);
   /// What rendered the last frame (SinglePassDataStorage): "packing", "bindless (waterfall)",
   /// "bindless (direct)", "multi-pass", or "none" before the first successful frame.
   const char* GetLastDataStorage();
@@ -212,6 +224,7 @@ protected:
   bool RendersLocally = true;
   bool ReportedParallelRenderingOff = false;
   // What is wrong with the delivered data itself (no blocks at all), said once per change in
+  double LastFrameQuality[5] = { 0.0, 1.0, 1.0, 0.0, 0.0 };
   // ParaView's output window and returned by GetLastRenderError before the mapper's error.
   std::string InputProblem;
   std::string ReportedInputProblem;

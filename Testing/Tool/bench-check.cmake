@@ -1,6 +1,7 @@
 # Checks of `amrsp bench` output (cmake -P). Variables:
 #   AMRSP       the amrsp executable
-#   MODE        schema | plot | scaling | rounds | bindless (run with zink) | uniform (DATASET)
+#   MODE        schema | plot | scaling | rounds | interactive | bindless (run with zink) |
+#               uniform (DATASET)
 #   WORK        a folder for the files the run writes
 #   AMR_VOLUME  ON when the build has vtkAMRVolumeMapper (vtk-amr-resample must run), OFF when
 #               it must be listed with its error
@@ -321,6 +322,41 @@ elseif (MODE STREQUAL "rounds")
     fail("the CPU method has rounds: ${none}")
   endif ()
   message("rounds ok: multipass at ${ratio} of packing's fps (median ms ${median})")
+elseif (MODE STREQUAL "interactive")
+  # --interactive at 1000 frames a second (far below a millisecond allocated): packing's every
+  # interactive frame casts fewer rays (image sample distance above 1) and samples less, differs
+  # from its still frame, and the still frame afterwards is bit for bit the orbit's; multipass has
+  # no interactive frames; stdout has the table
+  run("${dataset}" --size 48x48 --frames 3 --methods packing,multipass --interactive
+    --interactive-rate 1000)
+  if (NOT stdout MATCHES "Interactive frames \\(DesiredUpdateRate 1000.0")
+    fail("no interactive table on stdout:\n${stdout}")
+  endif ()
+  run("${dataset}" --size 48x48 --frames 3 --methods packing,multipass --interactive
+    --interactive-rate 1000 --json "${WORK}/interactive.json")
+  file(READ "${WORK}/interactive.json" j)
+  json_get(methods "${j}" methods)
+  skip_without_gpu(methods)
+  json_get(interactive "${methods}" packing interactive)
+  foreach (f RANGE 2)
+    json_get(d "${interactive}" image_sample_distance ${f})
+    json_get(s "${interactive}" sample_distance_scale ${f})
+    json_get(e "${interactive}" rmse ${f})
+    if (NOT d GREATER 1 OR NOT s EQUAL d OR NOT e GREATER 0)
+      fail("interactive frame ${f}: image sample distance ${d}, scale ${s}, RMSE ${e}")
+    endif ()
+  endforeach ()
+  json_get(same "${interactive}" still_bit_identical)
+  if (NOT same)
+    fail("the still frame after the interactive ones changed")
+  endif ()
+  json_get(speedup "${interactive}" speedup)
+  json_get(rmse "${interactive}" rmse_mean)
+  string(JSON none ERROR_VARIABLE missing GET "${methods}" multipass interactive)
+  if (NOT missing)
+    fail("multipass has interactive frames: ${none}")
+  endif ()
+  message("interactive ok: image sample distance ${d}, speedup ${speedup}, RMSE ${rmse}")
 else ()
   fail("unknown MODE")
 endif ()

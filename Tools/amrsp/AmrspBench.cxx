@@ -459,6 +459,10 @@ Json RunBenchMethods(const Hierarchy& h, const RenderSettings& s, const Image& r
         else
         {
           MapperFields(*method, *gpu, first, o, stats, c, r);
+          if (o.InteractiveRate > 0.0)
+          {
+            InteractiveFields(*gpu, first, o, r);
+          }
         }
         frame0 = first; // not where MapperFields threw
       }

@@ -38,6 +38,10 @@ struct BenchOptions
   /// between methods are taken from orbits rendered close in time: rounds_ms_mean, and
   /// fps_vs_packing (median over rounds of packing's ms / the method's ms).
   int Rounds = 1;
+  /// > 0 (--interactive): after its orbit, every single-pass method draws each orbit frame with
+  /// the render window's DesiredUpdateRate at this value (interactive), then still at the same
+  /// camera: "interactive" {fps, ms_mean, still_ms_mean, speedup, rmse_mean, rmse_max, ...}.
+  double InteractiveRate = 0.0;
 };
 
 /// Writes `img` as an 8-bit RGB PNG; throws std::runtime_error when it cannot.
@@ -55,6 +59,13 @@ BenchJson DatasetStatistics(const Hierarchy& h);
 /// DatasetStatistics(h) (its times go into the methods' preprocess_s).
 BenchJson RunBenchMethods(const Hierarchy& h, const RenderSettings& s, const Image& reference,
   const BenchOptions& o, const BenchJson& stats);
+
+/// The "interactive" object of a single-pass method's result (BenchOptions::InteractiveRate),
+/// after its orbit; `still0` is the orbit's frame 0 (still_bit_identical compares a still frame
+/// drawn after the interactive ones with it). Does nothing for the other methods.
+void InteractiveFields(GpuRenderer& gpu, const Image& still0, const BenchOptions& o, BenchJson& r);
+/// The interactive frames' table of a "methods" object (empty without --interactive).
+std::string InteractiveMarkdown(const BenchJson& methods);
 
 /// 1, 2 or 3 when `stats` has the grid and level counts of the paper's dataset 1, 2 or 3
 /// (Table 1), else 0.

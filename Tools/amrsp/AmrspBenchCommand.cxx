@@ -86,6 +86,7 @@ std::string BenchHelp()
   help
     << "usage: amrsp bench [DATASET] [--size WxH] [--frames N] [--methods LIST] [--json FILE]\n"
        "                   [--plot FILE.png [--plot-size WxH]] [--rounds R]\n"
+       "                   [--interactive [--interactive-rate FPS]]\n"
        "       amrsp bench --scaling [--scaling-sizes G:L:C,...] [--methods LIST] [--size WxH]\n"
        "                   [--frames N] [--json FILE] [--rounds R]\n"
        "Renders an orbit of N frames (default 8; --scaling: 2) per method in one process, after\n"
@@ -103,6 +104,11 @@ std::string BenchHelp()
        "method, interleaved (order reversed every round), for ratios on a machine whose load\n"
        "drifts: rounds_ms_mean, ms_rounds_median and fps_vs_packing (median of the per-round\n"
        "ratios) per method, and a table of them.\n"
+       "--interactive draws, after each single-pass method's orbit, every orbit frame as an\n"
+       "interactive frame (the render window's DesiredUpdateRate at --interactive-rate, default 5\n"
+       "as ParaView's interactive renders) and then still at the same camera: interactive {fps,\n"
+       "ms_mean, still_ms_mean, speedup, rmse_mean, rmse_max (0-255, against its still frame),\n"
+       "image_sample_distance, sample_distance_scale, allocated_s, still_bit_identical}.\n"
        "--scaling runs synthetic:cosmo at each GRIDS:LEVELS:CELLS of --scaling-sizes (default "
     << DefaultScalingSizes
     << ",\n"
@@ -166,6 +172,19 @@ BenchRequest ParseBenchRequest(const Arguments& a)
   BenchOptions& o = r.Options;
   o.Frames = static_cast<int>(framesValue);
   o.Rounds = static_cast<int>(roundsValue);
+  if (a.Has("interactive-rate") && !a.Has("interactive"))
+  {
+    throw UsageError{ "--interactive-rate needs --interactive" };
+  }
+  if (a.Has("interactive"))
+  {
+    o.InteractiveRate = a.GetNumber("interactive-rate", 5.0);
+    if (!(o.InteractiveRate >= 1.0 && o.InteractiveRate <= 1.0e6) || scaling)
+    {
+      throw UsageError{ "--interactive takes a --interactive-rate from 1 to 1e6 frames a second "
+                        "and does not apply to --scaling" };
+    }
+  }
   o.ImageFolder = a.Get("save-images", "");
   if (a.Has("save-images") && (scaling || o.ImageFolder.empty()))
   {
@@ -344,8 +363,8 @@ int RunBench(int argc, char** argv)
     const Arguments a = ParseArguments(argc, argv, 1,
       Concat({ DatasetOptions, ViewOptions,
         { "frames", "methods", "json", "plot", "plot-size", "scaling-sizes", "seed", "save-images",
-          "driver", "backend", "rounds" } }),
-      Concat({ DatasetFlags, { "scaling" } }));
+          "driver", "backend", "rounds", "interactive-rate" } }),
+      Concat({ DatasetFlags, { "scaling", "interactive" } }));
     if (WantsHelp(a))
     {
       std::cout << BenchHelp() << ViewHelp << DriverHelp << DatasetHelp;

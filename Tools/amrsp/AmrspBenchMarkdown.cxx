@@ -262,7 +262,7 @@ std::string BenchMarkdown(const Json& bench)
     md << "\nThe paper's figures: GTX 680, its own real cosmology data of that size (its image "
           "size is not stated).\n";
   }
-  md << RoundsMarkdown(bench["methods"]);
+  md << RoundsMarkdown(bench["methods"]) << InteractiveMarkdown(bench["methods"]);
   return md.str();
 }
 
