@@ -2,6 +2,7 @@
 #include "amrsp/InteractiveQuality.h"
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace amrsp
@@ -45,13 +46,34 @@ double InteractiveQuality::CostFraction(const FrameQuality& q)
 
 double InteractiveQuality::Predict(const FrameQuality& q) const
 {
-  return this->FullSeconds * CostFraction(q);
+  const auto own = this->Measured.find({ q.ImageSampleDistance, q.SampleDistanceScale });
+  if (own != this->Measured.end())
+  {
+    return own->second;
+  }
+  // the measured quality whose cost fraction is nearest (in ratio) to q's
+  const double fraction = CostFraction(q);
+  double best = 0.0, bestDistance = 0.0;
+  for (const auto& m : this->Measured)
+  {
+    FrameQuality other;
+    other.ImageSampleDistance = m.first.first;
+    other.SampleDistanceScale = m.first.second;
+    const double ratio = fraction / CostFraction(other);
+    const double distance = std::fabs(std::log(ratio));
+    if (best == 0.0 || distance < bestDistance)
+    {
+      best = m.second * ratio;
+      bestDistance = distance;
+    }
+  }
+  return best;
 }
 
 FrameQuality InteractiveQuality::Choose(double budgetSeconds, const Limits& limits) const
 {
   const std::vector<double> rungs = Rungs(limits);
-  if (this->FullSeconds <= 0.0)
+  if (this->Measured.empty())
   {
     return AtRung(rungs.back(), limits);
   }
@@ -72,8 +94,9 @@ void InteractiveQuality::Record(const FrameQuality& q, double seconds)
   {
     return;
   }
-  const double full = seconds / CostFraction(q);
-  this->FullSeconds = this->FullSeconds > 0.0 ? 0.5 * (this->FullSeconds + full) : full;
+  const auto key = std::make_pair(q.ImageSampleDistance, q.SampleDistanceScale);
+  const auto own = this->Measured.find(key);
+  this->Measured[key] = own != this->Measured.end() ? 0.5 * (own->second + seconds) : seconds;
 }
 
 } // namespace amrsp

@@ -48,18 +48,28 @@ TEST(InteractiveQuality, RungsStayWithinTheLimits)
   EXPECT_EQ(quality.Choose(0.05, limits).ImageSampleDistance, 4.0); // 4: 0.034 s, 3: 0.059 s
 }
 
-TEST(InteractiveQuality, TheEstimateFollowsTheMeasuredFrames)
+TEST(InteractiveQuality, EveryQualityKeepsItsOwnMeasurement)
 {
   InteractiveQuality quality;
   InteractiveQuality::Limits limits;
   quality.Record(FrameQuality(), 1.0);
-  // the d = 2 frame took as long as the model says a full frame of 2 s would make it
-  FrameQuality half;
-  half.ImageSampleDistance = half.SampleDistanceScale = 2.0;
-  quality.Record(half, 2.0 * InteractiveQuality::CostFraction(half));
-  EXPECT_DOUBLE_EQ(quality.GetFullSeconds(), 1.5); // the mean of 1 and 2
-  quality.Record(half, 0.0);                       // not a measurement
-  EXPECT_DOUBLE_EQ(quality.GetFullSeconds(), 1.5);
+  FrameQuality two;
+  two.ImageSampleDistance = two.SampleDistanceScale = 2.0;
+  FrameQuality three;
+  three.ImageSampleDistance = three.SampleDistanceScale = 3.0;
+  // d = 2 took 0.5 s where the model said 0.1625: its own measurement counts, and d = 3 is
+  // scaled from it (the nearest measured cost), not from the full frame
+  quality.Record(two, 0.5);
+  EXPECT_DOUBLE_EQ(quality.Predict(two), 0.5);
+  EXPECT_DOUBLE_EQ(quality.GetFullSeconds(), 1.0);
+  EXPECT_DOUBLE_EQ(quality.Predict(three),
+    0.5 * InteractiveQuality::CostFraction(three) / InteractiveQuality::CostFraction(two));
+  // so a budget of 0.3 s moves one rung coarser than the model alone would
+  EXPECT_EQ(quality.Choose(0.3, limits).ImageSampleDistance, 3.0);
+  quality.Record(two, 0.3); // the mean of the old and the new measurement
+  EXPECT_DOUBLE_EQ(quality.Predict(two), 0.4);
+  quality.Record(two, 0.0); // not a measurement
+  EXPECT_DOUBLE_EQ(quality.Predict(two), 0.4);
   quality.Reset();
   EXPECT_EQ(quality.GetFullSeconds(), 0.0);
   EXPECT_EQ(quality.Choose(10.0, limits).ImageSampleDistance, 10.0);
