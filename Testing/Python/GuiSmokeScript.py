@@ -3,8 +3,10 @@
 #
 # Environment: AMRSP_PLUGIN (the plugin library), AMRSP_DATA_DIR (the data folder), AMRSP_GUI_OUT
 # (a folder for the outputs) and AMRSP_TEST_DIR (this folder). Writes AMRSP_GUI_OUT/gui-smoke.png,
-# a screenshot of the active render view, gui-smoke-view.json (the view for amrsp reference) and
-# gui-smoke.json with what the GUI session reported.
+# a screenshot of the active render view, gui-smoke-view.json (the view for amrsp reference),
+# gui-smoke-log.png (the same view with the colour map and opacity function log-scaled) and
+# gui-smoke.json with what the GUI session reported (also the interactive-frame properties and
+# the quality of one interactive and one still render).
 import json
 import os
 import sys
@@ -66,6 +68,33 @@ try:
     status["render_error"] = error.GetElement(0) if error.GetNumberOfElements() else None
     status["texture_builds"] = builds.GetElement(0) if builds.GetNumberOfElements() else None
     status["representation"] = display.SMProxy.GetProperty("Representation").GetElement(0)
+
+    def last_frame_quality():
+        display.SMProxy.UpdatePropertyInformation()
+        prop = display.SMProxy.GetProperty("SinglePassLastFrameQuality")
+        return [prop.GetElement(i) for i in range(prop.GetNumberOfElements())]
+
+    # the interactive-frame properties as the GUI shows them, then one interactive render (as
+    # the GUI renders while the mouse drags the camera) and one still render
+    status["interactive_properties"] = {
+        name: display.GetPropertyValue(name)
+        for name in ("AutoAdjustSampleDistances", "ImageSampleDistance",
+                     "MinimumImageSampleDistance", "MaximumImageSampleDistance",
+                     "InteractiveAdjustSampleDistances")}
+    display.MaximumImageSampleDistance = 2.0
+    view.SMProxy.InteractiveRender()
+    status["interactive_quality"] = last_frame_quality()
+    view.SMProxy.StillRender()
+    status["still_quality"] = last_frame_quality()
+    # log-scaled colour map and opacity function over the same positive range
+    lut.UseLogScale = 1
+    pwf.UseLogScale = 1
+    simple.Render(view)
+    simple.SaveScreenshot(os.path.join(out, "gui-smoke-log.png"), view,
+        ImageResolution=[300, 300], TransparentBackground=0)
+    display.SMProxy.UpdatePropertyInformation()
+    error = display.SMProxy.GetProperty("SinglePassRenderError")
+    status["log_render_error"] = error.GetElement(0) if error.GetNumberOfElements() else None
     status["ok"] = True
 except Exception:
     status["exception"] = traceback.format_exc()

@@ -7,7 +7,10 @@
 # of the render view. This driver then checks, without anyone looking: the GUI exited normally,
 # the representation type was offered and selected, the mapper reported no error and built its
 # textures once, and the screenshot shows the volume: enough pixels differ from the view's
-# background, and the coloured pixels are not all one colour.
+# background, and the coloured pixels are not all one colour; the screenshot matches the CPU
+# reference of the same view; the interactive-frame properties have VTK's defaults, an
+# interactive render draws a reduced frame and the still render after it a full one; with the
+# colour map and opacity function log-scaled the volume shows and differs from the linear map.
 # Exit codes: 0 pass, 1 fail, 125 skipped (no data, or no X display for the GUI).
 import json
 import os
@@ -25,6 +28,9 @@ ENZO = "enzo_moving7/DD0010/moving7_0010.hierarchy"
 # and twice the share off by more than 8 levels measured.
 # Measured: RMSE 1.55, 0.25 % off by more than 8 levels.
 REFERENCE_RMSE_BOUND = 2.4
+# The log-scaled map's screenshot must differ from the linear one by at least this RMSE (0-255,
+# over the checked pixels; measured 12.6).
+LOG_DIFFERENCE_BOUND = 5.0
 REFERENCE_OFF_BOUND = 0.005
 
 
@@ -100,6 +106,23 @@ def main():
     if status.get("texture_builds") != 1:
         fail("the mapper built its textures %s times (expected once)" % status.get("texture_builds"))
 
+    # the interactive-frame properties with VTK's defaults; an interactive render in the GUI
+    # casts a ray every 2 pixels (Maximum Image Sample Distance set to 2), the still one after
+    # it every pixel
+    expected = {"AutoAdjustSampleDistances": 1, "ImageSampleDistance": 1.0,
+                "MinimumImageSampleDistance": 1.0, "MaximumImageSampleDistance": 10.0,
+                "InteractiveAdjustSampleDistances": 1}
+    if status.get("interactive_properties") != expected:
+        fail("the interactive-frame properties in the GUI: %s, expected %s"
+             % (status.get("interactive_properties"), expected))
+    interactive, still = status.get("interactive_quality"), status.get("still_quality")
+    if not interactive or interactive[:3] != [1.0, 2.0, 2.0]:
+        fail("an interactive render in the GUI drew %s (interactive, image sample distance, "
+             "sample-distance scale), expected [1, 2, 2]" % interactive)
+    if not still or still[:3] != [0.0, 1.0, 1.0]:
+        fail("the still render after it drew %s, expected [0, 1, 1]" % still)
+    check_render_error(status.get("log_render_error"), "the mapper with a log-scaled map")
+
     from vtkmodules.vtkIOImage import vtkPNGReader
     from vtkmodules.util.numpy_support import vtk_to_numpy
     import numpy
@@ -134,6 +157,21 @@ def main():
         fail("the GUI screenshot does not show the volume")
     if distinct < 10:
         fail("the volume is drawn in fewer than 10 colours: not a colour-mapped volume")
+
+    # the log-scaled map: the volume still shows, and differently from the linear map (a mapper
+    # ignoring the log flags would draw the linear screenshot)
+    reader.SetFileName(os.path.join(outdir, "gui-smoke-log.png"))
+    reader.Update()
+    log_image = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3].astype(
+        float).reshape(h, w, 3)
+    log_covered = ((numpy.abs(log_image - background).max(axis=2) > 12.0) & mask).sum() / float(
+        mask.sum())
+    log_vs_linear = float(numpy.sqrt(numpy.mean((log_image[mask] - image[mask]) ** 2)))
+    print("log-scaled map: %.1f %% of the checked pixels show the volume, RMSE %.2f against the "
+          "linear map's screenshot (bound > %.1f)" % (100.0 * log_covered, log_vs_linear,
+                                                       LOG_DIFFERENCE_BOUND))
+    if log_covered < MIN_COVERAGE or log_vs_linear < LOG_DIFFERENCE_BOUND:
+        fail("the GUI with a log-scaled map draws no volume or the linear map's image")
 
     # the same view rendered by the CPU reference, compared where the volume is (outside the
     # orientation axes and the scalar bar)
