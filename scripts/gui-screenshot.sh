@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Makes docs/paraview-gui.png: the ParaView GUI with the plugin's "AMR Single-Pass Volume"
-# representation on the Enzo moving7 hierarchy (a documentation helper, not a test). Runs the GUI smoke test's script in a private
+# representation on the Enzo moving7 hierarchy, its colour map and opacity function log-scaled,
+# and the Color Map Editor open (a documentation helper, not a test). Runs the GUI smoke test's script in a private
 # Xvfb (so no other window is in the picture), waits until the GUI has drawn, grabs the screen and
 # ends the GUI and that Xvfb. Needs the ParaView build (scripts/build.sh paraview) and the data.
 #   scripts/gui-screenshot.sh [OUT.png]
@@ -25,7 +26,7 @@ cleanup() {
 trap cleanup EXIT
 for _ in $(seq 50); do [ -e "/tmp/.X11-unix/X$n" ] && break; sleep 0.2; done
 DISPLAY=$display AMRSP_PLUGIN="$plugin" AMRSP_DATA_DIR="${AMRSP_DATA_DIR:-$repo/../shared/data}" \
-  AMRSP_GUI_OUT="$work" paraview --dr --script="$repo/Testing/Python/GuiSmokeScript.py" \
+  AMRSP_GUI_OUT="$work" AMRSP_TEST_DIR="$repo/Testing/Python" paraview --dr --script="$repo/Testing/Python/GuiSmokeScript.py" \
   >"$work/paraview.log" 2>&1 &
 gui=$!
 # the script has run when it wrote its status; then give the GUI time to repaint its panels
@@ -35,14 +36,17 @@ sleep "${AMRSP_SCREENSHOT_WAIT:-5}"
 tool() { DISPLAY=$display pvpython "$repo/scripts/x11-tool.py" "$@"; }
 # No window manager: fill the screen, then (coordinates of ParaView 5.11's default layout at
 # 1280x900) collapse the reader's property section, raise the pipeline browser / properties
-# splitter and widen the left docks, so that the representation's group is in the picture.
+# splitter and widen the left docks, so that the representation's group is in the picture, and
+# open the Color Map Editor (Coloring's Edit button), which shows the log-scale switches.
 tool maximize
 sleep 3
 tool click 97 536
 sleep 1
-tool drag 146 400 146 225
+tool drag 146 398 146 225
 sleep 1
 tool drag 296 500 420 500
+sleep 1
+tool click 82 531
 sleep 2
 mkdir -p "$(dirname "$out")"
 tool grab "$out" "${AMRSP_SCREENSHOT_WIDTH:-900}"
