@@ -21,7 +21,7 @@ namespace amrsp
 
 using namespace cosmo;
 
-Hierarchy GenerateCosmo(const CosmoParameters& p)
+Hierarchy GenerateCosmo(const CosmoParameters& p, const ProgressCallback& progress)
 {
   const std::string what = "cosmo generator (" + FormatCosmoParameters(p) + "): ";
   if (p.Levels < 1 || p.Levels > 30)
@@ -136,6 +136,7 @@ Hierarchy GenerateCosmo(const CosmoParameters& p)
     std::stable_sort(order.begin(), order.end(),
       [&h](std::size_t a, std::size_t b)
       { return h.Grids[a].Cells.Cells() > h.Grids[b].Cells.Cells(); });
+    ProgressTicker ticker(progress, h.TotalCells());
     ParallelFor(
       static_cast<int64_t>(order.size()),
       [&](int64_t i)
@@ -147,8 +148,10 @@ Hierarchy GenerateCosmo(const CosmoParameters& p)
         std::vector<float> values;
         field.Sample(grid.Cells, cs, values);
         h.Values[g] = GridValues(std::move(values));
+        ticker.Done(grid.Cells.Cells());
       },
       CosmoWorkers());
+    ticker.Finish();
   }
   return h;
 }

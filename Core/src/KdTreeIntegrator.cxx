@@ -357,7 +357,8 @@ Image RenderKdTree(
     shading.Neighbours = lookup;
   }
 
-  ForEachRow(s.Height, s.Threads,
+  ForEachRow(
+    s.Height, s.Threads,
     [&](int j)
     {
       std::vector<RaySegment> segments;
@@ -482,7 +483,8 @@ Image RenderKdTree(
         img.Pixels[static_cast<std::size_t>(j) * s.Width + i] = acc.Pixel(s.Transfer, background);
       }
       sink.Add(rowStats);
-    });
+    },
+    s.Progress);
   return img;
 }
 

@@ -9,6 +9,7 @@
 #include "amrsp/FinestCellLocator.h"
 #include "amrsp/Hierarchy.h"
 #include "amrsp/ParallelFor.h"
+#include "amrsp/Progress.h"
 #include "amrsp/RenderSettings.h"
 #include "amrsp/Shading.h"
 #include "amrsp/TransferFunction.h"
@@ -32,12 +33,21 @@ namespace amrsp
 namespace integration
 {
 
-/// row(j) for every image row j, the rows interleaved over `threads` workers (0: one per core).
+/// row(j) for every image row j, the rows interleaved over `threads` workers (0: one per core),
+/// reporting the fraction of rows done to `progress` when set.
 template <class Row>
-void ForEachRow(int height, int threads, const Row& row)
+void ForEachRow(int height, int threads, const Row& row, const ProgressCallback& progress = nullptr)
 {
+  ProgressTicker ticker(progress, height);
   ParallelForInterleaved(
-    height, [&row](int64_t j) { row(static_cast<int>(j)); }, threads);
+    height,
+    [&row, &ticker](int64_t j)
+    {
+      row(static_cast<int>(j));
+      ticker.Done();
+    },
+    threads);
+  ticker.Finish();
 }
 
 /// Front-to-back accumulation of one ray, in the precision `T` of the integrator.

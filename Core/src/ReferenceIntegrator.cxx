@@ -131,7 +131,8 @@ Image RenderReference(const Hierarchy& h, const RenderSettings& s)
     *s.Stats = RenderStats();
   }
 
-  ForEachRow(s.Height, s.Threads,
+  ForEachRow(
+    s.Height, s.Threads,
     [&](int j)
     {
       RenderStats rowStats;
@@ -233,7 +234,8 @@ Image RenderReference(const Hierarchy& h, const RenderSettings& s)
         img.Pixels[static_cast<std::size_t>(j) * s.Width + i] = acc.Pixel(s.Transfer, background);
       }
       sink.Add(rowStats);
-    });
+    },
+    s.Progress);
   return img;
 }
 } // namespace amrsp

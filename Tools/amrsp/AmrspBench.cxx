@@ -8,6 +8,7 @@
 #include "AmrspMethods.h"
 #include "AmrspMultipass.h"
 #include "AmrspPacking.h"
+#include "AmrspProgress.h"
 #include "AmrspUniform.h"
 
 #include "amrsp/BrickPacking.h"
@@ -156,11 +157,14 @@ void RunRounds(const std::vector<KeptRenderer>& kept, const BenchOptions& o, Jso
   {
     ms[k.Method].push_back(methods[k.Method]["ms_mean"].get<double>());
   }
+  const double orbits = static_cast<double>((o.Rounds - 1) * kept.size());
   for (int round = 1; round < o.Rounds; ++round)
   {
     for (std::size_t i = 0; i < kept.size(); ++i)
     {
       const KeptRenderer& k = kept[round % 2 ? kept.size() - 1 - i : i];
+      ReportProgress("bench rounds", "round " + std::to_string(round + 1) + ", " + k.Method,
+        static_cast<double>((round - 1) * kept.size() + i) / orbits);
       if (methods[k.Method].contains("rounds_error"))
       {
         continue;
@@ -175,6 +179,7 @@ void RunRounds(const std::vector<KeptRenderer>& kept, const BenchOptions& o, Jso
       }
     }
   }
+  ReportProgress("bench rounds", "done", 1.0);
   const auto packing = ms.find("packing");
   for (const KeptRenderer& k : kept)
   {

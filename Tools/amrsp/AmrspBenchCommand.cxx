@@ -6,6 +6,7 @@
 #include "AmrspBenchPlot.h"
 #include "AmrspDriver.h"
 #include "AmrspMethods.h"
+#include "AmrspProgress.h"
 
 #include <algorithm>
 #include <cmath>
@@ -245,7 +246,9 @@ Json BenchDataset(const BenchRequest& r)
 {
   LoadedDataset d = Load(r.ViewArguments, true, false);
   RenderSettings s = MakeSettings(d.Data, r.ViewArguments);
-  const Image reference = RenderReference(d.Data, s);
+  RenderSettings referenceSettings = s;
+  referenceSettings.Progress = ProgressOf("reference");
+  const Image reference = RenderReference(d.Data, referenceSettings);
   Json j;
   j["dataset"] = d.Spec;
   j["image"] = { s.Width, s.Height };

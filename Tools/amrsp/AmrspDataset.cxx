@@ -2,6 +2,7 @@
 #include "AmrspDataset.h"
 
 #include "AmrspFileChecks.h"
+#include "AmrspProgress.h"
 
 #include "amrsp/SyntheticCosmo.h"
 #include "amrsp/VertexData.h"
@@ -12,7 +13,9 @@
 #include "vtkAMRGaussianPulseSource.h"
 #include "vtkAMReXGridReader.h"
 #include "vtkAlgorithm.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCellData.h"
+#include "vtkCommand.h"
 #include "vtkPointData.h"
 #include "vtkSinglePassAMRCosmoSource.h"
 #include "vtkNew.h"
@@ -27,6 +30,7 @@
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLUniformGridAMRReader.h"
 
+#include <algorithm>
 #include <chrono>
 #include <condition_variable>
 #include <csignal>
@@ -133,6 +137,7 @@ public:
     {
       dup2(fileno(Sink), 2);
     }
+    SetProgressDescriptor(SavedStderr); // the progress bar stays on the terminal
     struct sigaction action;
     std::memset(&action, 0, sizeof(action));
     action.sa_handler = &ReaderGuard::OnCrash;
@@ -154,6 +159,7 @@ public:
       sigaction(Signals[i], &Previous[i], nullptr);
     }
     std::fflush(stderr);
+    SetProgressDescriptor(2);
     if (SavedStderr >= 0)
     {
       dup2(SavedStderr, 2);
@@ -265,8 +271,10 @@ vtkSmartPointer<vtkOverlappingAMR> ReadHierarchicalBoxV01(const std::string& pat
   amr->SetGridDescription(VTK_XYZ_GRID);
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
   std::vector<bool> levelSet(static_cast<std::size_t>(levels), false);
+  std::size_t blocksRead = 0;
   for (const Block& b : blocks)
   {
+    ReportProgress("reading", path, static_cast<double>(blocksRead++) / blocks.size());
     vtkNew<vtkXMLImageDataReader> reader;
     const std::string file = (folder / b.File).string();
     reader->SetFileName(file.c_str());
@@ -301,6 +309,7 @@ vtkSmartPointer<vtkOverlappingAMR> ReadHierarchicalBoxV01(const std::string& pat
   {
     amr->SetRefinementRatio(l, ratioOfLevel.count(l) ? ratioOfLevel[l] : 2);
   }
+  ReportProgress("reading", path, 1.0);
   vtkAMRUtilities::BlankCells(amr);
   return amr;
 }
@@ -317,7 +326,20 @@ std::string Lower(std::string s)
 vtkSmartPointer<vtkOverlappingAMR> RunAlgorithm(
   vtkAlgorithm* algorithm, const std::string& what, CaptureVTKMessages& capture)
 {
+  // the reader's ProgressEvents on the terminal's progress bar (AmrspProgress.h)
+  vtkNew<vtkCallbackCommand> progress;
+  progress->SetClientData(const_cast<std::string*>(&what));
+  progress->SetCallback(
+    [](vtkObject* caller, unsigned long, void* what, void*)
+    {
+      ReportProgress("reading", *static_cast<std::string*>(what),
+        std::min(static_cast<vtkAlgorithm*>(caller)->GetProgress(), 0.999));
+    });
+  algorithm->AddObserver(vtkCommand::ProgressEvent, progress);
+  ReportProgress("reading", what, 0.0); // starts the step's clock: some readers report nothing
   algorithm->Update();
+  algorithm->RemoveObserver(progress);
+  ReportProgress("reading", what, 1.0);
   auto* amr = vtkOverlappingAMR::SafeDownCast(algorithm->GetOutputDataObject(0));
   if (!amr || amr->GetNumberOfLevels() == 0 || amr->GetTotalNumberOfBlocks() == 0)
   {
@@ -530,7 +552,9 @@ LoadedDataset LoadStored(const DatasetRequest& request)
     p.GenerateValues = request.NeedValues || request.NeedVTK;
     try
     {
-      out.Data = GenerateCosmo(p);
+      const std::string spec = request.Spec;
+      out.Data =
+        GenerateCosmo(p, [spec](double fraction) { ReportProgress("generation", spec, fraction); });
     }
     catch (const std::exception& e)
     {

@@ -159,7 +159,11 @@ GpuRenderer::GpuRenderer(const std::string& method, vtkVolumeMapper* mapper, con
       [](vtkObject* caller, unsigned long, void*, void* call)
       {
         const char* text = static_cast<vtkAlgorithm*>(caller)->GetProgressText();
-        const std::string detail = text ? text : "";
+        if (!text)
+        {
+          return; // the executive's events around the input's update, not a preparation's
+        }
+        const std::string detail = text;
         ReportProgress(detail.rfind("uploading", 0) == 0 ? "upload" : "build", detail,
           *static_cast<double*>(call));
       });

@@ -24,7 +24,14 @@ struct ProgressState
   Clock::time_point Started;
   Clock::time_point LastDrawn;
   bool Drawn = false; // the current step's line is on the terminal
+  int Fd = STDERR_FILENO;
 };
+
+void Write(int fd, const std::string& text)
+{
+  const ssize_t ignored = write(fd, text.data(), text.size());
+  (void)ignored;
+}
 
 ProgressState& State()
 {
@@ -44,10 +51,15 @@ void SetProgressQuiet(bool quiet)
   State().Quiet = quiet;
 }
 
+void SetProgressDescriptor(int fd)
+{
+  State().Fd = fd;
+}
+
 void ReportProgress(const std::string& step, const std::string& detail, double fraction)
 {
   ProgressState& s = State();
-  if (s.Quiet || !isatty(STDERR_FILENO))
+  if (s.Quiet || !isatty(s.Fd))
   {
     return;
   }
@@ -56,7 +68,7 @@ void ReportProgress(const std::string& step, const std::string& detail, double f
   {
     if (s.Drawn)
     {
-      std::fputc('\n', stderr);
+      Write(s.Fd, "\n");
     }
     s.Step = step;
     s.Started = now;
@@ -74,17 +86,22 @@ void ReportProgress(const std::string& step, const std::string& detail, double f
   std::string bar(static_cast<std::size_t>(filled), '#');
   bar.resize(width, '.');
   const std::string label = step + ": " + detail;
-  std::fprintf(stderr, "\ramrsp: %-44.44s [%s] %3d%%", label.c_str(), bar.c_str(),
-    static_cast<int>(100.0 * std::min(1.0, std::max(0.0, fraction))));
-  s.Drawn = true;
+  char line[160];
+  std::snprintf(line, sizeof(line), "\ramrsp: %-44.44s [%s] %3d%%%s", label.c_str(), bar.c_str(),
+    static_cast<int>(100.0 * std::min(1.0, std::max(0.0, fraction))), done ? "\n" : "");
+  std::fflush(stderr); // what the tool printed before the bar comes first
+  Write(s.Fd, line);
+  s.Drawn = !done;
   s.LastDrawn = now;
   if (done)
   {
-    std::fputc('\n', stderr);
-    s.Drawn = false;
     s.Step.clear();
   }
-  std::fflush(stderr);
+}
+
+ProgressCallback ProgressOf(const std::string& step, const std::string& detail)
+{
+  return [step, detail](double fraction) { ReportProgress(step, detail, fraction); };
 }
 
 } // namespace tool

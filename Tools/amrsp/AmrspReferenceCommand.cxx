@@ -2,6 +2,7 @@
 // `amrsp reference`: the independent CPU reference image.
 // first: see AmrspJson.h
 #include "AmrspImageCommand.h"
+#include "AmrspProgress.h"
 
 #include "amrsp/Render.h"
 
@@ -44,6 +45,7 @@ int RunReference(int argc, char** argv)
     RenderStats stats;
     s.Stats = &stats;
     ImageRun run;
+    s.Progress = ProgressOf("reference");
     for (int k = 0; k < repeat; ++k)
     {
       const auto t0 = Clock::now();

@@ -7,6 +7,7 @@
 #include "AmrspMethods.h"
 #include "AmrspMultipass.h"
 #include "AmrspPacking.h"
+#include "AmrspProgress.h"
 
 #include "amrsp/BrickAtlas.h"
 #include "amrsp/EmptySpace.h"
@@ -129,7 +130,9 @@ ImageRun RenderCpu(const Method& m, const LoadedDataset& d, RenderSettings s,
   for (int k = 0; k < repeat; ++k)
   {
     t0 = Clock::now();
-    run.Img = RenderKdTree(d.Data, enc, s, atlas.get());
+    RenderSettings frame = s;
+    frame.Progress = ProgressOf("cpu-kdtree");
+    run.Img = RenderKdTree(d.Data, enc, frame, atlas.get());
     run.FrameMs.push_back(1000.0 * Seconds(t0));
   }
   run.StatsReport = CpuStatsReport(stats);
@@ -141,7 +144,10 @@ ImageRun RenderCpu(const Method& m, const LoadedDataset& d, RenderSettings s,
 void Compare(const Method& m, const Image& img, const LoadedDataset& d, const RenderSettings& s,
   const Arguments& a)
 {
-  std::cout << "rmse (0-255) vs cpu-reference: " << Rmse(img, RenderReference(d.Data, s));
+  RenderSettings referenceSettings = s;
+  referenceSettings.Progress = ProgressOf("reference");
+  std::cout << "rmse (0-255) vs cpu-reference: "
+            << Rmse(img, RenderReference(d.Data, referenceSettings));
   if (m.Kind != MethodKind::CpuKdTree)
   {
     const Image kd = RenderKdTree(d.Data, EncodeKdTree(d.Data, BuildKdTree(d.Data)), s);

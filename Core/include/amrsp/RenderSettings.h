@@ -7,6 +7,7 @@
 
 #include "amrsp/Camera.h"
 #include "amrsp/Lighting.h"
+#include "amrsp/Progress.h"
 #include "amrsp/TransferFunction.h"
 
 #include <glm/glm.hpp>
@@ -61,6 +62,8 @@ struct RenderSettings
     const glm::dvec3& origin, const glm::dvec3& direction, double& distance, glm::dvec3& colour)>
     Opaque;
   int Threads = 0; ///< 0 = hardware concurrency
+  /// When set, the CPU integrators report the fraction of image rows done (amrsp/Progress.h).
+  ProgressCallback Progress;
   /// GPU mappers' MaximumAtlasPageBytes (the largest atlas texture; larger atlases are split
   /// into pages); 0 keeps the mapper's default. Not used by the CPU integrators.
   long long AtlasPageBytes = 0;

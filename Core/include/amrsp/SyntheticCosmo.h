@@ -29,6 +29,7 @@
 /// multiply-adds, e.g. GCC on aarch64 by default, may change last bits; compile this file with
 /// -ffp-contract=off where bit-identical results across architectures matter.)
 
+#include "amrsp/Progress.h"
 #include "amrsp/Hierarchy.h"
 
 #include <glm/glm.hpp>
@@ -114,7 +115,8 @@ private:
 /// @throws std::invalid_argument for impossible requests: Levels < 1 or > 30, Grids < 1,
 /// Grids smaller than the number of root grids plus one grid per refined level, Cells smaller
 /// than 64 cells per grid on average, RootGrids incompatible with Levels/Grids.
-Hierarchy GenerateCosmo(const CosmoParameters& p);
+/// `progress`, when set, receives the fraction of the cells whose values are generated.
+Hierarchy GenerateCosmo(const CosmoParameters& p, const ProgressCallback& progress = nullptr);
 
 /// The density field of GenerateCosmo(p) at a point given in level-0 index units of `h` (the
 /// hierarchy made by GenerateCosmo with a parameter set of seed `seed`): CosmoField(seed) at
