@@ -35,11 +35,13 @@ try:
     # lo = 6.16e-28), ParaView's own preset interpolated in RGB as the reference does
     lo = 6.16257e-28
     lut = simple.GetColorTransferFunction("Density")
+    lut.UseLogScale = 0  # the type's defaults chose log scale for the density
     lut.ApplyPreset("Cool to Warm", True)
     lut.ColorSpace = "RGB"
     lut.AutomaticRescaleRangeMode = "Never"
     lut.RescaleTransferFunction(lo, 800.0 * lo)
     pwf = simple.GetOpacityTransferFunction("Density")
+    pwf.UseLogScale = 0
     pwf.Points = [lo, 0.0, 0.5, 0.0, 10.0 * lo, 0.02, 0.5, 0.0, 100.0 * lo, 0.2, 0.5, 0.0,
                   1000.0 * lo, 0.6, 0.5, 0.0, 10000.0 * lo, 0.9, 0.5, 0.0]
     display.ScalarOpacityUnitDistance = 0.0173
