@@ -28,7 +28,12 @@ try:
     view = simple.GetActiveViewOrCreate("RenderView")
     display = simple.Show(reader, view)
     status["representation_types"] = list(display.Representation.Available)
+    status["array_before"] = list(display.ColorArrayName)
     display.Representation = "AMR Single-Pass Volume"
+    # what the type picked by itself (docs/paraview.md, "Defaults")
+    status["array_picked"] = list(display.ColorArrayName)
+    status["log_scale_picked"] = [simple.GetColorTransferFunction("Density").UseLogScale,
+                                  simple.GetOpacityTransferFunction("Density").UseLogScale]
     simple.ColorBy(display, ("CELLS", "Density"))
     display.SetScalarBarVisibility(view, True)
     # a colour map on the low decades of the density (linear scale; g/cm^3, the lowest density
