@@ -105,8 +105,7 @@ def forget_transfer_functions():
 
 
 class Session:
-    def __init__(self, plugin, outdir, server):
-        self.plugin = plugin
+    def __init__(self, outdir, server):
         self.outdir = outdir
         self.server = server
         self.builtin = server is None
@@ -129,6 +128,10 @@ class Session:
         from TestPluginRepresentation import coverage, info_property, read_png, server_died
 
         simple.Render(view)
+        # ResetCamera keeps the view direction: start each shot from the same one
+        view.CameraPosition = [0.0, 0.0, 1.0]
+        view.CameraFocalPoint = [0.0, 0.0, 0.0]
+        view.CameraViewUp = [0.0, 1.0, 0.0]
         view.ResetCamera()
         view.GetActiveCamera().Azimuth(30.0)
         view.GetActiveCamera().Elevation(20.0)
@@ -139,7 +142,8 @@ class Session:
         return coverage(read_png(path)[2])
 
     def check_case(self, label, source, display, expected_array, expected_log, stats=None):
-        """Checks the array, the maps and the image of a display just switched to the type."""
+        """Checks the array and the maps of a display just switched to the type; `stats`: the
+        array's statistics from the data (builtin session) or None."""
         from paraview import simple
 
         picked = list(display.ColorArrayName)
@@ -363,7 +367,7 @@ def main():
         server = start_server(pvserver, os.path.join(outdir, "defaults-pvserver.log"))
         simple.LoadPlugin(plugin, remote=True, ns=globals())
     simple.LoadPlugin(plugin, remote=False, ns=globals())
-    session = Session(plugin, outdir, server)
+    session = Session(outdir, server)
     run_cases(session, enzo_path)
     print("measured shares of pixels showing the volume: %s"
           % ", ".join("%s %.1f %%" % (k, 100.0 * v) for k, v in session.measured.items()))
