@@ -15,7 +15,8 @@
  * ParaView's own volume representation, so the colour-map editor drives both. The coloured array
  * (ColorArrayName, i.e. SetInputArrayToProcess(0, ...)) is the array the mapper renders; a vector
  * array renders the component the colour map selects, or its magnitude. Without a coloured array
- * nothing is drawn (as ParaView's Volume representation).
+ * nothing is drawn (as ParaView's Volume representation); switching a display to the type picks
+ * one on the client (vtkSMSinglePassAMRVolumeRepresentationProxy).
  *
  * Data movement: RequestData shallow-copies the input; REQUEST_UPDATE hands that copy to the view
  * with vtkPVView::SetPiece, and REQUEST_RENDER connects the mapper to the piece the view delivered

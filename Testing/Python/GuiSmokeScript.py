@@ -30,18 +30,25 @@ try:
     view = simple.GetActiveViewOrCreate("RenderView")
     display = simple.Show(reader, view)
     status["representation_types"] = list(display.Representation.Available)
+    status["array_before"] = list(display.ColorArrayName)
     display.Representation = "AMR Single-Pass Volume"
+    # what the type picked by itself (docs/paraview.md, "Defaults")
+    status["array_picked"] = list(display.ColorArrayName)
+    status["log_scale_picked"] = [simple.GetColorTransferFunction("Density").UseLogScale,
+                                  simple.GetOpacityTransferFunction("Density").UseLogScale]
     simple.ColorBy(display, ("CELLS", "Density"))
     display.SetScalarBarVisibility(view, True)
     # a colour map on the low decades of the density (linear scale; g/cm^3, the lowest density
     # lo = 6.16e-28), ParaView's own preset interpolated in RGB as the reference does
     lo = 6.16257e-28
     lut = simple.GetColorTransferFunction("Density")
+    lut.UseLogScale = 0  # the type's defaults chose log scale for the density
     lut.ApplyPreset("Cool to Warm", True)
     lut.ColorSpace = "RGB"
     lut.AutomaticRescaleRangeMode = "Never"
     lut.RescaleTransferFunction(lo, 800.0 * lo)
     pwf = simple.GetOpacityTransferFunction("Density")
+    pwf.UseLogScale = 0
     pwf.Points = [lo, 0.0, 0.5, 0.0, 10.0 * lo, 0.02, 0.5, 0.0, 100.0 * lo, 0.2, 0.5, 0.0,
                   1000.0 * lo, 0.6, 0.5, 0.0, 10000.0 * lo, 0.9, 0.5, 0.0]
     display.ScalarOpacityUnitDistance = 0.0173

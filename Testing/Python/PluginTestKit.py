@@ -109,8 +109,11 @@ def show_density_volume(source, size, before_show=None):
     q = density_quantiles(source, [0.0, 0.5, 0.9, 0.99, 1.0])
     lut = simple.GetColorTransferFunction("Density")
     lut.AutomaticRescaleRangeMode = "Never"
+    # linear maps (switching to the type put this density-like array's maps in log scale)
+    lut.UseLogScale = 0
     lut.RGBPoints = [q[0], 0.2, 0.4, 1.0, q[2], 1.0, 1.0, 1.0, q[4], 1.0, 0.2, 0.1]
     pwf = simple.GetOpacityTransferFunction("Density")
+    pwf.UseLogScale = 0
     pwf.Points = [q[0], 0.0, 0.5, 0.0, q[1], 0.1, 0.5, 0.0, q[2], 0.5, 0.5, 0.0,
                   q[3], 0.8, 0.5, 0.0, q[4], 0.9, 0.5, 0.0]
     display.ScalarOpacityUnitDistance = 0.05

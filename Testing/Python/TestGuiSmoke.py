@@ -102,6 +102,14 @@ def main():
         fail("the GUI does not offer the representation type")
     if status.get("representation") != "AMR Single-Pass Volume":
         fail("the representation was not selected")
+    # switching picked the array and put the density's maps in log scale (docs/paraview.md,
+    # "Defaults")
+    print("GUI: coloured by %s before the switch, by %s after it; log scale (colour map, opacity) "
+          "%s" % (status.get("array_before"), status.get("array_picked"),
+                  status.get("log_scale_picked")))
+    if status.get("array_picked") != ["CELLS", "Density"] or \
+            status.get("log_scale_picked") != [1, 1]:
+        fail("switching to the type in the GUI did not pick Density with log-scaled maps")
     check_render_error(status.get("render_error"), "the mapper in the GUI")
     if status.get("texture_builds") != 1:
         fail("the mapper built its textures %s times (expected once)" % status.get("texture_builds"))

@@ -108,7 +108,9 @@ def main():
         display.ScalarOpacityFunction = simple.GetOpacityTransferFunction("Density")
         lut = simple.GetColorTransferFunction("Density")
         lut.AutomaticRescaleRangeMode = "Never"
+        lut.UseLogScale = 0  # linear maps, whatever the type's defaults chose
         lut.RGBPoints = [0.0, 0.2, 0.4, 1.0, 1.0, 1.0, 0.8, 0.2]
+        simple.GetOpacityTransferFunction("Density").UseLogScale = 0
         simple.GetOpacityTransferFunction("Density").Points = [0.0, 0.0, 0.5, 0.0,
                                                                 1.0, 0.8, 0.5, 0.0]
         view.ResetCamera()
