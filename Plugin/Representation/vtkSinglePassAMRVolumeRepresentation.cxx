@@ -162,10 +162,12 @@ int vtkSinglePassAMRVolumeRepresentation::RequestData(
   }
   if (input)
   {
-    // A shallow copy: the pipeline may replace its output later, the copy stays what was
-    // delivered. The mapper keys its texture rebuilds on this object and its MTime.
+    // A copy of the hierarchy that shares the input's block objects (CompositeShallowCopy; a
+    // ShallowCopy would make a new vtkUniformGrid per block, about 4 kB each): the pipeline may
+    // give its output other blocks later, the copy keeps what was delivered. The mapper keys
+    // its texture rebuilds on this object and its MTime.
     cache = vtkSmartPointer<vtkOverlappingAMR>::New();
-    cache->ShallowCopy(input);
+    cache->CompositeShallowCopy(input);
   }
 
   // Several ranks (pvbatch or pvserver under mpiexec): each holds the whole metadata but only
