@@ -54,6 +54,48 @@ def display_answers():
     return True
 
 
+def check_interactive_frames(status):
+    """The interactive-frame properties and the quality of the GUI's interactive and still render."""
+    # the interactive-frame properties with VTK's defaults; an interactive render in the GUI
+    # casts a ray every 2 pixels (Maximum Image Sample Distance set to 2), the still one after
+    # it every pixel
+    expected = {"AutoAdjustSampleDistances": 1, "ImageSampleDistance": 1.0,
+                "MinimumImageSampleDistance": 1.0, "MaximumImageSampleDistance": 10.0,
+                "InteractiveAdjustSampleDistances": 1}
+    if status.get("interactive_properties") != expected:
+        fail("the interactive-frame properties in the GUI: %s, expected %s"
+             % (status.get("interactive_properties"), expected))
+    interactive, still = status.get("interactive_quality"), status.get("still_quality")
+    if not interactive or interactive[:3] != [1.0, 2.0, 2.0]:
+        fail("an interactive render in the GUI drew %s (interactive, image sample distance, "
+             "sample-distance scale), expected [1, 2, 2]" % interactive)
+    if not still or still[:3] != [0.0, 1.0, 1.0]:
+        fail("the still render after it drew %s, expected [0, 1, 1]" % still)
+
+
+def check_log_screenshot(path, image, background, mask):
+    """The log-scaled map's screenshot against the linear map's `image` (same background, mask)."""
+    from vtkmodules.vtkIOImage import vtkPNGReader
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    import numpy
+
+    reader = vtkPNGReader()
+    # the log-scaled map: the volume still shows, and differently from the linear map (a mapper
+    # ignoring the log flags would draw the linear screenshot)
+    reader.SetFileName(path)
+    reader.Update()
+    log_image = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3].astype(
+        float).reshape(image.shape)
+    log_covered = ((numpy.abs(log_image - background).max(axis=2) > 12.0) & mask).sum() / float(
+        mask.sum())
+    log_vs_linear = float(numpy.sqrt(numpy.mean((log_image[mask] - image[mask]) ** 2)))
+    print("log-scaled map: %.1f %% of the checked pixels show the volume, RMSE %.2f against the "
+          "linear map's screenshot (bound > %.1f)" % (100.0 * log_covered, log_vs_linear,
+                                                       LOG_DIFFERENCE_BOUND))
+    if log_covered < MIN_COVERAGE or log_vs_linear < LOG_DIFFERENCE_BOUND:
+        fail("the GUI with a log-scaled map draws no volume or the linear map's image")
+
+
 def main():
     paraview, plugin, amrsp, outdir = sys.argv[1:5]
     data_dir = os.environ.get("AMRSP_DATA_DIR", "")
@@ -114,21 +156,7 @@ def main():
     if status.get("texture_builds") != 1:
         fail("the mapper built its textures %s times (expected once)" % status.get("texture_builds"))
 
-    # the interactive-frame properties with VTK's defaults; an interactive render in the GUI
-    # casts a ray every 2 pixels (Maximum Image Sample Distance set to 2), the still one after
-    # it every pixel
-    expected = {"AutoAdjustSampleDistances": 1, "ImageSampleDistance": 1.0,
-                "MinimumImageSampleDistance": 1.0, "MaximumImageSampleDistance": 10.0,
-                "InteractiveAdjustSampleDistances": 1}
-    if status.get("interactive_properties") != expected:
-        fail("the interactive-frame properties in the GUI: %s, expected %s"
-             % (status.get("interactive_properties"), expected))
-    interactive, still = status.get("interactive_quality"), status.get("still_quality")
-    if not interactive or interactive[:3] != [1.0, 2.0, 2.0]:
-        fail("an interactive render in the GUI drew %s (interactive, image sample distance, "
-             "sample-distance scale), expected [1, 2, 2]" % interactive)
-    if not still or still[:3] != [0.0, 1.0, 1.0]:
-        fail("the still render after it drew %s, expected [0, 1, 1]" % still)
+    check_interactive_frames(status)
     check_render_error(status.get("log_render_error"), "the mapper with a log-scaled map")
 
     from vtkmodules.vtkIOImage import vtkPNGReader
@@ -166,20 +194,7 @@ def main():
     if distinct < 10:
         fail("the volume is drawn in fewer than 10 colours: not a colour-mapped volume")
 
-    # the log-scaled map: the volume still shows, and differently from the linear map (a mapper
-    # ignoring the log flags would draw the linear screenshot)
-    reader.SetFileName(os.path.join(outdir, "gui-smoke-log.png"))
-    reader.Update()
-    log_image = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3].astype(
-        float).reshape(h, w, 3)
-    log_covered = ((numpy.abs(log_image - background).max(axis=2) > 12.0) & mask).sum() / float(
-        mask.sum())
-    log_vs_linear = float(numpy.sqrt(numpy.mean((log_image[mask] - image[mask]) ** 2)))
-    print("log-scaled map: %.1f %% of the checked pixels show the volume, RMSE %.2f against the "
-          "linear map's screenshot (bound > %.1f)" % (100.0 * log_covered, log_vs_linear,
-                                                       LOG_DIFFERENCE_BOUND))
-    if log_covered < MIN_COVERAGE or log_vs_linear < LOG_DIFFERENCE_BOUND:
-        fail("the GUI with a log-scaled map draws no volume or the linear map's image")
+    check_log_screenshot(os.path.join(outdir, "gui-smoke-log.png"), image, background, mask)
 
     # the same view rendered by the CPU reference, compared where the volume is (outside the
     # orientation axes and the scalar bar)
