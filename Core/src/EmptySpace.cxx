@@ -4,6 +4,7 @@
 #include "amrsp/IntegerMath.h"
 #include "amrsp/KdTree.h"
 #include "amrsp/KdTreeLayout.h"
+#include "amrsp/MinMaxFold.h"
 #include "amrsp/ParallelFor.h"
 #include "amrsp/TransferFunction.h"
 
@@ -89,31 +90,20 @@ std::vector<glm::vec2> ComputeDataNodeRanges(const Hierarchy& h, const EncodedKd
       const float* values = h.Values[b.Grid].data();
       // NaN is skipped: a comparison with NaN is false, so neither bound takes it
       float lo = FLT_MAX, hi = -FLT_MAX;
-      const auto scan = [&lo, &hi](const float* first, int64_t count)
-      {
-        for (int64_t k = 0; k < count; ++k)
-        {
-          const float v = first[k];
-          lo = v < lo ? v : lo;
-          hi = v > hi ? v : hi;
-        }
-      };
       const int64_t rowLength = b.Last.x - b.First.x + 1;
       if (rowLength == b.Extent.x && b.Last.y - b.First.y + 1 == b.Extent.y)
       {
         // whole layers of the grid: one contiguous run
-        scan(values + static_cast<std::size_t>(item.Z0 * b.Extent.y * b.Extent.x),
-          (item.Z1 - item.Z0 + 1) * b.Extent.y * b.Extent.x);
+        FoldMinMax(values + static_cast<std::size_t>(item.Z0 * b.Extent.y * b.Extent.x),
+          (item.Z1 - item.Z0 + 1) * b.Extent.y * b.Extent.x, lo, hi);
       }
       else
       {
         for (int64_t z = item.Z0; z <= item.Z1; ++z)
         {
-          for (int64_t y = b.First.y; y <= b.Last.y; ++y)
-          {
-            scan(values + static_cast<std::size_t>((z * b.Extent.y + y) * b.Extent.x + b.First.x),
-              rowLength);
-          }
+          FoldMinMaxRows(values +
+              static_cast<std::size_t>((z * b.Extent.y + b.First.y) * b.Extent.x + b.First.x),
+            rowLength, b.Extent.x, b.Last.y - b.First.y + 1, lo, hi);
         }
       }
       partial[static_cast<std::size_t>(i)] = glm::vec2(lo, hi);

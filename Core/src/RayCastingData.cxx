@@ -3,6 +3,7 @@
 
 #include "amrsp/BrickAtlas.h"
 #include "amrsp/EmptySpace.h"
+#include "amrsp/MinMaxFold.h"
 #include "amrsp/ParallelFor.h"
 #include "amrsp/SampleStep.h"
 
@@ -110,12 +111,22 @@ bool FiniteValueRange(const Hierarchy& h, double range[2])
     static_cast<int64_t>(h.Values.size()),
     [&](int64_t g)
     {
+      const GridValues& values = h.Values[static_cast<std::size_t>(g)];
+      const int64_t count = static_cast<int64_t>(values.size());
       float lo = FLT_MAX, hi = -FLT_MAX;
-      for (const float v : h.Values[static_cast<std::size_t>(g)])
+      FoldMinMax(values.data(), count, lo, hi); // skips NaN, takes +-Inf
+      if (lo < -FLT_MAX || hi > FLT_MAX)
       {
-        const bool finite = v >= -FLT_MAX && v <= FLT_MAX; // false for NaN and +-Inf
-        lo = finite && v < lo ? v : lo;
-        hi = finite && v > hi ? v : hi;
+        // an infinite value: again, finite values only (rare: damaged data)
+        lo = FLT_MAX;
+        hi = -FLT_MAX;
+        for (int64_t i = 0; i < count; ++i)
+        {
+          const float v = values.data()[i];
+          const bool finite = v >= -FLT_MAX && v <= FLT_MAX; // false for NaN and +-Inf
+          lo = finite && v < lo ? v : lo;
+          hi = finite && v > hi ? v : hi;
+        }
       }
       perGrid[static_cast<std::size_t>(g)] = glm::vec2(lo, hi);
     },
