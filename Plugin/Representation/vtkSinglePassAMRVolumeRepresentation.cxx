@@ -16,6 +16,7 @@
 #include "vtkPVLODVolume.h"
 #include "vtkPVLogger.h"
 #include "vtkPVRenderView.h"
+#include "vtkPolyData.h"
 #include "vtkProcessModule.h"
 #include "vtkRenderer.h"
 #include "vtkScalarsToColors.h"
@@ -177,6 +178,10 @@ int vtkSinglePassAMRVolumeRepresentation::RequestData(
   // images are empty, so any compositing order gives rank 0's image).
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
   this->RendersLocally = true;
+  // in a client-server session the client has no input: it renders what the view delivers
+  const int processType = vtkProcessModule::GetProcessType();
+  this->RendersFromCache = processType == vtkProcessModule::PROCESS_BATCH ||
+    (processType == vtkProcessModule::PROCESS_CLIENT && input != nullptr);
   bool haveRegion = false;
   double regionBounds[6];
   if (controller && controller->GetNumberOfProcesses() > 1 &&
@@ -285,8 +290,14 @@ int vtkSinglePassAMRVolumeRepresentation::ProcessViewRequest(
   }
   if (request_type == vtkPVView::REQUEST_UPDATE())
   {
-    // DataSize (kibibytes) drives the view's remote-rendering and LOD decisions
-    vtkPVView::SetPiece(inInfo, this, this->Cache, this->DataSize);
+    // DataSize (kibibytes) drives the view's remote-rendering and LOD decisions, whatever piece
+    // stands for the data
+    if (!this->PlaceholderPiece)
+    {
+      this->PlaceholderPiece = vtkSmartPointer<vtkPolyData>::New();
+    }
+    vtkPVView::SetPiece(inInfo, this,
+      this->RendersFromCache ? this->PlaceholderPiece.Get() : this->Cache.Get(), this->DataSize);
     vtkPVRenderView::SetGeometryBounds(inInfo, this, this->DataBounds, this->Actor->GetMatrix());
     // Translucent: with several rendering ranks the view composites the ranks' images by
     // alpha blending in visibility order (IceT's ordered compositing; the volume writes no
@@ -307,18 +318,27 @@ int vtkSinglePassAMRVolumeRepresentation::ProcessViewRequest(
   }
   else if (request_type == vtkPVView::REQUEST_RENDER())
   {
-    // both mappers follow the delivered piece; only the one in use builds textures (when it
-    // renders), so the other keeps its textures until it renders new data
-    vtkAlgorithmOutput* producer = vtkPVRenderView::GetPieceProducer(inInfo, this);
-    if (this->VolumeMapper->GetNumberOfInputConnections(0) < 1 ||
-      this->VolumeMapper->GetInputConnection(0, 0) != producer)
+    // both mappers follow the data (the cache where this process holds it, else the delivered
+    // piece); only the one in use builds textures (when it renders), so the other keeps its
+    // textures until it renders new data
+    vtkAlgorithmOutput* producer =
+      this->RendersFromCache ? nullptr : vtkPVRenderView::GetPieceProducer(inInfo, this);
+    for (vtkVolumeMapper* mapper : { static_cast<vtkVolumeMapper*>(this->VolumeMapper),
+           static_cast<vtkVolumeMapper*>(this->MultiPassMapper) })
     {
-      this->VolumeMapper->SetInputConnection(producer);
-    }
-    if (this->MultiPassMapper->GetNumberOfInputConnections(0) < 1 ||
-      this->MultiPassMapper->GetInputConnection(0, 0) != producer)
-    {
-      this->MultiPassMapper->SetInputConnection(producer);
+      if (this->RendersFromCache)
+      {
+        if (mapper->GetNumberOfInputConnections(0) < 1 ||
+          mapper->GetInputDataObject(0, 0) != this->Cache.Get())
+        {
+          mapper->SetInputDataObject(this->Cache);
+        }
+      }
+      else if (mapper->GetNumberOfInputConnections(0) < 1 ||
+        mapper->GetInputConnection(0, 0) != producer)
+      {
+        mapper->SetInputConnection(producer);
+      }
     }
     this->UpdateMapperParameters();
   }
@@ -564,6 +584,33 @@ double vtkSinglePassAMRVolumeRepresentation::GetLODThreshold()
   return this->VolumeMapper->GetLODThreshold();
 }
 
+//------------------------------------------------------------------------------
+int vtkSinglePassAMRVolumeRepresentation::GetNumberOfBlockCopies()
+{
+  vtkOverlappingAMR* rendered =
+    vtkOverlappingAMR::SafeDownCast(this->VolumeMapper->GetNumberOfInputConnections(0) > 0
+        ? this->VolumeMapper->GetInputDataObject(0, 0)
+        : nullptr);
+  if (!rendered)
+  {
+    return 0;
+  }
+  int copies = 0;
+  for (unsigned int level = 0; level < rendered->GetNumberOfLevels(); ++level)
+  {
+    const bool inCache = this->Cache && level < this->Cache->GetNumberOfLevels();
+    for (unsigned int index = 0; index < rendered->GetNumberOfDataSets(level); ++index)
+    {
+      vtkUniformGrid* block = rendered->GetDataSet(level, index);
+      const bool own = inCache && index < this->Cache->GetNumberOfDataSets(level) &&
+        this->Cache->GetDataSet(level, index) == block;
+      copies += block && !own ? 1 : 0;
+    }
+  }
+  return copies;
+}
+
+//------------------------------------------------------------------------------
 double* vtkSinglePassAMRVolumeRepresentation::GetLastFrameQuality()
 {
   vtkSinglePassAMRVolumeMapper* m = this->VolumeMapper;

@@ -183,6 +183,10 @@ public:
   /// and the rest): { interactive (0 or 1), image sample distance, sample-distance scale,
   /// allocated seconds, measured seconds }.
   double* GetLastFrameQuality() VTK_SIZEHINT(5);
+  /// Blocks of the hierarchy the mappers read that are not the block objects of this process's
+  /// own copy of its input (SinglePassBlockCopies): 0 where the mappers read that copy (builtin
+  /// sessions, pvbatch); every delivered block on a client that renders what a pvserver sent.
+  int GetNumberOfBlockCopies();
   /// What rendered the last frame (SinglePassDataStorage): "packing", "bindless (waterfall)",
   /// "bindless (direct)", "multi-pass", or "none" before the first successful frame.
   const char* GetLastDataStorage();
@@ -217,12 +221,19 @@ protected:
   vtkSmartPointer<vtkMultiPassAMRVolumeMapper> MultiPassMapper;
   int Method = METHOD_AUTO;
   int ParallelMode = PARALLEL_REGIONS;
-  /// What the view delivers: a shallow copy of the input made by the last RequestData; with
-  /// several ranks, this rank's region of the hierarchy, or (gathering) the whole hierarchy on
-  /// rank 0 and an empty one on the others.
+  /// The data to render, made by the last RequestData: a copy of the input that shares its
+  /// blocks; with several ranks, this rank's region of the hierarchy, or (gathering) the whole
+  /// hierarchy on rank 0 and an empty one on the others.
   vtkSmartPointer<vtkOverlappingAMR> Cache;
   /// False on the ranks other than 0 when gathering on rank 0: they draw nothing.
   bool RendersLocally = true;
+  /// True where the process that renders is the one that holds the data (a builtin session,
+  /// pvbatch): the mappers read Cache itself and the view is handed PlaceholderPiece. The view's
+  /// delivery would shallow-copy the hierarchy twice (vtkPVDataDeliveryManager::SetPiece, then
+  /// vtkMPIMoveData), each copy a new vtkUniformGrid per block. False in a pvserver (below the
+  /// remote-render threshold the client renders the delivered hierarchy) and on its client.
+  bool RendersFromCache = false;
+  vtkSmartPointer<vtkDataObject> PlaceholderPiece; // an empty vtkPolyData
   bool ReportedParallelRenderingOff = false;
   // What is wrong with the delivered data itself (no blocks at all), said once per change in
   double LastFrameQuality[5] = { 0.0, 1.0, 1.0, 0.0, 0.0 };

@@ -144,9 +144,9 @@ def run(command, log_path):
     with open(log_path, "w") as log:
         code = call_with_hang_detector(command, log)
     text = read_log_and_rank_logs(log_path)
-    lines = [l for l in text.splitlines() if l.startswith(("parallel:", "texture builds", "rmse",
-                                                           "screenshot", "SKIPPED", "FAIL",
-                                                           "PASS"))]
+    lines = [l for l in text.splitlines()
+             if l.startswith(("parallel:", "texture builds", "block copies", "rmse", "screenshot",
+                              "SKIPPED", "FAIL", "PASS"))]
     print("$ %s\n  %s" % (" ".join(command), "\n  ".join(lines)))
     if "SKIPPED:" in text:
         if os.environ.get("AMRSP_REQUIRE_GPU") == "1":
