@@ -283,23 +283,14 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::DrawNodes(vtkOpenGLState* state,
   vtkOpenGLState::ScopedglViewport viewportSaved(state);
   vtkOpenGLState::ScopedglClearColor clearColorSaved(state);
   vtkOpenGLState::ScopedglEnableDisable scissorSaved(state, GL_SCISSOR_TEST);
-  vtkOpenGLState::ScopedglEnableDisable cullSaved(state, GL_CULL_FACE);
-  vtkOpenGLState::ScopedglEnableDisable depthSaved(state, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglEnableDisable blendSaved(state, GL_BLEND);
-  vtkOpenGLState::ScopedglDepthMask depthMaskSaved(state);
-  vtkOpenGLState::ScopedglBlendFuncSeparate blendFuncSaved(state);
 
   this->Accumulation.BeginDrawing(state);
 
-  state->vtkglEnable(GL_CULL_FACE);
   // back faces: one fragment per covered pixel, also with the eye inside the box; a mirroring
-  // volume transform flips the winding
-  state->vtkglCullFace(view.Mirrored ? GL_BACK : GL_FRONT);
-  state->vtkglDisable(GL_DEPTH_TEST);
-  state->vtkglDepthMask(GL_FALSE);
-  state->vtkglEnable(GL_BLEND);
-  // front to back: dst += (1 - dst.a) * src for colour and opacity (src premultiplied)
-  state->vtkglBlendFuncSeparate(GL_ONE_MINUS_DST_ALPHA, GL_ONE, GL_ONE_MINUS_DST_ALPHA, GL_ONE);
+  // volume transform flips the winding. Front to back: dst += (1 - dst.a) * src for colour and
+  // opacity (src premultiplied)
+  const utilities::ScopedBlendedDraw blended(
+    state, view.Mirrored ? GL_BACK : GL_FRONT, GL_ONE_MINUS_DST_ALPHA, GL_ONE);
   // no near/far clipping: the back faces of a node between the eye and the near plane still
   // reach the shader, which starts the rays at the eye as the single-pass shader does
   // (primitives behind the eye are still clipped, w > 0)
@@ -344,7 +335,6 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::DrawNodes(vtkOpenGLState* state,
   {
     glDisable(GL_DEPTH_CLAMP);
   }
-  state->vtkglCullFace(GL_BACK);
   this->CubeArray->Release();
   this->Accumulation.EndDrawing();
 }

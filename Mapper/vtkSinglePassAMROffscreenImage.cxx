@@ -10,6 +10,7 @@
 #include "vtkTextureObject.h"
 
 #include "vtkSinglePassAMROpenGL.h"
+#include "vtkSinglePassAMRRenderingUtilities.h"
 
 #include "amrsp_OffscreenComposite_frag_glsl.h"
 
@@ -112,17 +113,9 @@ bool vtkSinglePassAMROffscreenImage::CompositeOver(
     error = "the offscreen composite shader failed to compile or link (see the error above)";
     return false;
   }
-  vtkOpenGLState* state = renWin->GetState();
-  vtkOpenGLState::ScopedglEnableDisable cullSaved(state, GL_CULL_FACE);
-  vtkOpenGLState::ScopedglEnableDisable depthSaved(state, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglEnableDisable blendSaved(state, GL_BLEND);
-  vtkOpenGLState::ScopedglDepthMask depthMaskSaved(state);
-  vtkOpenGLState::ScopedglBlendFuncSeparate blendFuncSaved(state);
-  state->vtkglDisable(GL_CULL_FACE);
-  state->vtkglDisable(GL_DEPTH_TEST);
-  state->vtkglDepthMask(GL_FALSE);
-  state->vtkglEnable(GL_BLEND);
-  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  // premultiplied "over" the frame
+  const vtkSinglePassAMRRenderingUtilities::ScopedBlendedDraw blended(
+    renWin->GetState(), GL_NONE, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   renWin->GetShaderCache()->ReadyShaderProgram(this->Composite->Program);
   this->Colour->Activate();
   this->Composite->Program->SetUniformi("amrspImage", this->Colour->GetTextureUnit());

@@ -23,6 +23,7 @@
 #include "amrsp/KdTree.h"
 #include "amrsp/KdTreeEncoding.h"
 
+#include "vtkOpenGLState.h" // for ScopedBlendedDraw
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h" // for TransferFunctionTable::GetTexture
 #include "vtkTimeStamp.h"
@@ -243,6 +244,33 @@ void CopyDepthBuffer(vtkOpenGLRenderWindow* renWin, const ViewGeometry& view, De
  */
 std::string ComposeFragmentShader(const char* source, const std::string& defines,
   const std::vector<std::pair<std::string, const char*>>& pieces, vtkVolume* vol);
+
+/**
+ * The OpenGL state of a blended draw of the volume's proxy geometry, for the lifetime of the
+ * object: no depth test and no depth writes, blending on with the factors `source` and
+ * `destination` for colour and alpha alike, and faces of `cullFace` (GL_FRONT or GL_BACK) culled,
+ * or culling off (GL_NONE). Restores culling, depth test, blending, depth mask and blend factors
+ * as they were, and the culled face to GL_BACK (VTK's default, which vtkOpenGLState does not
+ * save).
+ */
+class ScopedBlendedDraw
+{
+public:
+  ScopedBlendedDraw(
+    vtkOpenGLState* state, unsigned int cullFace, unsigned int source, unsigned int destination);
+  ~ScopedBlendedDraw();
+  ScopedBlendedDraw(const ScopedBlendedDraw&) = delete;
+  ScopedBlendedDraw& operator=(const ScopedBlendedDraw&) = delete;
+
+private:
+  vtkOpenGLState* State;
+  bool Culls;
+  vtkOpenGLState::ScopedglEnableDisable CullSaved;
+  vtkOpenGLState::ScopedglEnableDisable DepthTestSaved;
+  vtkOpenGLState::ScopedglEnableDisable BlendSaved;
+  vtkOpenGLState::ScopedglDepthMask DepthMaskSaved;
+  vtkOpenGLState::ScopedglBlendFuncSeparate BlendFuncSaved;
+};
 
 /// Whether `window` offers an OpenGL 3.2 core context (integer and float textures, GLSL 1.50,
 /// float colour attachments, depth clamping). When it does not, `why` says what is missing.

@@ -699,22 +699,11 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::SetLightingUniforms(vtkShaderPr
 void vtkSinglePassAMRVolumeMapper::vtkInternals::DrawBackFaces(
   vtkOpenGLRenderWindow* renWin, const utilities::ViewGeometry& view)
 {
-  vtkOpenGLState* state = renWin->GetState();
   {
-    vtkOpenGLState::ScopedglEnableDisable cullSaved(state, GL_CULL_FACE);
-    vtkOpenGLState::ScopedglEnableDisable depthSaved(state, GL_DEPTH_TEST);
-    vtkOpenGLState::ScopedglEnableDisable blendSaved(state, GL_BLEND);
-    vtkOpenGLState::ScopedglDepthMask depthMaskSaved(state);
-    vtkOpenGLState::ScopedglBlendFuncSeparate blendFuncSaved(state);
-    state->vtkglEnable(GL_CULL_FACE);
-    // a mirroring volume transform flips the winding
-    state->vtkglCullFace(view.Mirrored ? GL_BACK : GL_FRONT);
-    state->vtkglDisable(GL_DEPTH_TEST);
-    state->vtkglDepthMask(GL_FALSE);
-    state->vtkglEnable(GL_BLEND);
-    state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    // back faces only (a mirroring volume transform flips the winding), premultiplied "over"
+    const utilities::ScopedBlendedDraw blended(
+      renWin->GetState(), view.Mirrored ? GL_BACK : GL_FRONT, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glDrawArrays(GL_TRIANGLES, 0, 36);
-    state->vtkglCullFace(GL_BACK);
   }
   this->BoxArray->Release();
 }
