@@ -376,8 +376,7 @@ bool vtkMultiPassAMRVolumeMapper::BuildData(
   vtkOverlappingAMR* amr, const std::string& array, std::string& error)
 {
   // ProgressEvent: 0 and 1 around the build; the upload in the first render 0 to 1 again
-  this->SetProgressText("converting the AMR blocks, kD-tree and packing");
-  this->UpdateProgress(0.0);
+  this->BeginProgressPhase(PROGRESS_BUILD, "converting the AMR blocks, kD-tree and packing");
   const bool built =
     this->Internals->Build(amr, array, this->ArrayComponent, this->MaximumAtlasSize,
       static_cast<int64_t>(this->MaximumAtlasPageBytes / amrsp::AtlasTexelBytes), error);
@@ -506,8 +505,7 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::UploadAtlas(
   std::string error;
   this->AtlasPages.clear();
   const amrsp::AtlasPages& pages = this->Data.Atlas;
-  self->SetProgressText("uploading the atlas");
-  self->UpdateProgress(0.0);
+  self->BeginProgressPhase(PROGRESS_UPLOAD, "uploading the atlas");
   for (std::size_t p = 0; p < pages.Pages.size(); ++p)
   {
     vtkSmartPointer<vtkTextureObject> page;

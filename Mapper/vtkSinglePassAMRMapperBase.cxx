@@ -19,6 +19,14 @@ vtkSinglePassAMRMapperBase::vtkSinglePassAMRMapperBase() = default;
 vtkSinglePassAMRMapperBase::~vtkSinglePassAMRMapperBase() = default;
 
 //------------------------------------------------------------------------------
+void vtkSinglePassAMRMapperBase::BeginProgressPhase(int phase, const char* text)
+{
+  this->ProgressPhase = phase;
+  this->SetProgressText(text);
+  this->UpdateProgress(0.0);
+}
+
+//------------------------------------------------------------------------------
 int vtkSinglePassAMRMapperBase::FillInputPortInformation(int vtkNotUsed(port), vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkOverlappingAMR");

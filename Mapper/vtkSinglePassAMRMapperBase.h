@@ -101,6 +101,16 @@ public:
   /// Number of times the data were (re)built; camera or transfer-function changes must not
   /// increase it.
   int GetNumberOfBuilds();
+  /// What a ProgressEvent reports, read during the event: the CPU build (conversion, kD-tree,
+  /// packing, encoding; in GetBounds or the first render after a data change) or the upload of
+  /// the grid data in a render. Each runs its progress from 0 to 1 and names its current step in
+  /// GetProgressText().
+  enum ProgressPhases
+  {
+    PROGRESS_BUILD = 0,
+    PROGRESS_UPLOAD = 1
+  };
+  vtkGetMacro(ProgressPhase, int);
   /// Atlas texture dimensions (0 when no atlas could be packed) and the bytes of the data
   /// textures uploaded for the last frame.
   virtual void GetAtlasDimensions(int dims[3]) = 0;
@@ -121,6 +131,9 @@ protected:
   ~vtkSinglePassAMRMapperBase() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+
+  /// Starts the progress of `phase` (ProgressPhases): its step `text`, and 0.
+  void BeginProgressPhase(int phase, const char* text);
 
   /// The CPU build of `amr` (array `array`, component ArrayComponent, MaximumAtlasSize): returns
   /// false with a one-line `error` when the input cannot be rendered.
@@ -164,6 +177,7 @@ protected:
   vtkIdType MaximumAtlasPageBytes = (vtkIdType(2048) - 64) << 20;
   /// Seconds of the last upload (set by the subclass).
   double UploadSeconds = 0.0;
+  int ProgressPhase = PROGRESS_BUILD;
 
 private:
   vtkSinglePassAMRMapperBase(const vtkSinglePassAMRMapperBase&) = delete;

@@ -160,8 +160,7 @@ bool vtkSinglePassAMRVolumeMapper::BuildData(
     amrsp::Hierarchy h;
     // ProgressEvent: the build reports 0 to 1 (conversion, then PrepareRayCasting's steps), the
     // upload in the first render 0 to 1 again
-    this->SetProgressText("converting the AMR blocks");
-    this->UpdateProgress(0.0);
+    this->BeginProgressPhase(PROGRESS_BUILD, "converting the AMR blocks");
     if (!vtkSinglePassAMRConversion::FromOverlappingAMR(amr, selection, h, error))
     {
       return false;
@@ -321,8 +320,7 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareStorage(
   }
   const auto t0 = std::chrono::steady_clock::now();
   std::string error;
-  self->SetProgressText("uploading the grid data");
-  self->UpdateProgress(0.0);
+  self->BeginProgressPhase(PROGRESS_UPLOAD, "uploading the grid data");
   if (!this->Storage.Upload(renWin, frame.Storage, self->MaximumAtlasSize, this->Data, error,
         [self](double f) { self->UpdateProgress(f); }))
   {

@@ -21,6 +21,7 @@
 #include "vtkRenderer.h"
 #include "vtkScalarsToColors.h"
 #include "vtkSinglePassAMRGather.h"
+#include "vtkSinglePassAMRMapperBase.h"
 #include "vtkSinglePassAMRRegionSplit.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
 #include "vtkStructuredData.h"
@@ -29,7 +30,6 @@
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
-#include <cstring>
 #include <string>
 
 namespace
@@ -103,14 +103,15 @@ vtkSinglePassAMRVolumeRepresentation::vtkSinglePassAMRVolumeRepresentation()
 void vtkSinglePassAMRVolumeRepresentation::OnMapperProgress(
   vtkObject* caller, unsigned long, void* callData)
 {
-  const char* step = vtkAlgorithm::SafeDownCast(caller)->GetProgressText();
+  vtkSinglePassAMRMapperBase* mapper = vtkSinglePassAMRMapperBase::SafeDownCast(caller);
+  const char* step = mapper ? mapper->GetProgressText() : nullptr;
   if (!step)
   {
     return; // the executive's events around the mapper's input update, not a preparation's
   }
   // the mapper reports its build 0 to 1, then its upload 0 to 1: one run here, the build in
   // [0, 0.5] and the upload in [0.5, 1]
-  const bool upload = std::strncmp(step, "uploading", 9) == 0;
+  const bool upload = mapper->GetProgressPhase() == vtkSinglePassAMRMapperBase::PROGRESS_UPLOAD;
   const double fraction = 0.5 * (*static_cast<const double*>(callData) + (upload ? 1.0 : 0.0));
   this->SetProgressText((std::string("AMR Single-Pass Volume: ") + step).c_str());
   this->UpdateProgress(fraction);

@@ -158,14 +158,15 @@ GpuRenderer::GpuRenderer(const std::string& method, vtkVolumeMapper* mapper, con
     progress->SetCallback(
       [](vtkObject* caller, unsigned long, void*, void* call)
       {
-        const char* text = static_cast<vtkAlgorithm*>(caller)->GetProgressText();
+        auto* amrMapper = static_cast<vtkSinglePassAMRMapperBase*>(caller);
+        const char* text = amrMapper->GetProgressText();
         if (!text)
         {
           return; // the executive's events around the input's update, not a preparation's
         }
-        const std::string detail = text;
-        ReportProgress(detail.rfind("uploading", 0) == 0 ? "upload" : "build", detail,
-          *static_cast<double*>(call));
+        const bool upload =
+          amrMapper->GetProgressPhase() == vtkSinglePassAMRMapperBase::PROGRESS_UPLOAD;
+        ReportProgress(upload ? "upload" : "build", text, *static_cast<double*>(call));
       });
     I->AmrMapper->AddObserver(vtkCommand::ProgressEvent, progress);
   }
