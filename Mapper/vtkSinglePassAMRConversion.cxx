@@ -97,42 +97,17 @@ std::string Join(const std::vector<std::string>& names)
   }
   return s.empty() ? "none" : s;
 }
-} // namespace
 
-std::vector<std::string> vtkSinglePassAMRConversion::CellArrayNames(vtkOverlappingAMR* amr)
+/// "block I of level L", as the conversion's messages name a block.
+std::string BlockName(unsigned int level, unsigned int index)
 {
-  return ArrayNames(amr, false);
+  return "block " + std::to_string(index) + " of level " + std::to_string(level);
 }
 
-std::vector<std::string> vtkSinglePassAMRConversion::ArrayNames(vtkOverlappingAMR* amr, bool points)
+/// The origin, the level-0 spacing and the per-level refinement ratios of `amr` into `out`;
+/// false with `error` for a non-positive spacing or a non-integer ratio.
+bool ReadLevels(vtkOverlappingAMR* amr, amrsp::Hierarchy& out, std::string& error)
 {
-  std::vector<std::string> names;
-  if (vtkUniformGrid* g = FirstBlock(amr))
-  {
-    vtkDataSetAttributes* cd = points ? static_cast<vtkDataSetAttributes*>(g->GetPointData())
-                                      : static_cast<vtkDataSetAttributes*>(g->GetCellData());
-    for (int a = 0; a < cd->GetNumberOfArrays(); ++a)
-    {
-      vtkDataArray* arr = cd->GetArray(a);
-      if (arr && arr->GetName() &&
-        std::string(arr->GetName()) != vtkDataSetAttributes::GhostArrayName())
-      {
-        names.emplace_back(arr->GetName());
-      }
-    }
-  }
-  return names;
-}
-
-bool vtkSinglePassAMRConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
-  const ArraySelection& selection, amrsp::Hierarchy& out, std::string& error)
-{
-  out = amrsp::Hierarchy();
-  if (!amr || amr->GetNumberOfLevels() == 0 || amr->GetTotalNumberOfBlocks() == 0)
-  {
-    error = "the AMR hierarchy has no blocks";
-    return false;
-  }
   const unsigned int levels = amr->GetNumberOfLevels();
   const double* origin = amr->GetOrigin();
   out.Origin = glm::dvec3(origin[0], origin[1], origin[2]);
@@ -171,15 +146,21 @@ bool vtkSinglePassAMRConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
     }
     out.RefinementRatio.push_back(r);
   }
+  return true;
+}
 
-  // the array: by name (cell arrays first, then point arrays), or the first cell array, or the
-  // first point array when there is no cell array
-  std::string name = selection.Name;
-  const std::vector<std::string> cellArrays = ArrayNames(amr, false);
-  const std::vector<std::string> pointArrays = ArrayNames(amr, true);
+/// The array to render: by name (cell arrays first, then point arrays), or the first cell
+/// array, or the first point array when there is no cell array. `points` says which kind.
+bool ChooseArray(vtkOverlappingAMR* amr,
+  const vtkSinglePassAMRConversion::ArraySelection& selection, std::string& name, bool& points,
+  std::string& error)
+{
+  name = selection.Name;
+  const std::vector<std::string> cellArrays = vtkSinglePassAMRConversion::ArrayNames(amr, false);
+  const std::vector<std::string> pointArrays = vtkSinglePassAMRConversion::ArrayNames(amr, true);
   const auto has = [](const std::vector<std::string>& v, const std::string& n)
   { return std::find(v.begin(), v.end(), n) != v.end(); };
-  bool points = false;
+  points = false;
   if (name.empty())
   {
     if (cellArrays.empty() && pointArrays.empty() && selection.CopyValues)
@@ -205,10 +186,130 @@ bool vtkSinglePassAMRConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
     }
     points = true;
   }
-  out.ArrayName = name;
-  out.VertexCentred = points;
+  return true;
+}
 
-  for (unsigned int l = 0; l < levels; ++l)
+/// The values of grid `g` from its block: the block's own floats where they are one float
+/// component without ghost layers, otherwise the box's cells (or vertices) converted to floats
+/// (`component`, or the magnitude when it is out of range). False with `error` when the block or
+/// its array is missing or its dimensions do not match the box.
+bool ReadBlockValues(vtkUniformGrid* block, const amrsp::Grid& g, const std::string& blockName,
+  const std::string& name, bool points, int component, amrsp::GridValues& values,
+  std::string& error)
+{
+  if (!block)
+  {
+    error = blockName + " has no data loaded";
+    return false;
+  }
+  vtkDataArray* arr = points ? block->GetPointData()->GetArray(name.c_str())
+                             : block->GetCellData()->GetArray(name.c_str());
+  if (!arr)
+  {
+    error = blockName + " lacks the " + (points ? "point" : "cell") + " array '" + name + "'";
+    return false;
+  }
+  // blocks may carry ghost layers around the box: keep the box's cells (or vertices) only
+  int dims[3];
+  block->GetDimensions(dims);
+  const glm::i64vec3 extent = g.Cells.Extent() + glm::i64vec3(points ? 1 : 0);
+  glm::i64vec3 cellDims, ghost;
+  for (int a = 0; a < 3; ++a)
+  {
+    cellDims[a] = points ? dims[a] : std::max(1, dims[a] - 1);
+    ghost[a] = (cellDims[a] - extent[a]) / 2;
+    if (cellDims[a] < extent[a] || (cellDims[a] - extent[a]) % 2 != 0)
+    {
+      error = blockName + " has dimensions that do not match its AMR box";
+      return false;
+    }
+  }
+  const int components = arr->GetNumberOfComponents();
+  const int used = components == 1 ? 0 : (component < components ? component : -1);
+  vtkFloatArray* fast = vtkFloatArray::SafeDownCast(arr);
+  const std::size_t count = static_cast<std::size_t>(extent.x * extent.y * extent.z);
+  if (fast && components == 1 && ghost == glm::i64vec3(0) &&
+    static_cast<std::size_t>(fast->GetNumberOfTuples()) == count)
+  {
+    values = BorrowValues(fast); // the block's own floats, in the core's order
+    return true;
+  }
+  values = amrsp::GridValues(count);
+  float* written = values.data();
+  std::size_t k = 0;
+  for (int64_t z = 0; z < extent.z; ++z)
+  {
+    for (int64_t y = 0; y < extent.y; ++y)
+    {
+      for (int64_t x = 0; x < extent.x; ++x, ++k)
+      {
+        const vtkIdType c = ((z + ghost.z) * cellDims.y + (y + ghost.y)) * cellDims.x + x + ghost.x;
+        if (fast && components == 1)
+        {
+          written[k] = fast->GetValue(c);
+        }
+        else if (used >= 0)
+        {
+          written[k] = static_cast<float>(arr->GetComponent(c, used));
+        }
+        else
+        {
+          double sum = 0.0;
+          for (int q = 0; q < components; ++q)
+          {
+            const double v = arr->GetComponent(c, q);
+            sum += v * v;
+          }
+          written[k] = static_cast<float>(std::sqrt(sum));
+        }
+      }
+    }
+  }
+  return true;
+}
+} // namespace
+
+std::vector<std::string> vtkSinglePassAMRConversion::CellArrayNames(vtkOverlappingAMR* amr)
+{
+  return ArrayNames(amr, false);
+}
+
+std::vector<std::string> vtkSinglePassAMRConversion::ArrayNames(vtkOverlappingAMR* amr, bool points)
+{
+  std::vector<std::string> names;
+  if (vtkUniformGrid* g = FirstBlock(amr))
+  {
+    vtkDataSetAttributes* cd = points ? static_cast<vtkDataSetAttributes*>(g->GetPointData())
+                                      : static_cast<vtkDataSetAttributes*>(g->GetCellData());
+    for (int a = 0; a < cd->GetNumberOfArrays(); ++a)
+    {
+      vtkDataArray* arr = cd->GetArray(a);
+      if (arr && arr->GetName() &&
+        std::string(arr->GetName()) != vtkDataSetAttributes::GhostArrayName())
+      {
+        names.emplace_back(arr->GetName());
+      }
+    }
+  }
+  return names;
+}
+
+bool vtkSinglePassAMRConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
+  const ArraySelection& selection, amrsp::Hierarchy& out, std::string& error)
+{
+  out = amrsp::Hierarchy();
+  if (!amr || amr->GetNumberOfLevels() == 0 || amr->GetTotalNumberOfBlocks() == 0)
+  {
+    error = "the AMR hierarchy has no blocks";
+    return false;
+  }
+  bool points = false;
+  if (!ReadLevels(amr, out, error) || !ChooseArray(amr, selection, out.ArrayName, points, error))
+  {
+    return false;
+  }
+  out.VertexCentred = points;
+  for (unsigned int l = 0; l < amr->GetNumberOfLevels(); ++l)
   {
     for (unsigned int i = 0; i < amr->GetNumberOfDataSets(l); ++i)
     {
@@ -226,8 +327,7 @@ bool vtkSinglePassAMRConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
       {
         if (hi[a] < lo[a])
         {
-          error = "block " + std::to_string(i) + " of level " + std::to_string(l) +
-            " is flat; volume rendering needs 3D data";
+          error = BlockName(l, i) + " is flat; volume rendering needs 3D data";
           return false;
         }
         g.Cells.Lo[a] = lo[a];
@@ -238,80 +338,11 @@ bool vtkSinglePassAMRConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
       {
         continue;
       }
-
-      vtkUniformGrid* block = amr->GetDataSet(l, i);
-      if (!block)
+      amrsp::GridValues values;
+      if (!ReadBlockValues(amr->GetDataSet(l, i), g, BlockName(l, i), out.ArrayName, points,
+            selection.Component, values, error))
       {
-        error =
-          "block " + std::to_string(i) + " of level " + std::to_string(l) + " has no data loaded";
         return false;
-      }
-      vtkDataArray* arr = points ? block->GetPointData()->GetArray(name.c_str())
-                                 : block->GetCellData()->GetArray(name.c_str());
-      if (!arr)
-      {
-        error = "block " + std::to_string(i) + " of level " + std::to_string(l) + " lacks the " +
-          (points ? "point" : "cell") + " array '" + name + "'";
-        return false;
-      }
-      // blocks may carry ghost layers around the box: keep the box's cells (or vertices) only
-      int dims[3];
-      block->GetDimensions(dims);
-      const glm::i64vec3 extent = g.Cells.Extent() + glm::i64vec3(points ? 1 : 0);
-      glm::i64vec3 cellDims, ghost;
-      for (int a = 0; a < 3; ++a)
-      {
-        cellDims[a] = points ? dims[a] : std::max(1, dims[a] - 1);
-        ghost[a] = (cellDims[a] - extent[a]) / 2;
-        if (cellDims[a] < extent[a] || (cellDims[a] - extent[a]) % 2 != 0)
-        {
-          error = "block " + std::to_string(i) + " of level " + std::to_string(l) +
-            " has dimensions that do not match its AMR box";
-          return false;
-        }
-      }
-      const int components = arr->GetNumberOfComponents();
-      const int component =
-        components == 1 ? 0 : (selection.Component < components ? selection.Component : -1);
-      vtkFloatArray* fast = vtkFloatArray::SafeDownCast(arr);
-      const std::size_t count = static_cast<std::size_t>(extent.x * extent.y * extent.z);
-      if (fast && components == 1 && ghost == glm::i64vec3(0) &&
-        static_cast<std::size_t>(fast->GetNumberOfTuples()) == count)
-      {
-        out.Values.push_back(BorrowValues(fast)); // the block's own floats, in the core's order
-        continue;
-      }
-      amrsp::GridValues values(count);
-      float* written = values.data();
-      std::size_t k = 0;
-      for (int64_t z = 0; z < extent.z; ++z)
-      {
-        for (int64_t y = 0; y < extent.y; ++y)
-        {
-          for (int64_t x = 0; x < extent.x; ++x, ++k)
-          {
-            const vtkIdType c =
-              ((z + ghost.z) * cellDims.y + (y + ghost.y)) * cellDims.x + x + ghost.x;
-            if (fast && components == 1)
-            {
-              written[k] = fast->GetValue(c);
-            }
-            else if (component >= 0)
-            {
-              written[k] = static_cast<float>(arr->GetComponent(c, component));
-            }
-            else
-            {
-              double sum = 0.0;
-              for (int q = 0; q < components; ++q)
-              {
-                const double v = arr->GetComponent(c, q);
-                sum += v * v;
-              }
-              written[k] = static_cast<float>(std::sqrt(sum));
-            }
-          }
-        }
       }
       out.Values.push_back(std::move(values));
     }
