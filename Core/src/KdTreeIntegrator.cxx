@@ -211,6 +211,97 @@ float SampleCellsKdTree(const Hierarchy& h, const EncodedKdTree& tree, const Bri
   return smooth ? SmoothKdTree(h, tree, atlas, p, data, lo, v) : v;
 }
 
+/// The sample step of each level (level-0 index units), as float like the shader's.
+std::vector<float> LevelSampleSteps(const Hierarchy& h, double sampleDistanceFactor)
+{
+  std::vector<float> steps;
+  for (int l = 0; l < h.NumberOfLevels(); ++l)
+  {
+    steps.push_back(static_cast<float>(LevelSampleStep(h, l, sampleDistanceFactor)));
+  }
+  return steps;
+}
+
+/// A ray's traversal in the work counters: a ray that met the tree, its segments and the levels
+/// its descents went down.
+void CountTraversal(const std::vector<RaySegment>& segments, RenderStats& stats)
+{
+  stats.Rays += segments.empty() ? 0 : 1;
+  stats.Segments += static_cast<long long>(segments.size());
+  for (const RaySegment& seg : segments)
+  {
+    stats.DescentLevels += seg.Descent;
+  }
+}
+
+/// The level-of-detail parameters of the view: pixel size per distance (perspective) or the
+/// pixel size (parallel), with the threshold in pixels.
+LevelOfDetail ViewLevelOfDetail(const Hierarchy& h, const RenderSettings& s)
+{
+  LevelOfDetail lod;
+  lod.ThresholdPixels = s.LodThresholdPixels;
+  lod.Spacing0 = glm::vec3(h.Spacing0);
+  if (s.View.Parallel)
+  {
+    lod.ParallelPixelSize = static_cast<float>(2.0 * s.View.ParallelScale / s.Height);
+  }
+  else
+  {
+    lod.PixelSizePerDistance =
+      static_cast<float>(2.0 * std::tan(glm::radians(s.View.ViewAngle) * 0.5) / s.Height);
+  }
+  return lod;
+}
+
+/// Per data node (index 0 unused), 1 where its value range is transparent under the transfer
+/// function: the ranges of s.DataNodeRanges, or computed from the data.
+/// @throws std::invalid_argument when s.DataNodeRanges belongs to another tree.
+std::vector<char> TransparentDataNodes(
+  const Hierarchy& h, const EncodedKdTree& tree, const RenderSettings& s)
+{
+  std::vector<glm::vec2> computed;
+  if (!s.DataNodeRanges)
+  {
+    computed = ComputeDataNodeRanges(h, tree);
+  }
+  const std::vector<glm::vec2>& ranges = s.DataNodeRanges ? *s.DataNodeRanges : computed;
+  if (ranges.size() != static_cast<std::size_t>(tree.DataNodeCount + 1))
+  {
+    throw std::invalid_argument("the data-node ranges do not belong to this tree");
+  }
+  std::vector<char> transparent(ranges.size());
+  for (std::size_t k = 0; k < ranges.size(); ++k)
+  {
+    transparent[k] = TransparentRange(s.Transfer, ranges[k].x, ranges[k].y) ? 1 : 0;
+  }
+  return transparent;
+}
+
+/// The value at `p` (level-0 index units) in a data segment of grid
+/// `g` with cells of `cellSize`: from the packed atlas (the node's cells [first, last] start at
+/// the data node's `offset`) when there is one, else from the grid; trilinear between vertices
+/// for vertex-centred data, the nearest cell otherwise.
+float SegmentSample(const Hierarchy& h, const BrickAtlas* atlas, int32_t g, const glm::vec3& p,
+  const glm::vec3& cellSize, const glm::ivec3& first, const glm::ivec3& last,
+  const glm::ivec3& offset)
+{
+  if (atlas && h.VertexCentred)
+  {
+    return AtlasTrilinear(*atlas, glm::vec3(offset) + p / cellSize - glm::vec3(first), offset,
+      offset + last + 1 - first);
+  }
+  if (atlas)
+  {
+    const glm::ivec3 cell = glm::clamp(glm::ivec3(glm::floor(p / cellSize)), first, last);
+    return atlas->At(offset + cell - first);
+  }
+  if (h.VertexCentred)
+  {
+    return InterpolateVertices(h, g, glm::dvec3(p / cellSize) - glm::dvec3(h.Grids[g].Cells.Lo));
+  }
+  return CellValue(h, g, glm::i64vec3(glm::floor(p / cellSize)));
+}
+
 } // namespace
 
 double SampleKdTreeAtPoint(
@@ -297,46 +388,14 @@ Image RenderKdTree(
   img.Width = s.Width;
   img.Height = s.Height;
   img.Pixels.resize(static_cast<std::size_t>(s.Width) * s.Height);
-  LevelOfDetail lod;
-  lod.ThresholdPixels = s.LodThresholdPixels;
-  lod.Spacing0 = glm::vec3(h.Spacing0);
-  if (s.View.Parallel)
-  {
-    lod.ParallelPixelSize = static_cast<float>(2.0 * s.View.ParallelScale / s.Height);
-  }
-  else
-  {
-    lod.PixelSizePerDistance =
-      static_cast<float>(2.0 * std::tan(glm::radians(s.View.ViewAngle) * 0.5) / s.Height);
-  }
-  std::vector<float> stepOfLevel;
-  for (int l = 0; l < h.NumberOfLevels(); ++l)
-  {
-    stepOfLevel.push_back(static_cast<float>(LevelSampleStep(h, l, s.SampleDistanceFactor)));
-  }
+  const LevelOfDetail lod = ViewLevelOfDetail(h, s);
+  const std::vector<float> stepOfLevel = LevelSampleSteps(h, s.SampleDistanceFactor);
   const glm::vec3 spacing(h.Spacing0), worldOrigin(h.Origin);
   // empty-space skipping: per data node, whether its value range is transparent under this
   // transfer function (the ranges depend on the data only)
   const bool skip = s.SkipEmptySpace && s.Blend == BlendMode::Composite;
-  std::vector<char> transparent;
-  if (skip)
-  {
-    std::vector<glm::vec2> computed;
-    if (!s.DataNodeRanges)
-    {
-      computed = ComputeDataNodeRanges(h, tree);
-    }
-    const std::vector<glm::vec2>& ranges = s.DataNodeRanges ? *s.DataNodeRanges : computed;
-    if (ranges.size() != static_cast<std::size_t>(tree.DataNodeCount + 1))
-    {
-      throw std::invalid_argument("the data-node ranges do not belong to this tree");
-    }
-    transparent.resize(ranges.size());
-    for (std::size_t k = 0; k < ranges.size(); ++k)
-    {
-      transparent[k] = TransparentRange(s.Transfer, ranges[k].x, ranges[k].y) ? 1 : 0;
-    }
-  }
+  const std::vector<char> transparent =
+    skip ? TransparentDataNodes(h, tree, s) : std::vector<char>();
   StatsSink sink;
   sink.Target = s.Stats;
   if (s.Stats)
@@ -384,12 +443,7 @@ Image RenderKdTree(
           TraverseKdTree(tree, o, d, static_cast<float>(std::max(0.0, clip0)),
             static_cast<float>(std::min(static_cast<double>(tMax), clip1)), lod, segments);
         }
-        rowStats.Rays += segments.empty() ? 0 : 1;
-        rowStats.Segments += static_cast<long long>(segments.size());
-        for (const RaySegment& seg : segments)
-        {
-          rowStats.DescentLevels += seg.Descent;
-        }
+        CountTraversal(segments, rowStats);
         Accumulator<float> acc(s.Blend);
         IsoSurfaceTracker iso(shading, lookup, isoValues, -wd);
         glm::dvec3 isoColour(0.0);
@@ -427,26 +481,7 @@ Image RenderKdTree(
           {
             const float t = seg.T0 + (static_cast<float>(k) + 0.5f) * dt;
             const glm::vec3 p = o + t * d;
-            float v;
-            if (atlas && h.VertexCentred)
-            {
-              v = AtlasTrilinear(*atlas, glm::vec3(offset) + p / cellSize - glm::vec3(first),
-                offset, offset + last + 1 - first);
-            }
-            else if (atlas)
-            {
-              const glm::ivec3 cell = glm::clamp(glm::ivec3(glm::floor(p / cellSize)), first, last);
-              v = atlas->At(offset + cell - first);
-            }
-            else if (h.VertexCentred)
-            {
-              v = InterpolateVertices(
-                h, g, glm::dvec3(p / cellSize) - glm::dvec3(h.Grids[g].Cells.Lo));
-            }
-            else
-            {
-              v = CellValue(h, g, glm::i64vec3(glm::floor(p / cellSize)));
-            }
+            float v = SegmentSample(h, atlas, g, p, cellSize, first, last, offset);
             if (s.SmoothCellData && !h.VertexCentred)
             {
               v = SmoothKdTree(h, tree, atlas, p, seg.Data, seg.NodeLo, v);
