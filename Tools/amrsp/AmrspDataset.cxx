@@ -514,6 +514,135 @@ LoadedDataset LoadDataset(const DatasetRequest& request)
 
 namespace
 {
+/// synthetic:cosmo[:PARAMETERS]: the generator's hierarchy (values only when asked for), and its
+/// vtkOverlappingAMR when request.NeedVTK.
+void GenerateSyntheticCosmo(const DatasetRequest& request, LoadedDataset& out)
+{
+  const std::string& spec = request.Spec;
+  out.Format = "synthetic:cosmo";
+  std::string params;
+  if (spec.size() > 15)
+  {
+    if (spec[15] != ':')
+    {
+      throw DatasetError("unknown dataset '" + spec +
+        "' (expected synthetic:cosmo[:grids=N,levels=L,cells=C,seed=S])");
+    }
+    params = spec.substr(16);
+  }
+  CosmoParameters p;
+  try
+  {
+    p = ParseCosmoParameters(params);
+  }
+  catch (const std::exception& e)
+  {
+    throw DatasetError(std::string("bad synthetic:cosmo parameters: ") + e.what());
+  }
+  if (!request.Array.empty() && request.Array != "Density")
+  {
+    throw DatasetError(
+      "no cell array named '" + request.Array + "' in synthetic:cosmo (available: Density)");
+  }
+  p.GenerateValues = request.NeedValues || request.NeedVTK;
+  try
+  {
+    out.Data =
+      GenerateCosmo(p, [spec](double fraction) { ReportProgress("generation", spec, fraction); });
+  }
+  catch (const std::exception& e)
+  {
+    throw DatasetError(std::string("cannot generate synthetic:cosmo: ") + e.what());
+  }
+  if (request.NeedVTK)
+  {
+    out.Amr = vtkSmartPointer<vtkOverlappingAMR>::New();
+    vtkSinglePassAMRConversion::ToOverlappingAMR(out.Data, out.Amr);
+  }
+}
+
+/// A dataset file or folder (Enzo, AMReX, VTK XML AMR) read with VTK's reader into out.Amr, after
+/// the checks of the files the dataset's own metadata names.
+void ReadDatasetFile(const DatasetRequest& request, CaptureVTKMessages& capture, LoadedDataset& out)
+{
+  const std::string& spec = request.Spec;
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path path(spec);
+  if (!fs::exists(path, ec))
+  {
+    throw DatasetError("no such file or directory: " + spec);
+  }
+  const std::string ext = Lower(path.extension().string());
+  if (fs::is_directory(path, ec))
+  {
+    if (!fs::exists(path / "Header", ec))
+    {
+      throw DatasetError(
+        "unknown format: " + spec + " is a folder without an AMReX plotfile Header");
+    }
+    out.Format = "amrex";
+    ReaderGuard guard("reading the AMReX plotfile " + spec, request.ReadTimeoutSeconds);
+    const ExpectedBlocks expected = FileChecksOn() ? CheckAMReXFiles(spec) : ExpectedBlocks();
+    vtkNew<vtkAMReXGridReader> reader;
+    reader->SetFileName(spec.c_str());
+    const std::string array =
+      SelectReaderArray(reader, request, "the AMReX plotfile " + spec, capture, expected.Variables);
+    out.Amr = RunAlgorithm(reader, "reading the AMReX plotfile " + spec, capture);
+    CheckBlocksRead(out.Amr, expected, array, "the AMReX plotfile " + spec, capture.First(),
+      request.AllowPartial, true);
+  }
+  else if (ext == ".hierarchy")
+  {
+    out.Format = "enzo";
+    ReaderGuard guard("reading the Enzo hierarchy " + spec, request.ReadTimeoutSeconds);
+    const ExpectedBlocks expected = FileChecksOn() ? CheckEnzoFiles(spec) : ExpectedBlocks();
+    vtkNew<vtkAMREnzoReader> reader;
+    reader->SetFileName(spec.c_str());
+    const std::string array =
+      SelectReaderArray(reader, request, "the Enzo hierarchy " + spec, capture);
+    out.Amr = RunAlgorithm(reader, "reading the Enzo hierarchy " + spec, capture);
+    // VTK's reader orders Enzo grids by level, not as the hierarchy lists them: the missing
+    // blocks' files are named as the set of grid files
+    CheckBlocksRead(out.Amr, expected, array, "the Enzo hierarchy " + spec, capture.First(),
+      request.AllowPartial, false);
+  }
+  else if ((ext == ".vthb" || ext == ".vth" || ext == ".vtm") && IsHierarchicalBoxV01(spec) &&
+    !std::getenv("AMRSP_USE_VTK_XML_AMR_READER")) // the variable exists to test the crash guard
+  {
+    out.Format = "vtk-xml-hierarchical-box-0.1";
+    ReaderGuard guard("reading " + spec, request.ReadTimeoutSeconds);
+    out.Amr = ReadHierarchicalBoxV01(spec);
+  }
+  else if (ext == ".vthb" || ext == ".vth" || ext == ".vtm")
+  {
+    out.Format = "vtk-xml-amr";
+    ReaderGuard guard("reading the VTK XML AMR file " + spec, request.ReadTimeoutSeconds);
+    ExpectedBlocks expected;
+    try
+    {
+      expected = FileChecksOn() ? CheckVTKXMLAMRFiles(spec) : ExpectedBlocks();
+    }
+    catch (const DatasetError& e)
+    {
+      const std::string why = capture.First(); // the XML parser's own message
+      throw DatasetError(std::string(e.what()) + (why.empty() ? "" : " (" + why + ")"));
+    }
+    vtkNew<vtkXMLUniformGridAMRReader> reader;
+    reader->SetFileName(spec.c_str());
+    reader->SetMaximumLevelsToReadByDefault(0); // all levels
+    out.Amr = RunAlgorithm(reader, "reading the VTK XML AMR file " + spec, capture);
+    CheckBlocksRead(out.Amr, expected, FirstArrayName(out.Amr, request.Array),
+      "the VTK XML AMR file " + spec, capture.First(), request.AllowPartial, true);
+  }
+  else
+  {
+    throw DatasetError("unknown format: " + spec +
+      " (expected an Enzo .hierarchy, an AMReX plotfile folder, a .vthb/.vth file, "
+      "synthetic:pulse or synthetic:cosmo)");
+  }
+}
+
 LoadedDataset LoadStored(const DatasetRequest& request)
 {
   const auto start = std::chrono::steady_clock::now();
@@ -524,47 +653,7 @@ LoadedDataset LoadStored(const DatasetRequest& request)
 
   if (spec.rfind("synthetic:cosmo", 0) == 0)
   {
-    out.Format = "synthetic:cosmo";
-    std::string params;
-    if (spec.size() > 15)
-    {
-      if (spec[15] != ':')
-      {
-        throw DatasetError("unknown dataset '" + spec +
-          "' (expected synthetic:cosmo[:grids=N,levels=L,cells=C,seed=S])");
-      }
-      params = spec.substr(16);
-    }
-    CosmoParameters p;
-    try
-    {
-      p = ParseCosmoParameters(params);
-    }
-    catch (const std::exception& e)
-    {
-      throw DatasetError(std::string("bad synthetic:cosmo parameters: ") + e.what());
-    }
-    if (!request.Array.empty() && request.Array != "Density")
-    {
-      throw DatasetError(
-        "no cell array named '" + request.Array + "' in synthetic:cosmo (available: Density)");
-    }
-    p.GenerateValues = request.NeedValues || request.NeedVTK;
-    try
-    {
-      const std::string spec = request.Spec;
-      out.Data =
-        GenerateCosmo(p, [spec](double fraction) { ReportProgress("generation", spec, fraction); });
-    }
-    catch (const std::exception& e)
-    {
-      throw DatasetError(std::string("cannot generate synthetic:cosmo: ") + e.what());
-    }
-    if (request.NeedVTK)
-    {
-      out.Amr = vtkSmartPointer<vtkOverlappingAMR>::New();
-      vtkSinglePassAMRConversion::ToOverlappingAMR(out.Data, out.Amr);
-    }
+    GenerateSyntheticCosmo(request, out);
     out.LoadSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
@@ -586,81 +675,7 @@ LoadedDataset LoadStored(const DatasetRequest& request)
   }
   else
   {
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    const fs::path path(spec);
-    if (!fs::exists(path, ec))
-    {
-      throw DatasetError("no such file or directory: " + spec);
-    }
-    const std::string ext = Lower(path.extension().string());
-    if (fs::is_directory(path, ec))
-    {
-      if (!fs::exists(path / "Header", ec))
-      {
-        throw DatasetError(
-          "unknown format: " + spec + " is a folder without an AMReX plotfile Header");
-      }
-      out.Format = "amrex";
-      ReaderGuard guard("reading the AMReX plotfile " + spec, request.ReadTimeoutSeconds);
-      const ExpectedBlocks expected = FileChecksOn() ? CheckAMReXFiles(spec) : ExpectedBlocks();
-      vtkNew<vtkAMReXGridReader> reader;
-      reader->SetFileName(spec.c_str());
-      const std::string array = SelectReaderArray(
-        reader, request, "the AMReX plotfile " + spec, capture, expected.Variables);
-      out.Amr = RunAlgorithm(reader, "reading the AMReX plotfile " + spec, capture);
-      CheckBlocksRead(out.Amr, expected, array, "the AMReX plotfile " + spec, capture.First(),
-        request.AllowPartial, true);
-    }
-    else if (ext == ".hierarchy")
-    {
-      out.Format = "enzo";
-      ReaderGuard guard("reading the Enzo hierarchy " + spec, request.ReadTimeoutSeconds);
-      const ExpectedBlocks expected = FileChecksOn() ? CheckEnzoFiles(spec) : ExpectedBlocks();
-      vtkNew<vtkAMREnzoReader> reader;
-      reader->SetFileName(spec.c_str());
-      const std::string array =
-        SelectReaderArray(reader, request, "the Enzo hierarchy " + spec, capture);
-      out.Amr = RunAlgorithm(reader, "reading the Enzo hierarchy " + spec, capture);
-      // VTK's reader orders Enzo grids by level, not as the hierarchy lists them: the missing
-      // blocks' files are named as the set of grid files
-      CheckBlocksRead(out.Amr, expected, array, "the Enzo hierarchy " + spec, capture.First(),
-        request.AllowPartial, false);
-    }
-    else if ((ext == ".vthb" || ext == ".vth" || ext == ".vtm") && IsHierarchicalBoxV01(spec) &&
-      !std::getenv("AMRSP_USE_VTK_XML_AMR_READER")) // the variable exists to test the crash guard
-    {
-      out.Format = "vtk-xml-hierarchical-box-0.1";
-      ReaderGuard guard("reading " + spec, request.ReadTimeoutSeconds);
-      out.Amr = ReadHierarchicalBoxV01(spec);
-    }
-    else if (ext == ".vthb" || ext == ".vth" || ext == ".vtm")
-    {
-      out.Format = "vtk-xml-amr";
-      ReaderGuard guard("reading the VTK XML AMR file " + spec, request.ReadTimeoutSeconds);
-      ExpectedBlocks expected;
-      try
-      {
-        expected = FileChecksOn() ? CheckVTKXMLAMRFiles(spec) : ExpectedBlocks();
-      }
-      catch (const DatasetError& e)
-      {
-        const std::string why = capture.First(); // the XML parser's own message
-        throw DatasetError(std::string(e.what()) + (why.empty() ? "" : " (" + why + ")"));
-      }
-      vtkNew<vtkXMLUniformGridAMRReader> reader;
-      reader->SetFileName(spec.c_str());
-      reader->SetMaximumLevelsToReadByDefault(0); // all levels
-      out.Amr = RunAlgorithm(reader, "reading the VTK XML AMR file " + spec, capture);
-      CheckBlocksRead(out.Amr, expected, FirstArrayName(out.Amr, request.Array),
-        "the VTK XML AMR file " + spec, capture.First(), request.AllowPartial, true);
-    }
-    else
-    {
-      throw DatasetError("unknown format: " + spec +
-        " (expected an Enzo .hierarchy, an AMReX plotfile folder, a .vthb/.vth file, "
-        "synthetic:pulse or synthetic:cosmo)");
-    }
+    ReadDatasetFile(request, capture, out);
   }
 
   vtkSinglePassAMRConversion::ArraySelection selection;
