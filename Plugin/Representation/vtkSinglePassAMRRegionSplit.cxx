@@ -168,6 +168,165 @@ void Append(std::vector<char>& buffer, const void* data, std::size_t bytes)
   buffer.insert(buffer.end(), p, p + bytes);
 }
 
+/// The flat index of each level's first block (levels + 1 entries, the last the block count).
+std::vector<int> FirstBlockOfLevels(vtkOverlappingAMR* local)
+{
+  const unsigned int levels = local->GetNumberOfLevels();
+  std::vector<int> firstBlock(levels + 1, 0);
+  for (unsigned int l = 0; l < levels; ++l)
+  {
+    firstBlock[l + 1] = firstBlock[l] + static_cast<int>(local->GetNumberOfDataSets(l));
+  }
+  return firstBlock;
+}
+
+/// Which rank supplies each block (by flat index): the lowest rank that loaded it (collective).
+std::vector<int> BlockSuppliers(vtkMultiProcessController* controller, vtkOverlappingAMR* local,
+  const std::vector<int>& firstBlock)
+{
+  const int rank = controller->GetLocalProcessId();
+  const int ranks = controller->GetNumberOfProcesses();
+  const unsigned int levels = local->GetNumberOfLevels();
+  const int total = firstBlock[levels];
+  std::vector<int> loaded(static_cast<std::size_t>(total)),
+    supplier(static_cast<std::size_t>(total));
+  for (unsigned int l = 0; l < levels; ++l)
+  {
+    for (unsigned int i = 0; i < local->GetNumberOfDataSets(l); ++i)
+    {
+      loaded[static_cast<std::size_t>(firstBlock[l] + static_cast<int>(i))] =
+        local->GetDataSet(l, i) ? rank : ranks;
+    }
+  }
+  if (total > 0)
+  {
+    controller->AllReduce(loaded.data(), supplier.data(), total, vtkCommunicator::MIN_OP);
+  }
+  return supplier;
+}
+
+/// The pieces this rank supplies, one message per destination rank; each destination gathers its
+/// messages from all ranks (GatherV, one destination after the other). Collective; what reached
+/// this rank is appended to `received` and `receivedImages`.
+void ExchangePieces(vtkMultiProcessController* controller, vtkOverlappingAMR* local,
+  const amrsp::Hierarchy& boxes, const std::vector<amrsp::Box>& regions,
+  const std::vector<int>& firstBlock, const std::vector<int>& supplier,
+  std::vector<PieceHeader>& received, std::vector<vtkSmartPointer<vtkImageData>>& receivedImages)
+{
+  const int rank = controller->GetLocalProcessId();
+  const int ranks = controller->GetNumberOfProcesses();
+  const unsigned int levels = local->GetNumberOfLevels();
+  for (int destination = 0; destination < ranks; ++destination)
+  {
+    const amrsp::Box& region = regions[static_cast<std::size_t>(destination)];
+    std::vector<char> message;
+    for (unsigned int l = 0; l < levels && !region.Empty(); ++l)
+    {
+      for (unsigned int i = 0; i < local->GetNumberOfDataSets(l); ++i)
+      {
+        if (supplier[static_cast<std::size_t>(firstBlock[l] + static_cast<int>(i))] != rank)
+        {
+          continue;
+        }
+        const amrsp::Box cells = CellsOf(local->GetAMRBox(l, i));
+        const amrsp::Box piece = amrsp::GhostedPiece(boxes, cells, static_cast<int>(l), region);
+        if (piece.Empty())
+        {
+          continue;
+        }
+        vtkNew<vtkCharArray> bytes;
+        vtkCommunicator::MarshalDataObject(
+          ExtractPiece(local->GetDataSet(l, i), cells, piece), bytes);
+        PieceHeader header{ static_cast<int32_t>(l), static_cast<int32_t>(i),
+          { piece.Lo.x, piece.Lo.y, piece.Lo.z }, { piece.Hi.x, piece.Hi.y, piece.Hi.z },
+          static_cast<int64_t>(bytes->GetNumberOfValues()) };
+        Append(message, &header, sizeof(header));
+        Append(message, bytes->GetPointer(0), static_cast<std::size_t>(header.Bytes));
+      }
+    }
+    vtkNew<vtkCharArray> send;
+    send->SetArray(message.data(), static_cast<vtkIdType>(message.size()), 1);
+    vtkNew<vtkCharArray> all;
+    controller->GatherV(send, all, destination);
+    if (destination != rank)
+    {
+      continue;
+    }
+    const char* p = all->GetPointer(0);
+    const char* end = p + all->GetNumberOfValues();
+    while (p + sizeof(PieceHeader) <= end)
+    {
+      PieceHeader header;
+      std::memcpy(&header, p, sizeof(header));
+      p += sizeof(header);
+      vtkNew<vtkCharArray> bytes;
+      bytes->SetArray(const_cast<char*>(p), static_cast<vtkIdType>(header.Bytes), 1);
+      p += header.Bytes;
+      auto image = vtkSmartPointer<vtkImageData>::New();
+      vtkCommunicator::UnMarshalDataObject(bytes, image);
+      received.push_back(header);
+      receivedImages.push_back(image);
+    }
+  }
+}
+
+/// This rank's hierarchy: the received pieces level by level, in (block, piece) order, with the
+/// levels' origin, spacings and refinement ratios of `local`.
+vtkSmartPointer<vtkOverlappingAMR> AssembleRegion(vtkOverlappingAMR* local,
+  const std::vector<PieceHeader>& received,
+  const std::vector<vtkSmartPointer<vtkImageData>>& receivedImages)
+{
+  const unsigned int levels = local->GetNumberOfLevels();
+  std::vector<std::size_t> order(received.size());
+  for (std::size_t k = 0; k < order.size(); ++k)
+  {
+    order[k] = k;
+  }
+  std::sort(order.begin(), order.end(),
+    [&received](std::size_t a, std::size_t b)
+    {
+      return std::tie(received[a].Level, received[a].Block) <
+        std::tie(received[b].Level, received[b].Block);
+    });
+  std::vector<int> blocksPerLevel(levels, 0);
+  for (const PieceHeader& header : received)
+  {
+    ++blocksPerLevel[static_cast<std::size_t>(header.Level)];
+  }
+  auto split = vtkSmartPointer<vtkOverlappingAMR>::New();
+  split->Initialize(static_cast<int>(levels), blocksPerLevel.data());
+  split->SetOrigin(local->GetOrigin());
+  split->SetGridDescription(local->GetGridDescription());
+  for (unsigned int l = 0; l < levels; ++l)
+  {
+    double spacing[3];
+    local->GetSpacing(l, spacing);
+    split->SetSpacing(l, spacing);
+  }
+  if (local->GetAMRInfo() && local->GetAMRInfo()->HasRefinementRatio())
+  {
+    for (unsigned int l = 0; l < levels; ++l)
+    {
+      split->SetRefinementRatio(l, local->GetRefinementRatio(l));
+    }
+  }
+  std::vector<unsigned int> next(levels, 0);
+  for (std::size_t k : order)
+  {
+    const PieceHeader& header = received[k];
+    const unsigned int level = static_cast<unsigned int>(header.Level);
+    const unsigned int index = next[level]++;
+    const int lo[3] = { static_cast<int>(header.Lo[0]), static_cast<int>(header.Lo[1]),
+      static_cast<int>(header.Lo[2]) };
+    const int hi[3] = { static_cast<int>(header.Hi[0]) - 1, static_cast<int>(header.Hi[1]) - 1,
+      static_cast<int>(header.Hi[2]) - 1 };
+    split->SetAMRBox(level, index, vtkAMRBox(lo, hi));
+    vtkNew<vtkUniformGrid> grid;
+    grid->ShallowCopy(receivedImages[k]);
+    split->SetDataSet(level, index, grid);
+  }
+  return split;
+}
 } // namespace
 
 vtkSmartPointer<vtkOverlappingAMR> vtkSinglePassAMRRegionSplit::SplitByRegion(
@@ -231,134 +390,12 @@ vtkSmartPointer<vtkOverlappingAMR> vtkSinglePassAMRRegionSplit::SplitByRegion(
     std::copy(bounds, bounds + 6, regionBounds);
   }
 
-  // 2. which rank supplies each block: the lowest rank that loaded it
-  const unsigned int levels = local->GetNumberOfLevels();
-  std::vector<int> firstBlock(levels + 1, 0);
-  for (unsigned int l = 0; l < levels; ++l)
-  {
-    firstBlock[l + 1] = firstBlock[l] + static_cast<int>(local->GetNumberOfDataSets(l));
-  }
-  const int total = firstBlock[levels];
-  std::vector<int> loaded(static_cast<std::size_t>(total)),
-    supplier(static_cast<std::size_t>(total));
-  for (unsigned int l = 0; l < levels; ++l)
-  {
-    for (unsigned int i = 0; i < local->GetNumberOfDataSets(l); ++i)
-    {
-      loaded[static_cast<std::size_t>(firstBlock[l] + static_cast<int>(i))] =
-        local->GetDataSet(l, i) ? rank : ranks;
-    }
-  }
-  if (total > 0)
-  {
-    controller->AllReduce(loaded.data(), supplier.data(), total, vtkCommunicator::MIN_OP);
-  }
-
-  // 3. the pieces this rank supplies, one message per destination rank; each destination
-  // gathers its messages from all ranks (GatherV, one destination after the other)
+  // 2. which rank supplies each block; 3. the pieces of the blocks it supplies to every rank;
+  // 4. this rank's hierarchy from the pieces it received
+  const std::vector<int> firstBlock = FirstBlockOfLevels(local);
+  const std::vector<int> supplier = BlockSuppliers(controller, local, firstBlock);
   std::vector<PieceHeader> received;
   std::vector<vtkSmartPointer<vtkImageData>> receivedImages;
-  for (int destination = 0; destination < ranks; ++destination)
-  {
-    const amrsp::Box& region = regions[static_cast<std::size_t>(destination)];
-    std::vector<char> message;
-    for (unsigned int l = 0; l < levels && !region.Empty(); ++l)
-    {
-      for (unsigned int i = 0; i < local->GetNumberOfDataSets(l); ++i)
-      {
-        if (supplier[static_cast<std::size_t>(firstBlock[l] + static_cast<int>(i))] != rank)
-        {
-          continue;
-        }
-        const amrsp::Box cells = CellsOf(local->GetAMRBox(l, i));
-        const amrsp::Box piece = amrsp::GhostedPiece(boxes, cells, static_cast<int>(l), region);
-        if (piece.Empty())
-        {
-          continue;
-        }
-        vtkNew<vtkCharArray> bytes;
-        vtkCommunicator::MarshalDataObject(
-          ExtractPiece(local->GetDataSet(l, i), cells, piece), bytes);
-        PieceHeader header{ static_cast<int32_t>(l), static_cast<int32_t>(i),
-          { piece.Lo.x, piece.Lo.y, piece.Lo.z }, { piece.Hi.x, piece.Hi.y, piece.Hi.z },
-          static_cast<int64_t>(bytes->GetNumberOfValues()) };
-        Append(message, &header, sizeof(header));
-        Append(message, bytes->GetPointer(0), static_cast<std::size_t>(header.Bytes));
-      }
-    }
-    vtkNew<vtkCharArray> send;
-    send->SetArray(message.data(), static_cast<vtkIdType>(message.size()), 1);
-    vtkNew<vtkCharArray> all;
-    controller->GatherV(send, all, destination);
-    if (destination != rank)
-    {
-      continue;
-    }
-    const char* p = all->GetPointer(0);
-    const char* end = p + all->GetNumberOfValues();
-    while (p + sizeof(PieceHeader) <= end)
-    {
-      PieceHeader header;
-      std::memcpy(&header, p, sizeof(header));
-      p += sizeof(header);
-      vtkNew<vtkCharArray> bytes;
-      bytes->SetArray(const_cast<char*>(p), static_cast<vtkIdType>(header.Bytes), 1);
-      p += header.Bytes;
-      auto image = vtkSmartPointer<vtkImageData>::New();
-      vtkCommunicator::UnMarshalDataObject(bytes, image);
-      received.push_back(header);
-      receivedImages.push_back(image);
-    }
-  }
-
-  // 4. this rank's hierarchy: its pieces level by level, in (block, piece) order
-  std::vector<std::size_t> order(received.size());
-  for (std::size_t k = 0; k < order.size(); ++k)
-  {
-    order[k] = k;
-  }
-  std::sort(order.begin(), order.end(),
-    [&received](std::size_t a, std::size_t b)
-    {
-      return std::tie(received[a].Level, received[a].Block) <
-        std::tie(received[b].Level, received[b].Block);
-    });
-  std::vector<int> blocksPerLevel(levels, 0);
-  for (const PieceHeader& header : received)
-  {
-    ++blocksPerLevel[static_cast<std::size_t>(header.Level)];
-  }
-  auto split = vtkSmartPointer<vtkOverlappingAMR>::New();
-  split->Initialize(static_cast<int>(levels), blocksPerLevel.data());
-  split->SetOrigin(local->GetOrigin());
-  split->SetGridDescription(local->GetGridDescription());
-  for (unsigned int l = 0; l < levels; ++l)
-  {
-    double spacing[3];
-    local->GetSpacing(l, spacing);
-    split->SetSpacing(l, spacing);
-  }
-  if (local->GetAMRInfo() && local->GetAMRInfo()->HasRefinementRatio())
-  {
-    for (unsigned int l = 0; l < levels; ++l)
-    {
-      split->SetRefinementRatio(l, local->GetRefinementRatio(l));
-    }
-  }
-  std::vector<unsigned int> next(levels, 0);
-  for (std::size_t k : order)
-  {
-    const PieceHeader& header = received[k];
-    const unsigned int level = static_cast<unsigned int>(header.Level);
-    const unsigned int index = next[level]++;
-    const int lo[3] = { static_cast<int>(header.Lo[0]), static_cast<int>(header.Lo[1]),
-      static_cast<int>(header.Lo[2]) };
-    const int hi[3] = { static_cast<int>(header.Hi[0]) - 1, static_cast<int>(header.Hi[1]) - 1,
-      static_cast<int>(header.Hi[2]) - 1 };
-    split->SetAMRBox(level, index, vtkAMRBox(lo, hi));
-    vtkNew<vtkUniformGrid> grid;
-    grid->ShallowCopy(receivedImages[k]);
-    split->SetDataSet(level, index, grid);
-  }
-  return split;
+  ExchangePieces(controller, local, boxes, regions, firstBlock, supplier, received, receivedImages);
+  return AssembleRegion(local, received, receivedImages);
 }
