@@ -293,12 +293,10 @@ int vtkSinglePassAMRVolumeRepresentation::ProcessViewRequest(
   {
     // DataSize (kibibytes) drives the view's remote-rendering and LOD decisions, whatever piece
     // stands for the data
-    if (!this->PlaceholderPiece)
-    {
-      this->PlaceholderPiece = vtkSmartPointer<vtkPolyData>::New();
-    }
-    vtkPVView::SetPiece(inInfo, this,
-      this->RendersFromCache ? this->PlaceholderPiece.Get() : this->Cache.Get(), this->DataSize);
+    vtkDataObject* piece = this->RendersFromCache
+      ? static_cast<vtkDataObject*>(this->PlaceholderPiece.Get())
+      : static_cast<vtkDataObject*>(this->Cache.Get());
+    vtkPVView::SetPiece(inInfo, this, piece, this->DataSize);
     vtkPVRenderView::SetGeometryBounds(inInfo, this, this->DataBounds, this->Actor->GetMatrix());
     // Translucent: with several rendering ranks the view composites the ranks' images by
     // alpha blending in visibility order (IceT's ordered compositing; the volume writes no

@@ -46,6 +46,7 @@
 #define vtkSinglePassAMRVolumeRepresentation_h
 
 #include "vtkSinglePassAMRParaViewModule.h" // for export macro
+#include "vtkNew.h"                         // for ivar
 #include "vtkSmartPointer.h"                // for ivar
 #include "vtkVolumeRepresentation.h"
 
@@ -54,6 +55,7 @@
 class vtkMultiPassAMRVolumeMapper;
 class vtkOverlappingAMR;
 class vtkPVRenderView;
+class vtkPolyData;
 class vtkSinglePassAMRVolumeMapper;
 
 class VTKSINGLEPASSAMRPARAVIEW_EXPORT vtkSinglePassAMRVolumeRepresentation
@@ -233,7 +235,7 @@ protected:
   /// vtkMPIMoveData), each copy a new vtkUniformGrid per block. False in a pvserver (below the
   /// remote-render threshold the client renders the delivered hierarchy) and on its client.
   bool RendersFromCache = false;
-  vtkSmartPointer<vtkDataObject> PlaceholderPiece; // an empty vtkPolyData
+  vtkNew<vtkPolyData> PlaceholderPiece; // empty
   bool ReportedParallelRenderingOff = false;
   // What is wrong with the delivered data itself (no blocks at all), said once per change in
   double LastFrameQuality[5] = { 0.0, 1.0, 1.0, 0.0, 0.0 };
