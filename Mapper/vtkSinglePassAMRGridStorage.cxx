@@ -340,9 +340,15 @@ bool vtkSinglePassAMRGridStorage::UpdateTransparentFlags(vtkOpenGLRenderWindow* 
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRGridStorage::ReleaseBindless(vtkWindow* window)
 {
-  for (std::uint64_t handle : this->ResidentHandles)
+  // ResidentHandles[i] is Bricks[i]'s handle. A render window frees the textures registered with
+  // it before its renderers release their mappers; a brick freed so took its handle with it, and
+  // making that handle non-resident would be GL_INVALID_OPERATION.
+  for (std::size_t i = 0; i < this->ResidentHandles.size(); ++i)
   {
-    glMakeTextureHandleNonResidentARB(handle);
+    if (i < this->Bricks.size() && this->Bricks[i]->GetHandle() != 0)
+    {
+      glMakeTextureHandleNonResidentARB(this->ResidentHandles[i]);
+    }
   }
   this->ResidentHandles.clear();
   for (vtkSmartPointer<vtkTextureObject>& brick : this->Bricks)

@@ -25,6 +25,7 @@
 #include "amrsp/KdTreeEncoding.h"
 #include "amrsp/Render.h"
 
+#include "vtkSinglePassAMROpenGL.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
 
 #include "vtkCallbackCommand.h"
@@ -179,6 +180,22 @@ void TestDataset(const std::string& name, Hierarchy h, bool uniformHandlesOnly)
   Check(
     m->GetLastDataStorage() == Mapper::BINDLESS_TEXTURES && Rmse(again, waterfall) < BoundVsPacking,
     "bindless after ReleaseGraphicsResources renders the same image (" + StorageName(m) + ")");
+
+  // Last (the window renders nothing after it): a render window frees the textures registered
+  // with it before it asks its renderers' mappers to release: the bricks, and with them their
+  // handles, are gone by then, and making such a handle non-resident is GL_INVALID_OPERATION
+  // (NVIDIA reports "Not a valid texture" per brick).
+  vtkRenderWindow* window = gpu.GetRenderer()->GetRenderWindow();
+  window->MakeCurrent();
+  while (glGetError() != GL_NO_ERROR)
+  {
+  }
+  window->ReleaseGraphicsResources(window);
+  window->MakeCurrent();
+  const GLenum releaseError = glGetError();
+  Check(releaseError == GL_NO_ERROR,
+    "the render window releases its resources without an OpenGL error (glGetError " +
+      std::to_string(releaseError) + ")");
 }
 
 /// AUTO_STORAGE: packing while the atlas fits and wastes little; bindless when it does not fit.
