@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSinglePassAMRGridStorage.h"
 
+#include "vtkSinglePassAMRBindlessBricks.h"
 #include "vtkSinglePassAMRRenderingUtilities.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
 
@@ -151,8 +152,6 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, int stor
   {
     this->ReleaseBindless(renWin);
   }
-  this->Bricks.clear();
-  this->ResidentHandles.clear();
   this->HandlesTexture = nullptr;
   this->AtlasPages.clear();
   this->TransparentFlags = nullptr; // the data nodes may have changed: flagged again per frame
@@ -254,12 +253,6 @@ bool vtkSinglePassAMRGridStorage::UploadBindless(
 {
   const int max3D = vtkTextureObject::GetMaximumTextureSize3D(renWin);
   const std::vector<glm::ivec3> extents = amrsp::BrickExtents(data.Data, data.VertexCentred);
-  amrsp::UIntTexture3D handles;
-  handles.Dims = amrsp::TextureDimsFor(extents.size());
-  handles.Texels.assign(
-    static_cast<std::size_t>(handles.Dims.x) * handles.Dims.y * handles.Dims.z, glm::uvec2(0u));
-  this->Bricks.reserve(extents.size());
-  this->ResidentHandles.reserve(extents.size());
   for (std::size_t g = 0; g < extents.size(); ++g)
   {
     const glm::ivec3 e = extents[g];
@@ -270,24 +263,22 @@ bool vtkSinglePassAMRGridStorage::UploadBindless(
         " texels) exceeds GL_MAX_3D_TEXTURE_SIZE = " + std::to_string(max3D);
       return false;
     }
-    vtkSmartPointer<vtkTextureObject> brick =
-      utilities::MakeScalarTexture(renWin, e, data.Data.Values[g].data(), data.VertexCentred);
-    if (!brick)
-    {
-      return false;
-    }
-    // the handle freezes the texture's sampling state, set above by Create3DFromRaw
-    const GLuint64 handle = glGetTextureHandleARB(brick->GetHandle());
-    if (handle == 0)
-    {
-      error = "glGetTextureHandleARB returned no handle for grid " + std::to_string(g);
-      return false;
-    }
-    glMakeTextureHandleResidentARB(handle);
-    this->Bricks.push_back(brick);
-    this->ResidentHandles.push_back(handle);
-    handles.Texels[g] =
-      glm::uvec2(static_cast<uint32_t>(handle & 0xffffffffu), static_cast<uint32_t>(handle >> 32));
+  }
+  if (!this->Bricks.Create(
+        renWin, extents, [&data](std::size_t g) { return data.Data.Values[g].data(); },
+        data.VertexCentred, error))
+  {
+    return false;
+  }
+  amrsp::UIntTexture3D handles;
+  handles.Dims = amrsp::TextureDimsFor(extents.size());
+  handles.Texels.assign(
+    static_cast<std::size_t>(handles.Dims.x) * handles.Dims.y * handles.Dims.z, glm::uvec2(0u));
+  const std::vector<std::uint64_t>& resident = this->Bricks.GetHandles();
+  for (std::size_t g = 0; g < resident.size(); ++g)
+  {
+    handles.Texels[g] = glm::uvec2(
+      static_cast<uint32_t>(resident[g] & 0xffffffffu), static_cast<uint32_t>(resident[g] >> 32));
   }
   this->HandlesTexture = utilities::MakeIntegerTexture(renWin, handles);
   return this->HandlesTexture != nullptr;
@@ -340,22 +331,7 @@ bool vtkSinglePassAMRGridStorage::UpdateTransparentFlags(vtkOpenGLRenderWindow* 
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRGridStorage::ReleaseBindless(vtkWindow* window)
 {
-  // ResidentHandles[i] is Bricks[i]'s handle. A render window frees the textures registered with
-  // it before its renderers release their mappers; a brick freed so took its handle with it, and
-  // making that handle non-resident would be GL_INVALID_OPERATION.
-  for (std::size_t i = 0; i < this->ResidentHandles.size(); ++i)
-  {
-    if (i < this->Bricks.size() && this->Bricks[i]->GetHandle() != 0)
-    {
-      glMakeTextureHandleNonResidentARB(this->ResidentHandles[i]);
-    }
-  }
-  this->ResidentHandles.clear();
-  for (vtkSmartPointer<vtkTextureObject>& brick : this->Bricks)
-  {
-    brick->ReleaseGraphicsResources(window);
-  }
-  this->Bricks.clear();
+  this->Bricks.ReleaseGraphicsResources(window);
   if (this->HandlesTexture)
   {
     this->HandlesTexture->ReleaseGraphicsResources(window);
@@ -370,8 +346,6 @@ void vtkSinglePassAMRGridStorage::ReleaseGraphicsResources(vtkWindow* window)
   {
     this->ReleaseBindless(window);
   }
-  this->Bricks.clear();
-  this->ResidentHandles.clear();
   this->UploadedStorage = -1;
   for (vtkSmartPointer<vtkTextureObject>& page : this->AtlasPages)
   {

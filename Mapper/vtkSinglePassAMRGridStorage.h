@@ -20,6 +20,8 @@
 
 #include "amrsp/RayCastingData.h"
 
+#include "vtkSinglePassAMRBindlessBricks.h"
+
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 
@@ -112,8 +114,7 @@ private:
   vtkSmartPointer<vtkTextureObject> DataNodes;
   std::vector<vtkSmartPointer<vtkTextureObject>> AtlasPages; // packing: one per atlas page
   vtkSmartPointer<vtkTextureObject> HandlesTexture; // bindless: RG32UI, one handle per brick
-  std::vector<vtkSmartPointer<vtkTextureObject>> Bricks;
-  std::vector<std::uint64_t> ResidentHandles;
+  vtkSinglePassAMRBindlessBricks Bricks;        // bindless: one texture per grid, handles resident
   vtkSmartPointer<vtkTextureObject> BrickBoxes; // RG32UI, per brick and axis: grid cells lo, hi
   // R8, indexed like the data nodes: 255 where the node's value range is transparent under the
   // table of FlagsTableTime

@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkSinglePassAMRBindlessBricks.h"
+
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
+#include "vtkSinglePassAMROpenGL.h"
+#include "vtkTextureUnitManager.h"
+
+//------------------------------------------------------------------------------
+vtkSinglePassAMRBindlessBricks::~vtkSinglePassAMRBindlessBricks()
+{
+  this->Clear();
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRBindlessBricks::Clear()
+{
+  if (!this->Names.empty() && this->Context)
+  {
+    this->Context->PushContext();
+    this->Release();
+    this->Context->PopContext();
+  }
+  // without a context the textures died with it
+  this->Names.clear();
+  this->Handles.clear();
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRBindlessBricks::Create(vtkOpenGLRenderWindow* renWin,
+  const std::vector<glm::ivec3>& extents, const std::function<const float*(std::size_t)>& texels,
+  bool linear, std::string& error)
+{
+  this->Clear();
+  this->Context = renWin;
+  this->Names.assign(extents.size(), 0u);
+  this->Handles.clear();
+  this->Handles.reserve(extents.size());
+  if (extents.empty())
+  {
+    return true;
+  }
+  glGenTextures(static_cast<GLsizei>(this->Names.size()), this->Names.data());
+
+  // one texture unit of VTK's, so that no texture bound by VTK is replaced
+  vtkTextureUnitManager* units = renWin->GetTextureUnitManager();
+  const int unit = units->Allocate();
+  renWin->GetState()->vtkglActiveTexture(GL_TEXTURE0 + unit);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  const GLint filter = linear ? GL_LINEAR : GL_NEAREST;
+  for (std::size_t g = 0; g < extents.size() && error.empty(); ++g)
+  {
+    const glm::ivec3 e = extents[g];
+    glBindTexture(GL_TEXTURE_3D, this->Names[g]);
+    // the handle freezes this sampling state
+    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, filter);
+    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, filter);
+    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_BASE_LEVEL, 0);
+    glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAX_LEVEL, 0);
+    glTexImage3D(GL_TEXTURE_3D, 0, GL_R32F, e.x, e.y, e.z, 0, GL_RED, GL_FLOAT, texels(g));
+    const GLenum glError = glGetError();
+    const GLuint64 handle = glError == GL_NO_ERROR ? glGetTextureHandleARB(this->Names[g]) : 0;
+    if (handle == 0)
+    {
+      error = "the driver refused brick " + std::to_string(g) + " (" + std::to_string(e.x) + " x " +
+        std::to_string(e.y) + " x " + std::to_string(e.z) + " texels)" +
+        (glError == GL_OUT_OF_MEMORY ? ": out of GPU memory"
+            : glError != GL_NO_ERROR ? " (OpenGL error " + std::to_string(glError) + ")"
+                                     : ": glGetTextureHandleARB returned no handle");
+      break;
+    }
+    glMakeTextureHandleResidentARB(handle);
+    this->Handles.push_back(handle);
+  }
+  glBindTexture(GL_TEXTURE_3D, 0);
+  units->Free(unit);
+  if (!error.empty())
+  {
+    this->Release();
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRBindlessBricks::ReleaseGraphicsResources(vtkWindow* window)
+{
+  if (!this->Context || window == this->Context.GetPointer())
+  {
+    this->Clear();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRBindlessBricks::Release()
+{
+  for (const std::uint64_t handle : this->Handles)
+  {
+    glMakeTextureHandleNonResidentARB(handle);
+  }
+  if (!this->Names.empty())
+  {
+    glDeleteTextures(static_cast<GLsizei>(this->Names.size()), this->Names.data());
+  }
+  this->Names.clear();
+  this->Handles.clear();
+}
