@@ -396,6 +396,61 @@ ScopedBlendedDraw::~ScopedBlendedDraw()
   }
 }
 
+namespace
+{
+/// `rgb` (3 per entry) and `alpha` (1 per entry), TransferTableSize entries over [range[0],
+/// range[1]]: evenly spaced scalars, or log-spaced ones when `logarithmic`. Without `colour` the
+/// grey function gives all three channels.
+void Tabulate(vtkColorTransferFunction* colour, vtkPiecewiseFunction* greyFunction,
+  vtkPiecewiseFunction* opacity, const double range[2], bool logarithmic, std::vector<float>& rgb,
+  std::vector<float>& alpha)
+{
+  const int n = TransferTableSize;
+  if (logarithmic)
+  {
+    // entry i at 10^(log a + i (log b - log a) / (n - 1)), as vtkColorTransferFunction::GetTable
+    // samples a log-scaled function; each function evaluated with its own interpolation
+    const double l0 = std::log10(range[0]), l1 = std::log10(range[1]);
+    for (int i = 0; i < n; ++i)
+    {
+      const double x = i == 0 ? range[0]
+        : i == n - 1          ? range[1]
+                              : std::pow(10.0, l0 + i * (l1 - l0) / (n - 1));
+      double c[3];
+      if (colour)
+      {
+        colour->vtkColorTransferFunction::GetTable(x, x, 1, c);
+      }
+      else
+      {
+        c[0] = c[1] = c[2] = greyFunction->GetValue(x);
+      }
+      for (int k = 0; k < 3; ++k)
+      {
+        rgb[static_cast<std::size_t>(3 * i + k)] = static_cast<float>(c[k]);
+      }
+      alpha[static_cast<std::size_t>(i)] = static_cast<float>(opacity->GetValue(x));
+    }
+  }
+  else
+  {
+    if (colour)
+    {
+      colour->GetTable(range[0], range[1], n, rgb.data());
+    }
+    else
+    {
+      greyFunction->GetTable(range[0], range[1], n, rgb.data(), 3);
+      for (int i = 0; i < n; ++i)
+      {
+        rgb[3 * i + 1] = rgb[3 * i + 2] = rgb[3 * i];
+      }
+    }
+    opacity->GetTable(range[0], range[1], n, alpha.data());
+  }
+}
+} // namespace
+
 //------------------------------------------------------------------------------
 bool TransferFunctionTable::Update(vtkOpenGLRenderWindow* renWin, vtkVolumeProperty* property,
   const double scalarRange[2], const vtkTimeStamp& dataTime)
@@ -475,48 +530,7 @@ bool TransferFunctionTable::Update(vtkOpenGLRenderWindow* renWin, vtkVolumePrope
   const int n = TransferTableSize;
   std::vector<float> rgb(static_cast<std::size_t>(3 * n)), alpha(static_cast<std::size_t>(n));
   std::vector<float> rgba(static_cast<std::size_t>(4 * n));
-  if (this->Logarithmic)
-  {
-    // entry i at 10^(log a + i (log b - log a) / (n - 1)), as vtkColorTransferFunction::GetTable
-    // samples a log-scaled function; each function evaluated with its own interpolation
-    const double l0 = std::log10(range[0]), l1 = std::log10(range[1]);
-    for (int i = 0; i < n; ++i)
-    {
-      const double x = i == 0 ? range[0]
-        : i == n - 1          ? range[1]
-                              : std::pow(10.0, l0 + i * (l1 - l0) / (n - 1));
-      double c[3];
-      if (colour)
-      {
-        colour->vtkColorTransferFunction::GetTable(x, x, 1, c);
-      }
-      else
-      {
-        c[0] = c[1] = c[2] = greyFunction->GetValue(x);
-      }
-      for (int k = 0; k < 3; ++k)
-      {
-        rgb[static_cast<std::size_t>(3 * i + k)] = static_cast<float>(c[k]);
-      }
-      alpha[static_cast<std::size_t>(i)] = static_cast<float>(opacity->GetValue(x));
-    }
-  }
-  else
-  {
-    if (colour)
-    {
-      colour->GetTable(range[0], range[1], n, rgb.data());
-    }
-    else
-    {
-      greyFunction->GetTable(range[0], range[1], n, rgb.data(), 3);
-      for (int i = 0; i < n; ++i)
-      {
-        rgb[3 * i + 1] = rgb[3 * i + 2] = rgb[3 * i];
-      }
-    }
-    opacity->GetTable(range[0], range[1], n, alpha.data());
-  }
+  Tabulate(colour, greyFunction, opacity, range, this->Logarithmic, rgb, alpha);
   for (int i = 0; i < n; ++i)
   {
     rgba[4 * i + 0] = rgb[3 * i + 0];

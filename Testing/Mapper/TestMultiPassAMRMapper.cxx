@@ -26,6 +26,7 @@
 
 #include "AmrspCommands.h"
 #include "MapperTestHelpers.h"
+#include "RendererChecks.h"
 #include "AmrspDataset.h"
 #include "AmrspMultipass.h"
 #include "AmrspPacking.h"
@@ -65,9 +66,13 @@ namespace
 using namespace amrsp;
 using namespace amrsp::tool;
 using mappertest::Check;
+using mappertest::CheckSquareInFrontHides;
+using mappertest::CheckTransferChangeRebuildsNothing;
 using mappertest::Coverage;
 using mappertest::Failures;
 using mappertest::Fixed;
+using mappertest::OccluderView;
+using mappertest::OpaqueSquare;
 using mappertest::Settings;
 
 constexpr double BoundVsKdTree = 1.0;
@@ -94,29 +99,6 @@ void CheckVsSinglePass(const Image& multi, const Image& single, const std::strin
     what + ": multi-pass vs single-pass RMSE " + Fixed(e) + " < " + Fixed(BoundVsSinglePass));
 }
 
-/// An unlit, opaque grey square of half-size `half` centred at `centre`, facing `normal`.
-vtkSmartPointer<vtkActor> OpaqueSquare(const glm::dvec3& centre, const glm::dvec3& normal,
-  const glm::dvec3& up, double half, double grey)
-{
-  const glm::dvec3 n = glm::normalize(normal);
-  const glm::dvec3 u = glm::normalize(up - glm::dot(up, n) * n);
-  const glm::dvec3 r = glm::cross(u, n);
-  const glm::dvec3 o = centre - half * r - half * u;
-  const glm::dvec3 p1 = o + 2.0 * half * r;
-  const glm::dvec3 p2 = o + 2.0 * half * u;
-  vtkNew<vtkPlaneSource> plane;
-  plane->SetOrigin(o.x, o.y, o.z);
-  plane->SetPoint1(p1.x, p1.y, p1.z);
-  plane->SetPoint2(p2.x, p2.y, p2.z);
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputConnection(plane->GetOutputPort());
-  auto actor = vtkSmartPointer<vtkActor>::New();
-  actor->SetMapper(mapper);
-  actor->GetProperty()->SetColor(grey, grey, grey);
-  actor->GetProperty()->LightingOff();
-  return actor;
-}
-
 /// Expects `render` to throw a GpuError whose message contains every string of `needles`.
 template <typename F>
 void CheckError(F render, const std::vector<std::string>& needles, const std::string& what)
@@ -140,99 +122,73 @@ void CheckError(F render, const std::vector<std::string>& needles, const std::st
   Check(found, what + ": " + (threw ? message : "no error"));
 }
 
-void TestDataset(const std::string& spec)
+/// Opaque geometry in front of and through the volume, and errors, on the renderers of
+/// TestDataset (multi-pass `gpu`, single-pass `single`; `before`: the default view's image).
+void TestOccludersAndErrors(Hierarchy& h, const EncodedKdTree& enc, const RenderSettings& s,
+  MultipassRenderer& gpu, PackingRenderer& single, const Image& before)
 {
-  std::cout << "dataset " << spec << "\n";
-  DatasetRequest request;
-  request.Spec = spec;
-  request.NeedVTK = false;
-  LoadedDataset d = LoadDataset(request);
-  Hierarchy& h = d.Data;
-  const RenderSettings s = Settings(h, { "--size", "128x128" });
-  const KdTree tree = BuildKdTree(h);
-  const EncodedKdTree enc = EncodeKdTree(h, tree);
-
-  MultipassRenderer gpu(h, s, ViewAngles());
-  PackingRenderer single(h, s, ViewAngles());
   double ms = 0.0;
-  const Image img = gpu.Render(0.0, ms);
-  const Image ref = RenderReference(h, s);
-  Check(Coverage(ref) > 0.05,
-    "the CPU reference shows the data (coverage " + Fixed(Coverage(ref)) + ")");
-  Check(CameraDifference(gpu.LastCamera(), s.View) < 1e-6,
-    "VTK's ResetCamera/Azimuth/Elevation/Zoom match the tool's camera conventions");
-  const double vsRef = Rmse(img, ref);
-  Check(vsRef < BoundVsReference,
-    "multi-pass vs CPU reference: RMSE " + Fixed(vsRef) + " < " + Fixed(BoundVsReference));
-  CheckVsKdTree(img, h, enc, s, "default view");
-  CheckVsSinglePass(img, single.Render(0.0, ms), "default view");
-
-  // one draw per leaf with data (the finest level everywhere)
-  long long leaves = 0;
-  for (const KdNode& n : tree.Nodes)
-  {
-    leaves += (n.IsLeaf() && n.HasData()) ? 1 : 0;
-  }
-  Check(gpu.Passes() == leaves && leaves > 0,
-    "one draw per data leaf: " + std::to_string(gpu.Passes()) + " draws, " +
-      std::to_string(leaves) + " leaves with data");
-
-  // the orbit of the bench and a zoomed view
-  for (double orbit : { 90.0, 200.0 })
-  {
-    RenderSettings fs = s;
-    fs.View.Azimuth(orbit);
-    const Image o = gpu.Render(orbit, ms);
-    CheckVsKdTree(o, h, enc, fs, "orbit " + Fixed(orbit) + " deg");
-    CheckVsSinglePass(o, single.Render(orbit, ms), "orbit " + Fixed(orbit) + " deg");
-  }
-  {
-    RenderSettings zs = Settings(h, { "--size", "128x128", "--zoom", "3" });
-    ViewAngles zoomed;
-    zoomed.Zoom = 3.0;
-    MultipassRenderer mz(h, zs, zoomed);
-    PackingRenderer sz(h, zs, zoomed);
-    const Image z = mz.Render(0.0, ms);
-    CheckVsKdTree(z, h, enc, zs, "zoom 3");
-    CheckVsSinglePass(z, sz.Render(0.0, ms), "zoom 3");
-  }
-
-  // an opaque transfer function: the segments' order decides the image
-  {
-    RenderSettings os = Settings(
-      h, { "--size", "96x96", "--azimuth", "-60", "--elevation", "35", "--unit-distance", "1e-3" });
-    ViewAngles view;
-    view.Azimuth = -60.0;
-    view.Elevation = 35.0;
-    MultipassRenderer mo(h, os, view);
-    PackingRenderer so(h, os, view);
-    const Image o = mo.Render(0.0, ms);
-    const Image back = mo.Render(180.0, ms);
-    CheckVsKdTree(o, h, enc, os, "opaque transfer function");
-    CheckVsSinglePass(o, so.Render(0.0, ms), "opaque transfer function");
-    RenderSettings bs = os;
-    bs.View.Azimuth(180.0);
-    CheckVsKdTree(back, h, enc, bs, "opaque transfer function, seen from behind");
-    Check(Rmse(o, back) > 5.0,
-      "front and back views differ (the order matters): RMSE " + Fixed(Rmse(o, back)));
-  }
-
-  // a transfer-function change is visible and rebuilds nothing
   vtkVolume* volume = vtkVolume::SafeDownCast(gpu.GetRenderer()->GetVolumes()->GetItemAsObject(0));
-  vtkPiecewiseFunction* opacity = volume->GetProperty()->GetScalarOpacity();
-  const Image before = gpu.Render(0.0, ms);
-  vtkNew<vtkPiecewiseFunction> saved;
-  saved->DeepCopy(opacity);
-  opacity->RemoveAllPoints();
-  opacity->AddPoint(s.Transfer.Opacity.front().X, 0.0);
-  opacity->AddPoint(s.Transfer.Opacity.back().X, 0.2);
-  const Image changed = gpu.Render(0.0, ms);
-  opacity->DeepCopy(saved);
-  Check(Rmse(before, changed) > 1.0, "a transfer-function change changes the image");
-  Check(gpu.NumberOfBuilds() == 1,
-    "data built once over camera and transfer-function changes (builds: " +
-      std::to_string(gpu.NumberOfBuilds()) + ")");
+  // opaque geometry: a white square in front of the volume hides it; a black one through the
+  // centre hides the back half only
+  {
+    OccluderView view;
+    const Image plain = CheckSquareInFrontHides(gpu, view);
+    const Camera& c = view.View;
+    const glm::dvec3 toCamera = view.ToCamera;
+    const double half = view.Half;
 
+    vtkSmartPointer<vtkActor> middle =
+      OpaqueSquare(c.FocalPoint, toCamera, c.ViewUp, 2.0 * half, 0.0);
+    // (each window gets its own actor: a mapper's buffers belong to one context)
+    vtkSmartPointer<vtkActor> middleSingle =
+      OpaqueSquare(c.FocalPoint, toCamera, c.ViewUp, 2.0 * half, 0.0);
+    gpu.GetRenderer()->AddActor(middle);
+    single.GetRenderer()->AddActor(middleSingle);
+    const Image frontHalf = gpu.Render(0.0, ms);
+    const Image singleFrontHalf = single.Render(0.0, ms);
+    gpu.GetMapper()->UseDepthBufferOff();
+    const Image ignoring = gpu.Render(0.0, ms);
+    gpu.GetMapper()->UseDepthBufferOn();
+    gpu.GetRenderer()->RemoveActor(middle);
+    single.GetRenderer()->RemoveActor(middleSingle);
+    Check(Rmse(ignoring, plain) < 0.5 && Rmse(frontHalf, plain) > 1.0,
+      "opaque square through the centre clips the rays (RMSE to the unclipped image " +
+        Fixed(Rmse(frontHalf, plain)) + "; with UseDepthBuffer off " +
+        Fixed(Rmse(ignoring, plain)) + ")");
+    CheckVsSinglePass(frontHalf, singleFrontHalf, "opaque square through the centre");
+  }
+
+  // errors: nothing drawn, no crash, and rendering recovers
+  {
+    vtkMultiPassAMRVolumeMapper* mapper = gpu.GetMapper();
+    const std::string array = mapper->GetArrayName();
+    mapper->SelectScalarArray("NoSuchArray");
+    CheckError([&] { gpu.Render(0.0, ms); }, { "no cell array named 'NoSuchArray'" },
+      "a missing array is an error");
+    mapper->SelectScalarArray(array.c_str());
+    Check(Rmse(gpu.Render(0.0, ms), before) < 0.01, "selecting the array again renders again");
+    mapper->SetMaximumAtlasSize(4);
+    CheckError([&] { gpu.Render(0.0, ms); }, { "cannot pack the bricks" },
+      "an atlas over the size limit is an error");
+    mapper->SetMaximumAtlasSize(0);
+    Check(Rmse(gpu.Render(0.0, ms), before) < 0.01, "with the limit lifted it renders again");
+    mapper->SetBlendModeToMaximumIntensity();
+    CheckError([&] { gpu.Render(0.0, ms); }, { "composite blending only" },
+      "a blend mode other than composite is an error");
+    mapper->SetBlendModeToComposite();
+    Check(Rmse(gpu.Render(0.0, ms), before) < 0.01, "composite blending renders again");
+  }
+}
+
+/// The camera inside the volume, parallel projection and a moved volume, a viewport, opaque
+/// geometry and errors, on the renderers of TestDataset (multi-pass `gpu`, single-pass `single`;
+/// `before`: the multi-pass image of the default view).
+void TestViewsAndErrors(Hierarchy& h, const EncodedKdTree& enc, const RenderSettings& s,
+  MultipassRenderer& gpu, PackingRenderer& single, const Image& before)
+{
+  double ms = 0.0;
+  vtkVolume* volume = vtkVolume::SafeDownCast(gpu.GetRenderer()->GetVolumes()->GetItemAsObject(0));
   // camera inside the volume: nodes around and behind the eye, faces in front of the near plane
   {
     vtkCamera* camera = gpu.GetRenderer()->GetActiveCamera();
@@ -328,78 +284,90 @@ void TestDataset(const std::string& spec)
     CheckVsSinglePass(m, p, "viewport (0.5, 0, 1, 1)");
   }
 
-  // opaque geometry: a white square in front of the volume hides it; a black one through the
-  // centre hides the back half only
-  {
-    const Image plain = gpu.Render(0.0, ms);
-    const Camera c = gpu.LastCamera();
-    const glm::dvec3 toCamera = glm::normalize(c.Position - c.FocalPoint);
-    const double distance = glm::length(c.Position - c.FocalPoint);
-    const double half = 0.15 * distance;
-    vtkSmartPointer<vtkActor> front =
-      OpaqueSquare(c.FocalPoint + 0.5 * distance * toCamera, toCamera, c.ViewUp, half * 0.5, 1.0);
-    gpu.GetRenderer()->AddActor(front);
-    const Image hidden = gpu.Render(0.0, ms);
-    gpu.GetRenderer()->RemoveActor(front);
-    const std::vector<std::uint8_t> rgb = hidden.Rgb8();
-    const std::vector<std::uint8_t> rgbPlain = plain.Rgb8();
-    const int w = hidden.Width, hh = hidden.Height;
-    int white = 0, under = 0, volumeThere = 0;
-    for (int j = hh / 2 - 4; j < hh / 2 + 4; ++j)
-    {
-      for (int i = w / 2 - 4; i < w / 2 + 4; ++i)
-      {
-        const std::size_t k = 3 * (static_cast<std::size_t>(j) * w + i);
-        ++under;
-        white += (rgb[k] == 255 && rgb[k + 1] == 255 && rgb[k + 2] == 255) ? 1 : 0;
-        volumeThere += (rgbPlain[k] + rgbPlain[k + 1] + rgbPlain[k + 2] > 12) ? 1 : 0;
-      }
-    }
-    Check(volumeThere > under / 2 && white == under,
-      "opaque square in front of the volume: " + std::to_string(white) + " of " +
-        std::to_string(under) + " central pixels stay pure white");
+  TestOccludersAndErrors(h, enc, s, gpu, single, before);
+}
 
-    vtkSmartPointer<vtkActor> middle =
-      OpaqueSquare(c.FocalPoint, toCamera, c.ViewUp, 2.0 * half, 0.0);
-    // (each window gets its own actor: a mapper's buffers belong to one context)
-    vtkSmartPointer<vtkActor> middleSingle =
-      OpaqueSquare(c.FocalPoint, toCamera, c.ViewUp, 2.0 * half, 0.0);
-    gpu.GetRenderer()->AddActor(middle);
-    single.GetRenderer()->AddActor(middleSingle);
-    const Image frontHalf = gpu.Render(0.0, ms);
-    const Image singleFrontHalf = single.Render(0.0, ms);
-    gpu.GetMapper()->UseDepthBufferOff();
-    const Image ignoring = gpu.Render(0.0, ms);
-    gpu.GetMapper()->UseDepthBufferOn();
-    gpu.GetRenderer()->RemoveActor(middle);
-    single.GetRenderer()->RemoveActor(middleSingle);
-    Check(Rmse(ignoring, plain) < 0.5 && Rmse(frontHalf, plain) > 1.0,
-      "opaque square through the centre clips the rays (RMSE to the unclipped image " +
-        Fixed(Rmse(frontHalf, plain)) + "; with UseDepthBuffer off " +
-        Fixed(Rmse(ignoring, plain)) + ")");
-    CheckVsSinglePass(frontHalf, singleFrontHalf, "opaque square through the centre");
+void TestDataset(const std::string& spec)
+{
+  std::cout << "dataset " << spec << "\n";
+  DatasetRequest request;
+  request.Spec = spec;
+  request.NeedVTK = false;
+  LoadedDataset d = LoadDataset(request);
+  Hierarchy& h = d.Data;
+  const RenderSettings s = Settings(h, { "--size", "128x128" });
+  const KdTree tree = BuildKdTree(h);
+  const EncodedKdTree enc = EncodeKdTree(h, tree);
+
+  MultipassRenderer gpu(h, s, ViewAngles());
+  PackingRenderer single(h, s, ViewAngles());
+  double ms = 0.0;
+  const Image img = gpu.Render(0.0, ms);
+  const Image ref = RenderReference(h, s);
+  Check(Coverage(ref) > 0.05,
+    "the CPU reference shows the data (coverage " + Fixed(Coverage(ref)) + ")");
+  Check(CameraDifference(gpu.LastCamera(), s.View) < 1e-6,
+    "VTK's ResetCamera/Azimuth/Elevation/Zoom match the tool's camera conventions");
+  const double vsRef = Rmse(img, ref);
+  Check(vsRef < BoundVsReference,
+    "multi-pass vs CPU reference: RMSE " + Fixed(vsRef) + " < " + Fixed(BoundVsReference));
+  CheckVsKdTree(img, h, enc, s, "default view");
+  CheckVsSinglePass(img, single.Render(0.0, ms), "default view");
+
+  // one draw per leaf with data (the finest level everywhere)
+  long long leaves = 0;
+  for (const KdNode& n : tree.Nodes)
+  {
+    leaves += (n.IsLeaf() && n.HasData()) ? 1 : 0;
+  }
+  Check(gpu.Passes() == leaves && leaves > 0,
+    "one draw per data leaf: " + std::to_string(gpu.Passes()) + " draws, " +
+      std::to_string(leaves) + " leaves with data");
+
+  // the orbit of the bench and a zoomed view
+  for (double orbit : { 90.0, 200.0 })
+  {
+    RenderSettings fs = s;
+    fs.View.Azimuth(orbit);
+    const Image o = gpu.Render(orbit, ms);
+    CheckVsKdTree(o, h, enc, fs, "orbit " + Fixed(orbit) + " deg");
+    CheckVsSinglePass(o, single.Render(orbit, ms), "orbit " + Fixed(orbit) + " deg");
+  }
+  {
+    RenderSettings zs = Settings(h, { "--size", "128x128", "--zoom", "3" });
+    ViewAngles zoomed;
+    zoomed.Zoom = 3.0;
+    MultipassRenderer mz(h, zs, zoomed);
+    PackingRenderer sz(h, zs, zoomed);
+    const Image z = mz.Render(0.0, ms);
+    CheckVsKdTree(z, h, enc, zs, "zoom 3");
+    CheckVsSinglePass(z, sz.Render(0.0, ms), "zoom 3");
   }
 
-  // errors: nothing drawn, no crash, and rendering recovers
+  // an opaque transfer function: the segments' order decides the image
   {
-    vtkMultiPassAMRVolumeMapper* mapper = gpu.GetMapper();
-    const std::string array = mapper->GetArrayName();
-    mapper->SelectScalarArray("NoSuchArray");
-    CheckError([&] { gpu.Render(0.0, ms); }, { "no cell array named 'NoSuchArray'" },
-      "a missing array is an error");
-    mapper->SelectScalarArray(array.c_str());
-    Check(Rmse(gpu.Render(0.0, ms), before) < 0.01, "selecting the array again renders again");
-    mapper->SetMaximumAtlasSize(4);
-    CheckError([&] { gpu.Render(0.0, ms); }, { "cannot pack the bricks" },
-      "an atlas over the size limit is an error");
-    mapper->SetMaximumAtlasSize(0);
-    Check(Rmse(gpu.Render(0.0, ms), before) < 0.01, "with the limit lifted it renders again");
-    mapper->SetBlendModeToMaximumIntensity();
-    CheckError([&] { gpu.Render(0.0, ms); }, { "composite blending only" },
-      "a blend mode other than composite is an error");
-    mapper->SetBlendModeToComposite();
-    Check(Rmse(gpu.Render(0.0, ms), before) < 0.01, "composite blending renders again");
+    RenderSettings os = Settings(
+      h, { "--size", "96x96", "--azimuth", "-60", "--elevation", "35", "--unit-distance", "1e-3" });
+    ViewAngles view;
+    view.Azimuth = -60.0;
+    view.Elevation = 35.0;
+    MultipassRenderer mo(h, os, view);
+    PackingRenderer so(h, os, view);
+    const Image o = mo.Render(0.0, ms);
+    const Image back = mo.Render(180.0, ms);
+    CheckVsKdTree(o, h, enc, os, "opaque transfer function");
+    CheckVsSinglePass(o, so.Render(0.0, ms), "opaque transfer function");
+    RenderSettings bs = os;
+    bs.View.Azimuth(180.0);
+    CheckVsKdTree(back, h, enc, bs, "opaque transfer function, seen from behind");
+    Check(Rmse(o, back) > 5.0,
+      "front and back views differ (the order matters): RMSE " + Fixed(Rmse(o, back)));
   }
+
+  // a transfer-function change is visible and rebuilds nothing
+  const Image before = CheckTransferChangeRebuildsNothing(gpu, s, "the frames");
+
+  TestViewsAndErrors(h, enc, s, gpu, single, before);
 }
 
 /// Vertex-centred data (trilinear atlas sampling) against the CPU kD-tree integrator and the

@@ -23,6 +23,7 @@
 
 #include "AmrspCommands.h"
 #include "MapperTestHelpers.h"
+#include "RendererChecks.h"
 #include "AmrspDataset.h"
 #include "AmrspMultipass.h"
 #include "AmrspPacking.h"
@@ -72,38 +73,142 @@ namespace
 using namespace amrsp;
 using namespace amrsp::tool;
 using mappertest::Check;
+using mappertest::CheckSquareInFrontHides;
+using mappertest::CheckTransferChangeRebuildsNothing;
 using mappertest::Coverage;
 using mappertest::Failures;
 using mappertest::Fixed;
+using mappertest::OccluderView;
+using mappertest::OpaqueSquare;
 using mappertest::Settings;
 
 constexpr double BoundVsReference = 2.0;
 constexpr double BoundVsKdTree = 1.0;
 
-/// A black, unlit, opaque square of half-size `half` centred at `centre`, facing `normal`.
-vtkSmartPointer<vtkActor> OpaqueSquare(const glm::dvec3& centre, const glm::dvec3& normal,
-  const glm::dvec3& up, double half, double grey)
+/// The camera inside the volume, parallel projection and a moved volume, opaque geometry and
+/// errors, on the renderer `gpu` of TestDataset (`before`: its image of the default view).
+void TestViewsAndErrors(Hierarchy& h, const EncodedKdTree& enc, const RenderSettings& s,
+  PackingRenderer& gpu, const Image& before)
 {
-  const glm::dvec3 n = glm::normalize(normal);
-  const glm::dvec3 u = glm::normalize(up - glm::dot(up, n) * n);
-  const glm::dvec3 r = glm::cross(u, n);
-  const glm::dvec3 o = centre - half * r - half * u;
-  const glm::dvec3 p1 = o + 2.0 * half * r;
-  const glm::dvec3 p2 = o + 2.0 * half * u;
-  vtkNew<vtkPlaneSource> plane;
-  plane->SetOrigin(o.x, o.y, o.z);
-  plane->SetPoint1(p1.x, p1.y, p1.z);
-  plane->SetPoint2(p2.x, p2.y, p2.z);
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputConnection(plane->GetOutputPort());
-  auto actor = vtkSmartPointer<vtkActor>::New();
-  actor->SetMapper(mapper);
-  actor->GetProperty()->SetColor(grey, grey, grey);
-  actor->GetProperty()->SetAmbient(1.0);
-  actor->GetProperty()->SetDiffuse(0.0);
-  actor->GetProperty()->SetSpecular(0.0);
-  actor->GetProperty()->LightingOff();
-  return actor;
+  double ms = 0.0;
+  vtkVolume* volume = vtkVolume::SafeDownCast(gpu.GetRenderer()->GetVolumes()->GetItemAsObject(0));
+  // camera inside the volume: the CPU integrator gets VTK's camera as it is
+  {
+    vtkCamera* camera = gpu.GetRenderer()->GetActiveCamera();
+    gpu.Render(0.0, ms);
+    camera->Dolly(12.0);
+    gpu.GetRenderer()->ResetCameraClippingRange();
+    const Image inside = gpu.RenderAsIs(ms);
+    RenderSettings is = s;
+    is.View = gpu.LastCamera();
+    double b[6];
+    volume->GetBounds(b);
+    const glm::dvec3 p = is.View.Position;
+    const bool isInside =
+      p.x > b[0] && p.x < b[1] && p.y > b[2] && p.y < b[3] && p.z > b[4] && p.z < b[5];
+    const double e = Rmse(inside, RenderKdTree(h, enc, is));
+    Check(isInside && Coverage(inside) > 0.5,
+      "camera inside the volume renders (coverage " + Fixed(Coverage(inside)) + ")");
+    Check(e < BoundVsKdTree,
+      "camera inside: GPU vs CPU kD-tree RMSE " + Fixed(e) + " < " + Fixed(BoundVsKdTree));
+  }
+
+  // parallel projection, and a volume moved by its vtkProp3D transform (camera moved alike)
+  {
+    vtkCamera* camera = gpu.GetRenderer()->GetActiveCamera();
+    gpu.Render(0.0, ms);
+    camera->ParallelProjectionOn();
+    gpu.GetRenderer()->ResetCameraClippingRange();
+    const Image parallel = gpu.RenderAsIs(ms);
+    RenderSettings ps = s;
+    ps.View = gpu.LastCamera();
+    camera->ParallelProjectionOff();
+    const double e = Rmse(parallel, RenderKdTree(h, enc, ps));
+    Check(ps.View.Parallel && Coverage(parallel) > 0.05 && e < BoundVsKdTree,
+      "parallel projection: GPU vs CPU kD-tree RMSE " + Fixed(e) + " < " + Fixed(BoundVsKdTree));
+
+    const Image unmoved = gpu.Render(0.0, ms);
+    double b[6];
+    volume->GetBounds(b);
+    const double shift[3] = { 0.75 * (b[1] - b[0]), -0.5 * (b[3] - b[2]), 0.25 * (b[5] - b[4]) };
+    volume->SetPosition(shift[0], shift[1], shift[2]);
+    gpu.Render(0.0, ms);
+    double p[3], f[3];
+    camera->GetPosition(p);
+    camera->GetFocalPoint(f);
+    camera->SetPosition(p[0] + shift[0], p[1] + shift[1], p[2] + shift[2]);
+    camera->SetFocalPoint(f[0] + shift[0], f[1] + shift[1], f[2] + shift[2]);
+    gpu.GetRenderer()->ResetCameraClippingRange();
+    const Image moved = gpu.RenderAsIs(ms);
+    volume->SetPosition(0.0, 0.0, 0.0);
+    const double m = Rmse(moved, unmoved);
+    Check(m < 0.5, "volume and camera translated together: RMSE to the unmoved image " + Fixed(m));
+  }
+
+  // opaque geometry: a white square in front of the volume hides it completely; one through the
+  // centre hides the back half only
+  {
+    OccluderView view;
+    const Image plain = CheckSquareInFrontHides(gpu, view);
+    const Camera& c = view.View;
+    const glm::dvec3 toCamera = view.ToCamera;
+    const double half = view.Half;
+
+    vtkSmartPointer<vtkActor> middle =
+      OpaqueSquare(c.FocalPoint, toCamera, c.ViewUp, 2.0 * half, 0.0);
+    gpu.GetRenderer()->AddActor(middle);
+    const Image frontHalf = gpu.Render(0.0, ms);
+    gpu.GetMapper()->UseDepthBufferOff();
+    const Image ignoring = gpu.Render(0.0, ms);
+    gpu.GetMapper()->UseDepthBufferOn();
+    gpu.GetRenderer()->RemoveActor(middle);
+    // black square: without depth the full ray shows (as with no square at all), with depth only
+    // the part in front of the square
+    Check(Rmse(ignoring, plain) < 0.5 && Rmse(frontHalf, plain) > 1.0,
+      "opaque square through the centre clips the rays (RMSE to the unclipped image " +
+        Fixed(Rmse(frontHalf, plain)) + "; with UseDepthBuffer off " +
+        Fixed(Rmse(ignoring, plain)) + ")");
+  }
+
+  // errors: nothing drawn, no crash, and rendering recovers
+  {
+    vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
+    const std::string array = mapper->GetArrayName();
+    mapper->SelectScalarArray("NoSuchArray");
+    bool threw = false;
+    std::string message;
+    try
+    {
+      gpu.Render(0.0, ms);
+    }
+    catch (const GpuError& e)
+    {
+      threw = true;
+      message = e.what();
+    }
+    Check(threw && message.find("no cell array named 'NoSuchArray'") != std::string::npos,
+      "a missing array is an error: " + message);
+    mapper->SelectScalarArray(array.c_str());
+    Check(Rmse(gpu.Render(0.0, ms), before) < 0.01, "selecting the array again renders again");
+
+    mapper->SetMaximumAtlasSize(4);
+    threw = false;
+    message.clear();
+    try
+    {
+      gpu.Render(0.0, ms);
+    }
+    catch (const GpuError& e)
+    {
+      threw = true;
+      message = e.what();
+    }
+    Check(threw && message.find("cannot pack the bricks") != std::string::npos &&
+        message.find("bindless") != std::string::npos,
+      "an atlas over the size limit is an error: " + message);
+    mapper->SetMaximumAtlasSize(0);
+    Check(Rmse(gpu.Render(0.0, ms), before) < 0.01, "with the limit lifted it renders again");
+  }
 }
 
 void TestDataset(const std::string& spec)
@@ -175,161 +280,9 @@ void TestDataset(const std::string& spec)
   gpu.GetMapper()->SetBlendModeToComposite();
 
   // a transfer-function change is visible and rebuilds nothing
-  vtkVolume* volume = vtkVolume::SafeDownCast(gpu.GetRenderer()->GetVolumes()->GetItemAsObject(0));
-  vtkPiecewiseFunction* opacity = volume->GetProperty()->GetScalarOpacity();
-  const Image before = gpu.Render(0.0, ms);
-  vtkNew<vtkPiecewiseFunction> saved;
-  saved->DeepCopy(opacity);
-  opacity->RemoveAllPoints();
-  opacity->AddPoint(s.Transfer.Opacity.front().X, 0.0);
-  opacity->AddPoint(s.Transfer.Opacity.back().X, 0.2);
-  const Image changed = gpu.Render(0.0, ms);
-  opacity->DeepCopy(saved);
-  Check(Rmse(before, changed) > 1.0, "a transfer-function change changes the image");
-  Check(gpu.NumberOfBuilds() == 1,
-    "textures built once over 6 frames with camera and transfer-function changes (builds: " +
-      std::to_string(gpu.NumberOfBuilds()) + ")");
+  const Image before = CheckTransferChangeRebuildsNothing(gpu, s, "6 frames");
 
-  // camera inside the volume: the CPU integrator gets VTK's camera as it is
-  {
-    vtkCamera* camera = gpu.GetRenderer()->GetActiveCamera();
-    gpu.Render(0.0, ms);
-    camera->Dolly(12.0);
-    gpu.GetRenderer()->ResetCameraClippingRange();
-    const Image inside = gpu.RenderAsIs(ms);
-    RenderSettings is = s;
-    is.View = gpu.LastCamera();
-    double b[6];
-    volume->GetBounds(b);
-    const glm::dvec3 p = is.View.Position;
-    const bool isInside =
-      p.x > b[0] && p.x < b[1] && p.y > b[2] && p.y < b[3] && p.z > b[4] && p.z < b[5];
-    const double e = Rmse(inside, RenderKdTree(h, enc, is));
-    Check(isInside && Coverage(inside) > 0.5,
-      "camera inside the volume renders (coverage " + Fixed(Coverage(inside)) + ")");
-    Check(e < BoundVsKdTree,
-      "camera inside: GPU vs CPU kD-tree RMSE " + Fixed(e) + " < " + Fixed(BoundVsKdTree));
-  }
-
-  // parallel projection, and a volume moved by its vtkProp3D transform (camera moved alike)
-  {
-    vtkCamera* camera = gpu.GetRenderer()->GetActiveCamera();
-    gpu.Render(0.0, ms);
-    camera->ParallelProjectionOn();
-    gpu.GetRenderer()->ResetCameraClippingRange();
-    const Image parallel = gpu.RenderAsIs(ms);
-    RenderSettings ps = s;
-    ps.View = gpu.LastCamera();
-    camera->ParallelProjectionOff();
-    const double e = Rmse(parallel, RenderKdTree(h, enc, ps));
-    Check(ps.View.Parallel && Coverage(parallel) > 0.05 && e < BoundVsKdTree,
-      "parallel projection: GPU vs CPU kD-tree RMSE " + Fixed(e) + " < " + Fixed(BoundVsKdTree));
-
-    const Image unmoved = gpu.Render(0.0, ms);
-    double b[6];
-    volume->GetBounds(b);
-    const double shift[3] = { 0.75 * (b[1] - b[0]), -0.5 * (b[3] - b[2]), 0.25 * (b[5] - b[4]) };
-    volume->SetPosition(shift[0], shift[1], shift[2]);
-    gpu.Render(0.0, ms);
-    double p[3], f[3];
-    camera->GetPosition(p);
-    camera->GetFocalPoint(f);
-    camera->SetPosition(p[0] + shift[0], p[1] + shift[1], p[2] + shift[2]);
-    camera->SetFocalPoint(f[0] + shift[0], f[1] + shift[1], f[2] + shift[2]);
-    gpu.GetRenderer()->ResetCameraClippingRange();
-    const Image moved = gpu.RenderAsIs(ms);
-    volume->SetPosition(0.0, 0.0, 0.0);
-    const double m = Rmse(moved, unmoved);
-    Check(m < 0.5, "volume and camera translated together: RMSE to the unmoved image " + Fixed(m));
-  }
-
-  // opaque geometry: a white square in front of the volume hides it completely; one through the
-  // centre hides the back half only
-  {
-    const Image plain = gpu.Render(0.0, ms);
-    const Camera c = gpu.LastCamera();
-    const glm::dvec3 toCamera = glm::normalize(c.Position - c.FocalPoint);
-    const double distance = glm::length(c.Position - c.FocalPoint);
-    const double half = 0.15 * distance;
-    vtkSmartPointer<vtkActor> front =
-      OpaqueSquare(c.FocalPoint + 0.5 * distance * toCamera, toCamera, c.ViewUp, half * 0.5, 1.0);
-    gpu.GetRenderer()->AddActor(front);
-    const Image hidden = gpu.Render(0.0, ms);
-    gpu.GetRenderer()->RemoveActor(front);
-    // the square covers the central pixels; there the volume must not show at all
-    const std::vector<std::uint8_t> rgb = hidden.Rgb8();
-    const std::vector<std::uint8_t> rgbPlain = plain.Rgb8();
-    const int w = hidden.Width, hh = hidden.Height;
-    int white = 0, under = 0, volumeThere = 0;
-    for (int j = hh / 2 - 4; j < hh / 2 + 4; ++j)
-    {
-      for (int i = w / 2 - 4; i < w / 2 + 4; ++i)
-      {
-        const std::size_t k = 3 * (static_cast<std::size_t>(j) * w + i);
-        ++under;
-        white += (rgb[k] == 255 && rgb[k + 1] == 255 && rgb[k + 2] == 255) ? 1 : 0;
-        volumeThere += (rgbPlain[k] + rgbPlain[k + 1] + rgbPlain[k + 2] > 12) ? 1 : 0;
-      }
-    }
-    Check(volumeThere > under / 2 && white == under,
-      "opaque square in front of the volume: " + std::to_string(white) + " of " +
-        std::to_string(under) + " central pixels stay pure white");
-
-    vtkSmartPointer<vtkActor> middle =
-      OpaqueSquare(c.FocalPoint, toCamera, c.ViewUp, 2.0 * half, 0.0);
-    gpu.GetRenderer()->AddActor(middle);
-    const Image frontHalf = gpu.Render(0.0, ms);
-    gpu.GetMapper()->UseDepthBufferOff();
-    const Image ignoring = gpu.Render(0.0, ms);
-    gpu.GetMapper()->UseDepthBufferOn();
-    gpu.GetRenderer()->RemoveActor(middle);
-    // black square: without depth the full ray shows (as with no square at all), with depth only
-    // the part in front of the square
-    Check(Rmse(ignoring, plain) < 0.5 && Rmse(frontHalf, plain) > 1.0,
-      "opaque square through the centre clips the rays (RMSE to the unclipped image " +
-        Fixed(Rmse(frontHalf, plain)) + "; with UseDepthBuffer off " +
-        Fixed(Rmse(ignoring, plain)) + ")");
-  }
-
-  // errors: nothing drawn, no crash, and rendering recovers
-  {
-    vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
-    const std::string array = mapper->GetArrayName();
-    mapper->SelectScalarArray("NoSuchArray");
-    bool threw = false;
-    std::string message;
-    try
-    {
-      gpu.Render(0.0, ms);
-    }
-    catch (const GpuError& e)
-    {
-      threw = true;
-      message = e.what();
-    }
-    Check(threw && message.find("no cell array named 'NoSuchArray'") != std::string::npos,
-      "a missing array is an error: " + message);
-    mapper->SelectScalarArray(array.c_str());
-    Check(Rmse(gpu.Render(0.0, ms), before) < 0.01, "selecting the array again renders again");
-
-    mapper->SetMaximumAtlasSize(4);
-    threw = false;
-    message.clear();
-    try
-    {
-      gpu.Render(0.0, ms);
-    }
-    catch (const GpuError& e)
-    {
-      threw = true;
-      message = e.what();
-    }
-    Check(threw && message.find("cannot pack the bricks") != std::string::npos &&
-        message.find("bindless") != std::string::npos,
-      "an atlas over the size limit is an error: " + message);
-    mapper->SetMaximumAtlasSize(0);
-    Check(Rmse(gpu.Render(0.0, ms), before) < 0.01, "with the limit lifted it renders again");
-  }
+  TestViewsAndErrors(h, enc, s, gpu, before);
 }
 
 } // namespace

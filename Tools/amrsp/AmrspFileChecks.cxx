@@ -138,15 +138,12 @@ bool CheckHDF5File(const std::string& path, std::string& why)
   return false;
 }
 
-ExpectedBlocks CheckEnzoFiles(const std::string& hierarchy)
+namespace
 {
-  const fs::path path(hierarchy);
-  const std::string text = ReadWhole(path);
-  const std::string name = hierarchy;
-  if (text.empty())
-  {
-    throw DatasetError("the Enzo hierarchy " + name + " is empty");
-  }
+/// The grid entries of an Enzo hierarchy's text, each with its keys and the Pointer lines that
+/// name it; throws DatasetError naming the line where the numbering or a Pointer line is wrong.
+std::vector<EnzoEntry> ParseEnzoEntries(const std::string& text, const std::string& name)
+{
   std::vector<EnzoEntry> entries;
   std::size_t at = 0;
   while (at < text.size())
@@ -222,6 +219,14 @@ ExpectedBlocks CheckEnzoFiles(const std::string& hierarchy)
       entries.back().Values[key] = value;
     }
   }
+  return entries;
+}
+
+/// Throws DatasetError when there is no entry, when an entry lacks a key or its Pointer lines (a
+/// file cut inside it), or when it points past the last grid.
+void CheckEnzoEntriesComplete(
+  const std::vector<EnzoEntry>& entries, const std::string& name, std::size_t textBytes)
+{
   if (entries.empty())
   {
     throw DatasetError("the Enzo hierarchy " + name + " describes no grid ('Grid = 1' missing)");
@@ -246,12 +251,12 @@ ExpectedBlocks CheckEnzoFiles(const std::string& hierarchy)
         " is truncated or damaged: the entry of "
         "grid " +
         std::to_string(e.Number) + " (from byte " + std::to_string(e.Offset) + " of " +
-        std::to_string(text.size()) + ") lacks " + missing);
+        std::to_string(textBytes) + ") lacks " + missing);
     }
     if (e.PointerLines < 2)
     {
       throw DatasetError("the Enzo hierarchy " + name + " is truncated or damaged: the " +
-        std::to_string(text.size()) + "-byte file ends before the Pointer lines of grid " +
+        std::to_string(textBytes) + "-byte file ends before the Pointer lines of grid " +
         std::to_string(e.Number) + " of " + std::to_string(count));
     }
     for (long long p : e.Pointers)
@@ -264,6 +269,13 @@ ExpectedBlocks CheckEnzoFiles(const std::string& hierarchy)
       }
     }
   }
+}
+
+/// Each grid's HDF5 file next to the hierarchy at `path`, checked once per file.
+ExpectedBlocks EnzoGridFiles(
+  const std::vector<EnzoEntry>& entries, const fs::path& path, const std::string& name)
+{
+  const long long count = static_cast<long long>(entries.size());
   // each grid's HDF5 file: the hierarchy names it with the path of the machine that wrote it;
   // VTK's reader (and so this check) looks for its file name next to the hierarchy
   ExpectedBlocks expected;
@@ -307,6 +319,21 @@ ExpectedBlocks CheckEnzoFiles(const std::string& hierarchy)
     expected.Files.push_back(key);
   }
   return expected;
+}
+} // namespace
+
+ExpectedBlocks CheckEnzoFiles(const std::string& hierarchy)
+{
+  const fs::path path(hierarchy);
+  const std::string text = ReadWhole(path);
+  const std::string name = hierarchy;
+  if (text.empty())
+  {
+    throw DatasetError("the Enzo hierarchy " + name + " is empty");
+  }
+  const std::vector<EnzoEntry> entries = ParseEnzoEntries(text, name);
+  CheckEnzoEntriesComplete(entries, name, text.size());
+  return EnzoGridFiles(entries, path, name);
 }
 
 // ---- AMReX -----------------------------------------------------------------------------------
@@ -384,6 +411,106 @@ private:
   std::istringstream In;
   std::string File;
 };
+
+/// Checks the FAB of `box` at `offset` of `data`: its header line, its real size, and that the
+/// file holds its `components` x `cells` reals.
+void CheckFabOnDisk(
+  const fs::path& data, long long offset, const std::string& box, long long cells, int components)
+{
+  std::error_code ec;
+  const unsigned long long size = FileSize(data);
+  if (!fs::exists(data, ec))
+  {
+    throw DatasetError("the AMReX data file " + data.string() + " (" + box + ") is missing");
+  }
+  // the FAB's own header line at the offset, then components x cells reals
+  std::ifstream in(data, std::ios::binary);
+  in.seekg(offset);
+  std::string line;
+  if (offset < 0 || static_cast<unsigned long long>(offset) >= size || !std::getline(in, line) ||
+    line.rfind("FAB ((", 0) != 0)
+  {
+    throw DatasetError("the AMReX data file " + data.string() +
+      " is truncated or damaged: " + "no FAB header at byte " + std::to_string(offset) + " (" +
+      box + "; the file has " + Bytes(size) + ")");
+  }
+  HeaderTokens f(line.substr(3), data.string());
+  f.Skip('(', "the FAB header of " + box);
+  f.Skip('(', "the FAB header of " + box);
+  f.Next<int>("the real format of " + box);
+  f.Skip(',', "the real format of " + box);
+  f.Skip('(', "the real format of " + box);
+  const int bits = f.Next<int>("the real size of " + box);
+  if (bits != 32 && bits != 64)
+  {
+    throw DatasetError("the AMReX data file " + data.string() + " is damaged: " + box +
+      " has reals of " + std::to_string(bits) + " bits");
+  }
+  const unsigned long long need = static_cast<unsigned long long>(offset) + line.size() + 1 +
+    static_cast<unsigned long long>(cells) * static_cast<unsigned long long>(components) *
+      static_cast<unsigned>(bits / 8);
+  if (need > size)
+  {
+    throw DatasetError("the AMReX data file " + data.string() + " is truncated: " + box +
+      " needs bytes up to " + std::to_string(need) + ", the file has " + Bytes(size));
+  }
+}
+
+/// Checks the multifab header `prefix`_H of `level` (its components, boxes and FABs against the
+/// Header's `variables` and `boxes`) and each FAB, adding the FABs' files to `expected`.
+void CheckAMReXMultifab(const fs::path& root, const fs::path& headerPath, const std::string& level,
+  const std::string& prefix, long long boxes, int variables, int dim, ExpectedBlocks& expected)
+{
+  // the level's multifab header, e.g. Level_0/Cell_H
+  const fs::path cellH = root / (prefix + "_H");
+  std::error_code ec;
+  if (!fs::exists(cellH, ec))
+  {
+    throw DatasetError(
+      "the AMReX multifab header " + cellH.string() + " of " + level + " is missing");
+  }
+  HeaderTokens c(ReadWhole(cellH), cellH.string());
+  c.Next<int>("the version");
+  c.Next<int>("the layout");
+  const int components = c.Next<int>("the number of components");
+  if (components != variables)
+  {
+    throw DatasetError("the AMReX multifab header " + cellH.string() + " has " +
+      std::to_string(components) + " components, the Header " + headerPath.string() + " lists " +
+      std::to_string(variables) + " variables; one of them is damaged");
+  }
+  c.Next<int>("the number of ghost cells");
+  c.Skip('(', "the box list");
+  const long long listed = c.Next<long long>("the number of boxes");
+  c.Next<int>("the box list's second number");
+  if (listed != boxes)
+  {
+    throw DatasetError("the AMReX multifab header " + cellH.string() + " lists " +
+      std::to_string(listed) + " boxes, the Header " + headerPath.string() + " " +
+      std::to_string(boxes) + " for " + level + "; one of them is damaged");
+  }
+  std::vector<long long> cells;
+  for (long long b = 0; b < boxes; ++b)
+  {
+    cells.push_back(c.Box(dim, "box " + std::to_string(b) + " of " + level));
+  }
+  c.Skip(')', "the end of the box list");
+  const long long fabs = c.Next<long long>("the number of FABs on disk");
+  if (fabs != boxes)
+  {
+    throw DatasetError("the AMReX multifab header " + cellH.string() + " names " +
+      std::to_string(fabs) + " FABs for " + std::to_string(boxes) + " boxes");
+  }
+  for (long long b = 0; b < boxes; ++b)
+  {
+    const std::string box = "box " + std::to_string(b) + " of " + level;
+    c.Next<std::string>("'FabOnDisk:' of " + box);
+    const fs::path data = cellH.parent_path() / c.Next<std::string>("the file of " + box);
+    const long long offset = c.Next<long long>("the offset of " + box);
+    CheckFabOnDisk(data, offset, box, cells[static_cast<std::size_t>(b)], components);
+    expected.Files.push_back(data.string());
+  }
+}
 } // namespace
 
 ExpectedBlocks CheckAMReXFiles(const std::string& folder)
@@ -458,90 +585,7 @@ ExpectedBlocks CheckAMReXFiles(const std::string& folder)
     }
     const std::string prefix = h.Next<std::string>(level + "'s multifab path");
 
-    // the level's multifab header, e.g. Level_0/Cell_H
-    const fs::path cellH = root / (prefix + "_H");
-    std::error_code ec;
-    if (!fs::exists(cellH, ec))
-    {
-      throw DatasetError(
-        "the AMReX multifab header " + cellH.string() + " of " + level + " is missing");
-    }
-    HeaderTokens c(ReadWhole(cellH), cellH.string());
-    c.Next<int>("the version");
-    c.Next<int>("the layout");
-    const int components = c.Next<int>("the number of components");
-    if (components != variables)
-    {
-      throw DatasetError("the AMReX multifab header " + cellH.string() + " has " +
-        std::to_string(components) + " components, the Header " + headerPath.string() + " lists " +
-        std::to_string(variables) + " variables; one of them is damaged");
-    }
-    c.Next<int>("the number of ghost cells");
-    c.Skip('(', "the box list");
-    const long long listed = c.Next<long long>("the number of boxes");
-    c.Next<int>("the box list's second number");
-    if (listed != boxes)
-    {
-      throw DatasetError("the AMReX multifab header " + cellH.string() + " lists " +
-        std::to_string(listed) + " boxes, the Header " + headerPath.string() + " " +
-        std::to_string(boxes) + " for " + level + "; one of them is damaged");
-    }
-    std::vector<long long> cells;
-    for (long long b = 0; b < boxes; ++b)
-    {
-      cells.push_back(c.Box(dim, "box " + std::to_string(b) + " of " + level));
-    }
-    c.Skip(')', "the end of the box list");
-    const long long fabs = c.Next<long long>("the number of FABs on disk");
-    if (fabs != boxes)
-    {
-      throw DatasetError("the AMReX multifab header " + cellH.string() + " names " +
-        std::to_string(fabs) + " FABs for " + std::to_string(boxes) + " boxes");
-    }
-    for (long long b = 0; b < boxes; ++b)
-    {
-      const std::string box = "box " + std::to_string(b) + " of " + level;
-      c.Next<std::string>("'FabOnDisk:' of " + box);
-      const fs::path data = cellH.parent_path() / c.Next<std::string>("the file of " + box);
-      const long long offset = c.Next<long long>("the offset of " + box);
-      const unsigned long long size = FileSize(data);
-      if (!fs::exists(data, ec))
-      {
-        throw DatasetError("the AMReX data file " + data.string() + " (" + box + ") is missing");
-      }
-      // the FAB's own header line at the offset, then components x cells reals
-      std::ifstream in(data, std::ios::binary);
-      in.seekg(offset);
-      std::string line;
-      if (offset < 0 || static_cast<unsigned long long>(offset) >= size ||
-        !std::getline(in, line) || line.rfind("FAB ((", 0) != 0)
-      {
-        throw DatasetError("the AMReX data file " + data.string() +
-          " is truncated or damaged: " + "no FAB header at byte " + std::to_string(offset) + " (" +
-          box + "; the file has " + Bytes(size) + ")");
-      }
-      HeaderTokens f(line.substr(3), data.string());
-      f.Skip('(', "the FAB header of " + box);
-      f.Skip('(', "the FAB header of " + box);
-      f.Next<int>("the real format of " + box);
-      f.Skip(',', "the real format of " + box);
-      f.Skip('(', "the real format of " + box);
-      const int bits = f.Next<int>("the real size of " + box);
-      if (bits != 32 && bits != 64)
-      {
-        throw DatasetError("the AMReX data file " + data.string() + " is damaged: " + box +
-          " has reals of " + std::to_string(bits) + " bits");
-      }
-      const unsigned long long need = static_cast<unsigned long long>(offset) + line.size() + 1 +
-        static_cast<unsigned long long>(cells[static_cast<std::size_t>(b)]) *
-          static_cast<unsigned long long>(components) * static_cast<unsigned>(bits / 8);
-      if (need > size)
-      {
-        throw DatasetError("the AMReX data file " + data.string() + " is truncated: " + box +
-          " needs bytes up to " + std::to_string(need) + ", the file has " + Bytes(size));
-      }
-      expected.Files.push_back(data.string());
-    }
+    CheckAMReXMultifab(root, headerPath, level, prefix, boxes, variables, dim, expected);
   }
   return expected;
 }

@@ -20,6 +20,89 @@ namespace amrsp
 namespace tool
 {
 
+namespace
+{
+/// The layout of every packer for `extents` (inspect --compare-packers), with its seconds.
+Json CompareBrickPackers(const std::vector<glm::ivec3>& extents, const AtlasRequest& request)
+{
+  Json byPacker = Json::object();
+  for (Packer p : { Packer::NextFitDecreasingHeight, Packer::Best })
+  {
+    try
+    {
+      const AtlasLayout layout = PackBricks(
+        extents, p, request.MaxDims, static_cast<int64_t>(request.MaxBytes / AtlasTexelBytes));
+      byPacker[PackerName(p)] = AtlasJson(layout);
+      byPacker[PackerName(p)]["seconds"] = layout.Seconds;
+    }
+    catch (const PackingError& e)
+    {
+      byPacker[PackerName(p)] = Json{ { "error", e.what() } };
+    }
+  }
+  return byPacker;
+}
+
+/// The paper's Table 2 "GPU memory" in bytes: tree textures + grid data, for either storage
+/// (packing: null when `atlas` could not be packed).
+Json GpuBytesJson(
+  const EncodedKdTree& enc, const std::vector<glm::ivec3>& extents, const Json& atlas)
+{
+  const std::size_t treeBytes = KdTreeTextureBytes(enc.Tree, enc.DataNodes);
+  std::size_t brickBytes = 0;
+  for (const glm::ivec3& e : extents)
+  {
+    brickBytes += static_cast<std::size_t>(e.x) * e.y * e.z * AtlasTexelBytes;
+  }
+  Json memory;
+  memory["tree"] = treeBytes;
+  if (atlas.contains("total_texels"))
+  {
+    memory["packing"] = treeBytes + atlas["total_texels"].get<std::size_t>() * AtlasTexelBytes;
+  }
+  else
+  {
+    memory["packing"] = nullptr;
+  }
+  memory["bindless"] = treeBytes + brickBytes + HandleTextureBytes(extents.size());
+  return memory;
+}
+
+/// inspect's text form of its JSON object `j`.
+void PrintInspectText(
+  const Json& j, const LoadedDataset& d, const KdTreeStatistics& st, const InvariantReport& inv)
+{
+  const Hierarchy& h = d.Data;
+  const Json& times = j["times_s"];
+  const double kdSeconds = times["kdtree"], encodeSeconds = times["encode"],
+               packSeconds = times["pack"];
+  const Json& atlas = j["atlas"];
+  std::cout << "dataset      " << d.Spec << " (" << d.Format << "), array "
+            << (h.ArrayName.empty() ? "-" : h.ArrayName) << "\n"
+            << "levels       " << h.NumberOfLevels() << "\n"
+            << "grids        " << h.Grids.size() << " per level " << j["grids_per_level"].dump()
+            << "\n"
+            << "cells        " << h.TotalCells() << "\n"
+            << "bounds       " << j["bounds"].dump() << "\n"
+            << "kD nodes     " << st.Nodes << " (data nodes " << st.DataNodes << "; types a "
+            << st.Refined << ", b " << st.Leaves << ", c " << st.Mixed << ", empty " << st.Empty
+            << "; depth " << st.Depth << ")\n"
+            << "textures     tree " << j["tree_texture"].dump() << ", data nodes "
+            << j["data_nodes_texture"].dump() << "\n"
+            << "atlas        " << atlas.dump() << "\n"
+            << "GPU memory   " << j["gpu_bytes"].dump()
+            << " (bytes: tree textures + grid data, per storage)\n"
+            << "times (s)    load " << d.LoadSeconds << ", kD-tree " << kdSeconds << ", encode "
+            << encodeSeconds << ", pack " << packSeconds << "\n"
+            << "invariants   " << (inv.Ok ? "ok" : "FAILED") << "\n";
+  for (const std::string& f : inv.Failures)
+  {
+    std::cout << "  " << f << "\n";
+  }
+}
+
+} // namespace
+
 int RunInspect(int argc, char** argv)
 {
   const char* help =
@@ -66,20 +149,7 @@ int RunInspect(int argc, char** argv)
     }
     if (a.Has("compare-packers"))
     {
-      for (Packer p : { Packer::NextFitDecreasingHeight, Packer::Best })
-      {
-        try
-        {
-          const AtlasLayout layout = PackBricks(extents, p, atlasRequest.MaxDims,
-            static_cast<int64_t>(atlasRequest.MaxBytes / AtlasTexelBytes));
-          byPacker[PackerName(p)] = AtlasJson(layout);
-          byPacker[PackerName(p)]["seconds"] = layout.Seconds;
-        }
-        catch (const PackingError& e)
-        {
-          byPacker[PackerName(p)] = Json{ { "error", e.what() } };
-        }
-      }
+      byPacker = CompareBrickPackers(extents, atlasRequest);
     }
 
     std::vector<int64_t> perLevel(static_cast<std::size_t>(h.NumberOfLevels()), 0);
@@ -116,27 +186,7 @@ int RunInspect(int argc, char** argv)
     j["data_nodes_texture"] = TextureJson(enc.DataNodes);
     j["centering"] = vertexBricks ? "vertex" : "cell";
     j["atlas"] = atlas;
-    {
-      // the paper's Table 2 "GPU memory": tree textures + grid data, for either storage
-      const std::size_t treeBytes = KdTreeTextureBytes(enc.Tree, enc.DataNodes);
-      std::size_t brickBytes = 0;
-      for (const glm::ivec3& e : extents)
-      {
-        brickBytes += static_cast<std::size_t>(e.x) * e.y * e.z * AtlasTexelBytes;
-      }
-      Json memory;
-      memory["tree"] = treeBytes;
-      if (atlas.contains("total_texels"))
-      {
-        memory["packing"] = treeBytes + atlas["total_texels"].get<std::size_t>() * AtlasTexelBytes;
-      }
-      else
-      {
-        memory["packing"] = nullptr;
-      }
-      memory["bindless"] = treeBytes + brickBytes + HandleTextureBytes(extents.size());
-      j["gpu_bytes"] = memory;
-    }
+    j["gpu_bytes"] = GpuBytesJson(enc, extents, atlas);
     if (a.Has("compare-packers"))
     {
       j["atlas_by_packer"] = byPacker;
@@ -152,28 +202,7 @@ int RunInspect(int argc, char** argv)
     }
     else
     {
-      std::cout << "dataset      " << d.Spec << " (" << d.Format << "), array "
-                << (h.ArrayName.empty() ? "-" : h.ArrayName) << "\n"
-                << "levels       " << h.NumberOfLevels() << "\n"
-                << "grids        " << h.Grids.size() << " per level " << j["grids_per_level"].dump()
-                << "\n"
-                << "cells        " << h.TotalCells() << "\n"
-                << "bounds       " << j["bounds"].dump() << "\n"
-                << "kD nodes     " << st.Nodes << " (data nodes " << st.DataNodes << "; types a "
-                << st.Refined << ", b " << st.Leaves << ", c " << st.Mixed << ", empty " << st.Empty
-                << "; depth " << st.Depth << ")\n"
-                << "textures     tree " << j["tree_texture"].dump() << ", data nodes "
-                << j["data_nodes_texture"].dump() << "\n"
-                << "atlas        " << atlas.dump() << "\n"
-                << "GPU memory   " << j["gpu_bytes"].dump()
-                << " (bytes: tree textures + grid data, per storage)\n"
-                << "times (s)    load " << d.LoadSeconds << ", kD-tree " << kdSeconds << ", encode "
-                << encodeSeconds << ", pack " << packSeconds << "\n"
-                << "invariants   " << (inv.Ok ? "ok" : "FAILED") << "\n";
-      for (const std::string& f : inv.Failures)
-      {
-        std::cout << "  " << f << "\n";
-      }
+      PrintInspectText(j, d, st, inv);
     }
     return inv.Ok ? 0 : 3;
   }

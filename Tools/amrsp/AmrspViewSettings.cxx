@@ -277,23 +277,11 @@ void ApplyExplicitLighting(const ExplicitView& v, const Arguments& a, RenderSett
 
 } // namespace
 
-RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range)
+namespace
 {
-  ExplicitView explicitView;
-  if (a.Has("view-json"))
-  {
-    explicitView = ReadViewJson(a.Get("view-json", ""));
-    if (explicitView.HasCamera && (a.Has("azimuth") || a.Has("elevation") || a.Has("zoom")))
-    {
-      throw UsageError{ "--azimuth, --elevation and --zoom cannot change a --view-json camera" };
-    }
-    if (explicitView.HasTransfer && a.Has("tf"))
-    {
-      throw UsageError{ "--tf cannot be combined with a --view-json transfer function" };
-    }
-  }
-  RenderSettings s;
-  const std::string size = a.Get("size", "512x512");
+/// --size WxH into s.Width and s.Height (1 to 16384 each).
+void ParseImageSize(const std::string& size, RenderSettings& s)
+{
   const std::size_t x = size.find('x');
   try
   {
@@ -312,6 +300,53 @@ RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range)
   {
     throw UsageError{ "--size must be between 1x1 and 16384x16384" };
   }
+}
+
+/// --blend's name as a BlendMode.
+BlendMode ParseBlendMode(const std::string& blend)
+{
+  if (blend == "composite")
+  {
+    return BlendMode::Composite;
+  }
+  if (blend == "maximum")
+  {
+    return BlendMode::Maximum;
+  }
+  if (blend == "minimum")
+  {
+    return BlendMode::Minimum;
+  }
+  if (blend == "average")
+  {
+    return BlendMode::Average;
+  }
+  if (blend == "iso")
+  {
+    return BlendMode::IsoSurface;
+  }
+  throw UsageError{ "--blend must be composite, maximum, minimum, average or iso" };
+}
+
+} // namespace
+
+RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range)
+{
+  ExplicitView explicitView;
+  if (a.Has("view-json"))
+  {
+    explicitView = ReadViewJson(a.Get("view-json", ""));
+    if (explicitView.HasCamera && (a.Has("azimuth") || a.Has("elevation") || a.Has("zoom")))
+    {
+      throw UsageError{ "--azimuth, --elevation and --zoom cannot change a --view-json camera" };
+    }
+    if (explicitView.HasTransfer && a.Has("tf"))
+    {
+      throw UsageError{ "--tf cannot be combined with a --view-json transfer function" };
+    }
+  }
+  RenderSettings s;
+  ParseImageSize(a.Get("size", "512x512"), s);
   glm::dvec3 lo, hi;
   Bounds(h, lo, hi);
   if (explicitView.HasCamera)
@@ -373,31 +408,7 @@ RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range)
     throw UsageError{ "--atlas-page-mib must be positive" };
   }
   s.AtlasPageBytes = static_cast<long long>(pageMiB * 1024.0 * 1024.0);
-  const std::string blend = a.Get("blend", "composite");
-  if (blend == "composite")
-  {
-    s.Blend = BlendMode::Composite;
-  }
-  else if (blend == "maximum")
-  {
-    s.Blend = BlendMode::Maximum;
-  }
-  else if (blend == "minimum")
-  {
-    s.Blend = BlendMode::Minimum;
-  }
-  else if (blend == "average")
-  {
-    s.Blend = BlendMode::Average;
-  }
-  else if (blend == "iso")
-  {
-    s.Blend = BlendMode::IsoSurface;
-  }
-  else
-  {
-    throw UsageError{ "--blend must be composite, maximum, minimum, average or iso" };
-  }
+  s.Blend = ParseBlendMode(a.Get("blend", "composite"));
   ApplyLightingOptions(s, a, vlo, vhi);
   ApplyExplicitLighting(explicitView, a, s);
   s.Threads = static_cast<int>(a.GetNumber("threads", 0.0));
