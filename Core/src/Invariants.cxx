@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -46,6 +47,7 @@ public:
     {
       Levels[h.Grids[g].Level].Members.push_back(static_cast<int32_t>(g));
     }
+    Seen.assign(h.Grids.size(), 0);
     for (int l = 0; l < levels; ++l)
     {
       Level& L = Levels[l];
@@ -81,8 +83,8 @@ public:
     return grid.Cells.Refined(ToFinest[grid.Level]);
   }
 
-  /// Calls f(g) for each grid of `level` overlapping `region` (finest cells); stops when f
-  /// returns false.
+  /// Calls f(g) once for each grid of `level` overlapping `region` (finest cells); stops when f
+  /// returns false. O(bucket entries in `region`).
   template <typename F>
   void Overlapping(int level, const Box& region, F f) const
   {
@@ -91,18 +93,19 @@ public:
     {
       return;
     }
-    std::vector<int32_t> seen;
+    // a grid in several buckets is visited once: Seen[g] == Query marks it for this query
+    ++this->Query;
     bool go = true;
     ForBuckets(L, region,
       [&](const std::vector<int32_t>& bucket)
       {
         for (int32_t g : bucket)
         {
-          if (!go || std::find(seen.begin(), seen.end(), g) != seen.end())
+          if (!go || this->Seen[static_cast<std::size_t>(g)] == this->Query)
           {
             continue;
           }
-          seen.push_back(g);
+          this->Seen[static_cast<std::size_t>(g)] = this->Query;
           if (Fine(g).Overlaps(region))
           {
             go = f(g);
@@ -112,6 +115,10 @@ public:
   }
 
 private:
+  // per grid, the last query that visited it (Overlapping is therefore not thread-safe)
+  mutable std::vector<uint64_t> Seen;
+  mutable uint64_t Query = 0;
+
   struct Level
   {
     std::vector<int32_t> Members;
