@@ -5,6 +5,7 @@
 /// formatting, image coverage and render settings built from `amrsp render` options.
 
 #include "AmrspCommands.h"
+#include "AmrspDataset.h"
 
 #include "amrsp/Render.h"
 
@@ -92,6 +93,18 @@ inline amrsp::RenderSettings Settings(amrsp::Hierarchy& h, std::vector<std::stri
         "reference-sample-factor" },
       {});
   return amrsp::tool::MakeSettings(h, a);
+}
+
+/// The hierarchy of a dataset spec (`amrsp render`'s DATASET), without the VTK objects;
+/// `centering` as --centering.
+inline amrsp::Hierarchy LoadHierarchy(
+  const std::string& spec, const std::string& centering = "auto")
+{
+  amrsp::tool::DatasetRequest request;
+  request.Spec = spec;
+  request.NeedVTK = false;
+  request.Centering = centering;
+  return amrsp::tool::LoadDataset(request).Data;
 }
 
 } // namespace mappertest

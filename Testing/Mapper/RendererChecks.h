@@ -66,6 +66,13 @@ struct OccluderView
   amrsp::Camera View;
   glm::dvec3 ToCamera{ 0.0 };
   double Half = 0.0; ///< 0.15 x the camera's distance to its focal point
+
+  /// A black square through the focal point facing the camera, 4 Half wide (one per render
+  /// window: a mapper's buffers belong to one context).
+  vtkSmartPointer<vtkActor> SquareThroughCentre() const
+  {
+    return OpaqueSquare(View.FocalPoint, ToCamera, View.ViewUp, 2.0 * Half, 0.0);
+  }
 };
 
 /// Renders `gpu` (a tool renderer: Render(azimuth, ms), LastCamera(), GetRenderer()) plainly and

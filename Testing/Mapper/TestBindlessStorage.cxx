@@ -49,21 +49,13 @@ using mappertest::Check;
 using mappertest::Coverage;
 using mappertest::Failures;
 using mappertest::Fixed;
+using mappertest::LoadHierarchy;
 using mappertest::Settings;
 using Mapper = vtkSinglePassAMRVolumeMapper;
 
 constexpr double BoundVsPacking = 0.05;
 constexpr double BoundVsKdTree = 1.0;
 constexpr double BoundVsReference = 2.0;
-
-Hierarchy Load(const std::string& spec, const std::string& centering = "auto")
-{
-  DatasetRequest request;
-  request.Spec = spec;
-  request.NeedVTK = false;
-  request.Centering = centering;
-  return LoadDataset(request).Data;
-}
 
 /// Counts the warnings a VTK object reports (an observer also keeps them off the terminal).
 struct WarningCounter
@@ -202,7 +194,7 @@ void TestDataset(const std::string& name, Hierarchy h, bool uniformHandlesOnly)
 void TestAutomaticChoice()
 {
   std::cout << "automatic storage choice\n";
-  Hierarchy h = Load("synthetic:cosmo:grids=30,levels=3,cells=60k,seed=5");
+  Hierarchy h = LoadHierarchy("synthetic:cosmo:grids=30,levels=3,cells=60k,seed=5");
   const RenderSettings s = Settings(h, { "--size", "64x64" });
   PackingRenderer gpu(h, s, ViewAngles(), "auto");
   Mapper* m = gpu.GetMapper();
@@ -237,7 +229,7 @@ void TestAutomaticChoice()
   m->SetDataStorageToBindlessTextures();
 
   // a data change: new bricks and handles, the old ones made non-resident
-  Hierarchy other = Load("synthetic:cosmo:grids=30,levels=3,cells=60k,seed=6");
+  Hierarchy other = LoadHierarchy("synthetic:cosmo:grids=30,levels=3,cells=60k,seed=6");
   Settings(other, { "--size", "64x64" });        // displays log10(Density) like `h`
   PackingRenderer fresh(other, s, ViewAngles()); // with the same transfer function and view
   fresh.GetMapper()->SetDataStorageToPackedAtlas();
@@ -257,7 +249,7 @@ void TestAutomaticChoice()
 void TestDriverLimit()
 {
   std::cout << "more grids than zink's 1023 bindless textures\n";
-  Hierarchy h = Load("synthetic:cosmo:grids=1100,levels=3,cells=200k,seed=5");
+  Hierarchy h = LoadHierarchy("synthetic:cosmo:grids=1100,levels=3,cells=200k,seed=5");
   const RenderSettings s = Settings(h, { "--size", "32x32" });
   PackingRenderer gpu(h, s, ViewAngles(), "packing");
   Mapper* m = gpu.GetMapper();
@@ -283,12 +275,13 @@ void TestDriverLimit()
 
 int RunBindless()
 {
-  TestDataset("one grid", Load("synthetic:cosmo:grids=1,levels=1,cells=20k,seed=2"), true);
+  TestDataset("one grid", LoadHierarchy("synthetic:cosmo:grids=1,levels=1,cells=20k,seed=2"), true);
   TestDataset("enzo_moving7",
-    Load(std::string(AMRSP_DATA_DIR) + "/enzo_moving7/DD0010/moving7_0010.hierarchy"), false);
-  TestDataset("amrex_plt1_Y", Load(std::string(AMRSP_DATA_DIR) + "/amrex_plt1_Y"), false);
+    LoadHierarchy(std::string(AMRSP_DATA_DIR) + "/enzo_moving7/DD0010/moving7_0010.hierarchy"),
+    false);
+  TestDataset("amrex_plt1_Y", LoadHierarchy(std::string(AMRSP_DATA_DIR) + "/amrex_plt1_Y"), false);
   TestDataset("synthetic, vertex-centred",
-    Load("synthetic:cosmo:grids=60,levels=3,cells=100k,seed=4", "vertex"), false);
+    LoadHierarchy("synthetic:cosmo:grids=60,levels=3,cells=100k,seed=4", "vertex"), false);
   TestAutomaticChoice();
   TestDriverLimit();
   return Failures() == 0 ? 0 : 1;
@@ -297,7 +290,7 @@ int RunBindless()
 /// Without the extension, asking for bindless renders with the atlas and warns exactly once.
 int RunFallback()
 {
-  Hierarchy h = Load("synthetic:cosmo:grids=30,levels=3,cells=60k,seed=5");
+  Hierarchy h = LoadHierarchy("synthetic:cosmo:grids=30,levels=3,cells=60k,seed=5");
   const RenderSettings s = Settings(h, { "--size", "64x64" });
   PackingRenderer gpu(h, s, ViewAngles());
   Mapper* m = gpu.GetMapper();

@@ -41,12 +41,9 @@ double VolumeRmse(const Image& a, const Image& b)
 
 void TestInteractiveFrames()
 {
-  DatasetRequest request;
-  request.Spec = "synthetic:cosmo:grids=200,levels=4,cells=2M,seed=5";
-  request.NeedVTK = false;
-  LoadedDataset d = LoadDataset(request);
-  const RenderSettings s = mappertest::Settings(d.Data, { "--size", "128x128" });
-  PackingRenderer gpu(d.Data, s, ViewAngles(), "packing");
+  Hierarchy h = mappertest::LoadHierarchy("synthetic:cosmo:grids=200,levels=4,cells=2M,seed=5");
+  const RenderSettings s = mappertest::Settings(h, { "--size", "128x128" });
+  PackingRenderer gpu(h, s, ViewAngles(), "packing");
   vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
   vtkRenderWindow* window = gpu.GetRenderer()->GetRenderWindow();
   double ms = 0.0;
@@ -113,7 +110,7 @@ void TestInteractiveFrames()
 
   // opaque geometry: the reduced frame reads the viewport-sized depth at its own pixels
   vtkNew<vtkSphereSource> sphere;
-  const glm::dvec3 lo = d.Data.Origin, hi = d.Data.WorldHi(d.Data.RootCells(), 0);
+  const glm::dvec3 lo = h.Origin, hi = h.WorldHi(h.RootCells(), 0);
   const glm::dvec3 centre = 0.5 * (lo + hi);
   sphere->SetCenter(centre.x, centre.y, centre.z);
   sphere->SetRadius(0.3 * (hi.x - lo.x));

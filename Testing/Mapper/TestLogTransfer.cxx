@@ -61,11 +61,7 @@ TransferFunction LogSpacedLinearFunction(const TransferFunction& log)
 
 void TestLogTransfer()
 {
-  DatasetRequest request;
-  request.Spec = "synthetic:cosmo:grids=60,levels=3,cells=200k,seed=3";
-  request.NeedVTK = false;
-  LoadedDataset d = LoadDataset(request);
-  Hierarchy& h = d.Data;
+  Hierarchy h = mappertest::LoadHierarchy("synthetic:cosmo:grids=60,levels=3,cells=200k,seed=3");
   // the densities themselves (positive, about ten decades), not their log10
   RenderSettings s = mappertest::Settings(h, { "--size", "96x96", "--scale", "linear" });
   s.Transfer = LogFunction();

@@ -71,8 +71,8 @@ using mappertest::CheckTransferChangeRebuildsNothing;
 using mappertest::Coverage;
 using mappertest::Failures;
 using mappertest::Fixed;
+using mappertest::LoadHierarchy;
 using mappertest::OccluderView;
-using mappertest::OpaqueSquare;
 using mappertest::Settings;
 
 constexpr double BoundVsKdTree = 1.0;
@@ -134,15 +134,9 @@ void TestOccludersAndErrors(Hierarchy& h, const EncodedKdTree& enc, const Render
   {
     OccluderView view;
     const Image plain = CheckSquareInFrontHides(gpu, view);
-    const Camera& c = view.View;
-    const glm::dvec3 toCamera = view.ToCamera;
-    const double half = view.Half;
 
-    vtkSmartPointer<vtkActor> middle =
-      OpaqueSquare(c.FocalPoint, toCamera, c.ViewUp, 2.0 * half, 0.0);
-    // (each window gets its own actor: a mapper's buffers belong to one context)
-    vtkSmartPointer<vtkActor> middleSingle =
-      OpaqueSquare(c.FocalPoint, toCamera, c.ViewUp, 2.0 * half, 0.0);
+    vtkSmartPointer<vtkActor> middle = view.SquareThroughCentre();
+    vtkSmartPointer<vtkActor> middleSingle = view.SquareThroughCentre();
     gpu.GetRenderer()->AddActor(middle);
     single.GetRenderer()->AddActor(middleSingle);
     const Image frontHalf = gpu.Render(0.0, ms);
@@ -290,11 +284,7 @@ void TestViewsAndErrors(Hierarchy& h, const EncodedKdTree& enc, const RenderSett
 void TestDataset(const std::string& spec)
 {
   std::cout << "dataset " << spec << "\n";
-  DatasetRequest request;
-  request.Spec = spec;
-  request.NeedVTK = false;
-  LoadedDataset d = LoadDataset(request);
-  Hierarchy& h = d.Data;
+  Hierarchy h = LoadHierarchy(spec);
   const RenderSettings s = Settings(h, { "--size", "128x128" });
   const KdTree tree = BuildKdTree(h);
   const EncodedKdTree enc = EncodeKdTree(h, tree);
@@ -375,12 +365,7 @@ void TestDataset(const std::string& spec)
 void TestVertexCentred(const std::string& spec)
 {
   std::cout << "dataset " << spec << " (vertex-centred)\n";
-  DatasetRequest request;
-  request.Spec = spec;
-  request.NeedVTK = false;
-  request.Centering = "vertex";
-  LoadedDataset d = LoadDataset(request);
-  Hierarchy& h = d.Data;
+  Hierarchy h = LoadHierarchy(spec, "vertex");
   Check(h.VertexCentred, "the data was converted to vertices");
   const RenderSettings s = Settings(h, { "--size", "96x96" });
   MultipassRenderer gpu(h, s, ViewAngles());
@@ -410,13 +395,10 @@ int main()
     TestVertexCentred("synthetic:cosmo:grids=40,levels=3,cells=100k,seed=5");
     {
       std::cout << "level of detail\n";
-      DatasetRequest request;
-      request.Spec = "synthetic:cosmo:grids=20,levels=2,cells=50k,seed=1";
-      request.NeedVTK = false;
-      LoadedDataset d = LoadDataset(request);
-      RenderSettings s = Settings(d.Data, { "--size", "32x32" });
+      Hierarchy small = LoadHierarchy("synthetic:cosmo:grids=20,levels=2,cells=50k,seed=1");
+      RenderSettings s = Settings(small, { "--size", "32x32" });
       s.LodThresholdPixels = 2.0f;
-      CheckError([&] { MultipassRenderer refused(d.Data, s, ViewAngles()); },
+      CheckError([&] { MultipassRenderer refused(small, s, ViewAngles()); },
         { "finest level only" }, "--lod is refused by the multipass method");
     }
     const std::string enzo =

@@ -78,8 +78,8 @@ using mappertest::CheckTransferChangeRebuildsNothing;
 using mappertest::Coverage;
 using mappertest::Failures;
 using mappertest::Fixed;
+using mappertest::LoadHierarchy;
 using mappertest::OccluderView;
-using mappertest::OpaqueSquare;
 using mappertest::Settings;
 
 constexpr double BoundVsReference = 2.0;
@@ -150,12 +150,8 @@ void TestViewsAndErrors(Hierarchy& h, const EncodedKdTree& enc, const RenderSett
   {
     OccluderView view;
     const Image plain = CheckSquareInFrontHides(gpu, view);
-    const Camera& c = view.View;
-    const glm::dvec3 toCamera = view.ToCamera;
-    const double half = view.Half;
 
-    vtkSmartPointer<vtkActor> middle =
-      OpaqueSquare(c.FocalPoint, toCamera, c.ViewUp, 2.0 * half, 0.0);
+    vtkSmartPointer<vtkActor> middle = view.SquareThroughCentre();
     gpu.GetRenderer()->AddActor(middle);
     const Image frontHalf = gpu.Render(0.0, ms);
     gpu.GetMapper()->UseDepthBufferOff();
@@ -214,11 +210,7 @@ void TestViewsAndErrors(Hierarchy& h, const EncodedKdTree& enc, const RenderSett
 void TestDataset(const std::string& spec)
 {
   std::cout << "dataset " << spec << "\n";
-  DatasetRequest request;
-  request.Spec = spec;
-  request.NeedVTK = false;
-  LoadedDataset d = LoadDataset(request);
-  Hierarchy& h = d.Data;
+  Hierarchy h = LoadHierarchy(spec);
   const RenderSettings s = Settings(h, { "--size", "128x128" });
   const EncodedKdTree enc = EncodeKdTree(h, BuildKdTree(h));
 
@@ -291,12 +283,7 @@ void TestDataset(const std::string& spec)
 void TestVertexCentred(const std::string& spec)
 {
   std::cout << "dataset " << spec << " (vertex-centred)\n";
-  DatasetRequest request;
-  request.Spec = spec;
-  request.NeedVTK = false;
-  request.Centering = "vertex";
-  LoadedDataset d = LoadDataset(request);
-  Hierarchy& h = d.Data;
+  Hierarchy h = LoadHierarchy(spec, "vertex");
   Check(h.VertexCentred, "the data was converted to vertices");
   const RenderSettings s = Settings(h, { "--size", "96x96" });
   PackingRenderer gpu(h, s, ViewAngles());
@@ -430,15 +417,8 @@ void TestAtlasPages()
   std::cout << "atlas pages\n";
   for (const char* centering : { "cell", "vertex" })
   {
-    DatasetRequest request;
-    request.Spec = "synthetic:cosmo:grids=60,levels=3,cells=200k,seed=3";
-    request.NeedVTK = false;
-    if (std::string(centering) == "vertex")
-    {
-      request.Centering = "vertex";
-    }
-    LoadedDataset d = LoadDataset(request);
-    Hierarchy& h = d.Data;
+    Hierarchy h = LoadHierarchy("synthetic:cosmo:grids=60,levels=3,cells=200k,seed=3",
+      std::string(centering) == "vertex" ? "vertex" : "auto");
     const std::string name = std::string(centering) + " data";
     const RenderSettings base = Settings(h, { "--size", "96x96" });
     for (const char* interpolation : { "nearest", "smooth" })
@@ -480,11 +460,8 @@ void TestAtlasPages()
 void TestProgressEvents()
 {
   std::cout << "progress events\n";
-  DatasetRequest request;
-  request.Spec = "synthetic:cosmo:grids=60,levels=3,cells=200k,seed=3";
-  request.NeedVTK = false;
-  LoadedDataset d = LoadDataset(request);
-  const RenderSettings s = Settings(d.Data, { "--size", "48x48" });
+  Hierarchy h = LoadHierarchy("synthetic:cosmo:grids=60,levels=3,cells=200k,seed=3");
+  const RenderSettings s = Settings(h, { "--size", "48x48" });
   struct Event
   {
     double Fraction;
@@ -548,11 +525,11 @@ void TestProgressEvents()
   };
   double ms = 0.0;
   std::vector<Event> single, multi;
-  PackingRenderer packing(d.Data, s, ViewAngles(), "packing");
+  PackingRenderer packing(h, s, ViewAngles(), "packing");
   watch(packing.GetMapper(), single);
   packing.Render(0.0, ms);
   check(single, "single-pass", { "converting", "kD-tree", "packing the bricks", "uploading" });
-  MultipassRenderer multipass(d.Data, s, ViewAngles());
+  MultipassRenderer multipass(h, s, ViewAngles());
   watch(multipass.GetMapper(), multi);
   multipass.Render(0.0, ms);
   check(multi, "multi-pass", { "converting", "uploading" });
