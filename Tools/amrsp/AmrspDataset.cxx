@@ -561,6 +561,20 @@ void GenerateSyntheticCosmo(const DatasetRequest& request, LoadedDataset& out)
   }
 }
 
+/// Reads request.Spec with `reader` (`what` names the dataset in messages) into out.Amr: the
+/// array selection, the read, and the blocks read against `expected` (the file checks' blocks;
+/// `inFileOrder`: whether the reader keeps the files' block order, as CheckBlocksRead).
+void ReadWithAMRReader(vtkAMRBaseReader* reader, const std::string& what,
+  const ExpectedBlocks& expected, bool inFileOrder, const DatasetRequest& request,
+  CaptureVTKMessages& capture, LoadedDataset& out)
+{
+  reader->SetFileName(request.Spec.c_str());
+  const std::string array = SelectReaderArray(reader, request, what, capture, expected.Variables);
+  out.Amr = RunAlgorithm(reader, "reading " + what, capture);
+  CheckBlocksRead(
+    out.Amr, expected, array, what, capture.First(), request.AllowPartial, inFileOrder);
+}
+
 /// A dataset file or folder (Enzo, AMReX, VTK XML AMR) read with VTK's reader into out.Amr, after
 /// the checks of the files the dataset's own metadata names.
 void ReadDatasetFile(const DatasetRequest& request, CaptureVTKMessages& capture, LoadedDataset& out)
@@ -585,12 +599,7 @@ void ReadDatasetFile(const DatasetRequest& request, CaptureVTKMessages& capture,
     ReaderGuard guard("reading the AMReX plotfile " + spec, request.ReadTimeoutSeconds);
     const ExpectedBlocks expected = FileChecksOn() ? CheckAMReXFiles(spec) : ExpectedBlocks();
     vtkNew<vtkAMReXGridReader> reader;
-    reader->SetFileName(spec.c_str());
-    const std::string array =
-      SelectReaderArray(reader, request, "the AMReX plotfile " + spec, capture, expected.Variables);
-    out.Amr = RunAlgorithm(reader, "reading the AMReX plotfile " + spec, capture);
-    CheckBlocksRead(out.Amr, expected, array, "the AMReX plotfile " + spec, capture.First(),
-      request.AllowPartial, true);
+    ReadWithAMRReader(reader, "the AMReX plotfile " + spec, expected, true, request, capture, out);
   }
   else if (ext == ".hierarchy")
   {
@@ -598,14 +607,9 @@ void ReadDatasetFile(const DatasetRequest& request, CaptureVTKMessages& capture,
     ReaderGuard guard("reading the Enzo hierarchy " + spec, request.ReadTimeoutSeconds);
     const ExpectedBlocks expected = FileChecksOn() ? CheckEnzoFiles(spec) : ExpectedBlocks();
     vtkNew<vtkAMREnzoReader> reader;
-    reader->SetFileName(spec.c_str());
-    const std::string array =
-      SelectReaderArray(reader, request, "the Enzo hierarchy " + spec, capture);
-    out.Amr = RunAlgorithm(reader, "reading the Enzo hierarchy " + spec, capture);
     // VTK's reader orders Enzo grids by level, not as the hierarchy lists them: the missing
     // blocks' files are named as the set of grid files
-    CheckBlocksRead(out.Amr, expected, array, "the Enzo hierarchy " + spec, capture.First(),
-      request.AllowPartial, false);
+    ReadWithAMRReader(reader, "the Enzo hierarchy " + spec, expected, false, request, capture, out);
   }
   else if ((ext == ".vthb" || ext == ".vth" || ext == ".vtm") && IsHierarchicalBoxV01(spec) &&
     !std::getenv("AMRSP_USE_VTK_XML_AMR_READER")) // the variable exists to test the crash guard
