@@ -300,8 +300,9 @@ vtkSmartPointer<vtkTextureObject> UploadAtlasBySlabs(vtkOpenGLRenderWindow* renW
     1, std::min<std::size_t>(d.z, (std::size_t(16) << 20) / (layer * sizeof(float)))));
   std::vector<float> buffers[2] = { std::vector<float>(layer * static_cast<std::size_t>(slab)),
     std::vector<float>(layer * static_cast<std::size_t>(slab)) };
-  const auto fill = [&h, &layout, &d, slab](int z0, std::vector<float>& texels)
-  { amrsp::FillAtlasSlab(h, layout, z0, std::min(d.z, z0 + slab), texels.data()); };
+  const amrsp::AtlasSlabFiller filler(h, layout);
+  const auto fill = [&filler, &d, slab](int z0, std::vector<float>& texels)
+  { filler.Fill(z0, std::min(d.z, z0 + slab), texels.data()); };
   atlas->Activate(); // bound to a texture unit of its own for the uploads
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   fill(0, buffers[0]);

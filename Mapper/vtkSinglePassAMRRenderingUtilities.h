@@ -134,7 +134,7 @@ ModelLight FirstLightInModel(vtkRenderer* ren, vtkVolume* vol);
 
 /**
  * The atlas of `h`'s bricks placed by `layout` as an R32F 3D texture (MakeScalarTexture's
- * filtering), allocated empty and filled slab by slab (amrsp::FillAtlasSlab, about 16 MiB per
+ * filtering), allocated empty and filled slab by slab (amrsp::AtlasSlabFiller, about 16 MiB per
  * glTexSubImage3D, the next slab filled on a worker thread meanwhile): the whole atlas never
  * exists in host memory. `progress` gets the fraction of the layers uploaded after each slab.
  * Null when OpenGL refused the allocation.

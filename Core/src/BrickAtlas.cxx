@@ -68,10 +68,24 @@ BrickAtlas FillBrickAtlas(const Hierarchy& h, AtlasLayout layout)
   return atlas;
 }
 
-void FillAtlasSlab(const Hierarchy& h, const AtlasLayout& layout, int z0, int z1, float* out)
+AtlasSlabFiller::AtlasSlabFiller(const Hierarchy& h, const AtlasLayout& layout)
+  : H(h)
+  , Layout(layout)
+  , Extents(CheckedBrickExtents(h, layout))
+  , ByFirstLayer(h.Grids.size())
 {
-  const std::vector<glm::ivec3> extents = CheckedBrickExtents(h, layout);
-  const glm::ivec3 d = layout.Dims;
+  for (std::size_t g = 0; g < this->ByFirstLayer.size(); ++g)
+  {
+    this->ByFirstLayer[g] = g;
+    this->TallestBrick = std::max(this->TallestBrick, this->Extents[g].z);
+  }
+  std::stable_sort(this->ByFirstLayer.begin(), this->ByFirstLayer.end(),
+    [&layout](std::size_t a, std::size_t b) { return layout.Origins[a].z < layout.Origins[b].z; });
+}
+
+void AtlasSlabFiller::Fill(int z0, int z1, float* out) const
+{
+  const glm::ivec3 d = this->Layout.Dims;
   if (z0 < 0 || z1 < z0 || z1 > d.z)
   {
     throw std::invalid_argument("the atlas slab [" + std::to_string(z0) + ", " +
@@ -79,14 +93,23 @@ void FillAtlasSlab(const Hierarchy& h, const AtlasLayout& layout, int z0, int z1
   }
   const std::size_t layer = static_cast<std::size_t>(d.x) * static_cast<std::size_t>(d.y);
   std::fill(out, out + layer * static_cast<std::size_t>(z1 - z0), 0.0f);
-  for (std::size_t g = 0; g < h.Grids.size(); ++g)
+  // a brick crossing the slab starts above z0 - TallestBrick and below z1
+  const auto startsBefore = [this](int z)
   {
-    const glm::ivec3 e = extents[g];
-    const glm::ivec3 o = layout.Origins[g];
+    return std::lower_bound(this->ByFirstLayer.begin(), this->ByFirstLayer.end(), z,
+      [this](std::size_t g, int layerZ) { return this->Layout.Origins[g].z < layerZ; });
+  };
+  // copied in grid order, the order of the grids' values in memory
+  std::vector<std::size_t> crossing(startsBefore(z0 - this->TallestBrick + 1), startsBefore(z1));
+  std::sort(crossing.begin(), crossing.end());
+  for (const std::size_t g : crossing)
+  {
+    const glm::ivec3 e = this->Extents[g];
+    const glm::ivec3 o = this->Layout.Origins[g];
     const int k0 = std::max(z0, o.z), k1 = std::min(z1, o.z + e.z);
     for (int z = k0; z < k1; ++z)
     {
-      const float* src = h.Values[g].data() +
+      const float* src = this->H.Values[g].data() +
         static_cast<std::size_t>(z - o.z) * static_cast<std::size_t>(e.y) * e.x;
       float* dst = out + static_cast<std::size_t>(z - z0) * layer;
       for (int j = 0; j < e.y; ++j)
@@ -97,6 +120,11 @@ void FillAtlasSlab(const Hierarchy& h, const AtlasLayout& layout, int z0, int z1
       }
     }
   }
+}
+
+void FillAtlasSlab(const Hierarchy& h, const AtlasLayout& layout, int z0, int z1, float* out)
+{
+  AtlasSlabFiller(h, layout).Fill(z0, z1, out);
 }
 
 std::size_t SeparateBrickBytes(const Hierarchy& h)

@@ -44,10 +44,31 @@ BrickAtlas BuildBrickAtlas(
 /// @throws std::invalid_argument when `h` has no values or the layout has another brick count.
 BrickAtlas FillBrickAtlas(const Hierarchy& h, AtlasLayout layout);
 
-/// The atlas texels of the slab z0 <= z < z1 (Layout.Dims.x * Layout.Dims.y * (z1 - z0) floats,
-/// x fastest) into `out`: what FillBrickAtlas would hold there, texels outside every brick 0. For
-/// an upload slab by slab, without the whole atlas in memory.
-/// @throws std::invalid_argument as FillBrickAtlas, or for a slab outside [0, Layout.Dims.z].
+/// Fills the atlas slab by slab, for an upload without the whole atlas in memory. It keeps
+/// references to `h` and `layout` (both must outlive it) and indexes the bricks by their first
+/// layer once, so that a slab visits only the bricks that cross it: a slab costs its texels plus
+/// O(log bricks), not a pass over every grid.
+class AtlasSlabFiller
+{
+public:
+  /// @throws std::invalid_argument as FillBrickAtlas.
+  AtlasSlabFiller(const Hierarchy& h, const AtlasLayout& layout);
+
+  /// The atlas texels of the slab z0 <= z < z1 (Layout.Dims.x * Layout.Dims.y * (z1 - z0)
+  /// floats, x fastest) into `out`: what FillBrickAtlas would hold there, texels outside every
+  /// brick 0. Safe to call from several threads for different slabs.
+  /// @throws std::invalid_argument for a slab outside [0, Layout.Dims.z].
+  void Fill(int z0, int z1, float* out) const;
+
+private:
+  const Hierarchy& H;
+  const AtlasLayout& Layout;
+  std::vector<glm::ivec3> Extents;
+  std::vector<std::size_t> ByFirstLayer; ///< grid indices, by increasing Layout.Origins[g].z
+  int TallestBrick = 0;
+};
+
+/// AtlasSlabFiller(h, layout).Fill(z0, z1, out), for a single slab.
 void FillAtlasSlab(const Hierarchy& h, const AtlasLayout& layout, int z0, int z1, float* out);
 
 /// Bytes of the grid data when every brick is its own texture (the bindless strategy): the sum
