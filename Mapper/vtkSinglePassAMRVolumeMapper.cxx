@@ -94,6 +94,8 @@ public:
   bool BindProxyBox(vtkShaderProgram* program);
   /// Re-flags the transparent data nodes when the transfer table changed (composite only).
   bool UpdateEmptySpaceFlags(vtkOpenGLRenderWindow* renWin, const FrameSettings& frame);
+  /// Data.WaitForNodeRanges, reporting what their computation threw.
+  bool WaitForNodeRanges();
   void ActivateTextures(vtkShaderProgram* program, const FrameSettings& frame);
   /// The tree, the levels, sampling, transfer function, clipping and level of detail.
   void SetDataUniforms(vtkShaderProgram* program, vtkRenderer* ren, vtkVolumeProperty* property,
@@ -165,13 +167,15 @@ bool vtkSinglePassAMRVolumeMapper::BuildData(
     {
       return false;
     }
-    in.Data = amrsp::PrepareRayCasting(std::move(h), this->MaximumAtlasSize,
+    in.Data = amrsp::PrepareRayCasting(
+      std::move(h), this->MaximumAtlasSize,
       static_cast<int64_t>(this->MaximumAtlasPageBytes / amrsp::AtlasTexelBytes),
       [this](double f, const char* step)
       {
         this->SetProgressText(step);
         this->UpdateProgress(0.05 + 0.95 * f);
-      });
+      },
+      true); // the node ranges are computed beside the first render's upload
   }
   catch (const std::exception& e)
   {
@@ -331,6 +335,10 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareStorage(
   self->UpdateProgress(1.0);
   this->Data.FreeUploadData();
   this->PendingUpload = false;
+  if (!this->WaitForNodeRanges())
+  {
+    return false;
+  }
   self->UploadSeconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return true;
@@ -492,6 +500,22 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::BindProxyBox(vtkShaderProgram* 
 }
 
 //------------------------------------------------------------------------------
+bool vtkSinglePassAMRVolumeMapper::vtkInternals::WaitForNodeRanges()
+{
+  try
+  {
+    this->Data.WaitForNodeRanges();
+  }
+  catch (const std::exception& e)
+  {
+    this->Self->ReportError(
+      std::string("computing the data nodes' value ranges failed: ") + e.what());
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
 bool vtkSinglePassAMRVolumeMapper::vtkInternals::UpdateEmptySpaceFlags(
   vtkOpenGLRenderWindow* renWin, const FrameSettings& frame)
 {
@@ -500,6 +524,10 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::UpdateEmptySpaceFlags(
   if (!frame.SkipEmpty)
   {
     return true;
+  }
+  if (!this->WaitForNodeRanges())
+  {
+    return false;
   }
   float tableRange[2];
   this->Transfer.GetShaderRange(tableRange);

@@ -20,14 +20,12 @@ namespace amrsp
 std::vector<glm::vec2> ComputeDataNodeRanges(const Hierarchy& h, const EncodedKdTree& tree)
 {
   using namespace layout;
-  const KdTree decoded = DecodeKdTree(h, tree);
   std::vector<glm::vec2> ranges(
     static_cast<std::size_t>(tree.DataNodeCount + 1), glm::vec2(FLT_MAX, -FLT_MAX));
   if (!h.HasValues())
   {
     return ranges;
   }
-  const glm::i64vec3 finest = h.CumulativeRatio(decoded.FinestLevel);
   // each data node's block of values: its grid's values [first, last] (vertices: one more)
   struct Block
   {
@@ -35,33 +33,42 @@ std::vector<glm::vec2> ComputeDataNodeRanges(const Hierarchy& h, const EncodedKd
     std::size_t Grid;
     glm::i64vec3 First, Last, Extent;
   };
-  std::vector<Block> blocks;
-  for (std::size_t i = 0; i < decoded.Nodes.size(); ++i)
+  // the decoded tree (about 80 bytes per node) is freed before the scan, which may run beside
+  // the atlas upload (PrepareRayCasting's deferNodeRanges)
+  const std::vector<Block> blocks = [&h, &tree]
   {
-    const KdNode& n = decoded.Nodes[i];
-    const uint data = amrspNodeData(tree.Tree.Texels[i]);
-    if (data == 0 || !n.HasData())
+    const KdTree decoded = DecodeKdTree(h, tree);
+    const glm::i64vec3 finest = h.CumulativeRatio(decoded.FinestLevel);
+    std::vector<Block> found;
+    found.reserve(static_cast<std::size_t>(tree.DataNodeCount));
+    for (std::size_t i = 0; i < decoded.Nodes.size(); ++i)
     {
-      continue;
+      const KdNode& n = decoded.Nodes[i];
+      const uint data = amrspNodeData(tree.Tree.Texels[i]);
+      if (data == 0 || !n.HasData())
+      {
+        continue;
+      }
+      const Grid& g = h.Grids[n.Grid];
+      const glm::i64vec3 toData = finest / h.CumulativeRatio(g.Level);
+      Block b{ data, static_cast<std::size_t>(n.Grid), glm::i64vec3(0), glm::i64vec3(0),
+        g.Cells.Extent() };
+      for (int a = 0; a < 3; ++a)
+      {
+        b.First[a] = FloorDiv(n.Region.Lo[a], toData[a]);
+        b.Last[a] = CeilDiv(n.Region.Hi[a], toData[a]) - 1;
+      }
+      b.First = glm::clamp(b.First, g.Cells.Lo, g.Cells.Hi - glm::i64vec3(1)) - g.Cells.Lo;
+      b.Last = glm::clamp(b.Last, g.Cells.Lo, g.Cells.Hi - glm::i64vec3(1)) - g.Cells.Lo;
+      if (h.VertexCentred)
+      {
+        b.Last += glm::i64vec3(1); // the vertices of the node's cells
+        b.Extent += glm::i64vec3(1);
+      }
+      found.push_back(b);
     }
-    const Grid& g = h.Grids[n.Grid];
-    const glm::i64vec3 toData = finest / h.CumulativeRatio(g.Level);
-    Block b{ data, static_cast<std::size_t>(n.Grid), glm::i64vec3(0), glm::i64vec3(0),
-      g.Cells.Extent() };
-    for (int a = 0; a < 3; ++a)
-    {
-      b.First[a] = FloorDiv(n.Region.Lo[a], toData[a]);
-      b.Last[a] = CeilDiv(n.Region.Hi[a], toData[a]) - 1;
-    }
-    b.First = glm::clamp(b.First, g.Cells.Lo, g.Cells.Hi - glm::i64vec3(1)) - g.Cells.Lo;
-    b.Last = glm::clamp(b.Last, g.Cells.Lo, g.Cells.Hi - glm::i64vec3(1)) - g.Cells.Lo;
-    if (h.VertexCentred)
-    {
-      b.Last += glm::i64vec3(1); // the vertices of the node's cells
-      b.Extent += glm::i64vec3(1);
-    }
-    blocks.push_back(b);
-  }
+    return found;
+  }();
   // work items of at most about 2^18 values (slabs of a block's layers), so that the few large
   // blocks of the coarse levels spread over the workers too
   struct Item
@@ -70,6 +77,7 @@ std::vector<glm::vec2> ComputeDataNodeRanges(const Hierarchy& h, const EncodedKd
     int64_t Z0, Z1;
   };
   std::vector<Item> items;
+  items.reserve(blocks.size());
   for (std::size_t k = 0; k < blocks.size(); ++k)
   {
     const Block& b = blocks[k];

@@ -156,8 +156,18 @@ void RayCastingData::FreeUploadData()
   this->BindlessDataNodeTexels = UIntTexture3D();
 }
 
-RayCastingData PrepareRayCasting(
-  Hierarchy h, int packLimit, int64_t maxPageTexels, const BuildProgress& progress)
+void RayCastingData::WaitForNodeRanges()
+{
+  if (this->PendingNodeRanges.valid())
+  {
+    const std::shared_future<std::vector<glm::vec2>> pending = std::move(this->PendingNodeRanges);
+    this->PendingNodeRanges = std::shared_future<std::vector<glm::vec2>>();
+    this->NodeRanges = pending.get();
+  }
+}
+
+RayCastingData PrepareRayCasting(Hierarchy h, int packLimit, int64_t maxPageTexels,
+  const BuildProgress& progress, bool deferNodeRanges)
 {
   // the shares of the steps measured at the paper's dataset-3 size
   const auto report = [&progress](double fraction, const char* step)
@@ -184,7 +194,18 @@ RayCastingData PrepareRayCasting(
   report(0.3, "encoding the kD-tree");
   EncodedKdTree enc = EncodeKdTree(h, tree, &brickStarts);
   report(0.35, "the data nodes' value ranges");
-  out.NodeRanges = ComputeDataNodeRanges(h, enc);
+  if (deferNodeRanges)
+  {
+    // shallow copies: the values are shared (GridValues), the tree's texels are a few MB
+    out.PendingNodeRanges = std::async(std::launch::async,
+      [hierarchy = h, tree = enc] {
+        return ComputeDataNodeRanges(hierarchy, tree);
+      }).share();
+  }
+  else
+  {
+    out.NodeRanges = ComputeDataNodeRanges(h, enc);
+  }
   out.BindlessDataNodeTexels = std::move(enc.DataNodes);
   // packing: one brick per grid (cells, or vertices one texel larger), within the per-axis limit
   // the data-node offsets can address and packLimit when set

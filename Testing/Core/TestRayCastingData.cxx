@@ -136,6 +136,29 @@ TEST(RayCastingData, BothEncodingsAndTheFigures)
   EXPECT_EQ(freed.PageDims, d.PageDims);
 }
 
+TEST(RayCastingData, DeferredNodeRangesAreTheSameAfterTheUploadDataIsFreed)
+{
+  Hierarchy h = amrsp::test::PaperExample();
+  for (std::size_t g = 0; g < h.Values.size(); ++g)
+  {
+    for (std::size_t i = 0; i < h.Values[g].size(); ++i)
+    {
+      h.Values[g][i] = static_cast<float>(g * 100 + (i * 7) % 13); // ranges differ per node
+    }
+  }
+  const RayCastingData now = PrepareRayCasting(h, 0);
+  RayCastingData later = PrepareRayCasting(h, 0, 0, nullptr, true);
+  EXPECT_TRUE(later.NodeRanges.empty());
+  EXPECT_TRUE(later.PendingNodeRanges.valid());
+  later.FreeUploadData(); // as the mapper does before it needs them: the worker has its own copies
+  later.WaitForNodeRanges();
+  EXPECT_FALSE(later.PendingNodeRanges.valid());
+  ASSERT_EQ(later.NodeRanges.size(), now.NodeRanges.size());
+  EXPECT_EQ(later.NodeRanges, now.NodeRanges);
+  later.WaitForNodeRanges(); // nothing pending: the ranges stay
+  EXPECT_EQ(later.NodeRanges, now.NodeRanges);
+}
+
 TEST(RayCastingData, UnpackableBricksLeaveTheBindlessEncoding)
 {
   const Hierarchy h = amrsp::test::PaperExample();

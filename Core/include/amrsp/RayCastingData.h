@@ -19,6 +19,7 @@
 #include <glm/glm.hpp>
 
 #include <functional>
+#include <future>
 #include <string>
 #include <vector>
 
@@ -75,8 +76,13 @@ struct RayCastingData
   glm::vec3 RootLo{ 0.0f };
   glm::vec3 RootHi{ 0.0f };
   LevelTable Levels;
-  /// min, max scalar per data node, indexed like the data-node texels (entry 0 unused).
+  /// min, max scalar per data node, indexed like the data-node texels (entry 0 unused). Empty
+  /// while PendingNodeRanges is valid: call WaitForNodeRanges before reading them.
   std::vector<glm::vec2> NodeRanges;
+  /// The node ranges while a worker thread computes them (PrepareRayCasting with
+  /// deferNodeRanges); it reads its own shallow copies of the hierarchy and the tree, so the
+  /// upload may free this object's copies meanwhile.
+  std::shared_future<std::vector<glm::vec2>> PendingNodeRanges;
   /// The bricks' atlas pages (one texture each; usually one page); no page when the bricks could
   /// not be packed.
   AtlasPages Atlas;
@@ -97,6 +103,9 @@ struct RayCastingData
   /// Drops the CPU copies the upload consumed (bricks, layout, texels); the figures (sizes,
   /// ranges, level table, AtlasDims) stay.
   void FreeUploadData();
+  /// Waits for PendingNodeRanges, if valid, and moves them into NodeRanges; rethrows what their
+  /// computation threw.
+  void WaitForNodeRanges();
 };
 
 /// Builds the kD-tree of `h`, encodes it for both storages and packs the bricks within
@@ -111,7 +120,10 @@ using BuildProgress = std::function<void(double fraction, const char* step)>;
 
 /// `maxPageTexels` (> 0) spreads the bricks over several atlas pages of at most that many
 /// texels each when one atlas would be larger (PackBricksInPages); 0 packs one atlas.
-RayCastingData PrepareRayCasting(
-  Hierarchy h, int packLimit, int64_t maxPageTexels = 0, const BuildProgress& progress = nullptr);
+/// `deferNodeRanges` leaves the data nodes' value ranges to a worker thread (PendingNodeRanges)
+/// for a caller that has other work before it needs them, such as the atlas upload: the ranges
+/// read every value once, and the build's two cores are busy with the kD-tree and the packing.
+RayCastingData PrepareRayCasting(Hierarchy h, int packLimit, int64_t maxPageTexels = 0,
+  const BuildProgress& progress = nullptr, bool deferNodeRanges = false);
 
 } // namespace amrsp
