@@ -508,8 +508,7 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::WaitForNodeRanges()
   }
   catch (const std::exception& e)
   {
-    this->Self->ReportError(
-      std::string("computing the data nodes' value ranges failed: ") + e.what());
+    this->Self->ReportError(std::string("computing the value ranges failed: ") + e.what());
     return false;
   }
   return true;
