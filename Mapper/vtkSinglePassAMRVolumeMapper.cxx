@@ -94,8 +94,6 @@ public:
   bool BindProxyBox(vtkShaderProgram* program);
   /// Re-flags the transparent data nodes when the transfer table changed (composite only).
   bool UpdateEmptySpaceFlags(vtkOpenGLRenderWindow* renWin, const FrameSettings& frame);
-  /// Data.WaitForNodeRanges, reporting what their computation threw.
-  bool WaitForNodeRanges();
   void ActivateTextures(vtkShaderProgram* program, const FrameSettings& frame);
   /// The tree, the levels, sampling, transfer function, clipping and level of detail.
   void SetDataUniforms(vtkShaderProgram* program, vtkRenderer* ren, vtkVolumeProperty* property,
@@ -335,8 +333,14 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareStorage(
   self->UpdateProgress(1.0);
   this->Data.FreeUploadData();
   this->PendingUpload = false;
-  if (!this->WaitForNodeRanges())
+  try
   {
+    // the one join of the build's deferred node ranges: every build is followed by this upload
+    this->Data.WaitForNodeRanges();
+  }
+  catch (const std::exception& e)
+  {
+    self->ReportError(std::string("computing the value ranges failed: ") + e.what());
     return false;
   }
   self->UploadSeconds =
@@ -500,21 +504,6 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::BindProxyBox(vtkShaderProgram* 
 }
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMRVolumeMapper::vtkInternals::WaitForNodeRanges()
-{
-  try
-  {
-    this->Data.WaitForNodeRanges();
-  }
-  catch (const std::exception& e)
-  {
-    this->Self->ReportError(std::string("computing the value ranges failed: ") + e.what());
-    return false;
-  }
-  return true;
-}
-
-//------------------------------------------------------------------------------
 bool vtkSinglePassAMRVolumeMapper::vtkInternals::UpdateEmptySpaceFlags(
   vtkOpenGLRenderWindow* renWin, const FrameSettings& frame)
 {
@@ -524,10 +513,7 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::UpdateEmptySpaceFlags(
   {
     return true;
   }
-  if (!this->WaitForNodeRanges())
-  {
-    return false;
-  }
+  // the node ranges were joined after the upload (PrepareStorage)
   float tableRange[2];
   this->Transfer.GetShaderRange(tableRange);
   const utilities::TransferFunctionTable& table = this->Transfer;

@@ -160,8 +160,8 @@ void RayCastingData::WaitForNodeRanges()
 {
   if (this->PendingNodeRanges.valid())
   {
+    // a moved-from shared_future is no longer valid: nothing is pending after this
     const std::shared_future<std::vector<glm::vec2>> pending = std::move(this->PendingNodeRanges);
-    this->PendingNodeRanges = std::shared_future<std::vector<glm::vec2>>();
     this->NodeRanges = pending.get();
   }
 }
