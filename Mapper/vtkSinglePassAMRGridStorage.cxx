@@ -10,6 +10,7 @@
 #include "amrsp/EmptySpace.h"
 
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
 #include "vtkSinglePassAMROpenGL.h"
 
@@ -83,6 +84,12 @@ vtkSinglePassAMRGridStorage::Choice vtkSinglePassAMRGridStorage::Choose(
   {
     atlasFits = atlasFits && utilities::AtlasFitsContext(renWin, dims, atlasLimit, noAtlas);
   }
+  if (requested == vtkSinglePassAMRVolumeMapper::LINEAR_BRICKS)
+  {
+    // 2D textures and integer fetches: what every context that renders at all offers
+    c.Storage = requested;
+    return c;
+  }
   int storage = vtkSinglePassAMRVolumeMapper::PACKED_ATLAS;
   if (requested == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES)
   {
@@ -122,11 +129,70 @@ bool vtkSinglePassAMRGridStorage::IsUploaded(
 }
 
 //------------------------------------------------------------------------------
-vtkTextureObject* vtkSinglePassAMRGridStorage::GetGridData() const
+std::string vtkSinglePassAMRGridStorage::GetGridDataDefines() const
 {
-  return this->UploadedStorage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES
-    ? this->HandlesTexture.Get()
-    : (this->AtlasPages.empty() ? nullptr : this->AtlasPages[0].Get());
+  if (this->UploadedStorage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES)
+  {
+    return "#define AMRSP_BINDLESS 1\n";
+  }
+  if (this->UploadedStorage == vtkSinglePassAMRVolumeMapper::LINEAR_BRICKS)
+  {
+    return this->Linear.GetShaderDefines();
+  }
+  return this->AtlasPages.size() > 1 ? "#define AMRSP_PACKING 1\n#define AMRSP_ATLAS_PAGES " +
+      std::to_string(this->AtlasPages.size()) + "\n"
+                                     : std::string("#define AMRSP_PACKING 1\n");
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRGridStorage::ActivateGridData(vtkShaderProgram* program)
+{
+  if (this->UploadedStorage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES)
+  {
+    this->HandlesTexture->Activate();
+    program->SetUniformi("amrspHandles", this->HandlesTexture->GetTextureUnit());
+    return;
+  }
+  if (this->UploadedStorage == vtkSinglePassAMRVolumeMapper::LINEAR_BRICKS)
+  {
+    this->Linear.Activate(program);
+    return;
+  }
+  // the atlas pages: amrspAtlas, then amrspAtlas1, amrspAtlas2, ...
+  std::vector<float> sizes;
+  for (std::size_t p = 0; p < this->AtlasPages.size(); ++p)
+  {
+    vtkTextureObject* page = this->AtlasPages[p];
+    page->Activate();
+    program->SetUniformi(
+      (p == 0 ? std::string("amrspAtlas") : "amrspAtlas" + std::to_string(p)).c_str(),
+      page->GetTextureUnit());
+    sizes.insert(
+      sizes.end(), { float(page->GetWidth()), float(page->GetHeight()), float(page->GetDepth()) });
+  }
+  program->SetUniform3f("amrspAtlasSize", sizes.data());
+  if (this->AtlasPages.size() > 1)
+  {
+    program->SetUniform3fv(
+      "amrspAtlasPageSize", static_cast<int>(this->AtlasPages.size()), sizes.data());
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRGridStorage::DeactivateGridData()
+{
+  if (this->UploadedStorage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES)
+  {
+    this->HandlesTexture->Deactivate();
+  }
+  else if (this->UploadedStorage == vtkSinglePassAMRVolumeMapper::LINEAR_BRICKS)
+  {
+    this->Linear.Deactivate();
+  }
+  for (vtkTextureObject* page : this->AtlasPages)
+  {
+    page->Deactivate();
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -136,8 +202,10 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, int stor
 {
   this->UploadLimit = atlasLimit;
   const bool bindless = storage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES;
+  const bool linear = storage == vtkSinglePassAMRVolumeMapper::LINEAR_BRICKS;
+  // bindless and linear bricks: each data node holds its offset inside its own brick
   const amrsp::UIntTexture3D& dataNodes =
-    bindless ? data.BindlessDataNodeTexels : data.PackedDataNodeTexels;
+    bindless || linear ? data.BindlessDataNodeTexels : data.PackedDataNodeTexels;
   const int max3D = vtkTextureObject::GetMaximumTextureSize3D(renWin);
   for (const amrsp::UIntTexture3D* t : { &data.TreeTexels, &dataNodes })
   {
@@ -154,6 +222,7 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, int stor
   }
   this->HandlesTexture = nullptr;
   this->AtlasPages.clear();
+  this->Linear.Clear();
   this->TransparentFlags = nullptr; // the data nodes may have changed: flagged again per frame
   this->UploadedStorage = -1;
   while (glGetError() != GL_NO_ERROR)
@@ -163,10 +232,19 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, int stor
   this->Tree = utilities::MakeIntegerTexture(renWin, data.TreeTexels);
   this->DataNodes = utilities::MakeIntegerTexture(renWin, dataNodes);
   bool ok = this->Tree && this->DataNodes;
-  const long long bytes = bindless ? data.BindlessBytes : data.PackedBytes;
+  long long bytes = bindless ? data.BindlessBytes : data.PackedBytes;
   if (ok && bindless)
   {
     ok = this->UploadBindless(renWin, data, error);
+  }
+  else if (ok && linear)
+  {
+    ok = this->Linear.Upload(
+      renWin, data.Data, data.VertexCentred, this->LinearPageBytes, error, progress);
+    // the tree textures of the bindless figure, and the pages and table instead of its bricks
+    bytes = data.BindlessBytes + this->Linear.GetBytes() -
+      static_cast<long long>(
+        amrsp::SeparateBrickBytes(data.Data) + amrsp::HandleTextureBytes(data.Data.Grids.size()));
   }
   else if (ok)
   {
@@ -198,8 +276,11 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, int stor
     if (error.empty())
     {
       std::ostringstream msg;
-      msg << "uploading the kD-tree and " << (bindless ? "brick" : "atlas") << " textures ("
-          << bytes / (1024.0 * 1024.0) << " MiB) failed"
+      msg << "uploading the kD-tree and "
+          << (bindless    ? "brick"
+                 : linear ? "linear"
+                          : "atlas")
+          << " textures (" << bytes / (1024.0 * 1024.0) << " MiB) failed"
           << (glError == GL_OUT_OF_MEMORY ? ": out of GPU memory" : "")
           << (glError == GL_NO_ERROR ? ": the driver refused a texture allocation (out of GPU "
                                        "memory, or over one of its limits)"
@@ -211,6 +292,7 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, int stor
     this->Tree = nullptr;
     this->DataNodes = nullptr;
     this->AtlasPages.clear();
+    this->Linear.Clear();
     this->BrickBoxes = nullptr;
     return false;
   }
@@ -352,6 +434,7 @@ void vtkSinglePassAMRGridStorage::ReleaseGraphicsResources(vtkWindow* window)
     page->ReleaseGraphicsResources(window);
   }
   this->AtlasPages.clear();
+  this->Linear.ReleaseGraphicsResources(window);
   for (vtkSmartPointer<vtkTextureObject>* t : { &this->Tree, &this->DataNodes,
          &this->HandlesTexture, &this->BrickBoxes, &this->TransparentFlags })
   {
@@ -375,6 +458,8 @@ const char* vtkSinglePassAMRVolumeMapper::GetDataStorageName(int storage)
       return "packing";
     case BINDLESS_TEXTURES:
       return "bindless";
+    case LINEAR_BRICKS:
+      return "linear";
     case AUTO_STORAGE:
       return "auto";
     default:

@@ -1,14 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class   vtkSinglePassAMRGridStorage
- * @brief   the single-pass mapper's GPU data: tree textures and the grid data, packed or bindless
+ * @brief   the single-pass mapper's GPU data: tree textures and the grid data, packed, bindless or
+ * linear
  *
  * Private to the module (the header exposes core types), as vtkVolumeTexture is to VTK's GPU ray
  * caster. It holds, for one OpenGL context:
  * - the kD-tree (RG32UI) and its data nodes (RG32UI) of amrsp::RayCastingData;
  * - the grid data in one of the paper's two storages (section 5): one packed R32F atlas
  *   (PACKED_ATLAS), or one R32F texture per grid whose GL_ARB_bindless_texture handles are kept
- *   resident and stored in an RG32UI handles texture (BINDLESS_TEXTURES);
+ *   resident and stored in an RG32UI handles texture (BINDLESS_TEXTURES), or the bricks back to
+ *   back in 2D R32F pages with an RG32UI brick table (LINEAR_BRICKS, vtkSinglePassAMRLinearBricks);
  * - the grids' cell boxes (RG32UI, 3 texels per grid) for the smooth-cell reconstruction;
  * - the empty-space flags (R8, one per data node) for the current transfer-function table.
  * It also answers what the context can do (bindless extensions, access modes, the driver's
@@ -21,6 +23,7 @@
 #include "amrsp/RayCastingData.h"
 
 #include "vtkSinglePassAMRBindlessBricks.h"
+#include "vtkSinglePassAMRLinearBricks.h"
 
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
@@ -31,6 +34,7 @@
 #include <vector>
 
 class vtkOpenGLRenderWindow;
+class vtkShaderProgram;
 class vtkTextureObject;
 class vtkWindow;
 
@@ -40,7 +44,7 @@ public:
   /// What a frame renders with, and why bindless was not used when it was asked for.
   struct Choice
   {
-    int Storage = -1; ///< PACKED_ATLAS or BINDLESS_TEXTURES; -1 when neither can render
+    int Storage = -1; ///< PACKED_ATLAS, BINDLESS_TEXTURES or LINEAR_BRICKS; -1: none can render
     int Access = -1;  ///< DIRECT_ACCESS or WATERFALL_ACCESS for bindless, else -1
     /// Why bindless was not used although BINDLESS_TEXTURES was requested (a warning for the
     /// user: the frame falls back to the atlas), else empty.
@@ -82,22 +86,36 @@ public:
   /// Data nodes flagged transparent by the last UpdateTransparentFlags.
   long long GetFlaggedDataNodes() const { return this->FlaggedDataNodes; }
 
+  /// The single-pass shader's #defines for the grid data of the last upload: AMRSP_PACKING
+  /// (with AMRSP_ATLAS_PAGES for several pages), AMRSP_BINDLESS, or AMRSP_LINEAR's.
+  std::string GetGridDataDefines() const;
+  /// Activates the grid data's textures of the last upload and sets their samplers and sizes in
+  /// `program` (amrspAtlas.., amrspAtlasSize, amrspAtlasPageSize; amrspHandles; amrspLinear..,
+  /// amrspBrickTable); DeactivateGridData undoes it.
+  void ActivateGridData(vtkShaderProgram* program);
+  void DeactivateGridData();
+
   ///@{
-  /// The textures of the last upload (null before it). GetGridData is the atlas or the handles.
+  /// The textures of the last upload (null before it).
   vtkTextureObject* GetTree() const { return this->Tree; }
   vtkTextureObject* GetDataNodes() const { return this->DataNodes; }
-  vtkTextureObject* GetGridData() const;
-  /// Packing: the atlas pages (GetGridData is page 0).
+  /// Packing: the atlas pages.
   int GetNumberOfAtlasPages() const { return static_cast<int>(this->AtlasPages.size()); }
-  vtkTextureObject* GetAtlasPage(int page) const { return this->AtlasPages[page]; }
+  /// Linear storage: its pages (0 unless it was uploaded last).
+  int GetNumberOfLinearPages() const { return this->Linear.GetNumberOfPages(); }
   vtkTextureObject* GetBrickBoxes() const { return this->BrickBoxes; }
   vtkTextureObject* GetTransparentFlags() const { return this->TransparentFlags; }
   ///@}
 
-  /// Bytes of the textures of the last upload (tree + data nodes + atlas, or + bricks + handles).
+  /// Bytes of the textures of the last upload (tree + data nodes + atlas, or + bricks + handles,
+  /// or + linear pages + brick table).
   long long GetTextureBytes() const { return this->TextureBytes; }
   /// The storage of the last upload, -1 when none is on the GPU.
   int GetUploadedStorage() const { return this->UploadedStorage; }
+
+  /// The largest linear page the next uploads make, in bytes (the mapper's MaximumAtlasPageBytes;
+  /// 0: as large as the context allows).
+  void SetLinearPageBytes(long long bytes) { this->LinearPageBytes = bytes; }
 
   /// Frees every texture of `window` (making the bindless handles non-resident first).
   void ReleaseGraphicsResources(vtkWindow* window);
@@ -115,6 +133,7 @@ private:
   std::vector<vtkSmartPointer<vtkTextureObject>> AtlasPages; // packing: one per atlas page
   vtkSmartPointer<vtkTextureObject> HandlesTexture; // bindless: RG32UI, one handle per brick
   vtkSinglePassAMRBindlessBricks Bricks;        // bindless: one texture per grid, handles resident
+  vtkSinglePassAMRLinearBricks Linear;          // linear: pages of bricks back to back, table
   vtkSmartPointer<vtkTextureObject> BrickBoxes; // RG32UI, per brick and axis: grid cells lo, hi
   // R8, indexed like the data nodes: 255 where the node's value range is transparent under the
   // table of FlagsTableTime
@@ -124,6 +143,7 @@ private:
   long long TextureBytes = 0;
   int UploadedStorage = -1;
   int UploadLimit = 0; // atlasLimit of the last upload
+  long long LinearPageBytes = 0;
   vtkOpenGLRenderWindow* Context = nullptr;
 
   // extensions of the context last asked (cached per context)

@@ -111,7 +111,8 @@ bool vtkSinglePassAMRMapperBase::EnsureBuilt(vtkOverlappingAMR* amr)
   if (!this->Built || this->BuiltInput != amr || this->BuiltInputMTime != amr->GetMTime() ||
     this->BuiltArray != array || this->BuiltComponent != this->ArrayComponent ||
     this->BuiltPackLimit != this->MaximumAtlasSize ||
-    this->BuiltPageBytes != this->MaximumAtlasPageBytes)
+    this->BuiltPageBytes != this->MaximumAtlasPageBytes ||
+    (this->BuildPacksBricks() && !this->BuiltPacked))
   {
     this->BuiltInput = amr;
     this->BuiltInputMTime = amr->GetMTime();
@@ -135,6 +136,7 @@ bool vtkSinglePassAMRMapperBase::RunBuild(vtkOverlappingAMR* amr)
 {
   const auto t0 = std::chrono::steady_clock::now();
   this->Built = true;
+  this->BuiltPacked = this->BuildPacksBricks();
   this->DataValid = false;
   this->BuildError.clear();
   ++this->NumberOfBuilds;

@@ -140,9 +140,16 @@ protected:
   virtual bool BuildData(vtkOverlappingAMR* amr, const std::string& array, std::string& error) = 0;
   /// Model-space bounds of the data built last (called after a successful BuildData).
   virtual void GetBuiltBounds(double bounds[6]) = 0;
+  /// Whether the next build should pack the bricks into an atlas (the single-pass mapper's
+  /// linear storage does not need it). A build without packing is redone when this turns true.
+  virtual bool BuildPacksBricks()
+  {
+    return true;
+  }
 
-  /// Builds when the build key (input object and MTime, array, component, MaximumAtlasSize)
-  /// differs from the last build's. Returns whether the data built for it are valid.
+  /// Builds when the build key (input object and MTime, array, component, MaximumAtlasSize, page
+  /// bytes, and packing wanted where the last build did not pack) differs from the last build's.
+  /// Returns whether the data built for it are valid.
   bool EnsureBuilt(vtkOverlappingAMR* amr);
   /// Builds again for the current key (a subclass that freed its CPU copies after an upload and
   /// must upload again). Returns whether it succeeded.
@@ -192,6 +199,7 @@ private:
   int BuiltComponent = -1;
   int BuiltPackLimit = -1;
   vtkIdType BuiltPageBytes = -1;
+  bool BuiltPacked = false;
   bool Built = false;     // a build was attempted for the key above
   bool DataValid = false; // ... and succeeded
   std::string BuildError; // ... or failed with this message

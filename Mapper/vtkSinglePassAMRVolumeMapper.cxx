@@ -52,7 +52,7 @@ namespace
 /// the context offers. The shader variant depends on these and on the data only.
 struct FrameSettings
 {
-  int Storage = -1; // PACKED_ATLAS or BINDLESS_TEXTURES
+  int Storage = -1; // PACKED_ATLAS, BINDLESS_TEXTURES or LINEAR_BRICKS
   int Access = -1;  // DIRECT_ACCESS or WATERFALL_ACCESS with bindless, else -1
   int Blend = 0;    // AMRSP_BLEND_MODE: 0 composite, 1 maximum, 2 minimum, 3 average, 4 iso
   std::vector<float> IsoValues; // sorted, padded to 8 (iso-surface blending only)
@@ -65,7 +65,6 @@ struct FrameSettings
   amrsp::FrameQuality Quality; // image sample distance and sample-distance scale
 
   bool Reduced() const { return this->Quality.ImageSampleDistance > 1.0; }
-  bool Bindless() const { return this->Storage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES; }
 };
 } // namespace
 
@@ -173,7 +172,8 @@ bool vtkSinglePassAMRVolumeMapper::BuildData(
         this->SetProgressText(step);
         this->UpdateProgress(0.05 + 0.95 * f);
       },
-      true); // the node ranges are computed beside the first render's upload
+      true, // the node ranges are computed beside the first render's upload
+      this->BuildPacksBricks());
   }
   catch (const std::exception& e)
   {
@@ -323,6 +323,7 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareStorage(
   const auto t0 = std::chrono::steady_clock::now();
   std::string error;
   self->BeginProgressPhase(PROGRESS_UPLOAD, "uploading the grid data");
+  this->Storage.SetLinearPageBytes(self->MaximumAtlasPageBytes);
   if (!this->Storage.Upload(renWin, frame.Storage, self->MaximumAtlasSize, this->Data, error,
         [self](double f) { self->UpdateProgress(f); }))
   {
@@ -425,8 +426,7 @@ vtkShaderProgram* vtkSinglePassAMRVolumeMapper::vtkInternals::ReadyShader(
   vtkSinglePassAMRVolumeMapper* self = this->Self;
   const amrsp::LevelTable& levels = this->Data.Levels;
   std::string defines = "#define AMRSP_LEVEL_COUNT " +
-    std::to_string(this->Data.LevelCellSize.size()) + "\n" +
-    (frame.Bindless() ? "#define AMRSP_BINDLESS 1\n" : "#define AMRSP_PACKING 1\n") +
+    std::to_string(this->Data.LevelCellSize.size()) + "\n" + this->Storage.GetGridDataDefines() +
     (this->Data.VertexCentred ? "#define AMRSP_VERTEX_CENTRED 1\n"
                               : "#define AMRSP_CELL_CENTRED 1\n");
   const auto define = [&defines](bool on, const std::string& line)
@@ -438,8 +438,6 @@ vtkShaderProgram* vtkSinglePassAMRVolumeMapper::vtkInternals::ReadyShader(
   };
   define(frame.Access == WATERFALL_ACCESS, "AMRSP_WATERFALL 1");
   define(this->Transfer.IsLogarithmic(), "AMRSP_LOG_TRANSFER 1");
-  const int pages = static_cast<int>(this->Data.PageDims.size());
-  define(!frame.Bindless() && pages > 1, "AMRSP_ATLAS_PAGES " + std::to_string(pages));
   define(frame.UseDepth, "AMRSP_USE_DEPTH 1");
   define(frame.UseDepth && frame.Reduced(), "AMRSP_REDUCED_IMAGE 1");
   define(!levels.LevelToFinestLog2.empty(), "AMRSP_POWER_OF_TWO_REFINEMENT 1");
@@ -534,23 +532,11 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::ActivateTextures(
   vtkSinglePassAMRGridStorage& s = this->Storage;
   s.GetTree()->Activate();
   s.GetDataNodes()->Activate();
-  s.GetGridData()->Activate();
+  s.ActivateGridData(program);
   this->Transfer.GetTexture()->Activate();
   program->SetUniformi("amrspTree", s.GetTree()->GetTextureUnit());
   program->SetUniformi("amrspDataNodes", s.GetDataNodes()->GetTextureUnit());
-  program->SetUniformi(
-    frame.Bindless() ? "amrspHandles" : "amrspAtlas", s.GetGridData()->GetTextureUnit());
   program->SetUniformi("amrspTransfer", this->Transfer.GetTexture()->GetTextureUnit());
-  if (!frame.Bindless())
-  {
-    // atlas pages after the first: amrspAtlas1, amrspAtlas2, ...
-    for (int p = 1; p < s.GetNumberOfAtlasPages(); ++p)
-    {
-      s.GetAtlasPage(p)->Activate();
-      program->SetUniformi(
-        ("amrspAtlas" + std::to_string(p)).c_str(), s.GetAtlasPage(p)->GetTextureUnit());
-    }
-  }
   if (frame.SmoothCells)
   {
     s.GetBrickBoxes()->Activate();
@@ -633,21 +619,6 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::SetDataUniforms(vtkShaderProgra
   program->SetUniformi("amrspMaxSegments", static_cast<int>(std::min<long long>(guard, 1 << 30)));
   program->SetUniform2f("amrspTransferRange", transferRange);
   program->SetUniformf("amrspTransferSize", static_cast<float>(utilities::TransferTableSize));
-  if (!frame.Bindless())
-  {
-    const glm::vec3 atlasSize(d.AtlasDims);
-    program->SetUniform3f("amrspAtlasSize", &atlasSize.x);
-    if (d.PageDims.size() > 1)
-    {
-      std::vector<float> sizes;
-      for (const glm::ivec3& dims : d.PageDims)
-      {
-        sizes.insert(sizes.end(), { float(dims.x), float(dims.y), float(dims.z) });
-      }
-      program->SetUniform3fv(
-        "amrspAtlasPageSize", static_cast<int>(d.PageDims.size()), sizes.data());
-    }
-  }
   // level of detail: world size of a pixel at distance 1 (perspective) or everywhere (parallel),
   // as amrsp::LevelOfDetail
   vtkCamera* camera = ren->GetActiveCamera();
@@ -725,11 +696,7 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::DeactivateTextures(const FrameS
   vtkSinglePassAMRGridStorage& s = this->Storage;
   s.GetTree()->Deactivate();
   s.GetDataNodes()->Deactivate();
-  s.GetGridData()->Deactivate();
-  for (int p = 1; !frame.Bindless() && p < s.GetNumberOfAtlasPages(); ++p)
-  {
-    s.GetAtlasPage(p)->Deactivate();
-  }
+  s.DeactivateGridData();
   this->Transfer.GetTexture()->Deactivate();
   if (frame.SmoothCells)
   {
@@ -815,7 +782,10 @@ double vtkSinglePassAMRVolumeMapper::GetLastFrameBudget()
 
 int vtkSinglePassAMRVolumeMapper::GetNumberOfAtlasPages()
 {
-  return static_cast<int>(this->Internals->Data.PageDims.size());
+  const vtkSinglePassAMRGridStorage& s = this->Internals->Storage;
+  return s.GetUploadedStorage() == LINEAR_BRICKS
+    ? s.GetNumberOfLinearPages()
+    : static_cast<int>(this->Internals->Data.PageDims.size());
 }
 
 double vtkSinglePassAMRVolumeMapper::GetAtlasWaste()

@@ -18,6 +18,9 @@
  *   subgroup is only valid with GL_NV_gpu_shader5 (DIRECT_ACCESS); elsewhere the shader serves
  *   one distinct handle at a time with GL_ARB_shader_ballot (WATERFALL_ACCESS, a loop over
  *   readFirstInvocationARB). SetBindlessAccess forces either.
+ * - LINEAR_BRICKS: every brick's texels back to back in 2D R32F textures (no packing, no gaps),
+ *   found through an RG32UI brick table (amrsp::LinearBrickLayout): a brick's neighbouring
+ *   texels are near in memory, which is what a CPU driver such as Mesa's llvmpipe reads fastest.
  * - AUTO_STORAGE (default): bindless where the extension exists and the atlas cannot be built or
  *   would leave more than AutoBindlessWaste of its texels unused; packing otherwise.
  * When bindless is requested and cannot run (extension missing, neither access mode available,
@@ -79,7 +82,8 @@ public:
   {
     AUTO_STORAGE = 0,
     PACKED_ATLAS = 1,
-    BINDLESS_TEXTURES = 2
+    BINDLESS_TEXTURES = 2,
+    LINEAR_BRICKS = 3
   };
   /// How the bindless shader reads a brick whose handle may differ between invocations.
   enum BindlessAccessMode
@@ -90,13 +94,14 @@ public:
   };
 
   ///@{
-  /// Storage of the grid data: AUTO_STORAGE (default), PACKED_ATLAS or BINDLESS_TEXTURES.
-  /// Changing it re-uploads the data textures (the kD-tree is not rebuilt).
-  vtkSetClampMacro(DataStorage, int, AUTO_STORAGE, BINDLESS_TEXTURES);
+  /// Storage of the grid data: AUTO_STORAGE (default), PACKED_ATLAS, BINDLESS_TEXTURES or
+  /// LINEAR_BRICKS. Changing it re-uploads the data textures (the kD-tree is not rebuilt).
+  vtkSetClampMacro(DataStorage, int, AUTO_STORAGE, LINEAR_BRICKS);
   vtkGetMacro(DataStorage, int);
   void SetDataStorageToAuto() { this->SetDataStorage(AUTO_STORAGE); }
   void SetDataStorageToPackedAtlas() { this->SetDataStorage(PACKED_ATLAS); }
   void SetDataStorageToBindlessTextures() { this->SetDataStorage(BINDLESS_TEXTURES); }
+  void SetDataStorageToLinearBricks() { this->SetDataStorage(LINEAR_BRICKS); }
   ///@}
 
   ///@{
@@ -126,14 +131,14 @@ public:
 #endif
 
   ///@{
-  /// What rendered the last frame: PACKED_ATLAS or BINDLESS_TEXTURES (-1 before the first
-  /// successful Render), and for bindless DIRECT_ACCESS or WATERFALL_ACCESS (-1 for packing).
+  /// What rendered the last frame: PACKED_ATLAS, BINDLESS_TEXTURES or LINEAR_BRICKS (-1 before the
+  /// first successful Render), and for bindless DIRECT_ACCESS or WATERFALL_ACCESS (-1 for packing).
   int GetLastDataStorage();
   int GetLastBindlessAccess();
   /// Why the last frame rendered with the atlas although BINDLESS_TEXTURES was asked for (the
   /// missing extension, or a driver limit); empty otherwise.
   const char* GetBindlessFallbackReason();
-  /// "packing", "bindless" or "none"; "direct", "waterfall" or "none".
+  /// "packing", "bindless", "linear" or "none"; "direct", "waterfall" or "none".
   static const char* GetDataStorageName(int storage);
   static const char* GetBindlessAccessName(int access);
   ///@}
@@ -150,7 +155,8 @@ public:
   long long GetBindlessTextureBytes();
   /// Fraction of the packed atlas's texels that hold no brick (0 when no atlas).
   double GetAtlasWaste();
-  /// Atlas textures (pages) of the packed storage (MaximumAtlasPageBytes); 0 before a build.
+  /// Atlas textures (pages) of the packed storage (MaximumAtlasPageBytes); 0 before a build. When
+  /// the linear storage rendered last: its textures (pages).
   int GetNumberOfAtlasPages();
   /// kD-tree nodes and data nodes of the current hierarchy.
   long long GetNumberOfKdNodes() override;
@@ -313,6 +319,10 @@ protected:
 
   bool BuildData(vtkOverlappingAMR* amr, const std::string& array, std::string& error) override;
   void GetBuiltBounds(double bounds[6]) override;
+  bool BuildPacksBricks() override
+  {
+    return this->DataStorage != LINEAR_BRICKS;
+  }
 
   double LODThreshold = 0.0;
   vtkTypeBool AutoAdjustSampleDistances = 1;

@@ -26,7 +26,7 @@ void amrspBrickPosition(vec3 p, vec3 cellSize, ivec3 firstCell, ivec3 lastCell, 
 #endif
 }
 
-#if !defined(AMRSP_BINDLESS) && defined(AMRSP_ATLAS_PAGES)
+#if !defined(AMRSP_BINDLESS) && !defined(AMRSP_LINEAR) && defined(AMRSP_ATLAS_PAGES)
 // amrspReadAtlas from atlas page `page`. The page varies from ray to ray, so each page's texture
 // has a branch of its own (a sampler cannot be chosen by a non-uniform index in GLSL 1.50).
 float amrspReadAtlasPage(uint page, ivec3 texel, vec3 where)
@@ -58,7 +58,7 @@ float amrspReadAtlasPage(uint page, ivec3 texel, vec3 where)
 }
 #endif
 
-#ifndef AMRSP_BINDLESS
+#if !defined(AMRSP_BINDLESS) && !defined(AMRSP_LINEAR)
 // The packed atlas's value at amrspBrickPosition's texel (cells) or where (vertices).
 float amrspReadAtlas(ivec3 texel, vec3 where)
 {

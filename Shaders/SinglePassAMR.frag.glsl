@@ -15,6 +15,10 @@
 //   AMRSP_PACKING       data in one packed R32F atlas, or
 //   AMRSP_BINDLESS      one R32F texture per brick, reached through GL_ARB_bindless_texture
 //                       handles stored in the amrspHandles texture (index: the data node's brick)
+//   AMRSP_LINEAR        the bricks back to back in 2D R32F textures (amrspLinear, amrspLinear1..)
+//                       of 2^AMRSP_LINEAR_WIDTH_LOG2 texels per row, found through the
+//                       amrspBrickTable texture (amrsp/LinearBricks.h); AMRSP_LINEAR_PAGES: their
+//                       number when there are several
 //   AMRSP_WATERFALL     (bindless) serve one distinct handle at a time with GL_ARB_shader_ballot,
 //                       for drivers that require dynamically uniform handles
 //   AMRSP_POWER_OF_TWO_REFINEMENT every level's finest cells per cell is a power of two per axis
@@ -49,8 +53,8 @@
 #if defined(AMRSP_WATERFALL)
 #extension GL_ARB_shader_ballot : require
 #endif
-#elif !defined(AMRSP_PACKING)
-#error "AMRSP_PACKING or AMRSP_BINDLESS must be defined"
+#elif !defined(AMRSP_PACKING) && !defined(AMRSP_LINEAR)
+#error "AMRSP_PACKING, AMRSP_BINDLESS or AMRSP_LINEAR must be defined"
 #endif
 #ifndef AMRSP_BLEND_MODE
 #define AMRSP_BLEND_MODE 0
@@ -82,6 +86,19 @@ uniform sampler3D amrspAtlas3;
 #endif
 uniform vec3 amrspAtlasPageSize[AMRSP_ATLAS_PAGES]; // every page's dimensions, texels
 #endif
+#elif defined(AMRSP_LINEAR)
+uniform sampler2D amrspLinear;     // R32F, the bricks back to back (page 0)
+#ifdef AMRSP_LINEAR_PAGES
+uniform sampler2D amrspLinear1;
+#if AMRSP_LINEAR_PAGES > 2
+uniform sampler2D amrspLinear2;
+#endif
+#if AMRSP_LINEAR_PAGES > 3
+uniform sampler2D amrspLinear3;
+#endif
+#endif
+// RG32UI, one texel per brick: its first texel | page << 30, and its x | y sizes << 16
+uniform usampler3D amrspBrickTable;
 #else
 uniform usampler3D amrspHandles;   // RG32UI, one texel per brick: its 64-bit handle (low, high)
 #endif
@@ -301,6 +318,58 @@ float amrspReadDataNodeBrick(uvec2 dataNode, ivec3 texel, vec3 where)
   return value;
 #else
   return amrspReadBrick(handle, texel, where);
+#endif
+}
+#elif defined(AMRSP_LINEAR)
+// Texel `index` of linear page `page`: row index >> AMRSP_LINEAR_WIDTH_LOG2. The page varies
+// from ray to ray, so each page's texture has a branch of its own.
+float amrspReadLinear(uint page, int index)
+{
+  ivec2 t = ivec2(index & ((1 << AMRSP_LINEAR_WIDTH_LOG2) - 1), index >> AMRSP_LINEAR_WIDTH_LOG2);
+#ifdef AMRSP_LINEAR_PAGES
+  if (page == 1u)
+  {
+    return texelFetch(amrspLinear1, t, 0).r;
+  }
+#if AMRSP_LINEAR_PAGES > 2
+  if (page == 2u)
+  {
+    return texelFetch(amrspLinear2, t, 0).r;
+  }
+#endif
+#if AMRSP_LINEAR_PAGES > 3
+  if (page == 3u)
+  {
+    return texelFetch(amrspLinear3, t, 0).r;
+  }
+#endif
+#endif
+  return texelFetch(amrspLinear, t, 0).r;
+}
+
+// The brick of data node `dataNode` at texel `texel` of the brick (cells), or trilinear at
+// `where` from the texels texel and texel + 1 per axis (vertices), as amrspReadBrick.
+float amrspReadDataNodeBrick(uvec2 dataNode, ivec3 texel, vec3 where)
+{
+  uvec2 entry = texelFetch(amrspBrickTable, amrspTexelOf(amrspDataBrick(dataNode)), 0).rg;
+  uint page = entry.x >> 30u;
+  int nx = int(entry.y & 0xffffu);
+  int nxy = nx * int(entry.y >> 16u);
+  int i = int(entry.x & 0x3fffffffu) + texel.x + nx * texel.y + nxy * texel.z;
+#ifdef AMRSP_VERTEX_CENTRED
+  vec3 f = where - 0.5 - vec3(texel);
+  float c000 = amrspReadLinear(page, i);
+  float c100 = amrspReadLinear(page, i + 1);
+  float c010 = amrspReadLinear(page, i + nx);
+  float c110 = amrspReadLinear(page, i + nx + 1);
+  float c001 = amrspReadLinear(page, i + nxy);
+  float c101 = amrspReadLinear(page, i + nxy + 1);
+  float c011 = amrspReadLinear(page, i + nxy + nx);
+  float c111 = amrspReadLinear(page, i + nxy + nx + 1);
+  return mix(mix(mix(c000, c100, f.x), mix(c010, c110, f.x), f.y),
+    mix(mix(c001, c101, f.x), mix(c011, c111, f.x), f.y), f.z);
+#else
+  return amrspReadLinear(page, i);
 #endif
 }
 #endif

@@ -167,7 +167,7 @@ void RayCastingData::WaitForNodeRanges()
 }
 
 RayCastingData PrepareRayCasting(Hierarchy h, int packLimit, int64_t maxPageTexels,
-  const BuildProgress& progress, bool deferNodeRanges)
+  const BuildProgress& progress, bool deferNodeRanges, bool packBricks)
 {
   // the shares of the steps measured at the paper's dataset-3 size
   const auto report = [&progress](double fraction, const char* step)
@@ -181,12 +181,17 @@ RayCastingData PrepareRayCasting(Hierarchy h, int packLimit, int64_t maxPageTexe
   RayCastingData out;
   // the packing needs the grid boxes only: it runs beside the tree, its encoding and the value
   // scans (its result does not depend on the timing)
-  std::future<AtlasPages> packing = std::async(std::launch::async,
-    [&h, packLimit, maxPageTexels]
-    {
-      return PackBricksInPages(BrickExtents(h, h.VertexCentred), Packer::Best,
-        AtlasLimits(packLimit > 0 ? std::min(packLimit, 2048) : 2048), maxPageTexels);
-    });
+  std::future<AtlasPages> packing =
+    std::async(packBricks ? std::launch::async : std::launch::deferred,
+      [&h, packLimit, maxPageTexels, packBricks]
+      {
+        if (!packBricks)
+        {
+          throw std::runtime_error("the bricks were not packed (the linear storage was asked for)");
+        }
+        return PackBricksInPages(BrickExtents(h, h.VertexCentred), Packer::Best,
+          AtlasLimits(packLimit > 0 ? std::min(packLimit, 2048) : 2048), maxPageTexels);
+      });
   const KdTree tree = BuildKdTree(h);
   out.VertexCentred = h.VertexCentred;
   // bindless: every data node stores the offset of its lower corner inside its own brick

@@ -448,10 +448,12 @@ void vtkSinglePassAMRVolumeRepresentation::SetParallelMode(int mode)
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRVolumeRepresentation::SetMethod(int method)
 {
-  if (method < METHOD_AUTO || method > METHOD_BINDLESS)
+  if (method < METHOD_AUTO || method > METHOD_LINEAR)
   {
-    vtkErrorMacro("unknown method "
-      << method << " (0 auto, 1 packing, 2 multi-pass, 3 bindless); keeping " << this->Method);
+    vtkErrorMacro("unknown method " << method
+                                    << " (0 auto, 1 packing, 2 multi-pass, 3 bindless, 4 linear); "
+                                       "keeping "
+                                    << this->Method);
     return;
   }
   if (method != this->Method)
@@ -476,6 +478,9 @@ void vtkSinglePassAMRVolumeRepresentation::UpdateMethod()
       break;
     case METHOD_BINDLESS:
       this->VolumeMapper->SetDataStorageToBindlessTextures();
+      break;
+    case METHOD_LINEAR:
+      this->VolumeMapper->SetDataStorageToLinearBricks();
       break;
     default:
       this->VolumeMapper->SetDataStorageToAuto();

@@ -134,7 +134,8 @@ public:
    * atlas would not fit or waste memory, else the packed atlas). METHOD_PACKING: the single-pass
    * mapper, packed atlas. METHOD_BINDLESS: the single-pass mapper, one texture per brick through
    * GL_ARB_bindless_texture handles (where the context lacks them it renders with the atlas and
-   * warns once). METHOD_MULTI_PASS: vtkMultiPassAMRVolumeMapper (one draw per kD-tree data
+   * warns once). METHOD_LINEAR: the single-pass mapper, the bricks back to back in 2D textures
+   * (no packing; the fastest on CPU drivers such as llvmpipe). METHOD_MULTI_PASS: vtkMultiPassAMRVolumeMapper (one draw per kD-tree data
    * node, CPU traversal; composite blending only, no level of detail). Each mapper keeps its own
    * textures: switching to or from multi-pass builds a mapper's textures only the first time it
    * renders the current data; switching the single-pass mapper's storage re-uploads its data.
@@ -146,6 +147,7 @@ public:
     METHOD_PACKING = 1,
     METHOD_MULTI_PASS = 2,
     METHOD_BINDLESS = 3,
+    METHOD_LINEAR = 4,
   };
   void SetMethod(int method);
   vtkGetMacro(Method, int);

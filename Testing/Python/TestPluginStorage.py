@@ -7,6 +7,8 @@
 # - Method "Bindless" renders with one texture per brick (SinglePassDataStorage says
 #   "bindless (waterfall)") and gives the packed image (RMSE < 0.05 of 255);
 # - Method "Packing" and "Auto" render with the atlas (this data wastes little of it);
+# - Method "Linear" renders with the bricks back to back (SinglePassDataStorage says "linear")
+#   and gives the packed image, composite and iso-surfaces;
 # - empty-space skipping off gives the same image; early termination at opacity 1 stays within
 #   (1 - 0.999) * 255 of the default; smooth cell interpolation changes the image;
 # - none of these options rebuilds the kD-tree;
@@ -134,6 +136,13 @@ def main():
     display.Shade = 0
     display.Method = "Packing"
     unshaded_again, _, _ = shot("unshaded")
+    display.Method = "Linear"
+    linear, linear_storage, _ = shot("linear")
+    display.Shade = 1
+    display.BlendMode = "Isosurface"
+    iso_linear, _, _ = shot("iso-lin")
+    display.BlendMode = "Composite"
+    display.Shade = 0
 
     checks = [
         ("bindless ran with the waterfall loop", storage == "bindless (waterfall)"),
@@ -153,6 +162,9 @@ def main():
         ("iso-surfaces show", coverage(iso) > 0.05 and rmse(iso, packed) > 1.0),
         ("iso-surfaces are the same with bindless", rmse(iso_bindless, iso) < SAME_BOUND),
         ("Shade off gives the packed image back", rmse(unshaded_again, packed) < SAME_BOUND),
+        ("Method Linear renders with the linear storage", linear_storage == "linear"),
+        ("linear gives the packed image", rmse(linear, packed) < SAME_BOUND),
+        ("iso-surfaces are the same with linear", rmse(iso_linear, iso) < SAME_BOUND),
     ]
     # each lit or smooth image against its reference, and the image without the feature
     # (nearest cells, unlit, unshadowed, composite) against the same reference

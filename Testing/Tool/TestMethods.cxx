@@ -12,12 +12,12 @@ using namespace amrsp::tool;
 
 TEST(Methods, ListsAsTheCommandsPrintThem)
 {
-  EXPECT_EQ(MethodList(RenderCommand), "cpu-kdtree, cpu-packing, packing, bindless, multipass");
+  EXPECT_EQ(MethodList(RenderCommand), "cpu-kdtree, cpu-packing, packing, bindless, linear, multipass");
   EXPECT_EQ(MethodList(BenchCommand),
-    "cpu-kdtree, packing, bindless, multipass, uniform-gpu[:LEVEL], "
+    "cpu-kdtree, packing, bindless, linear, multipass, uniform-gpu[:LEVEL], "
     "vtk-amr-resample[:N|:finest]");
   EXPECT_EQ(DefaultBenchMethods(),
-    "cpu-kdtree,packing,bindless,multipass,uniform-gpu,vtk-amr-resample,"
+    "cpu-kdtree,packing,bindless,linear,multipass,uniform-gpu,vtk-amr-resample,"
     "vtk-amr-resample:finest");
 }
 

@@ -313,6 +313,7 @@ void MapperFields(const Method& m, GpuRenderer& gpu, const Image& first, const B
   if (m.IsKdTreeMapper())
   {
     r["atlas"] = m.Kind == MethodKind::Bindless ? std::string("none (one texture per grid)")
+      : m.Kind == MethodKind::Linear            ? std::string("none (bricks back to back)")
                                                 : gpu.AtlasDimensions();
     r["builds"] = gpu.NumberOfBuilds();
     // tree, encode, pack: the core steps timed by the tool on the CPU; build: the mapper's own
@@ -324,7 +325,7 @@ void MapperFields(const Method& m, GpuRenderer& gpu, const Image& first, const B
       pre["encode"] = cpu["encode"];
       r["gpu_bytes_tree"] = stats["tree_texture_bytes"];
     }
-    if (m.Kind != MethodKind::Bindless)
+    if (m.Kind != MethodKind::Bindless && m.Kind != MethodKind::Linear)
     {
       pre["pack"] = cpu["pack"];
     }

@@ -31,6 +31,12 @@ std::unique_ptr<GpuRenderer> MakeBindless(const std::string&, const MethodReques
     new PackingRenderer(r.Data, r.Settings, r.View, "bindless", r.BindlessAccess));
 }
 
+std::unique_ptr<GpuRenderer> MakeLinear(const std::string&, const MethodRequest& r)
+{
+  return std::unique_ptr<GpuRenderer>(
+    new PackingRenderer(r.Data, r.Settings, r.View, "linear", r.BindlessAccess));
+}
+
 std::unique_ptr<GpuRenderer> MakeMultipass(const std::string&, const MethodRequest& r)
 {
   return std::unique_ptr<GpuRenderer>(new MultipassRenderer(r.Data, r.Settings, r.View));
@@ -137,6 +143,11 @@ const std::vector<Method>& Methods()
         "GL_ARB_bindless_texture: --driver zink on a CPU); where the context lacks the "
         "extension, render uses the atlas and says so, bench reports an error" } },
       &MakeBindless },
+    { "linear", "", MethodKind::Linear, true, RenderCommand | BenchCommand,
+      { { "linear", "linear",
+        "vtkSinglePassAMRVolumeMapper, the bricks back to back in 2D R32F textures (no packing; "
+        "faster on CPU drivers such as llvmpipe); same display needs as packing" } },
+      &MakeLinear },
     { "multipass", "", MethodKind::Multipass, true, RenderCommand | BenchCommand,
       { { "multipass", "multipass",
         "vtkMultiPassAMRVolumeMapper: one draw per kD-tree data node (paper §6), the paper's "

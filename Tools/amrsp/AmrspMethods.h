@@ -35,6 +35,7 @@ enum class MethodKind
   CpuPacking, ///< amrsp::RenderKdTree through the packed atlas
   Packing,    ///< vtkSinglePassAMRVolumeMapper with the packed atlas
   Bindless,   ///< vtkSinglePassAMRVolumeMapper with one texture per brick
+  Linear,     ///< vtkSinglePassAMRVolumeMapper with the bricks back to back in 2D pages
   Multipass,  ///< vtkMultiPassAMRVolumeMapper
   UniformGpu, ///< vtkGPUVolumeRayCastMapper on a uniform resampling
   AmrResample ///< VTK's vtkAMRVolumeMapper
@@ -75,7 +76,7 @@ struct Method
   bool IsKdTreeMapper() const
   {
     return Kind == MethodKind::Packing || Kind == MethodKind::Bindless ||
-      Kind == MethodKind::Multipass;
+      Kind == MethodKind::Linear || Kind == MethodKind::Multipass;
   }
 };
 

@@ -33,10 +33,10 @@ PackingRenderer::PackingRenderer(vtkSinglePassAMRVolumeMapper* mapper, const Hie
   , Mapper(mapper)
 {
   using M = vtkSinglePassAMRVolumeMapper;
-  if (storage != "packing" && storage != "bindless" && storage != "auto")
+  if (storage != "packing" && storage != "bindless" && storage != "linear" && storage != "auto")
   {
     throw std::invalid_argument(
-      "unknown data storage '" + storage + "' (packing, bindless or auto)");
+      "unknown data storage '" + storage + "' (packing, bindless, linear or auto)");
   }
   if (bindlessAccess != "auto" && bindlessAccess != "direct" && bindlessAccess != "waterfall")
   {
@@ -45,6 +45,7 @@ PackingRenderer::PackingRenderer(vtkSinglePassAMRVolumeMapper* mapper, const Hie
   }
   this->Mapper->SetDataStorage(storage == "packing" ? M::PACKED_ATLAS
       : storage == "bindless"                       ? M::BINDLESS_TEXTURES
+      : storage == "linear"                         ? M::LINEAR_BRICKS
                                                     : M::AUTO_STORAGE);
   this->Mapper->SetBindlessAccess(bindlessAccess == "direct" ? M::DIRECT_ACCESS
       : bindlessAccess == "waterfall"                        ? M::WATERFALL_ACCESS

@@ -83,8 +83,9 @@ ImageRun RenderGpu(const Method& m, std::string& method, const LoadedDataset& d,
          << "backend: " << r.Backend() << " (VTK " << VtkVersion() << ", ParaView "
          << ParaViewVersion() << ")\n"
          << "atlas: "
-         << (singlePass && method == "bindless" ? "not used (bindless)"
-                                                : r.AtlasDimensions() + " texels")
+         << (singlePass && method == "bindless"    ? "not used (bindless)"
+                : singlePass && method == "linear" ? "not used (linear)"
+                                                   : r.AtlasDimensions() + " texels")
          << ", textures " << r.TextureBytes() / (1024.0 * 1024.0) << " MiB\n"
          << "mapper (s): build " << r.BuildSeconds() << " (conversion, kD-tree, packing"
          << (multipass ? "" : ", encoding") << "; done in GetBounds), upload " << r.UploadSeconds()

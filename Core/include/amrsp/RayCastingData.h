@@ -123,7 +123,9 @@ using BuildProgress = std::function<void(double fraction, const char* step)>;
 /// `deferNodeRanges` leaves the data nodes' value ranges to a worker thread (PendingNodeRanges)
 /// for a caller that has other work before it needs them, such as the atlas upload: the ranges
 /// read every value once, and the build's two cores are busy with the kD-tree and the packing.
+/// `packBricks` false leaves the packing out (PackingError says so), for a caller that stores
+/// the bricks otherwise (the linear storage).
 RayCastingData PrepareRayCasting(Hierarchy h, int packLimit, int64_t maxPageTexels = 0,
-  const BuildProgress& progress = nullptr, bool deferNodeRanges = false);
+  const BuildProgress& progress = nullptr, bool deferNodeRanges = false, bool packBricks = true);
 
 } // namespace amrsp

@@ -1,0 +1,187 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkSinglePassAMRLinearBricks.h"
+
+#include "vtkSinglePassAMRRenderingUtilities.h"
+
+#include "amrsp/BrickAtlas.h"
+#include "amrsp/BrickPacking.h"
+#include "amrsp/LinearBricks.h"
+
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtkSinglePassAMROpenGL.h"
+
+#include <algorithm>
+#include <future>
+#include <stdexcept>
+
+namespace
+{
+// Rows of Width texels, texels 0 after `layout`'s bricks, as a 2D R32F texture of `renWin`.
+vtkSmartPointer<vtkTextureObject> MakePage(vtkOpenGLRenderWindow* renWin, int width, int rows)
+{
+  auto page = vtkSmartPointer<vtkTextureObject>::New();
+  page->SetContext(renWin);
+  page->SetInternalFormat(GL_R32F);
+  page->SetFormat(GL_RED);
+  page->SetDataType(GL_FLOAT);
+  page->SetMinificationFilter(vtkTextureObject::Nearest);
+  page->SetMagnificationFilter(vtkTextureObject::Nearest);
+  page->SetWrapS(vtkTextureObject::ClampToEdge);
+  page->SetWrapT(vtkTextureObject::ClampToEdge);
+  if (!page->Create2DFromRaw(
+        static_cast<unsigned int>(width), static_cast<unsigned int>(rows), 1, VTK_FLOAT, nullptr))
+  {
+    return nullptr;
+  }
+  return page;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRLinearBricks::Upload(vtkOpenGLRenderWindow* renWin, const amrsp::Hierarchy& h,
+  bool vertexCentred, long long maxPageBytes, std::string& error,
+  const std::function<void(double)>& progress)
+{
+  this->Clear();
+  const int maxSize = std::max(1, vtkTextureObject::GetMaximumTextureSize(renWin));
+  int widthLog2 = 0;
+  while (widthLog2 < 14 && (2 << widthLog2) <= maxSize)
+  {
+    ++widthLog2;
+  }
+  int maxRows = std::min(maxSize, 1 << (28 - widthLog2));
+  if (maxPageBytes > 0)
+  {
+    const long long rows = maxPageBytes / static_cast<long long>(sizeof(float)) >> widthLog2;
+    maxRows = static_cast<int>(std::max(1LL, std::min<long long>(maxRows, rows)));
+  }
+  amrsp::LinearBrickLayout layout;
+  try
+  {
+    layout = amrsp::LayOutLinearBricks(amrsp::BrickExtents(h, vertexCentred), widthLog2, maxRows);
+  }
+  catch (const std::exception& e)
+  {
+    error = std::string("the linear storage cannot hold the grid data: ") + e.what() +
+      " (GL_MAX_TEXTURE_SIZE = " + std::to_string(maxSize) + ")";
+    return false;
+  }
+  const amrsp::LinearSlabFiller filler(h, layout);
+  const int width = 1 << widthLog2;
+  // slabs of 16 MiB: rows of width floats
+  const int slab = std::max(1, (16 << 20) / (width * static_cast<int>(sizeof(float))));
+  std::vector<float> buffers[2] = { std::vector<float>(static_cast<std::size_t>(slab) * width),
+    std::vector<float>(static_cast<std::size_t>(slab) * width) };
+  const double total = static_cast<double>(layout.TotalTexels());
+  double done = 0.0;
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  for (std::size_t p = 0; p < layout.PageRows.size(); ++p)
+  {
+    const int rows = layout.PageRows[p];
+    vtkSmartPointer<vtkTextureObject> page = MakePage(renWin, width, rows);
+    if (!page)
+    {
+      error = "the driver refused a linear page of " + std::to_string(width) + " x " +
+        std::to_string(rows) + " R32F texels";
+      this->Clear();
+      return false;
+    }
+    const auto fill = [&filler, p, rows, slab](int r0, std::vector<float>& texels)
+    { filler.Fill(static_cast<int>(p), r0, std::min(rows, r0 + slab), texels.data()); };
+    page->Activate(); // bound to a texture unit of its own for the uploads
+    fill(0, buffers[0]);
+    for (int r0 = 0, k = 0; r0 < rows; r0 += slab, k ^= 1)
+    {
+      std::future<void> next;
+      if (r0 + slab < rows)
+      {
+        next = std::async(std::launch::async, fill, r0 + slab, std::ref(buffers[k ^ 1]));
+      }
+      const int r1 = std::min(rows, r0 + slab);
+      glTexSubImage2D(GL_TEXTURE_2D, 0, 0, r0, width, r1 - r0, GL_RED, GL_FLOAT, buffers[k].data());
+      if (next.valid())
+      {
+        next.get(); // rethrows what the fill threw
+      }
+      done += static_cast<double>(r1 - r0) * width;
+      if (progress)
+      {
+        progress(done / total);
+      }
+    }
+    page->Deactivate();
+    this->Pages.push_back(page);
+  }
+  this->Table =
+    vtkSinglePassAMRRenderingUtilities::MakeIntegerTexture(renWin, amrsp::LinearBrickTable(layout));
+  if (!this->Table)
+  {
+    error = "the driver refused the linear storage's brick table";
+    this->Clear();
+    return false;
+  }
+  this->WidthLog2 = widthLog2;
+  this->Bytes = static_cast<long long>(total) * static_cast<long long>(amrsp::AtlasTexelBytes) +
+    static_cast<long long>(amrsp::HandleTextureBytes(layout.Base.size()));
+  return true;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkSinglePassAMRLinearBricks::GetShaderDefines() const
+{
+  std::string defines = "#define AMRSP_LINEAR 1\n#define AMRSP_LINEAR_WIDTH_LOG2 " +
+    std::to_string(this->WidthLog2) + "\n";
+  if (this->Pages.size() > 1)
+  {
+    defines += "#define AMRSP_LINEAR_PAGES " + std::to_string(this->Pages.size()) + "\n";
+  }
+  return defines;
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRLinearBricks::Activate(vtkShaderProgram* program)
+{
+  for (std::size_t p = 0; p < this->Pages.size(); ++p)
+  {
+    this->Pages[p]->Activate();
+    program->SetUniformi(
+      (p == 0 ? std::string("amrspLinear") : "amrspLinear" + std::to_string(p)).c_str(),
+      this->Pages[p]->GetTextureUnit());
+  }
+  this->Table->Activate();
+  program->SetUniformi("amrspBrickTable", this->Table->GetTextureUnit());
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRLinearBricks::Deactivate()
+{
+  for (vtkTextureObject* page : this->Pages)
+  {
+    page->Deactivate();
+  }
+  this->Table->Deactivate();
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRLinearBricks::ReleaseGraphicsResources(vtkWindow* window)
+{
+  for (vtkTextureObject* page : this->Pages)
+  {
+    page->ReleaseGraphicsResources(window);
+  }
+  if (this->Table)
+  {
+    this->Table->ReleaseGraphicsResources(window);
+  }
+  this->Clear();
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRLinearBricks::Clear()
+{
+  this->Pages.clear();
+  this->Table = nullptr;
+  this->Bytes = 0;
+}

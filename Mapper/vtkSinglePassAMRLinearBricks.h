@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkSinglePassAMRLinearBricks
+ * @brief   the linear storage's textures: the bricks back to back in 2D R32F pages, and their table
+ *
+ * Private to the module. The layout is amrsp::LinearBrickLayout: rows of 2^WidthLog2 texels
+ * (the largest power of two within GL_MAX_TEXTURE_SIZE, at most 16384), at most
+ * GL_MAX_TEXTURE_SIZE rows and 2^28 texels (1 GiB) per page, or fewer rows where the mapper's
+ * MaximumAtlasPageBytes asks for smaller pages. The table is the RG32UI texture
+ * of amrsp::LinearBrickTable. Pages are uploaded by slabs of rows, each filled by a worker
+ * thread while the previous one is handed to the driver, as the packed atlas is.
+ */
+#ifndef vtkSinglePassAMRLinearBricks_h
+#define vtkSinglePassAMRLinearBricks_h
+
+#include "amrsp/Hierarchy.h"
+
+#include "vtkSmartPointer.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+class vtkOpenGLRenderWindow;
+class vtkShaderProgram;
+class vtkTextureObject;
+class vtkWindow;
+
+class vtkSinglePassAMRLinearBricks
+{
+public:
+  /// Replaces the textures with the bricks of `h` (cells, or vertices when `vertexCentred`) in
+  /// `renWin`, its context current. Returns false with a one-line `error` when the bricks do not
+  /// fit the layout's limits or the driver refuses a texture; nothing is kept then.
+  /// `maxPageBytes` (> 0) lowers the page size (MaximumAtlasPageBytes). `progress` gets the
+  /// fraction of the texels uploaded (0 to 1).
+  bool Upload(vtkOpenGLRenderWindow* renWin, const amrsp::Hierarchy& h, bool vertexCentred,
+    long long maxPageBytes, std::string& error, const std::function<void(double)>& progress);
+
+  /// The shader's #defines: AMRSP_LINEAR, AMRSP_LINEAR_WIDTH_LOG2 and, with several pages,
+  /// AMRSP_LINEAR_PAGES.
+  std::string GetShaderDefines() const;
+  /// Activates the pages and the table and points amrspLinear, amrspLinear1.. and
+  /// amrspBrickTable at their units; Deactivate undoes it.
+  void Activate(vtkShaderProgram* program);
+  void Deactivate();
+
+  /// Bytes of the pages (whole rows) and the table; 0 when nothing is uploaded.
+  long long GetBytes() const { return this->Bytes; }
+  int GetNumberOfPages() const { return static_cast<int>(this->Pages.size()); }
+  bool IsUploaded() const { return !this->Pages.empty(); }
+
+  void ReleaseGraphicsResources(vtkWindow* window);
+  void Clear();
+
+private:
+  std::vector<vtkSmartPointer<vtkTextureObject>> Pages;
+  vtkSmartPointer<vtkTextureObject> Table;
+  int WidthLog2 = 0;
+  long long Bytes = 0;
+};
+
+#endif
