@@ -75,9 +75,12 @@ ImageRun RenderGpu(const Method& m, std::string& method, const LoadedDataset& d,
                 << "; on a CPU try --driver zink); rendered with the packed atlas\n";
       method = "packing";
     }
+    // the linear storage's build does not pack: no atlas figure then
     report << "storage: " << used << "; textures for packing "
-           << singlePass->PackedBytes() / (1024.0 * 1024.0) << " MiB, for bindless "
-           << singlePass->BindlessBytes() / (1024.0 * 1024.0) << " MiB\n";
+           << (singlePass->PackedBytes() > 0
+                  ? std::to_string(singlePass->PackedBytes() / (1024.0 * 1024.0)) + " MiB"
+                  : std::string("not built"))
+           << ", for bindless " << singlePass->BindlessBytes() / (1024.0 * 1024.0) << " MiB\n";
   }
   report << "device: " << r.Device() << "\n"
          << "backend: " << r.Backend() << " (VTK " << VtkVersion() << ", ParaView "
