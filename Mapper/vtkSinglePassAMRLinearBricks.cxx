@@ -70,8 +70,11 @@ bool vtkSinglePassAMRLinearBricks::Upload(vtkOpenGLRenderWindow* renWin, const a
   }
   const amrsp::LinearSlabFiller filler(h, layout);
   const int width = 1 << widthLog2;
-  // slabs of 16 MiB: rows of width floats
-  const int slab = std::max(1, (16 << 20) / (width * static_cast<int>(sizeof(float))));
+  // slabs of 16 MiB of rows, or the tallest page when that is smaller (a small hierarchy's pages
+  // are a few rows)
+  const int tallest = *std::max_element(layout.PageRows.begin(), layout.PageRows.end());
+  const int slab =
+    std::min(tallest, std::max(1, (16 << 20) / (width * static_cast<int>(sizeof(float)))));
   std::vector<float> buffers[2] = { std::vector<float>(static_cast<std::size_t>(slab) * width),
     std::vector<float>(static_cast<std::size_t>(slab) * width) };
   const double total = static_cast<double>(layout.TotalTexels());
