@@ -32,8 +32,10 @@ void vtkSinglePassAMRGridStorage::QueryCapabilities(vtkOpenGLRenderWindow* renWi
   this->HasNVShader5 = vtkSinglePassAMROpenGL::HasExtension("GL_NV_gpu_shader5");
   this->HasBallot = vtkSinglePassAMROpenGL::HasExtension("GL_ARB_shader_ballot");
   const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-  this->MaxBindlessTextures =
-    renderer && std::string(renderer).find("zink") != std::string::npos ? 1023 : -1;
+  const std::string name = renderer ? renderer : "";
+  this->MaxBindlessTextures = name.find("zink") != std::string::npos ? 1023 : -1;
+  this->IsCpuDriver = name.find("llvmpipe") != std::string::npos ||
+    name.find("softpipe") != std::string::npos || name.find("lavapipe") != std::string::npos;
   this->CapsContext = renWin;
 }
 
@@ -66,7 +68,7 @@ int vtkSinglePassAMRGridStorage::ResolveAccess(
 //------------------------------------------------------------------------------
 vtkSinglePassAMRGridStorage::Choice vtkSinglePassAMRGridStorage::Choose(
   vtkOpenGLRenderWindow* renWin, const amrsp::RayCastingData& data, int requested, int access,
-  double autoBindlessWaste, int atlasLimit)
+  double autoBindlessWaste, int atlasLimit, long long autoLinearBytes)
 {
   Choice c;
   std::string noBindless;
@@ -106,6 +108,14 @@ vtkSinglePassAMRGridStorage::Choice vtkSinglePassAMRGridStorage::Choose(
     (!atlasFits || data.AtlasWaste > autoBindlessWaste))
   {
     storage = vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES;
+  }
+  else if (requested == vtkSinglePassAMRVolumeMapper::AUTO_STORAGE &&
+    (!atlasFits ||
+      (this->IsCpuDriver &&
+        static_cast<long long>(amrsp::SeparateBrickBytes(data.Data)) >= autoLinearBytes)))
+  {
+    c.Storage = vtkSinglePassAMRVolumeMapper::LINEAR_BRICKS;
+    return c;
   }
   if (storage == vtkSinglePassAMRVolumeMapper::PACKED_ATLAS && !atlasFits)
   {

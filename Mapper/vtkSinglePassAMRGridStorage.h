@@ -56,9 +56,10 @@ public:
   /// The storage for `data` in `renWin`: `requested` and `access` are the mapper's DataStorage
   /// and BindlessAccess; AUTO_STORAGE takes bindless where it runs and the atlas cannot be built,
   /// exceeds `atlasLimit` (> 0) or GL_MAX_3D_TEXTURE_SIZE, or wastes more than `autoBindlessWaste`
-  /// of its texels.
+  /// of its texels; else the linear bricks where the atlas cannot be used, or on a CPU driver
+  /// when the grid data holds at least `autoLinearBytes`; else the atlas.
   Choice Choose(vtkOpenGLRenderWindow* renWin, const amrsp::RayCastingData& data, int requested,
-    int access, double autoBindlessWaste, int atlasLimit);
+    int access, double autoBindlessWaste, int atlasLimit, long long autoLinearBytes);
 
   /// Whether `renWin` can render bindless with `access` (AUTO_ACCESS, DIRECT_ACCESS or
   /// WATERFALL_ACCESS); returns the access mode that runs, or -1 with `why`.
@@ -151,6 +152,9 @@ private:
   bool HasBindless = false;
   bool HasNVShader5 = false;
   bool HasBallot = false;
+  // a driver that renders on the CPU and keeps its textures linear in host memory (llvmpipe,
+  // softpipe, lavapipe under zink)
+  bool IsCpuDriver = false;
   // bindless textures the driver can hold (-1: no known limit). Mesa's zink crashes when more
   // than 1023 handles are made resident (its bindless descriptor array has 1024 slots); checked
   // with Mesa 25.0.7: 1023 grids render, 1024 crash inside glMakeTextureHandleResidentARB.

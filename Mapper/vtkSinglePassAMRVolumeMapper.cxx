@@ -290,8 +290,9 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareStorage(
   vtkOpenGLRenderWindow* renWin, vtkOverlappingAMR* amr, FrameSettings& frame)
 {
   vtkSinglePassAMRVolumeMapper* self = this->Self;
-  const vtkSinglePassAMRGridStorage::Choice choice = this->Storage.Choose(renWin, this->Data,
-    self->DataStorage, self->BindlessAccess, self->AutoBindlessWaste, self->MaximumAtlasSize);
+  const vtkSinglePassAMRGridStorage::Choice choice =
+    this->Storage.Choose(renWin, this->Data, self->DataStorage, self->BindlessAccess,
+      self->AutoBindlessWaste, self->MaximumAtlasSize, self->AutoLinearBytes);
   if (!choice.FallbackReason.empty())
   {
     this->StorageNote = choice.FallbackReason;
@@ -838,6 +839,7 @@ void vtkSinglePassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DataStorage: " << GetDataStorageName(this->DataStorage) << "\n";
   os << indent << "BindlessAccess: " << GetBindlessAccessName(this->BindlessAccess) << "\n";
   os << indent << "AutoBindlessWaste: " << this->AutoBindlessWaste << "\n";
+  os << indent << "AutoLinearBytes: " << this->AutoLinearBytes << "\n";
   os << indent << "LastDataStorage: " << GetDataStorageName(in.LastStorage)
      << ", LastBindlessAccess: " << GetBindlessAccessName(in.LastAccess) << "\n";
   os << indent << "OpacityThreshold: " << this->OpacityThreshold << "\n";

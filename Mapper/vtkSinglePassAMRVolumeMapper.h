@@ -22,7 +22,10 @@
  *   found through an RG32UI brick table (amrsp::LinearBrickLayout): a brick's neighbouring
  *   texels are near in memory, which is what a CPU driver such as Mesa's llvmpipe reads fastest.
  * - AUTO_STORAGE (default): bindless where the extension exists and the atlas cannot be built or
- *   would leave more than AutoBindlessWaste of its texels unused; packing otherwise.
+ *   would leave more than AutoBindlessWaste of its texels unused; else linear bricks where the
+ *   context is a CPU driver (Mesa's llvmpipe, softpipe, or zink on lavapipe) and the grid data
+ *   holds at least AutoLinearBytes, or where the atlas cannot be built and bindless cannot run;
+ *   packing otherwise.
  * When bindless is requested and cannot run (extension missing, neither access mode available,
  * or more grids than the driver can hold: Mesa's zink holds 1023), the mapper renders with the
  * packed atlas and says so once with a VTK warning (GetBindlessFallbackReason).
@@ -115,6 +118,14 @@ public:
   /// atlas's texels would be unused (default 0.25), or when the atlas cannot be built at all.
   vtkSetClampMacro(AutoBindlessWaste, double, 0.0, 1.0);
   vtkGetMacro(AutoBindlessWaste, double);
+  ///@}
+
+  ///@{
+  /// AUTO_STORAGE picks the linear bricks on a CPU driver when the grid data holds at least this
+  /// many bytes (default 64 MiB: below about 20 MB llvmpipe's caches hold the packed atlas and
+  /// packing renders as fast or faster; docs/performance.md, "Linear bricks against packing").
+  vtkSetClampMacro(AutoLinearBytes, vtkIdType, 0, VTK_ID_MAX);
+  vtkGetMacro(AutoLinearBytes, vtkIdType);
   ///@}
 
   /// Renders the volume. Called by vtkVolume during the volumetric pass.
@@ -333,6 +344,7 @@ protected:
   int DataStorage = AUTO_STORAGE;
   int BindlessAccess = AUTO_ACCESS;
   double AutoBindlessWaste = 0.25;
+  vtkIdType AutoLinearBytes = vtkIdType(64) << 20;
   double OpacityThreshold = 0.999;
   bool EmptySpaceSkipping = true;
   bool WorkCountersOutput = false;

@@ -169,6 +169,49 @@ void TestDataset(const std::string& name, Hierarchy h, bool smooth = false)
   }
 }
 
+/// Whether `window` renders on the CPU, as the mapper's AUTO_STORAGE decides it.
+bool IsCpuDriver(vtkRenderWindow* window)
+{
+  const std::string caps = window->ReportCapabilities();
+  return caps.find("llvmpipe") != std::string::npos || caps.find("softpipe") != std::string::npos ||
+    caps.find("lavapipe") != std::string::npos;
+}
+
+/// AUTO_STORAGE: the atlas below AutoLinearBytes, the linear bricks above it on a CPU driver, and
+/// the linear bricks rather than an error where no atlas fits and bindless cannot run.
+void TestAutomaticChoice()
+{
+  std::cout << "automatic storage choice\n";
+  Hierarchy h = LoadHierarchy("synthetic:cosmo:grids=30,levels=3,cells=60k,seed=5");
+  const RenderSettings s = Settings(h, { "--size", "64x64" });
+  PackingRenderer gpu(h, s, ViewAngles(), "packing");
+  Mapper* m = gpu.GetMapper();
+  double ms = 0.0;
+  const Image packed = gpu.Render(0.0, ms);
+  vtkRenderWindow* window = gpu.GetRenderer()->GetRenderWindow();
+  const bool cpu = IsCpuDriver(window);
+  const bool bindless = Mapper::IsBindlessSupported(window);
+  std::cout << "  info    " << (cpu ? "a CPU driver" : "not a CPU driver") << ", "
+            << (bindless ? "bindless textures" : "no bindless textures") << "\n";
+  m->SetDataStorageToAuto();
+  m->SetAutoBindlessWaste(1.0);
+  const Image small = gpu.Render(0.0, ms);
+  Check(m->GetLastDataStorage() == Mapper::PACKED_ATLAS && Rmse(small, packed) == 0.0,
+    "auto with 0.24 MB of grid data, under AutoLinearBytes = " +
+      std::to_string(m->GetAutoLinearBytes()) + ": " + StorageName(m));
+  m->SetAutoLinearBytes(0);
+  const Image large = gpu.Render(0.0, ms);
+  Check(m->GetLastDataStorage() == (cpu ? Mapper::LINEAR_BRICKS : Mapper::PACKED_ATLAS) &&
+      Rmse(large, packed) == 0.0,
+    "auto with AutoLinearBytes = 0: " + StorageName(m) + (cpu ? " (CPU driver)" : ""));
+  m->SetAutoLinearBytes(vtkIdType(64) << 20);
+  m->SetMaximumAtlasSize(8); // no atlas can be packed
+  const Image noAtlas = gpu.Render(0.0, ms);
+  Check(m->GetLastDataStorage() == (bindless ? Mapper::BINDLESS_TEXTURES : Mapper::LINEAR_BRICKS) &&
+      Rmse(noAtlas, packed) < BoundVsPackingVertices,
+    "auto when no atlas fits MaximumAtlasSize = 8 renders, no error: " + StorageName(m));
+}
+
 } // namespace
 
 int main()
@@ -188,6 +231,7 @@ int main()
       LoadHierarchy("synthetic:cosmo:grids=60,levels=3,cells=100k,seed=4", "vertex"));
     TestDataset("synthetic, smooth cells",
       LoadHierarchy("synthetic:cosmo:grids=60,levels=3,cells=100k,seed=4"), true);
+    TestAutomaticChoice();
   }
   catch (const std::exception& e)
   {
