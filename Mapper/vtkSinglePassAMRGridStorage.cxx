@@ -112,7 +112,9 @@ vtkSinglePassAMRGridStorage::Choice vtkSinglePassAMRGridStorage::Choose(
   else if (requested == vtkSinglePassAMRVolumeMapper::AUTO_STORAGE &&
     (!atlasFits ||
       (this->IsCpuDriver &&
-        static_cast<long long>(amrsp::SeparateBrickBytes(data.Data)) >= autoLinearBytes)))
+        static_cast<long long>(amrsp::SeparateBrickBytes(data.Data)) >= autoLinearBytes)) &&
+    vtkSinglePassAMRLinearBricks::Fits(
+      renWin, data.Data, data.VertexCentred, this->LinearPageBytes))
   {
     c.Storage = vtkSinglePassAMRVolumeMapper::LINEAR_BRICKS;
     return c;
@@ -122,7 +124,8 @@ vtkSinglePassAMRGridStorage::Choice vtkSinglePassAMRGridStorage::Choose(
     c.Error = noAtlas +
       (requested == vtkSinglePassAMRVolumeMapper::PACKED_ATLAS
           ? std::string()
-          : "; bindless textures cannot be used: " + noBindless);
+          : "; bindless textures cannot be used: " + noBindless +
+            "; the linear bricks do not fit its pages either");
     return c;
   }
   c.Storage = storage;

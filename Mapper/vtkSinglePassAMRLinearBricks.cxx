@@ -40,23 +40,54 @@ vtkSmartPointer<vtkTextureObject> MakePage(vtkOpenGLRenderWindow* renWin, int wi
 } // namespace
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMRLinearBricks::Upload(vtkOpenGLRenderWindow* renWin, const amrsp::Hierarchy& h,
-  bool vertexCentred, long long maxPageBytes, std::string& error,
-  const std::function<void(double)>& progress)
+void vtkSinglePassAMRLinearBricks::PageShape(
+  vtkOpenGLRenderWindow* renWin, long long maxPageBytes, int& widthLog2, int& maxRows)
 {
-  this->Clear();
   const int maxSize = std::max(1, vtkTextureObject::GetMaximumTextureSize(renWin));
-  int widthLog2 = 0;
+  widthLog2 = 0;
   while (widthLog2 < 14 && (2 << widthLog2) <= maxSize)
   {
     ++widthLog2;
   }
-  int maxRows = std::min(maxSize, 1 << (28 - widthLog2));
+  maxRows = std::min(maxSize, 1 << (28 - widthLog2));
   if (maxPageBytes > 0)
   {
     const long long rows = maxPageBytes / static_cast<long long>(sizeof(float)) >> widthLog2;
     maxRows = static_cast<int>(std::max(1LL, std::min<long long>(maxRows, rows)));
   }
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRLinearBricks::Fits(vtkOpenGLRenderWindow* renWin, const amrsp::Hierarchy& h,
+  bool vertexCentred, long long maxPageBytes)
+{
+  int widthLog2 = 0;
+  int maxRows = 0;
+  PageShape(renWin, maxPageBytes, widthLog2, maxRows);
+  // the layout leaves less than one brick unused at the end of each page
+  const long long capacity = static_cast<long long>(maxRows) << widthLog2;
+  long long texels = 0;
+  long long largest = 0;
+  for (const glm::ivec3& e : amrsp::BrickExtents(h, vertexCentred))
+  {
+    const long long t = static_cast<long long>(e.x) * e.y * e.z;
+    texels += t;
+    largest = std::max(largest, t);
+  }
+  return largest <= capacity &&
+    texels + amrsp::MaxLinearPages * largest <= amrsp::MaxLinearPages * capacity;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRLinearBricks::Upload(vtkOpenGLRenderWindow* renWin, const amrsp::Hierarchy& h,
+  bool vertexCentred, long long maxPageBytes, std::string& error,
+  const std::function<void(double)>& progress)
+{
+  this->Clear();
+  int widthLog2 = 0;
+  int maxRows = 0;
+  PageShape(renWin, maxPageBytes, widthLog2, maxRows);
+  const int maxSize = std::max(1, vtkTextureObject::GetMaximumTextureSize(renWin));
   amrsp::LinearBrickLayout layout;
   try
   {

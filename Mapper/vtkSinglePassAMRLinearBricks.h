@@ -37,6 +37,11 @@ public:
   bool Upload(vtkOpenGLRenderWindow* renWin, const amrsp::Hierarchy& h, bool vertexCentred,
     long long maxPageBytes, std::string& error, const std::function<void(double)>& progress);
 
+  /// Whether the bricks of `h` surely fit the pages `renWin` allows (with `maxPageBytes` as in
+  /// Upload): a sufficient test, O(grids), without laying them out.
+  static bool Fits(vtkOpenGLRenderWindow* renWin, const amrsp::Hierarchy& h, bool vertexCentred,
+    long long maxPageBytes);
+
   /// The shader's #defines: AMRSP_LINEAR, AMRSP_LINEAR_WIDTH_LOG2 and, with several pages,
   /// AMRSP_LINEAR_PAGES.
   std::string GetShaderDefines() const;
@@ -54,6 +59,11 @@ public:
   void Clear();
 
 private:
+  /// Rows of 2^widthLog2 texels (the largest power of two within GL_MAX_TEXTURE_SIZE, at most
+  /// 2^14) and at most maxRows of them per page.
+  static void PageShape(
+    vtkOpenGLRenderWindow* renWin, long long maxPageBytes, int& widthLog2, int& maxRows);
+
   std::vector<vtkSmartPointer<vtkTextureObject>> Pages;
   vtkSmartPointer<vtkTextureObject> Table;
   int WidthLog2 = 0;

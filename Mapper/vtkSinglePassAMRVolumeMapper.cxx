@@ -290,6 +290,7 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareStorage(
   vtkOpenGLRenderWindow* renWin, vtkOverlappingAMR* amr, FrameSettings& frame)
 {
   vtkSinglePassAMRVolumeMapper* self = this->Self;
+  this->Storage.SetLinearPageBytes(self->MaximumAtlasPageBytes);
   const vtkSinglePassAMRGridStorage::Choice choice =
     this->Storage.Choose(renWin, this->Data, self->DataStorage, self->BindlessAccess,
       self->AutoBindlessWaste, self->MaximumAtlasSize, self->AutoLinearBytes);
@@ -324,7 +325,6 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareStorage(
   const auto t0 = std::chrono::steady_clock::now();
   std::string error;
   self->BeginProgressPhase(PROGRESS_UPLOAD, "uploading the grid data");
-  this->Storage.SetLinearPageBytes(self->MaximumAtlasPageBytes);
   if (!this->Storage.Upload(renWin, frame.Storage, self->MaximumAtlasSize, this->Data, error,
         [self](double f) { self->UpdateProgress(f); }))
   {

@@ -22,8 +22,10 @@
 #include "amrsp/KdTreeEncoding.h"
 #include "amrsp/Render.h"
 
+#include "vtkSinglePassAMRLinearBricks.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
 
+#include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -205,6 +207,31 @@ void TestAutomaticChoice()
       Rmse(large, packed) == 0.0,
     "auto with AutoLinearBytes = 0: " + StorageName(m) + (cpu ? " (CPU driver)" : ""));
   m->SetAutoLinearBytes(vtkIdType(64) << 20);
+
+  // linear bricks that cannot fit four pages of one row (16,384 texels): the feasibility test
+  // AUTO_STORAGE relies on says so, and asking for them is an error naming the pages
+  {
+    Hierarchy big = LoadHierarchy("synthetic:cosmo:grids=60,levels=3,cells=100k,seed=4");
+    Settings(big, { "--size", "64x64" });
+    auto* gl = vtkOpenGLRenderWindow::SafeDownCast(window);
+    Check(vtkSinglePassAMRLinearBricks::Fits(gl, big, false, 0) &&
+        !vtkSinglePassAMRLinearBricks::Fits(gl, big, false, 4),
+      "100k cells fit linear pages of 1 GiB, not pages of one row");
+    PackingRenderer tight(big, s, ViewAngles(), "linear");
+    tight.GetMapper()->SetMaximumAtlasPageBytes(4);
+    std::string error;
+    try
+    {
+      tight.Render(0.0, ms);
+    }
+    catch (const GpuError& e)
+    {
+      error = e.what();
+    }
+    Check(error.find("linear pages") != std::string::npos,
+      "linear bricks over four pages of one row: an error, not a black image: " + error);
+  }
+
   m->SetMaximumAtlasSize(8); // no atlas can be packed
   const Image noAtlas = gpu.Render(0.0, ms);
   Check(m->GetLastDataStorage() == (bindless ? Mapper::BINDLESS_TEXTURES : Mapper::LINEAR_BRICKS) &&
