@@ -124,8 +124,10 @@ vtkSinglePassAMRGridStorage::Choice vtkSinglePassAMRGridStorage::Choose(
     c.Error = noAtlas +
       (requested == vtkSinglePassAMRVolumeMapper::PACKED_ATLAS
           ? std::string()
-          : "; bindless textures cannot be used: " + noBindless +
-            "; the linear bricks do not fit its pages either");
+          : "; bindless textures cannot be used: " + noBindless) +
+      (requested == vtkSinglePassAMRVolumeMapper::AUTO_STORAGE
+          ? "; nor do the linear bricks fit the pages this context allows"
+          : "");
     return c;
   }
   c.Storage = storage;
