@@ -35,7 +35,15 @@ vtkSmartPointer<vtkTextureObject> MakePage(vtkOpenGLRenderWindow* renWin, int wi
   {
     return nullptr;
   }
-  return page;
+  // A refused allocation leaves a texture without storage, which Create2DFromRaw does not report
+  // (VTK's own error check may have read the GL_OUT_OF_MEMORY already): its slabs would upload
+  // nowhere and the frame would be black. The texture's size tells.
+  GLint allocated[2] = { 0, 0 };
+  page->Activate();
+  glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &allocated[0]);
+  glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &allocated[1]);
+  page->Deactivate();
+  return allocated[0] == width && allocated[1] == rows ? page : nullptr;
 }
 } // namespace
 
@@ -118,7 +126,7 @@ bool vtkSinglePassAMRLinearBricks::Upload(vtkOpenGLRenderWindow* renWin, const a
     if (!page)
     {
       error = "the driver refused a linear page of " + std::to_string(width) + " x " +
-        std::to_string(rows) + " R32F texels";
+        std::to_string(rows) + " R32F texels (out of GPU memory, or over one of its limits)";
       this->Clear();
       return false;
     }

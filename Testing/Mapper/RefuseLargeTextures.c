@@ -2,8 +2,9 @@
  *
  * A driver that runs out of memory, for the tests: loaded with LD_PRELOAD, this library hands
  * VTK (which loads OpenGL through glXGetProcAddress, eglGetProcAddress or OSMesaGetProcAddress)
- * a glTexImage3D that refuses every 3D texture of more than AMRSP_REFUSE_TEXELS texels the way a
- * driver refuses an allocation it cannot make: nothing is allocated and glGetError reports
+ * a glTexImage3D that refuses every 3D texture of more than AMRSP_REFUSE_TEXELS texels, and a
+ * glTexImage2D that refuses every 2D texture of more than AMRSP_REFUSE_TEXELS_2D texels, the way
+ * a driver refuses an allocation it cannot make: nothing is allocated and glGetError reports
  * GL_OUT_OF_MEMORY (0x0505) once. Smaller textures and every other function are the driver's.
  */
 #define _GNU_SOURCE
@@ -15,14 +16,20 @@ typedef void (*Function)(void);
 typedef void (*TexImage3D)(unsigned int target, int level, int internalFormat, int width,
   int height, int depth, int border, unsigned int format, unsigned int type, const void* pixels);
 typedef unsigned int (*GetError)(void);
+typedef void (*TexImage2D)(unsigned int target, int level, int internalFormat, int width,
+  int height, int border, unsigned int format, unsigned int type, const void* pixels);
 
 /* Tells a test that the library is loaded, and whether VTK took glTexImage3D from it: VTK 9.1
  * and 9.2 (GLEW) and 9.3 on GLX do; VTK's run-time EGL and OSMesa loaders (9.4 on) resolve
  * OpenGL with dlsym, past the preload. */
 int amrsp_refuse_large_textures_loaded = 1;
 int amrsp_refuse_large_textures_active = 0;
+/* Whether VTK's glTexImage2D calls come here: through a wrapped loader (glad) or, with GLEW,
+ * which links OpenGL 1.1 functions directly, once the symbol below has been called. */
+int amrsp_refuse_large_textures_2d_active = 0;
 
 static TexImage3D RealTexImage3D;
+static TexImage2D RealTexImage2D;
 static GetError RealGetError;
 static unsigned int PendingError;
 static const unsigned int OutOfMemory = 0x0505;
@@ -37,6 +44,18 @@ static void RefusingTexImage3D(unsigned int target, int level, int internalForma
     return;
   }
   RealTexImage3D(target, level, internalFormat, width, height, depth, border, format, type, pixels);
+}
+
+static void RefusingTexImage2D(unsigned int target, int level, int internalFormat, int width,
+  int height, int border, unsigned int format, unsigned int type, const void* pixels)
+{
+  const char* limit = getenv("AMRSP_REFUSE_TEXELS_2D");
+  if (limit && (double)width * height > atof(limit))
+  {
+    PendingError = OutOfMemory;
+    return;
+  }
+  RealTexImage2D(target, level, internalFormat, width, height, border, format, type, pixels);
 }
 
 static unsigned int ReportingGetError(void)
@@ -63,6 +82,12 @@ static Function Substitute(const char* name, Function real)
     amrsp_refuse_large_textures_active = 1;
     return (Function)RefusingTexImage3D;
   }
+  if (strcmp(name, "glTexImage2D") == 0)
+  {
+    RealTexImage2D = (TexImage2D)real;
+    amrsp_refuse_large_textures_2d_active = 1;
+    return (Function)RefusingTexImage2D;
+  }
   if (strcmp(name, "glGetError") == 0)
   {
     RealGetError = (GetError)real;
@@ -79,6 +104,18 @@ unsigned int glGetError(void)
     RealGetError = (GetError)dlsym(RTLD_NEXT, "glGetError");
   }
   return ReportingGetError();
+}
+
+/* GLEW (VTK up to 9.2) links glTexImage2D directly too. */
+void glTexImage2D(unsigned int target, int level, int internalFormat, int width, int height,
+  int border, unsigned int format, unsigned int type, const void* pixels)
+{
+  if (!RealTexImage2D)
+  {
+    RealTexImage2D = (TexImage2D)dlsym(RTLD_NEXT, "glTexImage2D");
+  }
+  amrsp_refuse_large_textures_2d_active = 1;
+  RefusingTexImage2D(target, level, internalFormat, width, height, border, format, type, pixels);
 }
 
 #define AMRSP_WRAP_LOADER(loader)                                                                  \

@@ -16,6 +16,9 @@
 //   - a driver out of memory (RefuseLargeTextures.c, preloaded by CTest): one error, and the
 //     image back once the driver accepts the allocation again.
 //
+// `TestMapperErrors linear` runs every case with the linear storage (LINEAR_BRICKS), whose pages
+// are 2D textures: the driver then refuses them (AMRSP_REFUSE_TEXELS_2D) instead of the atlas.
+//
 // Exit code 125 (CTest SKIP) with "SKIPPED: ..." when no OpenGL context can be created, unless
 // AMRSP_REQUIRE_GPU=1, which turns that into a failure.
 
@@ -351,6 +354,7 @@ void TestIsoValues(Scene& scene)
 /// the same data renders once the driver has the memory again (the CPU data was kept).
 void TestOutOfMemory(Scene& scene)
 {
+  const bool linear = scene.Mapper->GetDataStorage() == vtkSinglePassAMRVolumeMapper::LINEAR_BRICKS;
   if (!dlsym(RTLD_DEFAULT, "amrsp_refuse_large_textures_loaded"))
   {
     const bool required = mappertest::EverythingRequired();
@@ -359,18 +363,22 @@ void TestOutOfMemory(Scene& scene)
         (required ? "required here: AMRSP_REQUIRE_GPU=1)" : "left out)"));
     return;
   }
-  const int* active =
-    static_cast<const int*>(dlsym(RTLD_DEFAULT, "amrsp_refuse_large_textures_active"));
+  const int* active = static_cast<const int*>(dlsym(RTLD_DEFAULT,
+    linear ? "amrsp_refuse_large_textures_2d_active" : "amrsp_refuse_large_textures_active"));
   if (!active || !*active)
   {
     // VTK's run-time loaders (EGL and OSMesa from VTK 9.4 on) resolve OpenGL with dlsym, past
     // any preload; GLEW (VTK 9.1, 9.2) and glad on GLX (9.3) take it from glXGetProcAddress
-    std::cout << "  note    out of GPU memory: not checked here, VTK loaded glTexImage3D past the "
-                 "preload (its run-time EGL or OSMesa loader)\n";
+    std::cout << "  note    out of GPU memory: not checked here, VTK loaded "
+              << (linear ? "glTexImage2D" : "glTexImage3D")
+              << " past the preload (its run-time EGL or OSMesa loader)\n";
     return;
   }
   vtkSmartPointer<vtkOverlappingAMR> amr = GoodAMR();
-  setenv("AMRSP_REFUSE_TEXELS", "600", 1); // the atlas (two 8^3 bricks), not the tree
+  // packing: the atlas (two 8^3 bricks), not the tree; linear: the page (one row of 16,384
+  // texels), not the transfer table (4,096 x 1) nor the window's 64 x 64 buffers
+  const char* limitName = linear ? "AMRSP_REFUSE_TEXELS_2D" : "AMRSP_REFUSE_TEXELS";
+  setenv(limitName, linear ? "8192" : "600", 1);
   for (int frame = 0; frame < 2; ++frame)
   {
     const double shown = scene.Render(amr);
@@ -378,10 +386,11 @@ void TestOutOfMemory(Scene& scene)
     Check((error.find("out of GPU memory") != std::string::npos ||
             error.find("refused") != std::string::npos) &&
         shown == 0.0,
-      "the driver refuses the atlas, frame " + std::to_string(frame + 1) + ": error '" + error +
-        "', " + Percent(shown) + " of the pixels drawn");
+      std::string("the driver refuses the ") + (linear ? "linear page" : "atlas") + ", frame " +
+        std::to_string(frame + 1) + ": error '" + error + "', " + Percent(shown) +
+        " of the pixels drawn");
   }
-  unsetenv("AMRSP_REFUSE_TEXELS");
+  unsetenv(limitName);
   ExpectImage(scene, amr, 0.05, "the same data once the driver has the memory again");
 }
 
@@ -416,8 +425,9 @@ void TestShaderFailure(Scene& scene)
 
 } // namespace
 
-int main()
+int main(int argc, char* argv[])
 {
+  const bool linear = argc > 1 && std::string(argv[1]) == "linear";
   vtkNew<vtkRenderWindow> probe;
   std::string why;
   probe->SetOffScreenRendering(1);
@@ -427,6 +437,10 @@ int main()
   }
   probe->Finalize();
   Scene scene;
+  if (linear)
+  {
+    scene.Mapper->SetDataStorageToLinearBricks();
+  }
   TestInputs(scene);
   TestEncodingLimit(scene);
   TestIsoValues(scene);
