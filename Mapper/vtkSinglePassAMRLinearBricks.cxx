@@ -13,7 +13,6 @@
 #include "vtkSinglePassAMROpenGL.h"
 
 #include <algorithm>
-#include <future>
 #include <stdexcept>
 
 namespace
@@ -48,7 +47,7 @@ vtkSmartPointer<vtkTextureObject> MakePage(vtkOpenGLRenderWindow* renWin, int wi
 } // namespace
 
 //------------------------------------------------------------------------------
-void vtkSinglePassAMRLinearBricks::PageShape(
+int vtkSinglePassAMRLinearBricks::PageShape(
   vtkOpenGLRenderWindow* renWin, long long maxPageBytes, int& widthLog2, int& maxRows)
 {
   const int maxSize = std::max(1, vtkTextureObject::GetMaximumTextureSize(renWin));
@@ -63,6 +62,7 @@ void vtkSinglePassAMRLinearBricks::PageShape(
     const long long rows = maxPageBytes / static_cast<long long>(sizeof(float)) >> widthLog2;
     maxRows = static_cast<int>(std::max(1LL, std::min<long long>(maxRows, rows)));
   }
+  return maxSize;
 }
 
 //------------------------------------------------------------------------------
@@ -94,8 +94,7 @@ bool vtkSinglePassAMRLinearBricks::Upload(vtkOpenGLRenderWindow* renWin, const a
   this->Clear();
   int widthLog2 = 0;
   int maxRows = 0;
-  PageShape(renWin, maxPageBytes, widthLog2, maxRows);
-  const int maxSize = std::max(1, vtkTextureObject::GetMaximumTextureSize(renWin));
+  const int maxSize = PageShape(renWin, maxPageBytes, widthLog2, maxRows);
   amrsp::LinearBrickLayout layout;
   try
   {
@@ -109,13 +108,7 @@ bool vtkSinglePassAMRLinearBricks::Upload(vtkOpenGLRenderWindow* renWin, const a
   }
   const amrsp::LinearSlabFiller filler(h, layout);
   const int width = 1 << widthLog2;
-  // slabs of 16 MiB of rows, or the tallest page when that is smaller (a small hierarchy's pages
-  // are a few rows)
-  const int tallest = *std::max_element(layout.PageRows.begin(), layout.PageRows.end());
-  const int slab =
-    std::min(tallest, std::max(1, (16 << 20) / (width * static_cast<int>(sizeof(float)))));
-  std::vector<float> buffers[2] = { std::vector<float>(static_cast<std::size_t>(slab) * width),
-    std::vector<float>(static_cast<std::size_t>(slab) * width) };
+  const int slab = std::max(1, (16 << 20) / (width * static_cast<int>(sizeof(float)))); // 16 MiB
   const double total = static_cast<double>(layout.TotalTexels());
   double done = 0.0;
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
@@ -130,29 +123,21 @@ bool vtkSinglePassAMRLinearBricks::Upload(vtkOpenGLRenderWindow* renWin, const a
       this->Clear();
       return false;
     }
-    const auto fill = [&filler, p, rows, slab](int r0, std::vector<float>& texels)
-    { filler.Fill(static_cast<int>(p), r0, std::min(rows, r0 + slab), texels.data()); };
     page->Activate(); // bound to a texture unit of its own for the uploads
-    fill(0, buffers[0]);
-    for (int r0 = 0, k = 0; r0 < rows; r0 += slab, k ^= 1)
-    {
-      std::future<void> next;
-      if (r0 + slab < rows)
+    // (the slabs are no taller than the page: a small hierarchy's pages are a few rows)
+    vtkSinglePassAMRRenderingUtilities::UploadInSlabs(
+      rows, slab, static_cast<std::size_t>(width),
+      [&filler, p](int r0, int r1, float* out) { filler.Fill(static_cast<int>(p), r0, r1, out); },
+      [width](int r0, int r1, const float* texels)
+      { glTexSubImage2D(GL_TEXTURE_2D, 0, 0, r0, width, r1 - r0, GL_RED, GL_FLOAT, texels); },
+      [&progress, &done, rows, width, total](double f)
       {
-        next = std::async(std::launch::async, fill, r0 + slab, std::ref(buffers[k ^ 1]));
-      }
-      const int r1 = std::min(rows, r0 + slab);
-      glTexSubImage2D(GL_TEXTURE_2D, 0, 0, r0, width, r1 - r0, GL_RED, GL_FLOAT, buffers[k].data());
-      if (next.valid())
-      {
-        next.get(); // rethrows what the fill threw
-      }
-      done += static_cast<double>(r1 - r0) * width;
-      if (progress)
-      {
-        progress(done / total);
-      }
-    }
+        if (progress)
+        {
+          progress((done + f * rows * width) / total);
+        }
+      });
+    done += static_cast<double>(rows) * width;
     page->Deactivate();
     this->Pages.push_back(page);
   }

@@ -60,8 +60,8 @@ public:
 
 private:
   /// Rows of 2^widthLog2 texels (the largest power of two within GL_MAX_TEXTURE_SIZE, at most
-  /// 2^14) and at most maxRows of them per page.
-  static void PageShape(
+  /// 2^14) and at most maxRows of them per page; returns GL_MAX_TEXTURE_SIZE.
+  static int PageShape(
     vtkOpenGLRenderWindow* renWin, long long maxPageBytes, int& widthLog2, int& maxRows);
 
   std::vector<vtkSmartPointer<vtkTextureObject>> Pages;

@@ -298,34 +298,51 @@ vtkSmartPointer<vtkTextureObject> UploadAtlasBySlabs(vtkOpenGLRenderWindow* renW
   const std::size_t layer = static_cast<std::size_t>(d.x) * static_cast<std::size_t>(d.y);
   const int slab = static_cast<int>(std::max<std::size_t>(
     1, std::min<std::size_t>(d.z, (std::size_t(16) << 20) / (layer * sizeof(float)))));
-  std::vector<float> buffers[2] = { std::vector<float>(layer * static_cast<std::size_t>(slab)),
-    std::vector<float>(layer * static_cast<std::size_t>(slab)) };
   const amrsp::AtlasSlabFiller filler(h, layout);
-  const auto fill = [&filler, &d, slab](int z0, std::vector<float>& texels)
-  { filler.Fill(z0, std::min(d.z, z0 + slab), texels.data()); };
   atlas->Activate(); // bound to a texture unit of its own for the uploads
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  fill(0, buffers[0]);
-  for (int z0 = 0, k = 0; z0 < d.z; z0 += slab, k ^= 1)
+  UploadInSlabs(
+    d.z, slab, layer, [&filler](int z0, int z1, float* out) { filler.Fill(z0, z1, out); },
+    [&d](int z0, int z1, const float* texels)
+    { glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, z0, d.x, d.y, z1 - z0, GL_RED, GL_FLOAT, texels); },
+    progress);
+  atlas->Deactivate();
+  return atlas;
+}
+
+//------------------------------------------------------------------------------
+void UploadInSlabs(int units, int slab, std::size_t unitFloats,
+  const std::function<void(int, int, float*)>& fill,
+  const std::function<void(int, int, const float*)>& upload,
+  const std::function<void(double)>& progress)
+{
+  slab = std::max(1, std::min(slab, units));
+  std::vector<float> buffers[2] = { std::vector<float>(unitFloats * static_cast<std::size_t>(slab)),
+    std::vector<float>(unitFloats * static_cast<std::size_t>(slab)) };
+  const auto fillSlab = [&fill, units, slab](int first, std::vector<float>& texels)
+  { fill(first, std::min(units, first + slab), texels.data()); };
+  if (units > 0)
+  {
+    fillSlab(0, buffers[0]);
+  }
+  for (int first = 0, k = 0; first < units; first += slab, k ^= 1)
   {
     std::future<void> next;
-    if (z0 + slab < d.z)
+    if (first + slab < units)
     {
-      next = std::async(std::launch::async, fill, z0 + slab, std::ref(buffers[k ^ 1]));
+      next = std::async(std::launch::async, fillSlab, first + slab, std::ref(buffers[k ^ 1]));
     }
-    glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, z0, d.x, d.y, std::min(d.z, z0 + slab) - z0, GL_RED,
-      GL_FLOAT, buffers[k].data());
+    const int last = std::min(units, first + slab);
+    upload(first, last, buffers[k].data());
     if (next.valid())
     {
       next.get(); // rethrows what the fill threw
     }
     if (progress)
     {
-      progress(static_cast<double>(std::min(d.z, z0 + slab)) / d.z);
+      progress(static_cast<double>(last) / units);
     }
   }
-  atlas->Deactivate();
-  return atlas;
 }
 
 bool UploadAtlas(vtkOpenGLRenderWindow* renWin, const amrsp::Hierarchy& h,

@@ -29,7 +29,7 @@
 #include "vtkTimeStamp.h"
 #include "vtkType.h"
 
-#include <functional> // for UploadAtlasBySlabs
+#include <functional> // for UploadInSlabs, UploadAtlasBySlabs
 #include <string>
 #include <utility>
 #include <vector>
@@ -131,6 +131,18 @@ struct ModelLight
 
 /// The first switched-on light of `ren` moved into the model coordinates of `vol` (none: black).
 ModelLight FirstLightInModel(vtkRenderer* ren, vtkVolume* vol);
+
+/**
+ * Hands `units` units (atlas layers, page rows) of `unitFloats` floats each to `upload` in slabs
+ * of at most `slab` units, double-buffered: a worker thread fills the next slab (`fill(first,
+ * last, out)`, units first <= u < last) while `upload(first, last, texels)` hands the current one
+ * to the driver. `progress` gets the fraction of the units done after each slab. Rethrows what
+ * `fill` threw.
+ */
+void UploadInSlabs(int units, int slab, std::size_t unitFloats,
+  const std::function<void(int, int, float*)>& fill,
+  const std::function<void(int, int, const float*)>& upload,
+  const std::function<void(double)>& progress);
 
 /**
  * The atlas of `h`'s bricks placed by `layout` as an R32F 3D texture (MakeScalarTexture's
