@@ -110,9 +110,7 @@ vtkSinglePassAMRGridStorage::Choice vtkSinglePassAMRGridStorage::Choose(
     storage = vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES;
   }
   else if (requested == vtkSinglePassAMRVolumeMapper::AUTO_STORAGE &&
-    (!atlasFits ||
-      (this->IsCpuDriver &&
-        static_cast<long long>(amrsp::SeparateBrickBytes(data.Data)) >= autoLinearBytes)) &&
+    (!atlasFits || (this->IsCpuDriver && data.BrickBytes >= autoLinearBytes)) &&
     vtkSinglePassAMRLinearBricks::Fits(
       renWin, data.Data, data.VertexCentred, this->LinearPageBytes))
   {
@@ -257,9 +255,8 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, int stor
     ok = this->Linear.Upload(
       renWin, data.Data, data.VertexCentred, this->LinearPageBytes, error, progress);
     // the tree textures of the bindless figure, and the pages and table instead of its bricks
-    bytes = data.BindlessBytes + this->Linear.GetBytes() -
-      static_cast<long long>(
-        amrsp::SeparateBrickBytes(data.Data) + amrsp::HandleTextureBytes(data.Data.Grids.size()));
+    bytes = data.BindlessBytes + this->Linear.GetBytes() - data.BrickBytes -
+      static_cast<long long>(amrsp::HandleTextureBytes(data.Data.Grids.size()));
   }
   else if (ok)
   {

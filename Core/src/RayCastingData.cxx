@@ -259,8 +259,9 @@ RayCastingData PrepareRayCasting(Hierarchy h, int packLimit, int64_t maxPageTexe
   }
   const long long treeBytes =
     static_cast<long long>(KdTreeTextureBytes(enc.Tree, out.BindlessDataNodeTexels));
+  out.BrickBytes = static_cast<long long>(SeparateBrickBytes(h));
   out.BindlessBytes =
-    treeBytes + static_cast<long long>(SeparateBrickBytes(h) + HandleTextureBytes(h.Grids.size()));
+    treeBytes + out.BrickBytes + static_cast<long long>(HandleTextureBytes(h.Grids.size()));
   out.PackedBytes = out.PackingError.empty()
     ? treeBytes + totalTexels * static_cast<long long>(AtlasTexelBytes)
     : 0;

@@ -98,6 +98,8 @@ struct RayCastingData
   /// nodes + separate bricks + handles.
   long long PackedBytes = 0;
   long long BindlessBytes = 0;
+  /// Bytes of the grid data, one brick per grid (SeparateBrickBytes); kept after FreeUploadData.
+  long long BrickBytes = 0;
   bool VertexCentred = false;
 
   /// Drops the CPU copies the upload consumed (bricks, layout, texels); the figures (sizes,
