@@ -42,8 +42,8 @@ public:
   static bool Fits(vtkOpenGLRenderWindow* renWin, const amrsp::Hierarchy& h, bool vertexCentred,
     long long maxPageBytes);
 
-  /// The shader's #defines: AMRSP_LINEAR, AMRSP_LINEAR_WIDTH_LOG2 and, with several pages,
-  /// AMRSP_LINEAR_PAGES.
+  /// The shader's #defines: AMRSP_LINEAR, AMRSP_LINEAR_WIDTH_LOG2, AMRSP_LINEAR_BASE_BITS and,
+  /// with several pages, AMRSP_LINEAR_PAGES.
   std::string GetShaderDefines() const;
   /// Activates the pages and the table and points amrspLinear, amrspLinear1.. and
   /// amrspBrickTable at their units; Deactivate undoes it.

@@ -17,8 +17,9 @@
 //                       handles stored in the amrspHandles texture (index: the data node's brick)
 //   AMRSP_LINEAR        the bricks back to back in 2D R32F textures (amrspLinear, amrspLinear1..)
 //                       of 2^AMRSP_LINEAR_WIDTH_LOG2 texels per row, found through the
-//                       amrspBrickTable texture (amrsp/LinearBricks.h); AMRSP_LINEAR_PAGES: their
-//                       number when there are several
+//                       amrspBrickTable texture (amrsp/LinearBricks.h), whose first word keeps
+//                       the page above AMRSP_LINEAR_BASE_BITS; AMRSP_LINEAR_PAGES: their number
+//                       when there are several
 //   AMRSP_WATERFALL     (bindless) serve one distinct handle at a time with GL_ARB_shader_ballot,
 //                       for drivers that require dynamically uniform handles
 //   AMRSP_POWER_OF_TWO_REFINEMENT every level's finest cells per cell is a power of two per axis
@@ -97,7 +98,8 @@ uniform sampler2D amrspLinear2;
 uniform sampler2D amrspLinear3;
 #endif
 #endif
-// RG32UI, one texel per brick: its first texel | page << 30, and its x | y sizes << 16
+// RG32UI, one texel per brick: its first texel | page << AMRSP_LINEAR_BASE_BITS, and its
+// x | y sizes << 16
 uniform usampler3D amrspBrickTable;
 #else
 uniform usampler3D amrspHandles;   // RG32UI, one texel per brick: its 64-bit handle (low, high)
@@ -352,10 +354,11 @@ float amrspReadLinear(uint page, int index)
 float amrspReadDataNodeBrick(uvec2 dataNode, ivec3 texel, vec3 where)
 {
   uvec2 entry = texelFetch(amrspBrickTable, amrspTexelOf(amrspDataBrick(dataNode)), 0).rg;
-  uint page = entry.x >> 30u;
+  uint page = entry.x >> uint(AMRSP_LINEAR_BASE_BITS);
   int nx = int(entry.y & 0xffffu);
   int nxy = nx * int(entry.y >> 16u);
-  int i = int(entry.x & 0x3fffffffu) + texel.x + nx * texel.y + nxy * texel.z;
+  int base = int(entry.x & ((1u << uint(AMRSP_LINEAR_BASE_BITS)) - 1u));
+  int i = base + texel.x + nx * texel.y + nxy * texel.z;
 #ifdef AMRSP_VERTEX_CENTRED
   vec3 f = where - 0.5 - vec3(texel);
   float c000 = amrspReadLinear(page, i);
