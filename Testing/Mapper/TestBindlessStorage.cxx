@@ -45,6 +45,8 @@ namespace
 {
 using namespace amrsp;
 using namespace amrsp::tool;
+using mappertest::BoundVsKdTree;
+using mappertest::BoundVsReference;
 using mappertest::Check;
 using mappertest::Coverage;
 using mappertest::Failures;
@@ -54,8 +56,6 @@ using mappertest::Settings;
 using Mapper = vtkSinglePassAMRVolumeMapper;
 
 constexpr double BoundVsPacking = 0.05;
-constexpr double BoundVsKdTree = 1.0;
-constexpr double BoundVsReference = 2.0;
 
 /// Counts the warnings a VTK object reports (an observer also keeps them off the terminal).
 struct WarningCounter
@@ -112,9 +112,7 @@ void TestDataset(const std::string& name, Hierarchy h, bool uniformHandlesOnly)
     "waterfall vs packing RMSE " + Fixed(wVsP) + " < " + Fixed(BoundVsPacking));
   Check(wVsKd < BoundVsKdTree,
     "waterfall vs CPU kD-tree RMSE " + Fixed(wVsKd) + " < " + Fixed(BoundVsKdTree));
-  // thin sharp features (AMReX's Y(H)) put even the CPU kD-tree integrator 7 away from the
-  // reference (docs/design.md, "Sampling rule"); the GPU must not be further than it plus 0.5
-  const double refBound = std::max(BoundVsReference, Rmse(kd, ref) + 0.5);
+  const double refBound = mappertest::ReferenceBound(Rmse(kd, ref));
   Check(wVsRef < refBound,
     "waterfall vs CPU reference RMSE " + Fixed(wVsRef) + " < " + Fixed(refBound));
 

@@ -40,6 +40,8 @@ namespace
 {
 using namespace amrsp;
 using namespace amrsp::tool;
+using mappertest::BoundVsKdTree;
+using mappertest::BoundVsReference;
 using mappertest::Check;
 using mappertest::Failures;
 using mappertest::Fixed;
@@ -48,8 +50,6 @@ using mappertest::Settings;
 using Mapper = vtkSinglePassAMRVolumeMapper;
 
 constexpr double BoundVsPackingVertices = 0.05;
-constexpr double BoundVsKdTree = 1.0;
-constexpr double BoundVsReference = 2.0;
 
 std::string StorageName(Mapper* m)
 {
@@ -92,9 +92,7 @@ void TestDataset(const std::string& name, Hierarchy h, bool smooth = false)
     "linear vs packing RMSE " + Fixed(lVsP) + " <= " + Fixed(vsPackingBound));
   Check(lVsKd < BoundVsKdTree,
     "linear vs CPU kD-tree RMSE " + Fixed(lVsKd) + " < " + Fixed(BoundVsKdTree));
-  // thin sharp features (AMReX's Y(H)) put even the CPU kD-tree integrator far from the
-  // reference (docs/design.md, "Sampling rule"); the GPU must not be further than it plus 0.5
-  const double refBound = std::max(BoundVsReference, Rmse(kd, ref) + 0.5);
+  const double refBound = mappertest::ReferenceBound(Rmse(kd, ref));
   Check(
     lVsRef < refBound, "linear vs CPU reference RMSE " + Fixed(lVsRef) + " < " + Fixed(refBound));
 

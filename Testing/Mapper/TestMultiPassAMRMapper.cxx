@@ -65,6 +65,8 @@ namespace
 {
 using namespace amrsp;
 using namespace amrsp::tool;
+using mappertest::BoundVsKdTree;
+using mappertest::BoundVsReference;
 using mappertest::Check;
 using mappertest::CheckSquareInFrontHides;
 using mappertest::CheckTransferChangeRebuildsNothing;
@@ -75,9 +77,7 @@ using mappertest::LoadHierarchy;
 using mappertest::OccluderView;
 using mappertest::Settings;
 
-constexpr double BoundVsKdTree = 1.0;
 constexpr double BoundVsSinglePass = 1.0;
-constexpr double BoundVsReference = 2.0;
 double LargestVsKdTree = 0.0;
 double LargestVsSinglePass = 0.0;
 

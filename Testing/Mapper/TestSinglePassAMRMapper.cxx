@@ -72,6 +72,8 @@ namespace
 {
 using namespace amrsp;
 using namespace amrsp::tool;
+using mappertest::BoundVsKdTree;
+using mappertest::BoundVsReference;
 using mappertest::Check;
 using mappertest::CheckSquareInFrontHides;
 using mappertest::CheckTransferChangeRebuildsNothing;
@@ -81,9 +83,6 @@ using mappertest::Fixed;
 using mappertest::LoadHierarchy;
 using mappertest::OccluderView;
 using mappertest::Settings;
-
-constexpr double BoundVsReference = 2.0;
-constexpr double BoundVsKdTree = 1.0;
 
 /// The camera inside the volume, parallel projection and a moved volume, opaque geometry and
 /// errors, on the renderer `gpu` of TestDataset (`before`: its image of the default view).
