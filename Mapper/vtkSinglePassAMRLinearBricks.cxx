@@ -106,12 +106,20 @@ bool vtkSinglePassAMRLinearBricks::Upload(vtkOpenGLRenderWindow* renWin, const a
       " (GL_MAX_TEXTURE_SIZE = " + std::to_string(maxSize) + ")";
     return false;
   }
-  const amrsp::LinearSlabFiller filler(h, layout);
+  if (h.Values.size() != layout.Base.size())
+  {
+    error = "the linear storage has " + std::to_string(layout.Base.size()) +
+      " bricks and the hierarchy " + std::to_string(h.Values.size()) + " value arrays";
+    return false;
+  }
   const int width = 1 << widthLog2;
-  const int slab = std::max(1, (16 << 20) / (width * static_cast<int>(sizeof(float)))); // 16 MiB
   const double total = static_cast<double>(layout.TotalTexels());
   double done = 0.0;
+  // Each brick goes straight from its values to its rectangles of the page (no staging copy):
+  // full rows are contiguous in both, so a rectangle needs no unpack row length.
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+  std::size_t g = 0;
   for (std::size_t p = 0; p < layout.PageRows.size(); ++p)
   {
     const int rows = layout.PageRows[p];
@@ -124,22 +132,34 @@ bool vtkSinglePassAMRLinearBricks::Upload(vtkOpenGLRenderWindow* renWin, const a
       return false;
     }
     page->Activate(); // bound to a texture unit of its own for the uploads
-    // (the slabs are no taller than the page: a small hierarchy's pages are a few rows)
-    vtkSinglePassAMRRenderingUtilities::UploadInSlabs(
-      rows, slab, static_cast<std::size_t>(width),
-      [&filler, p](int r0, int r1, float* out) { filler.Fill(static_cast<int>(p), r0, r1, out); },
-      [width](int r0, int r1, const float* texels)
-      { glTexSubImage2D(GL_TEXTURE_2D, 0, 0, r0, width, r1 - r0, GL_RED, GL_FLOAT, texels); },
-      [&progress, &done, rows, width, total](double f)
+    for (; g < layout.Base.size() && layout.PageOfGrid[g] == static_cast<int>(p); ++g)
+    {
+      const glm::ivec3 e = layout.Extents[g];
+      if (h.Values[g].size() < static_cast<std::size_t>(e.x) * e.y * e.z)
       {
-        if (progress)
-        {
-          progress((done + f * rows * width) / total);
-        }
-      });
-    done += static_cast<double>(rows) * width;
+        error = "grid " + std::to_string(g) + " has fewer values than its brick";
+        page->Deactivate();
+        this->Clear();
+        return false;
+      }
+      const float* values = h.Values[g].data();
+      for (const amrsp::LinearRun& run : amrsp::LinearBrickRuns(layout, g))
+      {
+        glTexSubImage2D(GL_TEXTURE_2D, 0, run.X, run.Y, run.Width, run.Rows, GL_RED, GL_FLOAT,
+          values + run.FirstValue);
+        done += static_cast<double>(run.Width) * run.Rows;
+      }
+      if (progress && (g & 1023) == 0)
+      {
+        progress(done / total);
+      }
+    }
     page->Deactivate();
     this->Pages.push_back(page);
+  }
+  if (progress)
+  {
+    progress(1.0);
   }
   this->Table =
     vtkSinglePassAMRRenderingUtilities::MakeIntegerTexture(renWin, amrsp::LinearBrickTable(layout));

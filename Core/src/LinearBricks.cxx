@@ -2,7 +2,6 @@
 #include "amrsp/LinearBricks.h"
 
 #include <algorithm>
-#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -91,71 +90,39 @@ UIntTexture3D LinearBrickTable(const LinearBrickLayout& layout)
   return table;
 }
 
-LinearSlabFiller::LinearSlabFiller(const Hierarchy& h, const LinearBrickLayout& layout)
-  : H(h)
-  , Layout(layout)
+std::vector<LinearRun> LinearBrickRuns(const LinearBrickLayout& layout, std::size_t g)
 {
-  const std::size_t grids = layout.Base.size();
-  if (h.Values.size() != grids || h.Grids.size() != grids)
+  if (g >= layout.Base.size())
   {
-    throw std::invalid_argument("LinearSlabFiller: the layout has " + std::to_string(grids) +
-      " bricks and the hierarchy " + std::to_string(h.Values.size()) + " value arrays");
+    throw std::out_of_range("LinearBrickRuns: grid " + std::to_string(g) + " is not in the layout");
   }
-  for (std::size_t g = 0; g < grids; ++g)
+  const glm::ivec3 e = layout.Extents[g];
+  const int64_t count = static_cast<int64_t>(e.x) * e.y * e.z;
+  const int64_t width = layout.Width();
+  std::vector<LinearRun> runs;
+  int64_t done = 0;
+  while (done < count)
   {
-    const glm::ivec3 e = layout.Extents[g];
-    if (h.Values[g].size() < static_cast<std::size_t>(e.x) * e.y * e.z)
+    const int64_t texel = layout.Base[g] + done;
+    LinearRun run;
+    run.X = static_cast<int>(texel & (width - 1));
+    run.Y = static_cast<int>(texel >> layout.WidthLog2);
+    run.FirstValue = done;
+    const int64_t left = count - done;
+    if (run.X == 0 && left >= width)
     {
-      throw std::invalid_argument(
-        "LinearSlabFiller: grid " + std::to_string(g) + " has fewer values than its brick");
+      run.Width = static_cast<int>(width);
+      run.Rows = static_cast<int>(left >> layout.WidthLog2);
     }
-  }
-  // grids are laid out in order, so each page holds a contiguous run of them
-  this->FirstGridOfPage.assign(layout.PageRows.size() + 1, grids);
-  for (std::size_t g = grids; g-- > 0;)
-  {
-    this->FirstGridOfPage[static_cast<std::size_t>(layout.PageOfGrid[g])] = g;
-  }
-  for (std::size_t p = layout.PageRows.size(); p-- > 0;)
-  {
-    this->FirstGridOfPage[p] = std::min(this->FirstGridOfPage[p], this->FirstGridOfPage[p + 1]);
-  }
-}
-
-void LinearSlabFiller::Fill(int page, int row0, int row1, float* out) const
-{
-  const LinearBrickLayout& L = this->Layout;
-  if (page < 0 || page >= static_cast<int>(L.PageRows.size()) || row0 < 0 || row1 < row0 ||
-    row1 > L.PageRows[static_cast<std::size_t>(page)])
-  {
-    throw std::invalid_argument("LinearSlabFiller::Fill: rows outside the page");
-  }
-  const int64_t lo = static_cast<int64_t>(row0) << L.WidthLog2;
-  const int64_t hi = static_cast<int64_t>(row1) << L.WidthLog2;
-  const std::size_t first = this->FirstGridOfPage[static_cast<std::size_t>(page)];
-  const std::size_t last = this->FirstGridOfPage[static_cast<std::size_t>(page) + 1];
-  // the first grid whose texels reach past lo: bases increase within a page
-  std::size_t g =
-    static_cast<std::size_t>(std::upper_bound(L.Base.begin() + static_cast<std::ptrdiff_t>(first),
-                               L.Base.begin() + static_cast<std::ptrdiff_t>(last), lo) -
-      L.Base.begin());
-  g = g > first ? g - 1 : first;
-  int64_t written = lo;
-  for (; g < last && L.Base[g] < hi; ++g)
-  {
-    const glm::ivec3 e = L.Extents[g];
-    const int64_t begin = std::max(lo, L.Base[g]);
-    const int64_t end = std::min(hi, L.Base[g] + static_cast<int64_t>(e.x) * e.y * e.z);
-    if (end <= begin)
+    else
     {
-      continue;
+      run.Width = static_cast<int>(std::min(left, width - run.X));
+      run.Rows = 1;
     }
-    std::memcpy(out + (begin - lo), this->H.Values[g].data() + (begin - L.Base[g]),
-      static_cast<std::size_t>(end - begin) * sizeof(float));
-    written = end;
+    done += static_cast<int64_t>(run.Width) * run.Rows;
+    runs.push_back(run);
   }
-  // after the page's last brick (bricks are back to back, so nothing before it)
-  std::fill(out + (written - lo), out + (hi - lo), 0.0f);
+  return runs;
 }
 
 } // namespace amrsp

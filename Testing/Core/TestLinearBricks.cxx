@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The linear storage: the page layout, the brick table the shader reads, and the slab filler.
+// The linear storage: the page layout, the brick table the shader reads, and the rectangles each
+// brick is uploaded to.
 #include "amrsp/FinestCellLocator.h"
 #include "amrsp/KdTreeLayout.h"
 #include "amrsp/LinearBricks.h"
@@ -15,23 +16,50 @@ namespace
 using namespace amrsp;
 using namespace amrsp::test;
 
-// The pages' texels, filled `rowsPerSlab` rows at a time into NaN-filled buffers.
-std::vector<std::vector<float>> FillPages(
-  const Hierarchy& h, const LinearBrickLayout& layout, int rowsPerSlab)
+// The pages' texels as the mapper uploads them: every brick's runs (LinearBrickRuns) copied from
+// its values into NaN-filled pages. Fails the test when a run is malformed, leaves its page or
+// writes a texel that an earlier run wrote.
+std::vector<std::vector<float>> UploadPages(const Hierarchy& h, const LinearBrickLayout& layout)
 {
-  const LinearSlabFiller filler(h, layout);
   std::vector<std::vector<float>> pages;
-  for (std::size_t p = 0; p < layout.PageRows.size(); ++p)
+  std::vector<std::vector<bool>> written;
+  for (int rows : layout.PageRows)
   {
-    const int rows = layout.PageRows[p];
-    std::vector<float> texels(
+    pages.emplace_back(
       static_cast<std::size_t>(rows) << layout.WidthLog2, std::numeric_limits<float>::quiet_NaN());
-    for (int r0 = 0; r0 < rows; r0 += rowsPerSlab)
+    written.emplace_back(pages.back().size(), false);
+  }
+  const int64_t width = layout.Width();
+  for (std::size_t g = 0; g < layout.Base.size(); ++g)
+  {
+    const std::vector<LinearRun> runs = LinearBrickRuns(layout, g);
+    EXPECT_LE(runs.size(), 3u) << "grid " << g;
+    const std::size_t p = static_cast<std::size_t>(layout.PageOfGrid[g]);
+    int64_t values = 0;
+    for (const LinearRun& run : runs)
     {
-      filler.Fill(static_cast<int>(p), r0, std::min(rows, r0 + rowsPerSlab),
-        texels.data() + (static_cast<std::size_t>(r0) << layout.WidthLog2));
+      // one partial row, or whole rows
+      EXPECT_TRUE(run.Rows == 1 ? run.X + run.Width <= width : run.X == 0 && run.Width == width)
+        << "grid " << g;
+      EXPECT_EQ(run.FirstValue, values) << "grid " << g; // in the brick's own order
+      EXPECT_LE(static_cast<int64_t>(run.Y) + run.Rows, layout.PageRows[p]) << "grid " << g;
+      for (int64_t k = 0; k < static_cast<int64_t>(run.Width) * run.Rows; ++k)
+      {
+        const std::size_t t =
+          static_cast<std::size_t>((static_cast<int64_t>(run.Y) << layout.WidthLog2) + run.X + k);
+        if (t >= pages[p].size())
+        {
+          ADD_FAILURE() << "grid " << g << " writes past its page";
+          return pages;
+        }
+        EXPECT_FALSE(written[p][t]) << "grid " << g << " writes texel " << t << " again";
+        written[p][t] = true;
+        pages[p][t] = h.Values[g][static_cast<std::size_t>(run.FirstValue + k)];
+      }
+      values += static_cast<int64_t>(run.Width) * run.Rows;
     }
-    pages.push_back(std::move(texels));
+    const glm::ivec3 e = layout.Extents[g];
+    EXPECT_EQ(values, static_cast<int64_t>(e.x) * e.y * e.z) << "grid " << g;
   }
   return pages;
 }
@@ -53,7 +81,7 @@ TEST(LinearBricks, TheTableAddressesEveryCellAsTheShaderDoes)
       extents.emplace_back(g.Cells.Extent());
       total += g.Cells.Cells();
     }
-    // narrow rows and few of them, so that slabs cut bricks and bricks spread over pages
+    // narrow rows and few of them, so that bricks cross rows and spread over pages
     const int widthLog2 = 3 + trial % 4;
     const int maxRows =
       static_cast<int>(std::max<int64_t>((total >> widthLog2) / 2 + 1,
@@ -69,37 +97,25 @@ TEST(LinearBricks, TheTableAddressesEveryCellAsTheShaderDoes)
       layout = LayOutLinearBricks(extents, widthLog2, 1 << 20);
     }
     const UIntTexture3D table = LinearBrickTable(layout);
-    for (int rowsPerSlab : { 1, 2, 1 << 20 })
+    const std::vector<std::vector<float>> pages = UploadPages(h, layout);
+    for (std::size_t g = 0; g < h.Grids.size(); ++g)
     {
-      const std::vector<std::vector<float>> pages = FillPages(h, layout, rowsPerSlab);
-      for (std::size_t g = 0; g < h.Grids.size(); ++g)
+      // decoded as SinglePassAMR.frag.glsl does
+      const glm::uvec2 entry = table.Texels[g];
+      const uint32_t page = entry.x >> LinearBaseBits;
+      const int64_t base = entry.x & ((1u << LinearBaseBits) - 1u);
+      const int64_t nx = entry.y & 0xffffu, ny = entry.y >> 16;
+      ASSERT_LT(page, pages.size());
+      const glm::i64vec3 e = h.Grids[g].Cells.Extent();
+      ASSERT_EQ(nx, e.x);
+      ASSERT_EQ(ny, e.y);
+      for (int probe = 0; probe < 40; ++probe)
       {
-        // decoded as SinglePassAMR.frag.glsl does
-        const glm::uvec2 entry = table.Texels[g];
-        const uint32_t page = entry.x >> LinearBaseBits;
-        const int64_t base = entry.x & ((1u << LinearBaseBits) - 1u);
-        const int64_t nx = entry.y & 0xffffu, ny = entry.y >> 16;
-        ASSERT_LT(page, pages.size());
-        const glm::i64vec3 e = h.Grids[g].Cells.Extent();
-        ASSERT_EQ(nx, e.x);
-        ASSERT_EQ(ny, e.y);
-        for (int probe = 0; probe < 40; ++probe)
-        {
-          const glm::i64vec3 c(rng() % e.x, rng() % e.y, rng() % e.z);
-          const int64_t i = base + c.x + nx * (c.y + ny * c.z);
-          ASSERT_EQ(pages[page][static_cast<std::size_t>(i)],
-            CellValue(h, static_cast<int32_t>(g), h.Grids[g].Cells.Lo + c))
-            << "trial " << trial << ", grid " << g;
-        }
-      }
-      // after the last brick every texel is written, with 0
-      for (std::size_t p = 0; p < pages.size(); ++p)
-      {
-        for (std::size_t i = static_cast<std::size_t>(layout.PageTexels[p]); i < pages[p].size();
-             ++i)
-        {
-          ASSERT_EQ(pages[p][i], 0.0f) << "page " << p << ", texel " << i;
-        }
+        const glm::i64vec3 c(rng() % e.x, rng() % e.y, rng() % e.z);
+        const int64_t i = base + c.x + nx * (c.y + ny * c.z);
+        ASSERT_EQ(pages[page][static_cast<std::size_t>(i)],
+          CellValue(h, static_cast<int32_t>(g), h.Grids[g].Cells.Lo + c))
+          << "trial " << trial << ", grid " << g;
       }
     }
     // no gaps: the pages' used texels are the cells
@@ -134,12 +150,15 @@ TEST(LinearBricks, PagesSplitBetweenBricksAndTheLimitsAreNamed)
     paper.emplace_back(g.Cells.Extent());
   }
   const LinearBrickLayout small = LayOutLinearBricks(paper, 4, 1 << 10);
-  const LinearSlabFiller filler(h, small);
-  std::vector<float> out(16);
-  EXPECT_THROW(filler.Fill(1, 0, 1, out.data()), std::invalid_argument);
-  EXPECT_THROW(filler.Fill(0, 0, small.PageRows[0] + 1, out.data()), std::invalid_argument);
-  h.Values.pop_back();
-  EXPECT_THROW(LinearSlabFiller(h, small), std::invalid_argument);
+  EXPECT_THROW(LinearBrickRuns(small, paper.size()), std::out_of_range);
+  // a brick of 3 x 5 x 2 = 30 texels from texel 30 of rows of 16: the rest of row 1 (2 texels),
+  // row 2 whole, and 12 texels of row 3
+  const std::vector<LinearRun> runs = LinearBrickRuns(layout, 2);
+  ASSERT_EQ(runs.size(), 3u);
+  EXPECT_EQ(glm::ivec4(runs[0].X, runs[0].Y, runs[0].Width, runs[0].Rows), glm::ivec4(14, 1, 2, 1));
+  EXPECT_EQ(glm::ivec4(runs[1].X, runs[1].Y, runs[1].Width, runs[1].Rows), glm::ivec4(0, 2, 16, 1));
+  EXPECT_EQ(glm::ivec4(runs[2].X, runs[2].Y, runs[2].Width, runs[2].Rows), glm::ivec4(0, 3, 12, 1));
+  EXPECT_EQ(runs[2].FirstValue, 18);
 }
 
 } // namespace

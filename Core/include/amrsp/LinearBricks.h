@@ -53,23 +53,23 @@ LinearBrickLayout LayOutLinearBricks(
 /// brick's first texel | page << LinearBaseBits, green = nx | ny << 16.
 UIntTexture3D LinearBrickTable(const LinearBrickLayout& layout);
 
-/// Fills a page's texels row range by row range from the grids' values, for an upload without
-/// the whole page in memory. Keeps references to `h` and `layout` (both must outlive it).
-class LinearSlabFiller
+/// A rectangle of a page that one brick's values fill, in the order the brick holds them: rows
+/// y <= row < y + Rows, texels x <= t < x + Width of each (so a rectangle of several rows spans
+/// whole rows). Its first texel is value FirstValue of the brick.
+struct LinearRun
 {
-public:
-  /// @throws std::invalid_argument when `h` has other bricks than `layout` or too few values.
-  LinearSlabFiller(const Hierarchy& h, const LinearBrickLayout& layout);
-
-  /// The texels of rows row0 <= row < row1 of page `page` ((row1 - row0) Width floats) into
-  /// `out`; texels after the page's last brick are 0. Safe to call from several threads.
-  /// @throws std::invalid_argument for a page or rows outside the layout.
-  void Fill(int page, int row0, int row1, float* out) const;
-
-private:
-  const Hierarchy& H;
-  const LinearBrickLayout& Layout;
-  std::vector<std::size_t> FirstGridOfPage; ///< grids of page p: [First[p], First[p + 1])
+  int X = 0;
+  int Y = 0;
+  int Width = 0;
+  int Rows = 0;
+  int64_t FirstValue = 0;
 };
+
+/// The at most three rectangles that hold grid `g`'s brick in its page, in order: the rest of
+/// the row it starts in, the whole rows after it, and the start of the row it ends in (each only
+/// when not empty). Every value of the brick is in exactly one of them, so a brick can be
+/// uploaded straight from its values, without a staging copy.
+/// @throws std::out_of_range for a grid outside the layout.
+std::vector<LinearRun> LinearBrickRuns(const LinearBrickLayout& layout, std::size_t g);
 
 } // namespace amrsp
