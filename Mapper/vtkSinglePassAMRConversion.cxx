@@ -309,6 +309,12 @@ bool vtkSinglePassAMRConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
     return false;
   }
   out.VertexCentred = points;
+  // one allocation each (a growing vector would hold up to twice the blocks' bytes)
+  out.Grids.reserve(amr->GetTotalNumberOfBlocks());
+  if (selection.CopyValues)
+  {
+    out.Values.reserve(amr->GetTotalNumberOfBlocks());
+  }
   for (unsigned int l = 0; l < amr->GetNumberOfLevels(); ++l)
   {
     for (unsigned int i = 0; i < amr->GetNumberOfDataSets(l); ++i)
