@@ -12,11 +12,11 @@
 /// in its page, the page, and its x and y sizes; a data node's offset inside its brick (the
 /// bindless data-node encoding) gives the texel base + x + nx (y + ny z).
 
-#include "amrsp/Hierarchy.h"
 #include "amrsp/KdTreeEncoding.h"
 
 #include <glm/glm.hpp>
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
