@@ -90,6 +90,7 @@ void TraverseKdTree(const EncodedKdTree& tree, const glm::vec3& origin, const gl
     uvec2 texel = tree.Tree.Texels[node];
     bool pushDown = canPushDown && (!fromFar || farEnd >= tEnd);
     uint32_t descent = 0;
+    uint32_t lodChecks = 0;
     for (;;)
     {
       const uint child = amrspNodeFirstChild(texel);
@@ -100,6 +101,7 @@ void TraverseKdTree(const EncodedKdTree& tree, const glm::vec3& origin, const gl
       const uint data = amrspNodeData(texel);
       if (data != 0u && lod.ThresholdPixels > 0.0f)
       {
+        ++lodChecks;
         const uint dataLevel = amrspDataLevel(tree.DataNodes.Texels[data]);
         const glm::vec3 cell = tree.LevelCellSize[dataLevel] * lod.Spacing0;
         const float cellWorld = std::max(cell.x, std::max(cell.y, cell.z));
@@ -170,6 +172,8 @@ void TraverseKdTree(const EncodedKdTree& tree, const glm::vec3& origin, const gl
     s.NodeLo = lo;
     s.NodeHi = hi;
     s.Descent = descent;
+    s.FromFar = fromFar;
+    s.LodChecks = lodChecks;
     segments.push_back(s);
     t = tLeave;
   }

@@ -2,6 +2,7 @@
 // The CPU kD-tree integrator: the shader's traversal, sampling and compositing on the CPU.
 #include "amrsp/Render.h"
 
+#include "KdTreeRays.h"
 #include "RayIntegration.h"
 
 #include "amrsp/BrickAtlas.h"
@@ -379,43 +380,176 @@ void SampleRayKdTree(const Hierarchy& h, const EncodedKdTree& tree, const glm::d
   }
 }
 
+KdTreeRays::KdTreeRays(
+  const Hierarchy& h, const EncodedKdTree& tree, const RenderSettings& s, const BrickAtlas* atlas)
+  : H(h)
+  , Tree(tree)
+  , S(s)
+  , Atlas(atlas)
+  , Lod(ViewLevelOfDetail(h, s))
+  , StepOfLevel(LevelSampleSteps(h, s.SampleDistanceFactor))
+  , Spacing(h.Spacing0)
+  , WorldOrigin(h.Origin)
+  , Skip(s.SkipEmptySpace && s.Blend == BlendMode::Composite)
+  , IsoValues(SortedIsoValues(s))
+  , Shaded(s.Light.Shade || s.Light.Shadows)
+  , SmoothCells(s.SmoothCellData && !h.VertexCentred)
+{
+  RequireValues(h);
+  // empty-space skipping: per data node, whether its value range is transparent under this
+  // transfer function (the ranges depend on the data only)
+  if (Skip)
+  {
+    Transparent = TransparentDataNodes(h, tree, s);
+  }
+  Shading = MakeShadingContext(s.Light, s.Transfer, h.Origin, h.Spacing0, glm::dvec3(tree.RootLo),
+    glm::dvec3(tree.RootHi), s.View.Position, s.View.FocalPoint);
+  // iso-surface bisection and shadow rays read what the samples read (nearest or smooth); the
+  // gradient's neighbours likewise
+  Lookup =
+    SmoothCells ? KdTreePointLookup(h, tree, true, atlas) : KdTreePointLookup(h, tree, false);
+  if (SmoothCells)
+  {
+    Shading.Neighbours = Lookup;
+  }
+}
+
+glm::vec4 KdTreeRays::Pixel(int i, int j, std::vector<RaySegment>& segments, RenderStats& stats,
+  std::vector<SegmentWork>* work) const
+{
+  using namespace layout;
+  const Hierarchy& h = H;
+  const RenderSettings& s = S;
+  glm::dvec3 wo, wd;
+  s.View.Ray(s.Width, s.Height, i + 0.5, j + 0.5, wo, wd);
+  const glm::vec3 o = (glm::vec3(wo) - WorldOrigin) / Spacing;
+  const glm::vec3 d = glm::vec3(wd) / Spacing;
+  segments.clear();
+  if (work)
+  {
+    work->clear();
+  }
+  float tMax = std::numeric_limits<float>::infinity();
+  glm::dvec3 background = s.Background, hitColour;
+  double hit = 0.0;
+  if (s.Opaque && s.Opaque(wo, wd, hit, hitColour))
+  {
+    tMax = static_cast<float>(hit);
+    background = hitColour;
+  }
+  double clip0, clip1;
+  if (ClipInterval(s, wo, wd, clip0, clip1))
+  {
+    TraverseKdTree(Tree, o, d, static_cast<float>(std::max(0.0, clip0)),
+      static_cast<float>(std::min(static_cast<double>(tMax), clip1)), Lod, segments);
+  }
+  CountTraversal(segments, stats);
+  Accumulator<float> acc(s.Blend);
+  IsoSurfaceTracker iso(Shading, Lookup, IsoValues, -wd);
+  glm::dvec3 isoColour(0.0);
+  double isoAlpha = 0.0;
+  for (const RaySegment& seg : segments)
+  {
+    // the shader leaves its segment loop once the ray is opaque enough
+    if (acc.Done(s.OpacityThreshold))
+    {
+      break;
+    }
+    SegmentWork* step = nullptr;
+    if (work)
+    {
+      work->emplace_back();
+      step = &work->back();
+      step->Descent = seg.Descent;
+      step->LodChecks = seg.LodChecks;
+      step->FromFar = seg.FromFar;
+      step->Data = seg.Data != 0;
+    }
+    if (seg.Data == 0)
+    {
+      iso.Break();
+      continue;
+    }
+    const uvec2 dn = Tree.DataNodes.Texels[seg.Data];
+    const int32_t g = static_cast<int32_t>(amrspDataBrick(dn));
+    const glm::vec3 cellSize = Tree.LevelCellSize[seg.Level];
+    const float length = seg.T1 - seg.T0;
+    const int n = std::max(1, static_cast<int>(std::ceil(length / StepOfLevel[seg.Level])));
+    const float dt = length / static_cast<float>(n);
+    ++stats.DataSegments;
+    if (Skip && Transparent[seg.Data])
+    {
+      ++stats.SkippedSegments;
+      stats.SkippedSamples += n;
+      if (step)
+      {
+        step->Skipped = true;
+      }
+      continue;
+    }
+    // packing path: the node's first cell sits at the data node's atlas offset; cells of
+    // the node are [first, last] (clamped so float error never reaches a neighbour brick)
+    const glm::ivec3 first = glm::ivec3(glm::floor(seg.NodeLo / cellSize));
+    const glm::ivec3 last = glm::ivec3(glm::ceil(seg.NodeHi / cellSize)) - 1;
+    const glm::ivec3 offset = amrspDataOffset(dn);
+    for (int k = 0; k < n; ++k)
+    {
+      const float t = seg.T0 + (static_cast<float>(k) + 0.5f) * dt;
+      const glm::vec3 p = o + t * d;
+      float v = SegmentSample(h, Atlas, g, p, cellSize, first, last, offset);
+      if (SmoothCells)
+      {
+        v = SmoothKdTree(h, Tree, Atlas, p, seg.Data, seg.NodeLo, v);
+      }
+      ++stats.Samples;
+      if (step)
+      {
+        ++step->Samples;
+      }
+      if (s.Blend == BlendMode::IsoSurface)
+      {
+        if (std::isnan(v))
+        {
+          iso.Break();
+        }
+        else
+        {
+          iso.Sample(glm::dvec3(p), v, isoColour, isoAlpha);
+        }
+        continue;
+      }
+      const std::function<glm::dvec3(const glm::dvec3&)> shade = [&](const glm::dvec3& rgb)
+      { return ShadeSample(Shading, Lookup, rgb, glm::dvec3(p), v, glm::dvec3(cellSize), -wd); };
+      acc.Add(s.Transfer, v, dt, Shaded ? &shade : nullptr);
+      if (acc.Done(s.OpacityThreshold))
+      {
+        break;
+      }
+    }
+  }
+  stats.TerminatedRays += acc.Done(s.OpacityThreshold) ? 1 : 0;
+  if (s.Blend == BlendMode::IsoSurface)
+  {
+    acc.Color = glm::vec3(isoColour);
+    acc.Alpha = static_cast<float>(isoAlpha);
+  }
+  return acc.Pixel(s.Transfer, background);
+}
+
 Image RenderKdTree(
   const Hierarchy& h, const EncodedKdTree& tree, const RenderSettings& s, const BrickAtlas* atlas)
 {
-  using namespace layout;
-  RequireValues(h);
+  const KdTreeRays rays(h, tree, s, atlas);
   Image img;
   img.Width = s.Width;
   img.Height = s.Height;
   img.Pixels.resize(static_cast<std::size_t>(s.Width) * s.Height);
-  const LevelOfDetail lod = ViewLevelOfDetail(h, s);
-  const std::vector<float> stepOfLevel = LevelSampleSteps(h, s.SampleDistanceFactor);
-  const glm::vec3 spacing(h.Spacing0), worldOrigin(h.Origin);
-  // empty-space skipping: per data node, whether its value range is transparent under this
-  // transfer function (the ranges depend on the data only)
-  const bool skip = s.SkipEmptySpace && s.Blend == BlendMode::Composite;
-  const std::vector<char> transparent =
-    skip ? TransparentDataNodes(h, tree, s) : std::vector<char>();
   StatsSink sink;
   sink.Target = s.Stats;
   if (s.Stats)
   {
     *s.Stats = RenderStats();
   }
-  const std::vector<double> isoValues = SortedIsoValues(s);
-  const bool shaded = s.Light.Shade || s.Light.Shadows;
-  ShadingContext shading = MakeShadingContext(s.Light, s.Transfer, h.Origin, h.Spacing0,
-    glm::dvec3(tree.RootLo), glm::dvec3(tree.RootHi), s.View.Position, s.View.FocalPoint);
-  // iso-surface bisection and shadow rays read what the samples read (nearest or smooth); the
-  // gradient's neighbours likewise
-  const bool smoothCells = s.SmoothCellData && !h.VertexCentred;
-  const PointLookup lookup =
-    smoothCells ? KdTreePointLookup(h, tree, true, atlas) : KdTreePointLookup(h, tree, false);
-  if (smoothCells)
-  {
-    shading.Neighbours = lookup;
-  }
-
   ForEachRow(
     s.Height, s.Threads,
     [&](int j)
@@ -424,98 +558,8 @@ Image RenderKdTree(
       RenderStats rowStats;
       for (int i = 0; i < s.Width; ++i)
       {
-        glm::dvec3 wo, wd;
-        s.View.Ray(s.Width, s.Height, i + 0.5, j + 0.5, wo, wd);
-        const glm::vec3 o = (glm::vec3(wo) - worldOrigin) / spacing;
-        const glm::vec3 d = glm::vec3(wd) / spacing;
-        segments.clear();
-        float tMax = std::numeric_limits<float>::infinity();
-        glm::dvec3 background = s.Background, hitColour;
-        double hit = 0.0;
-        if (s.Opaque && s.Opaque(wo, wd, hit, hitColour))
-        {
-          tMax = static_cast<float>(hit);
-          background = hitColour;
-        }
-        double clip0, clip1;
-        if (ClipInterval(s, wo, wd, clip0, clip1))
-        {
-          TraverseKdTree(tree, o, d, static_cast<float>(std::max(0.0, clip0)),
-            static_cast<float>(std::min(static_cast<double>(tMax), clip1)), lod, segments);
-        }
-        CountTraversal(segments, rowStats);
-        Accumulator<float> acc(s.Blend);
-        IsoSurfaceTracker iso(shading, lookup, isoValues, -wd);
-        glm::dvec3 isoColour(0.0);
-        double isoAlpha = 0.0;
-        for (const RaySegment& seg : segments)
-        {
-          if (seg.Data == 0)
-          {
-            iso.Break();
-            continue;
-          }
-          if (acc.Done(s.OpacityThreshold))
-          {
-            break;
-          }
-          const uvec2 dn = tree.DataNodes.Texels[seg.Data];
-          const int32_t g = static_cast<int32_t>(amrspDataBrick(dn));
-          const glm::vec3 cellSize = tree.LevelCellSize[seg.Level];
-          const float length = seg.T1 - seg.T0;
-          const int n = std::max(1, static_cast<int>(std::ceil(length / stepOfLevel[seg.Level])));
-          const float dt = length / static_cast<float>(n);
-          ++rowStats.DataSegments;
-          if (skip && transparent[seg.Data])
-          {
-            ++rowStats.SkippedSegments;
-            rowStats.SkippedSamples += n;
-            continue;
-          }
-          // packing path: the node's first cell sits at the data node's atlas offset; cells of
-          // the node are [first, last] (clamped so float error never reaches a neighbour brick)
-          const glm::ivec3 first = glm::ivec3(glm::floor(seg.NodeLo / cellSize));
-          const glm::ivec3 last = glm::ivec3(glm::ceil(seg.NodeHi / cellSize)) - 1;
-          const glm::ivec3 offset = amrspDataOffset(dn);
-          for (int k = 0; k < n; ++k)
-          {
-            const float t = seg.T0 + (static_cast<float>(k) + 0.5f) * dt;
-            const glm::vec3 p = o + t * d;
-            float v = SegmentSample(h, atlas, g, p, cellSize, first, last, offset);
-            if (s.SmoothCellData && !h.VertexCentred)
-            {
-              v = SmoothKdTree(h, tree, atlas, p, seg.Data, seg.NodeLo, v);
-            }
-            ++rowStats.Samples;
-            if (s.Blend == BlendMode::IsoSurface)
-            {
-              if (std::isnan(v))
-              {
-                iso.Break();
-              }
-              else
-              {
-                iso.Sample(glm::dvec3(p), v, isoColour, isoAlpha);
-              }
-              continue;
-            }
-            const std::function<glm::dvec3(const glm::dvec3&)> shade = [&](const glm::dvec3& rgb) {
-              return ShadeSample(shading, lookup, rgb, glm::dvec3(p), v, glm::dvec3(cellSize), -wd);
-            };
-            acc.Add(s.Transfer, v, dt, shaded ? &shade : nullptr);
-            if (acc.Done(s.OpacityThreshold))
-            {
-              break;
-            }
-          }
-        }
-        rowStats.TerminatedRays += acc.Done(s.OpacityThreshold) ? 1 : 0;
-        if (s.Blend == BlendMode::IsoSurface)
-        {
-          acc.Color = glm::vec3(isoColour);
-          acc.Alpha = static_cast<float>(isoAlpha);
-        }
-        img.Pixels[static_cast<std::size_t>(j) * s.Width + i] = acc.Pixel(s.Transfer, background);
+        img.Pixels[static_cast<std::size_t>(j) * s.Width + i] =
+          rays.Pixel(i, j, segments, rowStats, nullptr);
       }
       sink.Add(rowStats);
     },

@@ -26,6 +26,12 @@ struct RaySegment
   glm::vec3 NodeLo{ 0.0f }; ///< the node's box in level-0 index units, as the shader computes it
   glm::vec3 NodeHi{ 0.0f };
   uint32_t Descent = 0; ///< tree levels descended by the restart that found this segment
+  /// The restart started at the far child of the previous descent (the shader fetches that
+  /// node's texel; a restart from the restart node reuses the texel it keeps).
+  bool FromFar = false;
+  /// Level-of-detail tests of that descent that read a data node (inner nodes with data while
+  /// LevelOfDetail::ThresholdPixels > 0).
+  uint32_t LodChecks = 0;
 };
 
 /// Level-of-detail selection at type (a) nodes: the traversal stops descending when one cell of
