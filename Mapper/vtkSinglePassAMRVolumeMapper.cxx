@@ -449,7 +449,10 @@ vtkShaderProgram* vtkSinglePassAMRVolumeMapper::vtkInternals::ReadyShader(
   define(frame.SmoothCells, "AMRSP_SMOOTH_CELLS 1");
   define(frame.Shade, "AMRSP_SHADE 1");
   define(frame.Shadows, "AMRSP_SHADOWS 1");
-  define(self->WorkCountersOutput, "AMRSP_WORK_COUNTERS 1");
+  define(
+    self->WorkCountersOutput && self->WorkCountOutput == NO_WORK_COUNT, "AMRSP_WORK_COUNTERS 1");
+  define(self->WorkCountOutput != NO_WORK_COUNT,
+    "AMRSP_WORK_COUNT " + std::to_string(self->WorkCountOutput));
   const std::string fragment =
     utilities::ComposeFragmentShader(amrsp_SinglePassAMR_frag_glsl, defines,
       { { "KdTreeLayout", amrsp_KdTreeLayout_glsl }, { "RayCommon", amrsp_RayCommon_glsl },
@@ -845,6 +848,7 @@ void vtkSinglePassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "OpacityThreshold: " << this->OpacityThreshold << "\n";
   os << indent << "EmptySpaceSkipping: " << (this->EmptySpaceSkipping ? "on" : "off") << "\n";
   os << indent << "WorkCountersOutput: " << (this->WorkCountersOutput ? "on" : "off") << "\n";
+  os << indent << "WorkCountOutput: " << this->WorkCountOutput << "\n";
   os << indent
      << "CellInterpolation: " << (this->CellInterpolation == SMOOTH_CELL ? "smooth" : "nearest")
      << "\n";

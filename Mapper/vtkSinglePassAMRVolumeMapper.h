@@ -270,6 +270,28 @@ public:
   vtkBooleanMacro(WorkCountersOutput, bool);
   ///@}
 
+  /// What WorkCountOutput writes.
+  enum WorkCounts
+  {
+    NO_WORK_COUNT = 0,      ///< colours (the default)
+    SEGMENT_COUNT = 1,      ///< iterations of the segment loop (one per kd-restart)
+    DESCENT_STEP_COUNT = 2, ///< iterations of the descent loop (tree levels descended)
+    SAMPLE_COUNT = 3        ///< iterations of the sample loop
+  };
+
+  ///@{
+  /**
+   * Diagnostic output (default NO_WORK_COUNT): instead of colours, every pixel of the volume is
+   * written opaque with one count of its ray's loops as an exact 24-bit integer, red the low
+   * byte, green the middle and blue the high one. Summed over the image they equal the segments,
+   * descent steps and samples of amrsp::MeasureSinglePassWork for the same view (the CPU mirror
+   * of the shader), which is how the cost model of amrsp/WorkCounters.h is tied to the GPU. Takes
+   * precedence over WorkCountersOutput.
+   */
+  vtkSetClampMacro(WorkCountOutput, int, NO_WORK_COUNT, SAMPLE_COUNT);
+  vtkGetMacro(WorkCountOutput, int);
+  ///@}
+
   ///@{
   /**
    * Reconstruction of cell-centred data. NEAREST_CELL (the default, the paper's): the value of
@@ -348,6 +370,7 @@ protected:
   double OpacityThreshold = 0.999;
   bool EmptySpaceSkipping = true;
   bool WorkCountersOutput = false;
+  int WorkCountOutput = NO_WORK_COUNT;
   int CellInterpolation = NEAREST_CELL;
   bool Shadows = false;
   double ShadowSampleDistance = 0.0;

@@ -44,6 +44,9 @@
 //   AMRSP_WORK_COUNTERS diagnostic output: the ray's work counts instead of its colour (opaque,
 //                       8-bit exact): red skipped data segments, green 1 when the ray stopped
 //                       early, blue data segments reached; counted as amrsp::RenderStats counts
+//   AMRSP_WORK_COUNT    diagnostic output: one count of the ray's loops instead of its colour,
+//                       as a 24-bit integer (red the low byte, opaque): 1 segment-loop
+//                       iterations, 2 descent steps, 3 samples (amrsp/WorkCounters.h)
 //AMRSP::Defines
 
 #ifndef AMRSP_LEVEL_COUNT
@@ -300,10 +303,16 @@ float amrspReadBrick(uvec2 handle, ivec3 texel, vec3 where)
 #endif
 }
 
-// amrspReadBrick on the brick of data node `dataNode`, its handle looked up in amrspHandles.
-float amrspReadDataNodeBrick(uvec2 dataNode, ivec3 texel, vec3 where)
+// What locates the brick of data node `dataNode`: its bindless handle, from amrspHandles. A
+// segment reads it once for all its samples.
+uvec2 amrspBrickRef(uvec2 dataNode)
 {
-  uvec2 handle = texelFetch(amrspHandles, amrspTexelOf(amrspDataBrick(dataNode)), 0).rg;
+  return texelFetch(amrspHandles, amrspTexelOf(amrspDataBrick(dataNode)), 0).rg;
+}
+
+// amrspReadBrick on the brick whose handle is `handle` (amrspBrickRef).
+float amrspReadBrickRef(uvec2 handle, ivec3 texel, vec3 where)
+{
 #ifdef AMRSP_WATERFALL
   // Each pass serves the invocations holding the first active invocation's handle, which is
   // dynamically uniform among them; the others loop again (at most one pass per distinct handle).
@@ -349,11 +358,18 @@ float amrspReadLinear(uint page, int index)
   return texelFetch(amrspLinear, t, 0).r;
 }
 
-// The brick of data node `dataNode` at texel `texel` of the brick (cells), or trilinear at
-// `where` from the texels texel and texel + 1 per axis (vertices), as amrspReadBrick.
-float amrspReadDataNodeBrick(uvec2 dataNode, ivec3 texel, vec3 where)
+// What locates the brick of data node `dataNode`: its entry of amrspBrickTable. A segment reads
+// it once for all its samples.
+uvec2 amrspBrickRef(uvec2 dataNode)
 {
-  uvec2 entry = texelFetch(amrspBrickTable, amrspTexelOf(amrspDataBrick(dataNode)), 0).rg;
+  return texelFetch(amrspBrickTable, amrspTexelOf(amrspDataBrick(dataNode)), 0).rg;
+}
+
+// The brick whose table entry is `entry` (amrspBrickRef) at texel `texel` of the brick (cells),
+// or trilinear at `where` from the texels texel and texel + 1 per axis (vertices), as
+// amrspReadBrick.
+float amrspReadBrickRef(uvec2 entry, ivec3 texel, vec3 where)
+{
   uint page = entry.x >> uint(AMRSP_LINEAR_BASE_BITS);
   int nx = int(entry.y & 0xffffu);
   int nxy = nx * int(entry.y >> 16u);
@@ -377,12 +393,28 @@ float amrspReadDataNodeBrick(uvec2 dataNode, ivec3 texel, vec3 where)
 }
 #endif
 
+#if defined(AMRSP_PACKING)
+// The packed atlas needs nothing beyond the data node to find a brick.
+uvec2 amrspBrickRef(uvec2 dataNode)
+{
+  return uvec2(0u);
+}
+#else
+// The brick of data node `dataNode` (bindless or linear), its reference read here.
+float amrspReadDataNodeBrick(uvec2 dataNode, ivec3 texel, vec3 where)
+{
+  return amrspReadBrickRef(amrspBrickRef(dataNode), texel, where);
+}
+#endif
+
 //AMRSP::BrickSample
 
-// The scalar at point p (level-0 index units) inside the kD node whose data node is `dataNode`:
-// the node's block covers the cells firstCell..lastCell of the node's data level, whose cells
-// measure cellSize (level-0 index units). Only this function knows how the bricks are stored.
-float amrspSampleDataNode(uvec2 dataNode, vec3 p, vec3 cellSize, ivec3 firstCell, ivec3 lastCell)
+// The scalar at point p (level-0 index units) inside the kD node whose data node is `dataNode`
+// and whose brick reference is brickRef (amrspBrickRef(dataNode)): the node's block covers the
+// cells firstCell..lastCell of the node's data level, whose cells measure cellSize (level-0 index
+// units). Only this function knows how the bricks are stored.
+float amrspSampleBrick(uvec2 dataNode, uvec2 brickRef, vec3 p, vec3 cellSize, ivec3 firstCell,
+  ivec3 lastCell)
 {
   // texel of the node's lower-corner cell, in the atlas (packing) or in its brick (bindless)
   ivec3 texel;
@@ -393,8 +425,14 @@ float amrspSampleDataNode(uvec2 dataNode, vec3 p, vec3 cellSize, ivec3 firstCell
 #elif defined(AMRSP_PACKING)
   return amrspReadAtlas(texel, where);
 #else
-  return amrspReadDataNodeBrick(dataNode, texel, where);
+  return amrspReadBrickRef(brickRef, texel, where);
 #endif
+}
+
+// amrspSampleBrick for a point lookup, which reads the brick reference itself.
+float amrspSampleDataNode(uvec2 dataNode, vec3 p, vec3 cellSize, ivec3 firstCell, ivec3 lastCell)
+{
+  return amrspSampleBrick(dataNode, amrspBrickRef(dataNode), p, cellSize, firstCell, lastCell);
 }
 
 // The cells firstCell..lastCell of data level `level` that cover the node box loF..hiF (exact
@@ -523,6 +561,9 @@ void main()
   int workDataSegments = 0;    // data segments reached (skipped ones included)
   int workSampledSegments = 0; // of which sampled (the others were skipped as empty space)
 #endif
+#ifdef AMRSP_WORK_COUNT
+  int workCount = 0; // the loop iterations AMRSP_WORK_COUNT selects
+#endif
   // maximum/minimum/average intensity: the scalar kept, or the length-weighted sum and length
   float kept = 0.0;
   bool anySample = false;
@@ -556,6 +597,9 @@ void main()
   float farEnd = 0.0;
   for (int iteration = 0; t < tEnd && iteration < amrspMaxSegments; ++iteration)
   {
+#if AMRSP_WORK_COUNT == 1
+    ++workCount;
+#endif
     // An empty far interval (planes meeting where the leaf ends) is left to the restart.
     bool fromFar = haveFar && farEnd > t;
     haveFar = false;
@@ -640,6 +684,9 @@ void main()
       amrspChildBox(lo, hi, loF, hiF, axis, plane, planeF, lower);
       node = lower ? child : child + 1u;
       texel = amrspFetchNode(node);
+#if AMRSP_WORK_COUNT == 2
+      ++workCount;
+#endif
       if (pushDown)
       {
         restartNode = node;
@@ -667,6 +714,7 @@ void main()
       ++workSampledSegments; // skipped = reached - sampled: counted where sampling really starts
 #endif
       uvec2 dataNode = amrspFetchDataNode(data);
+      uvec2 brickRef = amrspBrickRef(dataNode); // once per segment, not per sample
       int level = int(amrspDataLevel(dataNode));
       ivec3 firstCell, lastCell;
       amrspLeafCells(level, loF, hiF, firstCell, lastCell);
@@ -678,9 +726,12 @@ void main()
       float exponent = dt / amrspUnitDistance;
       for (int k = 0; k < n; ++k)
       {
+#if AMRSP_WORK_COUNT == 3
+        ++workCount;
+#endif
         float ts = t + (float(k) + 0.5) * dt;
         vec3 p = ro + ts * rd;
-        float scalar = amrspSampleDataNode(dataNode, p, cellSize, firstCell, lastCell);
+        float scalar = amrspSampleBrick(dataNode, brickRef, p, cellSize, firstCell, lastCell);
 #ifdef AMRSP_SMOOTH_CELLS
         scalar = amrspSampleSmooth(p, level, dataNode, loF, hiF, firstCell, lastCell, scalar);
 #endif
@@ -772,6 +823,11 @@ void main()
   gl_FragData[0] = vec4(float(min(workDataSegments - workSampledSegments, 255)) / 255.0,
     workTerminated ? 1.0 : 0.0,
     float(min(workDataSegments, 255)) / 255.0, 1.0);
+  return;
+#endif
+#ifdef AMRSP_WORK_COUNT
+  int c = min(workCount, 0xffffff);
+  gl_FragData[0] = vec4(float(c & 255), float((c >> 8) & 255), float(c >> 16), 255.0) / 255.0;
   return;
 #endif
   if (alpha <= 0.0)
