@@ -5,6 +5,7 @@
 #include "AmrspBench.h"
 
 #include "AmrspAmrResample.h"
+#include "AmrspBenchWork.h"
 #include "AmrspMethods.h"
 #include "AmrspMultipass.h"
 #include "AmrspPacking.h"
@@ -32,6 +33,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace amrsp
@@ -97,44 +99,6 @@ void Summarize(const std::vector<double>& ms, Json& out)
   out["ms_median"] = n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
 }
 
-/// One warm-up frame (builds, uploads, compiles; reported as first_frame_ms, not timed with the
-/// orbit), then `frames` frames of the orbit. Returns frame 0 of the orbit.
-template <class Renderer>
-Image Orbit(Renderer& r, int frames, Json& out)
-{
-  double firstMs = 0.0;
-  r.Render(0.0, firstMs);
-  std::vector<double> ms;
-  Image first;
-  for (int f = 0; f < frames; ++f)
-  {
-    double frameMs = 0.0;
-    Image img = r.Render(360.0 * f / frames, frameMs);
-    ms.push_back(frameMs);
-    if (f == 0)
-    {
-      first = std::move(img);
-    }
-  }
-  Summarize(ms, out);
-  out["first_frame_ms"] = firstMs;
-  return first;
-}
-
-/// Mean ms/frame of one more orbit of an already warm renderer.
-template <class Renderer>
-double OrbitMeanMs(Renderer& r, int frames)
-{
-  double sum = 0.0;
-  for (int f = 0; f < frames; ++f)
-  {
-    double frameMs = 0.0;
-    r.Render(360.0 * f / frames, frameMs);
-    sum += frameMs;
-  }
-  return sum / frames;
-}
-
 double Median(std::vector<double> v)
 {
   std::sort(v.begin(), v.end());
@@ -142,20 +106,112 @@ double Median(std::vector<double> v)
   return n == 0 ? 0.0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-/// A GPU method kept alive for the interleaved rounds: its name and one more orbit.
+/// Mean of `v`, or -1 when it is empty or holds a negative value (a frame without GPU time).
+double MeanOrUnknown(const std::vector<double>& v)
+{
+  double sum = 0.0;
+  for (double x : v)
+  {
+    if (x < 0.0)
+    {
+      return -1.0;
+    }
+    sum += x;
+  }
+  return v.empty() ? -1.0 : sum / static_cast<double>(v.size());
+}
+
+/// One warm-up frame (builds, uploads, compiles; reported as first_frame_ms, not timed with the
+/// orbit), then `frames` frames of the orbit, with the GPU's own time of each frame where timer
+/// queries work (gpu_ms_mean, gpu_ms_median). Returns frame 0 of the orbit.
+Image Orbit(GpuRenderer& r, int frames, Json& out)
+{
+  double firstMs = 0.0;
+  r.Render(0.0, firstMs);
+  std::vector<double> ms, gpuMs;
+  Image first;
+  for (int f = 0; f < frames; ++f)
+  {
+    double frameMs = 0.0;
+    Image img = r.Render(360.0 * f / frames, frameMs);
+    ms.push_back(frameMs);
+    gpuMs.push_back(r.LastGpuMilliseconds());
+    if (f == 0)
+    {
+      first = std::move(img);
+    }
+  }
+  Summarize(ms, out);
+  out["first_frame_ms"] = firstMs;
+  if (MeanOrUnknown(gpuMs) >= 0.0)
+  {
+    out["gpu_ms_mean"] = MeanOrUnknown(gpuMs);
+    out["gpu_ms_median"] = Median(gpuMs);
+  }
+  return first;
+}
+
+/// Mean ms/frame of one more orbit of an already warm renderer, and its mean GPU time (-1
+/// where it has none).
+std::pair<double, double> OrbitMeanMs(GpuRenderer& r, int frames)
+{
+  double sum = 0.0;
+  std::vector<double> gpuMs;
+  for (int f = 0; f < frames; ++f)
+  {
+    double frameMs = 0.0;
+    r.Render(360.0 * f / frames, frameMs);
+    sum += frameMs;
+    gpuMs.push_back(r.LastGpuMilliseconds());
+  }
+  return { sum / frames, MeanOrUnknown(gpuMs) };
+}
+
+/// A GPU method kept alive for the interleaved rounds: its name and one more orbit (ms/frame
+/// and GPU ms/frame, -1 without timer queries).
 struct KeptRenderer
 {
   std::string Method;
-  std::function<double()> OrbitMs;
+  std::function<std::pair<double, double>()> OrbitMs;
 };
+
+/// fps_vs_NAME and fps_vs_NAME_range of every kept method against `base` (the median and
+/// range over rounds of base's ms / the method's ms).
+void RatiosAgainst(const std::string& base, const std::map<std::string, std::vector<double>>& ms,
+  const std::vector<KeptRenderer>& kept, Json& methods)
+{
+  const auto against = ms.find(base);
+  if (against == ms.end())
+  {
+    return;
+  }
+  for (const KeptRenderer& k : kept)
+  {
+    const std::vector<double>& mine = ms.at(k.Method);
+    if (against->second.size() != mine.size())
+    {
+      continue;
+    }
+    std::vector<double> ratios;
+    for (std::size_t i = 0; i < mine.size(); ++i)
+    {
+      ratios.push_back(against->second[i] / mine[i]);
+    }
+    Json& r = methods[k.Method];
+    r["fps_vs_" + base] = Median(ratios);
+    r["fps_vs_" + base + "_range"] = { *std::min_element(ratios.begin(), ratios.end()),
+      *std::max_element(ratios.begin(), ratios.end()) };
+  }
+}
 
 /// Rounds 2..o.Rounds of the methods in `kept` (BenchOptions::Rounds), into `methods`.
 void RunRounds(const std::vector<KeptRenderer>& kept, const BenchOptions& o, Json& methods)
 {
-  std::map<std::string, std::vector<double>> ms;
+  std::map<std::string, std::vector<double>> ms, gpuMs;
   for (const KeptRenderer& k : kept)
   {
     ms[k.Method].push_back(methods[k.Method]["ms_mean"].get<double>());
+    gpuMs[k.Method].push_back(methods[k.Method].value("gpu_ms_mean", -1.0));
   }
   const double orbits = static_cast<double>((o.Rounds - 1) * kept.size());
   for (int round = 1; round < o.Rounds; ++round)
@@ -171,7 +227,9 @@ void RunRounds(const std::vector<KeptRenderer>& kept, const BenchOptions& o, Jso
       }
       try
       {
-        ms[k.Method].push_back(k.OrbitMs());
+        const std::pair<double, double> orbit = k.OrbitMs();
+        ms[k.Method].push_back(orbit.first);
+        gpuMs[k.Method].push_back(orbit.second);
       }
       catch (const std::exception& e)
       {
@@ -180,25 +238,21 @@ void RunRounds(const std::vector<KeptRenderer>& kept, const BenchOptions& o, Jso
     }
   }
   ReportProgress("bench rounds", "done", 1.0);
-  const auto packing = ms.find("packing");
   for (const KeptRenderer& k : kept)
   {
     Json& r = methods[k.Method];
     const std::vector<double>& mine = ms[k.Method];
     r["rounds_ms_mean"] = mine;
     r["ms_rounds_median"] = Median(mine);
-    if (packing != ms.end() && packing->second.size() == mine.size())
+    const std::vector<double>& gpu = gpuMs[k.Method];
+    if (std::none_of(gpu.begin(), gpu.end(), [](double v) { return v < 0.0; }))
     {
-      std::vector<double> ratios;
-      for (std::size_t i = 0; i < mine.size(); ++i)
-      {
-        ratios.push_back(packing->second[i] / mine[i]);
-      }
-      r["fps_vs_packing"] = Median(ratios);
-      r["fps_vs_packing_range"] = { *std::min_element(ratios.begin(), ratios.end()),
-        *std::max_element(ratios.begin(), ratios.end()) };
+      r["rounds_gpu_ms_mean"] = gpu;
+      r["gpu_ms_rounds_median"] = Median(gpu);
     }
   }
+  RatiosAgainst("packing", ms, kept, methods);
+  RatiosAgainst("multipass", ms, kept, methods);
 }
 
 /// The frames methods are compared against: the CPU reference, and frame 0 of the CPU kD-tree
@@ -281,7 +335,7 @@ void UniformFields(const UniformGpuRenderer& gpu, const Image& first, const Benc
 /// The figures of the other GPU methods after their orbit. Throws GpuError when bindless fell
 /// back to the atlas (its figures would be packing's under bindless's name).
 void MapperFields(const Method& m, GpuRenderer& gpu, const Image& first, const BenchOptions& o,
-  const Json& stats, Comparisons& c, Json& r)
+  const Json& stats, Comparisons& c, BenchWork& work, Json& r)
 {
   if (PackingRenderer* singlePass = dynamic_cast<PackingRenderer*>(&gpu))
   {
@@ -338,6 +392,10 @@ void MapperFields(const Method& m, GpuRenderer& gpu, const Image& first, const B
     r["passes"] = mp->Passes();
     r["order_ms"] = 1000.0 * mp->OrderSeconds();
     r["accumulation_bytes"] = mp->AccumulationBytes();
+  }
+  if (o.Counters && m.IsKdTreeMapper())
+  {
+    r["work"] = m.Kind == MethodKind::Multipass ? work.Multipass() : work.SinglePass(gpu);
   }
   if (m.Kind == MethodKind::Packing && o.CompareImages)
   {
@@ -416,6 +474,7 @@ Json RunBenchMethods(const Hierarchy& h, const RenderSettings& s, const Image& r
 {
   Json methods = Json::object();
   Comparisons c{ h, s, reference, Image(), Image() };
+  BenchWork work(h, s);
   if (!o.ImageFolder.empty() && o.CompareImages)
   {
     WriteImagePng(reference, o.ImageFolder + "/reference.png");
@@ -464,7 +523,7 @@ Json RunBenchMethods(const Hierarchy& h, const RenderSettings& s, const Image& r
         }
         else
         {
-          MapperFields(*method, *gpu, first, o, stats, c, r);
+          MapperFields(*method, *gpu, first, o, stats, c, work, r);
           if (o.InteractiveRate > 0.0)
           {
             InteractiveFields(*gpu, first, o, r);

@@ -42,6 +42,9 @@ struct BenchOptions
   /// the render window's DesiredUpdateRate at this value (interactive), then still at the same
   /// camera: "interactive" {fps, ms_mean, still_ms_mean, speedup, rmse_mean, rmse_max, ...}.
   double InteractiveRate = 0.0;
+  /// --counters: every GPU method that renders the kD-tree gets a "work" object (the cost model
+  /// of amrsp/WorkCounters.h for frame 0, and the shader's own counts: AmrspBenchWork.h).
+  bool Counters = false;
 };
 
 /// Writes `img` as an 8-bit RGB PNG; throws std::runtime_error when it cannot.

@@ -87,7 +87,7 @@ std::string BenchHelp()
   help
     << "usage: amrsp bench [DATASET] [--size WxH] [--frames N] [--methods LIST] [--json FILE]\n"
        "                   [--plot FILE.png [--plot-size WxH]] [--rounds R]\n"
-       "                   [--interactive [--interactive-rate FPS]]\n"
+       "                   [--interactive [--interactive-rate FPS]] [--counters]\n"
        "       amrsp bench --scaling [--scaling-sizes G:L:C,...] [--methods LIST] [--size WxH]\n"
        "                   [--frames N] [--json FILE] [--rounds R]\n"
        "Renders an orbit of N frames (default 8; --scaling: 2) per method in one process, after\n"
@@ -104,7 +104,16 @@ std::string BenchHelp()
        "--rounds R (default 1) keeps the GPU methods alive and renders R - 1 more orbits per\n"
        "method, interleaved (order reversed every round), for ratios on a machine whose load\n"
        "drifts: rounds_ms_mean, ms_rounds_median and fps_vs_packing (median of the per-round\n"
-       "ratios) per method, and a table of them.\n"
+       "ratios) per method, and a table of them; fps_vs_multipass likewise. Where the OpenGL\n"
+       "context has timer queries every GPU method also reports its GPU time per frame\n"
+       "(gpu_ms_mean, gpu_ms_median; with rounds rounds_gpu_ms_mean, gpu_ms_rounds_median).\n"
+       "--counters adds to every method that renders the kD-tree a \"work\" object, the cost\n"
+       "model of frame 0 counted by the CPU mirror of the shader: segments_per_ray,\n"
+       "descent_steps_per_ray, samples_per_ray, texel_fetches_per_ray, steps_per_ray (means;\n"
+       "_p95: 95th percentiles), steps_per_pixel, lockstep_steps_per_pixel (8x4 tiles of 32\n"
+       "lanes), lockstep_efficiency; multipass also draws and fragments_per_pixel; the\n"
+       "single-pass methods also \"gpu\": the shader's own segment, descent and sample totals\n"
+       "of the same frame and whether they agree with the mirror's (docs/performance.md).\n"
        "--interactive draws, after each single-pass method's orbit, every orbit frame as an\n"
        "interactive frame (the render window's DesiredUpdateRate at --interactive-rate, default 5\n"
        "as ParaView's interactive renders) and then still at the same camera: interactive {fps,\n"
@@ -185,6 +194,11 @@ BenchRequest ParseBenchRequest(const Arguments& a)
       throw UsageError{ "--interactive takes a --interactive-rate from 1 to 1e6 frames a second "
                         "and does not apply to --scaling" };
     }
+  }
+  o.Counters = a.Has("counters");
+  if (o.Counters && scaling)
+  {
+    throw UsageError{ "--counters does not apply to --scaling" };
   }
   o.ImageFolder = a.Get("save-images", "");
   if (a.Has("save-images") && (scaling || o.ImageFolder.empty()))
@@ -367,7 +381,7 @@ int RunBench(int argc, char** argv)
       Concat({ DatasetOptions, ViewOptions,
         { "frames", "methods", "json", "plot", "plot-size", "scaling-sizes", "seed", "save-images",
           "driver", "backend", "rounds", "interactive-rate" } }),
-      Concat({ DatasetFlags, { "scaling", "interactive" } }));
+      Concat({ DatasetFlags, { "scaling", "interactive", "counters" } }));
     if (WantsHelp(a))
     {
       std::cout << BenchHelp() << ViewHelp << DriverHelp << DatasetHelp;

@@ -17,6 +17,7 @@
 #include "vtkCommand.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
+#include "vtkOpenGLRenderTimer.h"
 #include "vtkOverlappingAMR.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
@@ -59,6 +60,9 @@ struct GpuRenderer::Internals
   int Height = 0;
   std::string Device;
   std::string Backend;
+  /// GPU time of the frames: timer queries around Render() (GL_TIMESTAMP at its start and end)
+  vtkOpenGLRenderTimer Timer;
+  double GpuMilliseconds = -1.0; // of the last frame; -1 where timer queries are unsupported
 };
 
 namespace
@@ -253,6 +257,8 @@ GpuRenderer::~GpuRenderer()
 {
   if (I)
   {
+    I->Window->MakeCurrent();
+    I->Timer.ReleaseGraphicsResources();
     I->Window->Finalize();
   }
 }
@@ -273,11 +279,41 @@ vtkRenderer* GpuRenderer::GetRenderer()
 
 Image GpuRenderer::RenderAsIs(double& milliseconds)
 {
+  // the window's context exists after its first frame (which sets Device): the GPU is timed
+  // from the second frame on
+  bool timed = false;
+  if (!I->Device.empty())
+  {
+    I->Window->MakeCurrent();
+    timed = vtkOpenGLRenderTimer::IsSupported();
+  }
   const auto t0 = std::chrono::steady_clock::now();
+  if (timed)
+  {
+    I->Timer.Reset();
+    I->Timer.Start();
+  }
   I->Window->Render();
+  if (timed)
+  {
+    I->Window->MakeCurrent();
+    I->Timer.Stop();
+  }
   I->Window->WaitForCompletion();
   milliseconds =
     1000.0 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  I->GpuMilliseconds = -1.0;
+  if (timed)
+  {
+    for (int wait = 0; wait < 1000 && !I->Timer.Ready(); ++wait)
+    {
+      std::this_thread::sleep_for(std::chrono::microseconds(100));
+    }
+    if (I->Timer.Ready())
+    {
+      I->GpuMilliseconds = I->Timer.GetElapsedMilliseconds();
+    }
+  }
   const std::string error = this->LastError();
   if (!error.empty())
   {
@@ -324,6 +360,11 @@ Image GpuRenderer::RenderAsIs(double& milliseconds)
     img.Pixels[i] = glm::vec4(c, (c.r + c.g + c.b) > 0.0f ? 1.0f : 0.0f);
   }
   return img;
+}
+
+double GpuRenderer::LastGpuMilliseconds() const
+{
+  return I->GpuMilliseconds;
 }
 
 Camera GpuRenderer::LastCamera() const

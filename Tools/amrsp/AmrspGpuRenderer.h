@@ -81,6 +81,10 @@ public:
   Image RenderAsIs(double& milliseconds);
   vtkRenderer* GetRenderer();
 
+  /// GPU time of the last frame in milliseconds, from timer queries around its Render() (not
+  /// the read-back); -1 for the first frame of a window and where timer queries are unsupported.
+  double LastGpuMilliseconds() const;
+
   /// The VTK camera of the last frame as an amrsp::Camera (to check the conventions agree).
   Camera LastCamera() const;
 

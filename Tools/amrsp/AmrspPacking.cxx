@@ -4,6 +4,7 @@
 #include "vtkSinglePassAMRVolumeMapper.h"
 #include "vtkSmartPointer.h"
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -88,6 +89,31 @@ long long PackingRenderer::PackedBytes() const
 long long PackingRenderer::BindlessBytes() const
 {
   return this->Mapper->GetBindlessTextureBytes();
+}
+
+long long PackingRenderer::RenderWorkCount(int count)
+{
+  this->Mapper->SetWorkCountOutput(count);
+  double ms = 0.0;
+  Image counts;
+  try
+  {
+    counts = this->RenderAsIs(ms);
+  }
+  catch (...)
+  {
+    this->Mapper->SetWorkCountOutput(vtkSinglePassAMRVolumeMapper::NO_WORK_COUNT);
+    throw;
+  }
+  this->Mapper->SetWorkCountOutput(vtkSinglePassAMRVolumeMapper::NO_WORK_COUNT);
+  long long sum = 0;
+  for (const glm::vec4& p : counts.Pixels)
+  {
+    // 24-bit integer: red the low byte (8-bit channels read back exactly as k / 255)
+    sum += std::lround(p.r * 255.0f) + 256 * std::lround(p.g * 255.0f) +
+      65536 * std::lround(p.b * 255.0f);
+  }
+  return sum;
 }
 
 vtkSinglePassAMRVolumeMapper* PackingRenderer::GetMapper() const

@@ -38,6 +38,11 @@ public:
   long long PackedBytes() const;
   long long BindlessBytes() const;
 
+  /// Renders the current camera's frame (RenderAsIs) with the mapper's WorkCountOutput set to
+  /// `count` (vtkSinglePassAMRVolumeMapper::WorkCounts) and returns the sum of the counts over
+  /// the image; the mapper draws colours again afterwards. Throws GpuError as RenderAsIs.
+  long long RenderWorkCount(int count);
+
 private:
   PackingRenderer(vtkSinglePassAMRVolumeMapper* mapper, const Hierarchy& h, const RenderSettings& s,
     const ViewAngles& view, const std::string& storage, const std::string& bindlessAccess);
