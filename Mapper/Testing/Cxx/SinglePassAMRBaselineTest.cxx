@@ -11,6 +11,7 @@
 #include "amrsp/KdTree.h"
 #include "amrsp/KdTreeEncoding.h"
 #include "amrsp/Render.h"
+#include "amrsp/WorkCounters.h"
 
 #include "vtkActor.h"
 #include "vtkImageData.h"
@@ -128,8 +129,42 @@ bool Agree(long long gpu, long long cpu)
   return std::llabs(gpu - cpu) <= 2 + cpu / 100;
 }
 
-bool CompareWorkCounters(
-  tool::PackingRenderer& gpu, const RenderStats& cpu, const BaselineCase& c, std::ostream& log)
+/// The shader's own counts of its loops (WorkCountOutput) against the cost model's CPU mirror
+/// of the same frame (amrsp::MeasureSinglePassWork), and that the comparison rejects the counts
+/// of another sampling distance.
+bool CompareLoopCounts(tool::PackingRenderer& gpu, const Hierarchy& h,
+  const RenderSettings& mirrorSettings, std::ostream& log)
+{
+  using M = vtkSinglePassAMRVolumeMapper;
+  RenderSettings s = mirrorSettings;
+  s.Stats = nullptr;
+  const EncodedKdTree tree = EncodeKdTree(h, BuildKdTree(h));
+  const WorkSummary w = MeasureSinglePassWork(h, tree, s, FetchModel());
+  const auto total = [&w](const WorkDistribution& d) { return std::llround(d.Mean * w.Rays); };
+  bool ok = true;
+  const auto compare = [&](int count, const char* what, long long mirror)
+  {
+    const long long shader = gpu.RenderWorkCount(count);
+    const bool pass = Agree(shader, mirror);
+    log << (pass ? "ok" : "FAILED") << ": the shader counts " << shader << " " << what
+        << ", the CPU mirror " << mirror << "\n";
+    ok = ok && pass;
+    return shader;
+  };
+  compare(M::SEGMENT_COUNT, "segment-loop iterations", total(w.Segments));
+  compare(M::DESCENT_STEP_COUNT, "descent steps", total(w.DescentSteps));
+  const long long samples = compare(M::SAMPLE_COUNT, "samples", total(w.Samples));
+  s.SampleDistanceFactor *= 2.0;
+  const WorkSummary coarse = MeasureSinglePassWork(h, tree, s, FetchModel());
+  const long long wrong = std::llround(coarse.Samples.Mean * coarse.Rays);
+  const bool rejected = !Agree(samples, wrong);
+  log << (rejected ? "ok" : "FAILED") << ": the mirror's samples at twice the sampling distance ("
+      << wrong << ") are rejected\n";
+  return ok && rejected;
+}
+
+bool CompareWorkCounters(tool::PackingRenderer& gpu, const RenderStats& cpu, const Hierarchy& h,
+  const RenderSettings& mirrorSettings, const BaselineCase& c, std::ostream& log)
 {
   vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
   const WorkCounts w = RenderWorkCounts(gpu);
@@ -169,6 +204,7 @@ bool CompareWorkCounters(
       "with threshold 1 the shader stops " + std::to_string(off.Terminated) +
         " rays early and reaches " + std::to_string(off.DataSegments) + " data segments");
   }
+  ok = CompareLoopCounts(gpu, h, mirrorSettings, log) && ok;
   // one ordinary frame, so that the mapper's per-frame state (e.g. its transparent data nodes)
   // is that of the test's own settings again
   double ms = 0.0;
@@ -405,7 +441,8 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
 
     if (c.CheckWorkCounters)
     {
-      agrees = CompareWorkCounters(gpu, mirrorStats, c, std::cout) && agrees;
+      agrees =
+        CompareWorkCounters(gpu, mirrorStats, d.Data, mirrorSettings, c, std::cout) && agrees;
     }
     if (c.Check)
     {
