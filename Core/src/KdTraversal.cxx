@@ -39,9 +39,49 @@ bool IntersectBox(const glm::vec3& lo, const glm::vec3& hi, const glm::vec3& ori
   return tEnter < tExit;
 }
 
+namespace
+{
+/// Where the ray leaves the box [lo, hi]: min over the axes of the far face's distance, as
+/// IntersectBox computes it.
+float ExitDistance(
+  const glm::vec3& lo, const glm::vec3& hi, const glm::vec3& origin, const glm::vec3& direction)
+{
+  float t = std::numeric_limits<float>::infinity();
+  for (int a = 0; a < 3; ++a)
+  {
+    if (direction[a] != 0.0f)
+    {
+      t = std::min(t, ((direction[a] > 0.0f ? hi[a] : lo[a]) - origin[a]) / direction[a]);
+    }
+  }
+  return t;
+}
+
+/// The one axis whose far face of [lo, hi] the ray reaches at tLeave; -1 when none or several
+/// (an edge or corner: the rope of one face need not hold the next leaf).
+int ExitAxis(const glm::vec3& lo, const glm::vec3& hi, const glm::vec3& origin,
+  const glm::vec3& direction, float tLeave)
+{
+  int axis = -1;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (direction[a] != 0.0f &&
+      ((direction[a] > 0.0f ? hi[a] : lo[a]) - origin[a]) / direction[a] == tLeave)
+    {
+      if (axis >= 0)
+      {
+        return -1;
+      }
+      axis = a;
+    }
+  }
+  return axis;
+}
+} // namespace
+
 void TraverseKdTree(const EncodedKdTree& tree, const glm::vec3& origin, const glm::vec3& direction,
   float tMin, float tMax, const LevelOfDetail& lod, std::vector<RaySegment>& segments,
-  bool restartFromRoot)
+  bool restartFromRoot, bool ropes)
 {
   using namespace layout;
   float tEnter, tExit;
@@ -72,10 +112,19 @@ void TraverseKdTree(const EncodedKdTree& tree, const glm::vec3& origin, const gl
   uint farNode = 0;
   glm::vec3 farLo(0.0f), farHi(0.0f);
   float farEnd = 0.0f;
+  // The rope across the face the last leaf was left through, and its box (level-0 index units,
+  // exactly the box a descent from the root computes: amrsp/KdTreeRopes.h).
+  const bool useRopes =
+    ropes && canPushDown && lod.ThresholdPixels <= 0.0f && !tree.Ropes.Texels.empty();
+  bool haveRope = false;
+  uint ropeNode = 0;
+  glm::vec3 ropeLo(0.0f), ropeHi(0.0f);
   for (int64_t iteration = 0; t < tEnd && iteration < guard; ++iteration)
   {
+    const bool fromRope = haveRope;
+    haveRope = false;
     // An empty far interval (planes meeting where the leaf ends) is left to the restart.
-    const bool fromFar = haveFar && farEnd > t;
+    const bool fromFar = !fromRope && haveFar && farEnd > t;
     haveFar = false;
     if (fromFar && farEnd >= tEnd)
     {
@@ -83,12 +132,14 @@ void TraverseKdTree(const EncodedKdTree& tree, const glm::vec3& origin, const gl
       restartLo = farLo;
       restartHi = farHi;
     }
-    uint node = fromFar ? farNode : restartNode;
-    glm::vec3 lo = fromFar ? farLo : restartLo;
-    glm::vec3 hi = fromFar ? farHi : restartHi;
-    float tLeave = fromFar ? farEnd : tEnd;
+    uint node = fromRope ? ropeNode : fromFar ? farNode : restartNode;
+    glm::vec3 lo = fromRope ? ropeLo : fromFar ? farLo : restartLo;
+    glm::vec3 hi = fromRope ? ropeHi : fromFar ? farHi : restartHi;
+    float tLeave = fromRope ? std::min(ExitDistance(ropeLo, ropeHi, origin, direction), tEnd)
+      : fromFar             ? farEnd
+                            : tEnd;
     uvec2 texel = tree.Tree.Texels[node];
-    bool pushDown = canPushDown && (!fromFar || farEnd >= tEnd);
+    bool pushDown = canPushDown && !fromRope && (!fromFar || farEnd >= tEnd);
     uint32_t descent = 0;
     uint32_t lodChecks = 0;
     for (;;)
@@ -174,8 +225,28 @@ void TraverseKdTree(const EncodedKdTree& tree, const glm::vec3& origin, const gl
     s.Descent = descent;
     s.FromFar = fromFar;
     s.LodChecks = lodChecks;
+    s.FromRope = fromRope;
     segments.push_back(s);
     t = tLeave;
+    if (useRopes && t < tEnd)
+    {
+      const int axis = ExitAxis(lo, hi, origin, direction, tLeave);
+      if (axis >= 0)
+      {
+        const uint k = amrspRopeTexelOfAxis(static_cast<uint>(axis));
+        const uint rope = amrspRopeOf(tree.Ropes.Texels[amrspRopeTexelIndex(node, k)],
+          static_cast<uint>(axis), direction[axis] > 0.0f);
+        if (rope != 0u)
+        {
+          haveRope = true;
+          ropeNode = rope;
+          const glm::uvec4 box = tree.Ropes.Texels[amrspRopeTexelIndex(rope, 0u)];
+          const glm::uvec4 boxHi = tree.Ropes.Texels[amrspRopeTexelIndex(rope, 1u)];
+          ropeLo = glm::vec3(amrspRopeBoxLo(box)) * tree.FinestCellSize;
+          ropeHi = glm::vec3(amrspRopeBoxHi(box, boxHi)) * tree.FinestCellSize;
+        }
+      }
+    }
   }
 }
 

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "amrsp/KdTreeEncoding.h"
+#include "amrsp/KdTreeRopes.h"
 
 #include "amrsp/IntegerMath.h"
 #include "amrsp/KdTreeLayout.h"
@@ -42,7 +43,7 @@ void Resize(UIntTexture3D& t, std::size_t texels)
 } // namespace
 
 EncodedKdTree EncodeKdTree(const Hierarchy& h, const KdTree& tree,
-  const std::vector<glm::ivec3>* brickOrigins, const std::vector<int>* brickPages)
+  const std::vector<glm::ivec3>* brickOrigins, const std::vector<int>* brickPages, bool ropes)
 {
   using namespace layout;
   EncodedKdTree e;
@@ -131,6 +132,11 @@ EncodedKdTree EncodeKdTree(const Hierarchy& h, const KdTree& tree,
   for (int l = 0; l < h.NumberOfLevels(); ++l)
   {
     e.LevelCellSize.push_back(glm::vec3(h.CellSize(l)));
+  }
+  e.FinestCellSize = glm::vec3(h.CellSize(tree.FinestLevel));
+  if (ropes)
+  {
+    e.Ropes = EncodeKdTreeRopes(tree, e);
   }
   return e;
 }

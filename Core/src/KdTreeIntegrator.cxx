@@ -441,7 +441,8 @@ glm::vec4 KdTreeRays::Pixel(int i, int j, std::vector<RaySegment>& segments, Ren
   if (ClipInterval(s, wo, wd, clip0, clip1))
   {
     TraverseKdTree(Tree, o, d, static_cast<float>(std::max(0.0, clip0)),
-      static_cast<float>(std::min(static_cast<double>(tMax), clip1)), Lod, segments);
+      static_cast<float>(std::min(static_cast<double>(tMax), clip1)), Lod, segments, false,
+      s.Ropes);
   }
   CountTraversal(segments, stats);
   Accumulator<float> acc(s.Blend);
@@ -463,6 +464,7 @@ glm::vec4 KdTreeRays::Pixel(int i, int j, std::vector<RaySegment>& segments, Ren
       step->Descent = seg.Descent;
       step->LodChecks = seg.LodChecks;
       step->FromFar = seg.FromFar;
+      step->FromRope = seg.FromRope;
       step->Data = seg.Data != 0;
     }
     if (seg.Data == 0)

@@ -154,6 +154,7 @@ void RayCastingData::FreeUploadData()
   this->TreeTexels = UIntTexture3D();
   this->PackedDataNodeTexels = UIntTexture3D();
   this->BindlessDataNodeTexels = UIntTexture3D();
+  this->RopeTexels = UInt4Texture3D();
 }
 
 void RayCastingData::WaitForNodeRanges()
@@ -198,6 +199,8 @@ RayCastingData PrepareRayCasting(Hierarchy h, int packLimit, int64_t maxPageTexe
   const std::vector<glm::ivec3> brickStarts(h.Grids.size(), glm::ivec3(0));
   report(0.3, "encoding the kD-tree");
   EncodedKdTree enc = EncodeKdTree(h, tree, &brickStarts);
+  out.RopeTexels = std::move(enc.Ropes); // before the node ranges' copy of the encoding
+  out.RopeCellSize = enc.FinestCellSize;
   report(0.35, "the data nodes' value ranges");
   if (deferNodeRanges)
   {
@@ -218,8 +221,8 @@ RayCastingData PrepareRayCasting(Hierarchy h, int packLimit, int64_t maxPageTexe
   {
     report(0.75, "packing the bricks");
     out.Atlas = packing.get();
-    out.PackedDataNodeTexels = EncodeKdTree(
-      h, tree, &out.Atlas.Origins, out.Atlas.Pages.size() > 1 ? &out.Atlas.PageOfGrid : nullptr)
+    out.PackedDataNodeTexels = EncodeKdTree(h, tree, &out.Atlas.Origins,
+      out.Atlas.Pages.size() > 1 ? &out.Atlas.PageOfGrid : nullptr, false)
                                  .DataNodes;
   }
   catch (const std::exception& e)
@@ -258,7 +261,8 @@ RayCastingData PrepareRayCasting(Hierarchy h, int packLimit, int64_t maxPageTexe
       "' holds no finite value (NaN or +-Inf in every cell): nothing to render");
   }
   const long long treeBytes =
-    static_cast<long long>(KdTreeTextureBytes(enc.Tree, out.BindlessDataNodeTexels));
+    static_cast<long long>(KdTreeTextureBytes(enc.Tree, out.BindlessDataNodeTexels)) +
+    static_cast<long long>(out.RopeTexels.Bytes());
   out.BrickBytes = static_cast<long long>(SeparateBrickBytes(h));
   out.BindlessBytes =
     treeBytes + out.BrickBytes + static_cast<long long>(HandleTextureBytes(h.Grids.size()));

@@ -145,7 +145,7 @@ long long RayTexelFetches(const std::vector<SegmentWork>& segments, const FetchM
   long long fetches = 1; // the root node
   for (const SegmentWork& w : segments)
   {
-    fetches += (w.FromFar ? 1 : 0) + w.Descent + w.LodChecks;
+    fetches += (w.FromFar ? 1 : 0) + (w.FromRope ? 4 : 0) + w.Descent + w.LodChecks;
     if (!w.Data)
     {
       continue;

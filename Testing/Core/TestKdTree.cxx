@@ -270,7 +270,7 @@ TEST(Traversal, PushDownGivesTheSegmentsOfRestartsFromTheRoot)
         RandomRay(rng, h, o, d);
         const glm::vec3 oi((o - h.Origin) / h.Spacing0), di(d / h.Spacing0);
         std::vector<RaySegment> pushed, fromRoot;
-        TraverseKdTree(enc, oi, di, 0.0f, 1e30f, lod, pushed);
+        TraverseKdTree(enc, oi, di, 0.0f, 1e30f, lod, pushed, false, false);
         TraverseKdTree(enc, oi, di, 0.0f, 1e30f, lod, fromRoot, true);
         ASSERT_EQ(pushed.size(), fromRoot.size()) << "trial " << trial << " ray " << r;
         for (std::size_t i = 0; i < pushed.size(); ++i)
@@ -303,7 +303,7 @@ TEST(Traversal, PushDownShortensDescentsOnADeepHierarchy)
     RandomRay(rng, h, o, d);
     const glm::vec3 oi((o - h.Origin) / h.Spacing0), di(d / h.Spacing0);
     std::vector<RaySegment> pushed, fromRoot;
-    TraverseKdTree(enc, oi, di, 0.0f, 1e30f, LevelOfDetail(), pushed);
+    TraverseKdTree(enc, oi, di, 0.0f, 1e30f, LevelOfDetail(), pushed, false, false);
     TraverseKdTree(enc, oi, di, 0.0f, 1e30f, LevelOfDetail(), fromRoot, true);
     ASSERT_EQ(pushed.size(), fromRoot.size());
     for (std::size_t i = 0; i < pushed.size(); ++i)

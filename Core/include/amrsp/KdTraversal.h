@@ -32,6 +32,9 @@ struct RaySegment
   /// Level-of-detail tests of that descent that read a data node (inner nodes with data while
   /// LevelOfDetail::ThresholdPixels > 0).
   uint32_t LodChecks = 0;
+  /// The descent began at the rope of the previous segment's leaf (amrsp/KdTreeRopes.h): the
+  /// shader fetched that rope and the target's box and tree texels.
+  bool FromRope = false;
 };
 
 /// Level-of-detail selection at type (a) nodes: the traversal stops descending when one cell of
@@ -47,13 +50,15 @@ struct LevelOfDetail
 /// Ray: origin + t * direction in level-0 index units. When direction is a unit world direction
 /// divided by the level-0 spacing, t is the world distance. Appends the segments of [tMin, tMax]
 /// that lie inside the root box; empty-space segments are included (Data == 0).
-/// Each restart descends from the far child of the deepest split plane the previous descent
-/// crossed, or else from the deepest node whose box holds the rest of the ray (push-down), as the
-/// shader; restartFromRoot = true descends from the root every time (the paper's plain
-/// kd-restart), which gives the same segments and is kept for comparison.
+/// Where the tree has ropes (EncodedKdTree::Ropes), `ropes` is set and level of detail is off, a
+/// ray that leaves a leaf through exactly one face descends from that face's rope; otherwise each
+/// restart descends from the far child of the deepest split plane the previous descent crossed,
+/// or else from the deepest node whose box holds the rest of the ray (push-down), as the shader.
+/// restartFromRoot = true descends from the root every time (the paper's plain kd-restart).
+/// All give the same segments.
 void TraverseKdTree(const EncodedKdTree& tree, const glm::vec3& origin, const glm::vec3& direction,
   float tMin, float tMax, const LevelOfDetail& lod, std::vector<RaySegment>& segments,
-  bool restartFromRoot = false);
+  bool restartFromRoot = false, bool ropes = true);
 
 /// Slab test of a ray against a box; returns false when they miss. Mirrors the shader.
 bool IntersectBox(const glm::vec3& lo, const glm::vec3& hi, const glm::vec3& origin,

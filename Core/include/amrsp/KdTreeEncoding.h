@@ -25,6 +25,15 @@ struct UIntTexture3D
   std::size_t Bytes() const { return Texels.size() * sizeof(glm::uvec2); }
 };
 
+/// An RGBA32UI 3D texture, laid out as UIntTexture3D.
+struct UInt4Texture3D
+{
+  glm::ivec3 Dims{ 0 };
+  std::vector<glm::uvec4> Texels;
+
+  std::size_t Bytes() const { return Texels.size() * sizeof(glm::uvec4); }
+};
+
 /// Everything the single-pass shader (and the CPU traversal that mirrors it) needs about the tree.
 struct EncodedKdTree
 {
@@ -37,6 +46,12 @@ struct EncodedKdTree
   std::vector<glm::vec3> LevelCellSize;
   int64_t NodeCount = 0;
   int64_t DataNodeCount = 0; ///< not counting the unused texel 0
+  /// Neighbour links (ropes) and the nodes' boxes (amrsp/KdTreeRopes.h); empty where they are
+  /// not encoded.
+  UInt4Texture3D Ropes;
+  /// Cell size of the tree's finest level in level-0 index units: a rope target's box in
+  /// level-0 index units is its box in finest cells times this (exact wherever Ropes is set).
+  glm::vec3 FinestCellSize{ 0.0f };
 };
 
 /// Raised when a hierarchy exceeds what the layout can address. The message names the limit.
@@ -61,9 +76,10 @@ std::size_t KdTreeTextureBytes(const UIntTexture3D& tree, const UIntTexture3D& d
 /// Throws EncodingError when a field would overflow: more than 64 levels, more than 2^24 nodes,
 /// more than 2^21 - 1 data nodes, a split position beyond 2047 cells, more than 2^24 grids, an
 /// atlas offset beyond 2047 x 2047 x 1023, or a page beyond 3.
+/// `ropes`: also encode the neighbour links (EncodedKdTree::Ropes; amrsp/KdTreeRopes.h).
 EncodedKdTree EncodeKdTree(const Hierarchy& h, const KdTree& tree,
   const std::vector<glm::ivec3>* brickOrigins = nullptr,
-  const std::vector<int>* brickPages = nullptr);
+  const std::vector<int>* brickPages = nullptr, bool ropes = true);
 
 /// Rebuilds a KdTree from its encoding (node regions by exact integer arithmetic), for the
 /// encode -> decode round-trip check. Node types are re-derived from the encoded fields.

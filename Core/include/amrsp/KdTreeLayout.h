@@ -16,6 +16,7 @@ namespace layout
 using uint = std::uint32_t;
 using glm::ivec3;
 using glm::uvec2;
+using glm::uvec4;
 #define AMRSP_FN inline
 #include "KdTreeLayout.glsl"
 #undef AMRSP_FN

@@ -71,6 +71,9 @@ struct RayCastingData
   UIntTexture3D TreeTexels;
   UIntTexture3D PackedDataNodeTexels; ///< empty when the bricks could not be packed
   UIntTexture3D BindlessDataNodeTexels;
+  /// The tree's neighbour links and node boxes (amrsp/KdTreeRopes.h); empty where not encoded.
+  UInt4Texture3D RopeTexels;
+  glm::vec3 RopeCellSize{ 0.0f }; ///< a finest-level cell, level-0 index units
   /// Cell size of each level in index units (float, as in GLSL), and the float root box.
   std::vector<glm::vec3> LevelCellSize;
   glm::vec3 RootLo{ 0.0f };

@@ -76,6 +76,11 @@ struct RenderSettings
   /// (TransparentRange) is not sampled. The image is unchanged: every skipped sample would have
   /// had zero opacity. The reference ignores it (it is what skipping is checked against).
   bool SkipEmptySpace = false;
+  /// Neighbour links (kD-tree integrator, as the GPU mapper's Ropes): a ray leaving a leaf
+  /// through one face continues from that face's rope (amrsp/KdTreeRopes.h) instead of a
+  /// descent from the restart node. The segments, and so the image, are the same either way;
+  /// only the work differs (amrsp/WorkCounters.h).
+  bool Ropes = true;
   /// Precomputed ComputeDataNodeRanges of the tree being rendered; computed when null.
   const std::vector<glm::vec2>* DataNodeRanges = nullptr;
   /// When set, receives the work counters of the render.

@@ -14,7 +14,8 @@
 /// - a *sample* is one iteration of the sample loop (NaN samples included);
 /// - a *step* is an iteration of any of the three loops: segments + descent steps + samples;
 /// - *texel fetches* are the texture reads the shader issues for those loops (FetchModel):
-///   the root node, the far child a restart starts from, every node a descent reaches, the data
+///   the root node, the far child a restart starts from, a rope and its target's box and node,
+///   every node a descent reaches, the data
 ///   node of a level-of-detail test, the empty-space flag, the data node of a sampled segment,
 ///   the brick table or bindless handle, the brick's texels and the transfer-function table.
 ///   Shading's, smooth reconstruction's and shadow rays' point lookups are not counted;
@@ -47,8 +48,11 @@ struct SegmentWork
   uint32_t LodChecks = 0; ///< data nodes read by level-of-detail tests during the descent
   uint32_t Samples = 0;   ///< sample-loop iterations (0 for empty or skipped segments)
   bool FromFar = false;   ///< the restart began at the far child (one node texel fetched)
-  bool Data = false;      ///< the leaf has data
-  bool Skipped = false;   ///< ... which empty-space skipping did not sample
+  /// The descent began at a rope: the leaf's rope texel, the target's two box texels and its
+  /// node texel fetched.
+  bool FromRope = false;
+  bool Data = false;    ///< the leaf has data
+  bool Skipped = false; ///< ... which empty-space skipping did not sample
 };
 
 /// Where the grid data lives, which decides the texel fetches of a sample.
