@@ -220,9 +220,9 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, int stor
   const amrsp::UIntTexture3D& dataNodes =
     bindless || linear ? data.BindlessDataNodeTexels : data.PackedDataNodeTexels;
   const int max3D = vtkTextureObject::GetMaximumTextureSize3D(renWin);
-  for (const amrsp::UIntTexture3D* t : { &data.TreeTexels, &dataNodes })
+  for (const glm::ivec3& dims : { data.TreeTexels.Dims, dataNodes.Dims, data.RopeTexels.Dims })
   {
-    if (t->Dims.x > max3D || t->Dims.y > max3D || t->Dims.z > max3D)
+    if (dims.x > max3D || dims.y > max3D || dims.z > max3D)
     {
       error = "the kD-tree textures exceed GL_MAX_3D_TEXTURE_SIZE of this OpenGL context";
       return false;
@@ -244,7 +244,10 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, int stor
 
   this->Tree = utilities::MakeIntegerTexture(renWin, data.TreeTexels);
   this->DataNodes = utilities::MakeIntegerTexture(renWin, dataNodes);
-  bool ok = this->Tree && this->DataNodes;
+  this->Ropes = data.RopeTexels.Texels.empty()
+    ? nullptr
+    : utilities::MakeInteger4Texture(renWin, data.RopeTexels);
+  bool ok = this->Tree && this->DataNodes && (this->Ropes || data.RopeTexels.Texels.empty());
   long long bytes = bindless ? data.BindlessBytes : data.PackedBytes;
   if (ok && bindless)
   {
@@ -303,6 +306,7 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, int stor
     this->ReleaseBindless(renWin);
     this->Tree = nullptr;
     this->DataNodes = nullptr;
+    this->Ropes = nullptr;
     this->AtlasPages.clear();
     this->Linear.Clear();
     this->BrickBoxes = nullptr;
@@ -448,7 +452,7 @@ void vtkSinglePassAMRGridStorage::ReleaseGraphicsResources(vtkWindow* window)
   this->AtlasPages.clear();
   this->Linear.ReleaseGraphicsResources(window);
   for (vtkSmartPointer<vtkTextureObject>* t : { &this->Tree, &this->DataNodes,
-         &this->HandlesTexture, &this->BrickBoxes, &this->TransparentFlags })
+         &this->HandlesTexture, &this->BrickBoxes, &this->TransparentFlags, &this->Ropes })
   {
     if (*t)
     {

@@ -105,6 +105,8 @@ public:
   /// Linear storage: its pages (0 unless it was uploaded last).
   int GetNumberOfLinearPages() const { return this->Linear.GetNumberOfPages(); }
   vtkTextureObject* GetBrickBoxes() const { return this->BrickBoxes; }
+  /// The tree's neighbour links and node boxes; null where the build has none.
+  vtkTextureObject* GetRopes() const { return this->Ropes; }
   vtkTextureObject* GetTransparentFlags() const { return this->TransparentFlags; }
   ///@}
 
@@ -136,6 +138,7 @@ private:
   vtkSinglePassAMRBindlessBricks Bricks;        // bindless: one texture per grid, handles resident
   vtkSinglePassAMRLinearBricks Linear;          // linear: pages of bricks back to back, table
   vtkSmartPointer<vtkTextureObject> BrickBoxes; // RG32UI, per brick and axis: grid cells lo, hi
+  vtkSmartPointer<vtkTextureObject> Ropes;      // RGBA32UI, three per kD node (KdTreeLayout.glsl)
   // R8, indexed like the data nodes: 255 where the node's value range is transparent under the
   // table of FlagsTableTime
   vtkSmartPointer<vtkTextureObject> TransparentFlags;

@@ -124,6 +124,26 @@ vtkSmartPointer<vtkTextureObject> MakeIntegerTexture(
 }
 
 //------------------------------------------------------------------------------
+vtkSmartPointer<vtkTextureObject> MakeInteger4Texture(
+  vtkOpenGLRenderWindow* renWin, const amrsp::UInt4Texture3D& texels)
+{
+  auto tex = vtkSmartPointer<vtkTextureObject>::New();
+  tex->SetContext(renWin);
+  tex->SetInternalFormat(GL_RGBA32UI);
+  tex->SetFormat(GL_RGBA_INTEGER);
+  tex->SetDataType(GL_UNSIGNED_INT);
+  tex->SetMinificationFilter(vtkTextureObject::Nearest);
+  tex->SetMagnificationFilter(vtkTextureObject::Nearest);
+  tex->SetWrapS(vtkTextureObject::ClampToEdge);
+  tex->SetWrapT(vtkTextureObject::ClampToEdge);
+  tex->SetWrapR(vtkTextureObject::ClampToEdge);
+  const bool ok = tex->Create3DFromRaw(static_cast<unsigned int>(texels.Dims.x),
+    static_cast<unsigned int>(texels.Dims.y), static_cast<unsigned int>(texels.Dims.z), 4,
+    VTK_UNSIGNED_INT, const_cast<glm::uvec4*>(texels.Texels.data()));
+  return ok ? tex : nullptr;
+}
+
+//------------------------------------------------------------------------------
 vtkSmartPointer<vtkTextureObject> MakeScalarTexture(
   vtkOpenGLRenderWindow* renWin, const glm::ivec3& dims, const float* texels, bool vertexCentred)
 {

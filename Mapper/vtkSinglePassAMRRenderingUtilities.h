@@ -108,6 +108,9 @@ bool AtlasFitsContext(
   vtkOpenGLRenderWindow* renWin, const glm::ivec3& dims, int atlasLimit, std::string& why);
 
 /// An RG32UI 3D texture of a kD-tree encoding (nearest, clamped); null when OpenGL refused it.
+/// An RGBA32UI 3D texture of `texels` (nearest filtering); null when the driver refuses it.
+vtkSmartPointer<vtkTextureObject> MakeInteger4Texture(
+  vtkOpenGLRenderWindow* renWin, const amrsp::UInt4Texture3D& texels);
 vtkSmartPointer<vtkTextureObject> MakeIntegerTexture(
   vtkOpenGLRenderWindow* renWin, const amrsp::UIntTexture3D& texels);
 

@@ -61,6 +61,7 @@ struct FrameSettings
   bool Shadows = false;     // shadow rays (composite and iso-surface blending)
   bool SkipEmpty = false;   // empty-space skipping (composite blending)
   bool SmoothCells = false; // trilinear cell reconstruction (cell data)
+  bool Ropes = false;       // neighbour links (when the build has them)
   bool UseDepth = false;
   amrsp::FrameQuality Quality; // image sample distance and sample-distance scale
 
@@ -416,6 +417,7 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareAppearance(
   frame.Shadows = lit && self->Shadows;
   frame.SkipEmpty = self->EmptySpaceSkipping && frame.Blend == 0;
   frame.SmoothCells = self->CellInterpolation == SMOOTH_CELL && !this->Data.VertexCentred;
+  frame.Ropes = self->Ropes && this->Storage.GetRopes() != nullptr;
   frame.UseDepth = self->UseDepthBuffer;
   return true;
 }
@@ -447,6 +449,7 @@ vtkShaderProgram* vtkSinglePassAMRVolumeMapper::vtkInternals::ReadyShader(
   define(true, "AMRSP_BLEND_MODE " + std::to_string(frame.Blend));
   define(frame.SkipEmpty, "AMRSP_SKIP_EMPTY 1");
   define(frame.SmoothCells, "AMRSP_SMOOTH_CELLS 1");
+  define(frame.Ropes, "AMRSP_ROPES 1");
   define(frame.Shade, "AMRSP_SHADE 1");
   define(frame.Shadows, "AMRSP_SHADOWS 1");
   define(
@@ -550,6 +553,12 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::ActivateTextures(
   {
     s.GetTransparentFlags()->Activate();
     program->SetUniformi("amrspTransparentFlags", s.GetTransparentFlags()->GetTextureUnit());
+  }
+  if (frame.Ropes)
+  {
+    s.GetRopes()->Activate();
+    program->SetUniformi("amrspRopes", s.GetRopes()->GetTextureUnit());
+    program->SetUniform3f("amrspRopeCellSize", &this->Data.RopeCellSize.x);
   }
   if (frame.UseDepth)
   {
@@ -710,6 +719,10 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::DeactivateTextures(const FrameS
   {
     s.GetTransparentFlags()->Deactivate();
   }
+  if (frame.Ropes)
+  {
+    s.GetRopes()->Deactivate();
+  }
   if (frame.UseDepth)
   {
     this->Depth.Depth->Deactivate();
@@ -849,6 +862,7 @@ void vtkSinglePassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "EmptySpaceSkipping: " << (this->EmptySpaceSkipping ? "on" : "off") << "\n";
   os << indent << "WorkCountersOutput: " << (this->WorkCountersOutput ? "on" : "off") << "\n";
   os << indent << "WorkCountOutput: " << this->WorkCountOutput << "\n";
+  os << indent << "Ropes: " << (this->Ropes ? "on" : "off") << "\n";
   os << indent
      << "CellInterpolation: " << (this->CellInterpolation == SMOOTH_CELL ? "smooth" : "nearest")
      << "\n";

@@ -270,6 +270,20 @@ public:
   vtkBooleanMacro(WorkCountersOutput, bool);
   ///@}
 
+  ///@{
+  /**
+   * Neighbour links ("ropes", Popov et al. 2007; default on): a ray that leaves a kD leaf
+   * through one face continues from the node its rope names instead of descending again from
+   * the restart node, which saves about two thirds of the tree levels descended per segment on
+   * the paper's datasets (amrsp/KdTreeRopes.h, docs/performance.md). The image is the same
+   * either way. Used where the build has them (refinement by powers of two) and the level of
+   * detail is off; an RGBA32UI texture of 48 bytes per kD node.
+   */
+  vtkSetMacro(Ropes, bool);
+  vtkGetMacro(Ropes, bool);
+  vtkBooleanMacro(Ropes, bool);
+  ///@}
+
   /// What WorkCountOutput writes.
   enum WorkCounts
   {
@@ -371,6 +385,7 @@ protected:
   bool EmptySpaceSkipping = true;
   bool WorkCountersOutput = false;
   int WorkCountOutput = NO_WORK_COUNT;
+  bool Ropes = true;
   int CellInterpolation = NEAREST_CELL;
   bool Shadows = false;
   double ShadowSampleDistance = 0.0;

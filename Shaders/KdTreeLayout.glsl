@@ -23,7 +23,14 @@
 //   green bits  0- 5  data level (the level of the grid whose cells the node shows)
 //         bits  6-29  brick index (the AMR grid; the index into the bindless handles texture)
 //         bits 30-31  packing: the atlas page (texture) holding the brick; 0 with one atlas
-// Linear texel index i maps to the texel (i % 256, (i / 256) % 256, i / 65536) in both textures.
+// Rope texture (neighbour links, Popov et al. 2007): RGBA32UI, three texels per kD node n, at
+// linear indices 3 n (AMRSP_ROPE_BOX), 3 n + 1 and 3 n + 2:
+//   3 n      the node's box in finest-level cells: lo.x, lo.y, lo.z, hi.x (signed, bit for bit)
+//   3 n + 1  hi.y, hi.z, the rope across the lower x face, the rope across the upper x face
+//   3 n + 2  the ropes across the lower y, upper y, lower z and upper z faces
+// A rope is the index of the deepest node whose box holds the whole face of n's box seen from
+// outside n; 0 (the root, never a neighbour) where the face lies on the root box.
+// Linear texel index i maps to the texel (i % 256, (i / 256) % 256, i / 65536) in every texture.
 
 #define AMRSP_TEXTURE_ROW 256u
 #define AMRSP_AXIS_SHIFT 0u
@@ -131,4 +138,32 @@ AMRSP_FN ivec3 amrspTexelOf(uint linearIndex)
   return ivec3(int(linearIndex % AMRSP_TEXTURE_ROW),
     int((linearIndex / AMRSP_TEXTURE_ROW) % AMRSP_TEXTURE_ROW),
     int(linearIndex / (AMRSP_TEXTURE_ROW * AMRSP_TEXTURE_ROW)));
+}
+
+AMRSP_FN uint amrspRopeTexelIndex(uint node, uint k)
+{
+  return 3u * node + k;
+}
+
+// The rope texel (k = 1 or 2) of node n that holds the rope across a face normal to `axis`.
+AMRSP_FN uint amrspRopeTexelOfAxis(uint axis)
+{
+  return axis == 0u ? 1u : 2u;
+}
+
+// The rope across the lower (upper = false) or upper face normal to `axis`, from the node's rope
+// texel amrspRopeTexelOfAxis(axis).
+AMRSP_FN uint amrspRopeOf(uvec4 ropeTexel, uint axis, bool upper)
+{
+  return axis == 1u ? (upper ? ropeTexel.y : ropeTexel.x) : (upper ? ropeTexel.w : ropeTexel.z);
+}
+
+AMRSP_FN ivec3 amrspRopeBoxLo(uvec4 boxTexel)
+{
+  return ivec3(int(boxTexel.x), int(boxTexel.y), int(boxTexel.z));
+}
+
+AMRSP_FN ivec3 amrspRopeBoxHi(uvec4 boxTexel, uvec4 ropeTexelX)
+{
+  return ivec3(int(boxTexel.w), int(ropeTexelX.x), int(ropeTexelX.y));
 }

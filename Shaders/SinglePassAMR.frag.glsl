@@ -41,6 +41,9 @@
 //                       cells too) or, outside it, looked up through the tree (a coarser level's
 //                       trilinear value there), as amrsp::RenderSettings::SmoothCellData; the
 //                       gradient's neighbours (AMRSP_SHADE) are reconstructed the same way
+//   AMRSP_ROPES         neighbour links (amrsp/KdTreeRopes.h) in amrspRopes: a ray that leaves a
+//                       leaf through one face continues from that face's rope (where the level
+//                       of detail is off), as amrsp::TraverseKdTree
 //   AMRSP_WORK_COUNTERS diagnostic output: the ray's work counts instead of its colour (opaque,
 //                       8-bit exact): red skipped data segments, green 1 when the ray stopped
 //                       early, blue data segments reached; counted as amrsp::RenderStats counts
@@ -76,6 +79,10 @@
 
 uniform usampler3D amrspTree;      // RG32UI, one texel per kD node
 uniform usampler3D amrspDataNodes; // RG32UI, one texel per data node (texel 0 unused)
+#ifdef AMRSP_ROPES
+uniform usampler3D amrspRopes;   // RGBA32UI, three texels per kD node: box and ropes
+uniform vec3 amrspRopeCellSize;  // a finest-level cell, level-0 index units (exact power of two)
+#endif
 #ifdef AMRSP_PACKING
 uniform sampler3D amrspAtlas;      // R32F, one brick per grid (nearest filtering)
 uniform vec3 amrspAtlasSize;       // atlas dimensions, texels
@@ -189,6 +196,45 @@ uvec2 amrspFetchDataNode(uint index)
 {
   return texelFetch(amrspDataNodes, amrspTexelOf(index), 0).rg;
 }
+
+#ifdef AMRSP_ROPES
+uvec4 amrspFetchRope(uint node, uint k)
+{
+  return texelFetch(amrspRopes, amrspTexelOf(amrspRopeTexelIndex(node, k)), 0);
+}
+
+// Where the ray leaves the box [lo, hi]: as amrspIntersectBox's exit.
+float amrspExitDistance(vec3 lo, vec3 hi, vec3 ro, vec3 rd)
+{
+  float t = AMRSP_INF;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (rd[a] != 0.0)
+    {
+      t = min(t, ((rd[a] > 0.0 ? hi[a] : lo[a]) - ro[a]) / rd[a]);
+    }
+  }
+  return t;
+}
+
+// The one axis whose far face of [lo, hi] the ray reaches at tLeave; -1 for none or several.
+int amrspExitAxis(vec3 lo, vec3 hi, vec3 ro, vec3 rd, float tLeave)
+{
+  int axis = -1;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (rd[a] != 0.0 && ((rd[a] > 0.0 ? hi[a] : lo[a]) - ro[a]) / rd[a] == tLeave)
+    {
+      if (axis >= 0)
+      {
+        return -1;
+      }
+      axis = a;
+    }
+  }
+  return axis;
+}
+#endif
 
 // ---- Per-level constants. A level comes from a texel, so it differs between fragments, and
 // indexing a uniform array with it is a gather, lane by lane, on SIMD drivers. With uniform
@@ -595,15 +641,44 @@ void main()
   ivec3 farLoF = ivec3(0);
   ivec3 farHiF = ivec3(0);
   float farEnd = 0.0;
+#ifdef AMRSP_ROPES
+  // The rope across the face the last leaf was left through, and its box (exactly the box a
+  // descent from the root computes: amrsp/KdTreeRopes.h).
+  bool useRopes = canPushDown && amrspLodThreshold <= 0.0;
+  bool haveRope = false;
+  uint ropeNode = 0u;
+  ivec3 ropeLoF = ivec3(0);
+  ivec3 ropeHiF = ivec3(0);
+#else
+  const bool haveRope = false;
+#endif
   for (int iteration = 0; t < tEnd && iteration < amrspMaxSegments; ++iteration)
   {
 #if AMRSP_WORK_COUNT == 1
     ++workCount;
 #endif
+    bool fromRope = haveRope;
+#ifdef AMRSP_ROPES
+    haveRope = false;
+#endif
     // An empty far interval (planes meeting where the leaf ends) is left to the restart.
-    bool fromFar = haveFar && farEnd > t;
+    bool fromFar = !fromRope && haveFar && farEnd > t;
     haveFar = false;
     uvec2 texel = restartTexel;
+#ifdef AMRSP_ROPES
+    vec3 ropeLo = vec3(ropeLoF) * amrspRopeCellSize;
+    vec3 ropeHi = vec3(ropeHiF) * amrspRopeCellSize;
+    if (fromRope)
+    {
+      texel = amrspFetchNode(ropeNode);
+    }
+#else
+    uint ropeNode = 0u;
+    vec3 ropeLo = vec3(0.0);
+    vec3 ropeHi = vec3(0.0);
+    ivec3 ropeLoF = ivec3(0);
+    ivec3 ropeHiF = ivec3(0);
+#endif
     if (fromFar)
     {
       texel = amrspFetchNode(farNode);
@@ -619,13 +694,20 @@ void main()
     }
     // kd-restart: descend from the far child or the restart node to the node containing the ray
     // at t.
-    uint node = fromFar ? farNode : restartNode;
-    vec3 lo = fromFar ? farLo : restartLo;
-    vec3 hi = fromFar ? farHi : restartHi;
-    ivec3 loF = fromFar ? farLoF : restartLoF; // the same box in exact finest-level cells
-    ivec3 hiF = fromFar ? farHiF : restartHiF;
+    uint node = fromRope ? ropeNode : fromFar ? farNode : restartNode;
+    vec3 lo = fromRope ? ropeLo : fromFar ? farLo : restartLo;
+    vec3 hi = fromRope ? ropeHi : fromFar ? farHi : restartHi;
+    // the same box in exact finest-level cells
+    ivec3 loF = fromRope ? ropeLoF : fromFar ? farLoF : restartLoF;
+    ivec3 hiF = fromRope ? ropeHiF : fromFar ? farHiF : restartHiF;
     float tLeave = fromFar ? farEnd : tEnd;
-    bool pushDown = canPushDown && (!fromFar || farEnd >= tEnd);
+#ifdef AMRSP_ROPES
+    if (fromRope)
+    {
+      tLeave = min(amrspExitDistance(ropeLo, ropeHi, ro, rd), tEnd);
+    }
+#endif
+    bool pushDown = canPushDown && !fromRope && (!fromFar || farEnd >= tEnd);
     for (;;)
     {
       uint child = amrspNodeFirstChild(texel);
@@ -801,6 +883,25 @@ void main()
     }
 #endif
     t = tLeave;
+#ifdef AMRSP_ROPES
+    if (useRopes && t < tEnd)
+    {
+      int axis = amrspExitAxis(lo, hi, ro, rd, tLeave);
+      if (axis >= 0)
+      {
+        uint rope = amrspRopeOf(amrspFetchRope(node, amrspRopeTexelOfAxis(uint(axis))),
+          uint(axis), rd[axis] > 0.0);
+        if (rope != 0u)
+        {
+          haveRope = true;
+          ropeNode = rope;
+          uvec4 box = amrspFetchRope(rope, 0u);
+          ropeLoF = amrspRopeBoxLo(box);
+          ropeHiF = amrspRopeBoxHi(box, amrspFetchRope(rope, 1u));
+        }
+      }
+    }
+#endif
   }
 
 #if AMRSP_BLEND_MODE != 0 && AMRSP_BLEND_MODE != 4
