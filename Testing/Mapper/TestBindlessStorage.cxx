@@ -117,17 +117,18 @@ void TestDataset(const std::string& name, Hierarchy h, bool uniformHandlesOnly)
     "waterfall vs CPU reference RMSE " + Fixed(wVsRef) + " < " + Fixed(refBound));
 
   // memory: what was uploaded is what the mapper reports for either storage, and the bindless
-  // figure is the tree plus the bricks plus the handles, computed here independently
+  // figure is the tree (and its ropes) plus the bricks plus the handles, computed here
+  // independently
   const long long bindlessBytes = m->GetTextureBytes();
   const glm::ivec3 handleDims = TextureDimsFor(h.Grids.size());
   // (the data nodes' empty-space flags: R8, one byte per data-node texel)
-  const long long expected = static_cast<long long>(enc.Tree.Bytes() +
+  const long long expected = static_cast<long long>(enc.Tree.Bytes() + enc.Ropes.Bytes() +
     9 * enc.DataNodes.Texels.size() + SeparateBrickBytes(h) +
     static_cast<std::size_t>(handleDims.x) * handleDims.y * handleDims.z * 8);
   Check(bindlessBytes == m->GetBindlessTextureBytes() &&
       packedBytes == m->GetPackedTextureBytes() && bindlessBytes == expected,
     "texture bytes: packing " + std::to_string(packedBytes) + ", bindless " +
-      std::to_string(bindlessBytes) + " (tree + flags + bricks + handles = " +
+      std::to_string(bindlessBytes) + " (tree + flags + ropes + bricks + handles = " +
       std::to_string(expected) + "), atlas waste " + Fixed(m->GetAtlasWaste()));
 
   // the orbit: another view, no rebuild of the tree for it

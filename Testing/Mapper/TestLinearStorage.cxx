@@ -96,16 +96,16 @@ void TestDataset(const std::string& name, Hierarchy h, bool smooth = false)
   Check(
     lVsRef < refBound, "linear vs CPU reference RMSE " + Fixed(lVsRef) + " < " + Fixed(refBound));
 
-  // memory: the tree textures, the empty-space flags, every cell once (whole rows of the page)
-  // and the brick table (RG32UI, laid out like the tree)
+  // memory: the tree textures, the empty-space flags, the ropes, every cell once (whole rows of
+  // the page) and the brick table (RG32UI, laid out like the tree)
   const glm::ivec3 tableDims = TextureDimsFor(h.Grids.size());
-  const long long floor = static_cast<long long>(enc.Tree.Bytes() +
+  const long long floor = static_cast<long long>(enc.Tree.Bytes() + enc.Ropes.Bytes() +
     9 * enc.DataNodes.Texels.size() + SeparateBrickBytes(h) +
     static_cast<std::size_t>(tableDims.x) * tableDims.y * tableDims.z * 8);
   const long long bytes = m->GetTextureBytes();
   Check(bytes >= floor && bytes < floor + (16384LL * 4),
-    "texture bytes " + std::to_string(bytes) +
-      ": tree + flags + cells + table = " + std::to_string(floor) + ", plus less than one row");
+    "texture bytes " + std::to_string(bytes) + ": tree + flags + ropes + cells + table = " +
+      std::to_string(floor) + ", plus less than one row");
 
   // several pages (a third of the data each, at least the largest brick, in whole rows of
   // 16384 texels): the same image

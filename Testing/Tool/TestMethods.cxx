@@ -12,9 +12,10 @@ using namespace amrsp::tool;
 
 TEST(Methods, ListsAsTheCommandsPrintThem)
 {
-  EXPECT_EQ(MethodList(RenderCommand), "cpu-kdtree, cpu-packing, packing, bindless, linear, multipass");
+  EXPECT_EQ(MethodList(RenderCommand),
+    "cpu-kdtree, cpu-packing, packing, bindless, linear, auto-storage, multipass");
   EXPECT_EQ(MethodList(BenchCommand),
-    "cpu-kdtree, packing, bindless, linear, multipass, uniform-gpu[:LEVEL], "
+    "cpu-kdtree, packing, bindless, linear, auto-storage, multipass, uniform-gpu[:LEVEL], "
     "vtk-amr-resample[:N|:finest]");
   EXPECT_EQ(DefaultBenchMethods(),
     "cpu-kdtree,packing,bindless,linear,multipass,uniform-gpu,vtk-amr-resample,"

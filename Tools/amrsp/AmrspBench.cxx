@@ -366,9 +366,12 @@ void MapperFields(const Method& m, GpuRenderer& gpu, const Image& first, const B
   r["backend"] = gpu.Backend();
   if (m.IsKdTreeMapper())
   {
-    r["atlas"] = m.Kind == MethodKind::Bindless ? std::string("none (one texture per grid)")
-      : m.Kind == MethodKind::Linear            ? std::string("none (bricks back to back)")
-                                                : gpu.AtlasDimensions();
+    const std::string storage = r.value("storage", std::string());
+    const bool bindless = storage.rfind("bindless", 0) == 0;
+    const bool linear = storage.rfind("linear", 0) == 0;
+    r["atlas"] = bindless ? std::string("none (one texture per grid)")
+      : linear            ? std::string("none (bricks back to back)")
+                          : gpu.AtlasDimensions();
     r["builds"] = gpu.NumberOfBuilds();
     // tree, encode, pack: the core steps timed by the tool on the CPU; build: the mapper's own
     // total (conversion from vtkOverlappingAMR, tree, packing, encoding)
@@ -379,7 +382,7 @@ void MapperFields(const Method& m, GpuRenderer& gpu, const Image& first, const B
       pre["encode"] = cpu["encode"];
       r["gpu_bytes_tree"] = stats["tree_texture_bytes"];
     }
-    if (m.Kind != MethodKind::Bindless && m.Kind != MethodKind::Linear)
+    if (m.Kind != MethodKind::Bindless && m.Kind != MethodKind::Linear && !bindless && !linear)
     {
       pre["pack"] = cpu["pack"];
     }

@@ -87,7 +87,7 @@ std::string BenchHelp()
   help
     << "usage: amrsp bench [DATASET] [--size WxH] [--frames N] [--methods LIST] [--json FILE]\n"
        "                   [--plot FILE.png [--plot-size WxH]] [--rounds R]\n"
-       "                   [--interactive [--interactive-rate FPS]] [--counters]\n"
+       "                   [--interactive [--interactive-rate FPS]] [--counters] [--no-compare]\n"
        "       amrsp bench --scaling [--scaling-sizes G:L:C,...] [--methods LIST] [--size WxH]\n"
        "                   [--frames N] [--json FILE] [--rounds R]\n"
        "Renders an orbit of N frames (default 8; --scaling: 2) per method in one process, after\n"
@@ -114,6 +114,8 @@ std::string BenchHelp()
        "lanes), lockstep_efficiency; multipass also draws and fragments_per_pixel; the\n"
        "single-pass methods also \"gpu\": the shader's own segment, descent and sample totals\n"
        "of the same frame and whether they agree with the mirror's (docs/performance.md).\n"
+       "--no-compare renders no CPU reference image (no rmse or psnr): timings and counters\n"
+       "only, for sizes where the reference would take long.\n"
        "--interactive draws, after each single-pass method's orbit, every orbit frame as an\n"
        "interactive frame (the render window's DesiredUpdateRate at --interactive-rate, default 5\n"
        "as ParaView's interactive renders) and then still at the same camera: interactive {fps,\n"
@@ -196,6 +198,11 @@ BenchRequest ParseBenchRequest(const Arguments& a)
     }
   }
   o.Counters = a.Has("counters");
+  o.CompareImages = !a.Has("no-compare");
+  if (a.Has("no-compare") && a.Has("save-images"))
+  {
+    throw UsageError{ "--no-compare renders no CPU reference: it does not go with --save-images" };
+  }
   if (o.Counters && scaling)
   {
     throw UsageError{ "--counters does not apply to --scaling" };
@@ -262,13 +269,14 @@ Json BenchDataset(const BenchRequest& r)
   RenderSettings s = MakeSettings(d.Data, r.ViewArguments);
   RenderSettings referenceSettings = s;
   referenceSettings.Progress = ProgressOf("reference");
-  const Image reference = RenderReference(d.Data, referenceSettings);
+  BenchOptions o = r.Options;
+  const Image reference = o.CompareImages ? RenderReference(d.Data, referenceSettings) : Image();
   Json j;
   j["dataset"] = d.Spec;
   j["image"] = { s.Width, s.Height };
   j["frames"] = r.Options.Frames;
   j["statistics"] = DatasetStatistics(d.Data);
-  j["methods"] = RunBenchMethods(d.Data, s, reference, r.Options, j["statistics"]);
+  j["methods"] = RunBenchMethods(d.Data, s, reference, o, j["statistics"]);
   return j;
 }
 
@@ -381,7 +389,7 @@ int RunBench(int argc, char** argv)
       Concat({ DatasetOptions, ViewOptions,
         { "frames", "methods", "json", "plot", "plot-size", "scaling-sizes", "seed", "save-images",
           "driver", "backend", "rounds", "interactive-rate" } }),
-      Concat({ DatasetFlags, { "scaling", "interactive", "counters" } }));
+      Concat({ DatasetFlags, { "scaling", "interactive", "counters", "no-compare" } }));
     if (WantsHelp(a))
     {
       std::cout << BenchHelp() << ViewHelp << DriverHelp << DatasetHelp;

@@ -240,7 +240,10 @@ std::string BenchMarkdown(const Json& bench)
       md << (tree > 0 ? Mb(tree) + " + " + Mb(data - tree) : Mb(data)) << " | "
          << Fixed(PreprocessTotal(r), 3) << " (" << PreprocessDetail(r) << ") | "
          << Fixed(r["fps"].get<double>(), 2) << " | " << Fixed(r["ms_median"].get<double>(), 1)
-         << " | " << Fixed(r["rmse"].get<double>(), 3) << " | " << Fixed(r["psnr"].get<double>(), 1)
+         << " | "
+         << (r.contains("rmse")
+                ? Fixed(r["rmse"].get<double>(), 3) + " | " + Fixed(r["psnr"].get<double>(), 1)
+                : std::string("— | —"))
          << " |";
     }
     if (paper)

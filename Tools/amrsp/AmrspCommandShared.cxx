@@ -140,7 +140,7 @@ const std::vector<std::string> AtlasOptions = { "packer", "max-3d-texture-size",
 const std::vector<std::string> ViewOptions = { "size", "azimuth", "elevation", "zoom", "tf",
   "scale", "unit-distance", "sample-factor", "reference-sample-factor", "lod", "threads", "blend",
   "view-json", "opacity-threshold", "empty-space-skipping", "interpolation", "shade", "iso",
-  "shadows", "light", "crop" };
+  "shadows", "light", "crop", "ropes" };
 
 std::vector<std::string> Concat(std::initializer_list<std::vector<std::string>> lists)
 {
@@ -235,6 +235,9 @@ const char* const ViewHelp =
   "  --empty-space-skipping on|off  skip data nodes whose value range is transparent\n"
   "                              (kD-tree methods, composite; default on; the reference never\n"
   "                              skips)\n"
+  "  --ropes on|off              neighbour links of the kD-tree: a ray leaving a leaf through\n"
+  "                              one face continues from that face's rope instead of a new\n"
+  "                              descent (single pass and cpu-kdtree; default on; same image)\n"
   "  --interpolation nearest|smooth  cell-centred data: nearest cell (default) or the smooth\n"
   "                              dual-cell reconstruction across grids and levels (packing,\n"
   "                              CPU methods and the reference)\n"

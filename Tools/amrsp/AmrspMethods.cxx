@@ -37,6 +37,12 @@ std::unique_ptr<GpuRenderer> MakeLinear(const std::string&, const MethodRequest&
     new PackingRenderer(r.Data, r.Settings, r.View, "linear", r.BindlessAccess));
 }
 
+std::unique_ptr<GpuRenderer> MakeAutoStorage(const std::string&, const MethodRequest& r)
+{
+  return std::unique_ptr<GpuRenderer>(
+    new PackingRenderer(r.Data, r.Settings, r.View, "auto", r.BindlessAccess));
+}
+
 std::unique_ptr<GpuRenderer> MakeMultipass(const std::string&, const MethodRequest& r)
 {
   return std::unique_ptr<GpuRenderer>(new MultipassRenderer(r.Data, r.Settings, r.View));
@@ -148,6 +154,12 @@ const std::vector<Method>& Methods()
         "vtkSinglePassAMRVolumeMapper, the bricks back to back in 2D R32F textures (no packing; "
         "faster on CPU drivers such as llvmpipe); same display needs as packing" } },
       &MakeLinear },
+    { "auto-storage", "", MethodKind::AutoStorage, true, RenderCommand | BenchCommand,
+      { { "auto-storage", "", // not in bench's default list: it repeats one of the storages
+        "vtkSinglePassAMRVolumeMapper with the data storage its AUTO_STORAGE takes in this "
+        "context (the plugin's default Method): bindless where the GPU has it, else packing or, "
+        "on CPU drivers and large data, linear; the result names the storage" } },
+      &MakeAutoStorage },
     { "multipass", "", MethodKind::Multipass, true, RenderCommand | BenchCommand,
       { { "multipass", "multipass",
         "vtkMultiPassAMRVolumeMapper: one draw per kD-tree data node (paper §6), the paper's "
@@ -210,7 +222,10 @@ std::string DefaultBenchMethods()
     }
     for (const MethodForm& f : m.Forms)
     {
-      list += (list.empty() ? "" : ",") + f.Spec;
+      if (!f.Spec.empty())
+      {
+        list += (list.empty() ? "" : ",") + f.Spec;
+      }
     }
   }
   return list;

@@ -31,14 +31,15 @@ enum MethodCommands : unsigned
 /// What the commands need to tell the methods apart.
 enum class MethodKind
 {
-  CpuKdTree,  ///< amrsp::RenderKdTree on the grids
-  CpuPacking, ///< amrsp::RenderKdTree through the packed atlas
-  Packing,    ///< vtkSinglePassAMRVolumeMapper with the packed atlas
-  Bindless,   ///< vtkSinglePassAMRVolumeMapper with one texture per brick
-  Linear,     ///< vtkSinglePassAMRVolumeMapper with the bricks back to back in 2D pages
-  Multipass,  ///< vtkMultiPassAMRVolumeMapper
-  UniformGpu, ///< vtkGPUVolumeRayCastMapper on a uniform resampling
-  AmrResample ///< VTK's vtkAMRVolumeMapper
+  CpuKdTree,   ///< amrsp::RenderKdTree on the grids
+  CpuPacking,  ///< amrsp::RenderKdTree through the packed atlas
+  Packing,     ///< vtkSinglePassAMRVolumeMapper with the packed atlas
+  Bindless,    ///< vtkSinglePassAMRVolumeMapper with one texture per brick
+  Linear,      ///< vtkSinglePassAMRVolumeMapper with the bricks back to back in 2D pages
+  AutoStorage, ///< vtkSinglePassAMRVolumeMapper with the storage its AUTO_STORAGE takes
+  Multipass,   ///< vtkMultiPassAMRVolumeMapper
+  UniformGpu,  ///< vtkGPUVolumeRayCastMapper on a uniform resampling
+  AmrResample  ///< VTK's vtkAMRVolumeMapper
 };
 
 /// What a GPU method's renderer is made from.
@@ -54,8 +55,9 @@ struct MethodRequest
 /// One line of a method's help: how it is written and what it does.
 struct MethodForm
 {
-  std::string Syntax;      ///< "uniform-gpu[:LEVEL]", "vtk-amr-resample:finest"
-  std::string Spec;        ///< the method as written in the default list of `bench --methods`
+  std::string Syntax; ///< "uniform-gpu[:LEVEL]", "vtk-amr-resample:finest"
+  /// The method as written in the default list of `bench --methods` (empty: not in it).
+  std::string Spec;
   std::string Description; ///< one line
 };
 
@@ -76,7 +78,8 @@ struct Method
   bool IsKdTreeMapper() const
   {
     return Kind == MethodKind::Packing || Kind == MethodKind::Bindless ||
-      Kind == MethodKind::Linear || Kind == MethodKind::Multipass;
+      Kind == MethodKind::Linear || Kind == MethodKind::AutoStorage ||
+      Kind == MethodKind::Multipass;
   }
 };
 

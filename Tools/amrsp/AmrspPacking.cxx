@@ -59,6 +59,7 @@ PackingRenderer::PackingRenderer(vtkSinglePassAMRVolumeMapper* mapper, const Hie
   this->Mapper->SetLODThreshold(s.LodThresholdPixels);
   this->Mapper->SetOpacityThreshold(s.OpacityThreshold);
   this->Mapper->SetEmptySpaceSkipping(s.SkipEmptySpace);
+  this->Mapper->SetRopes(s.Ropes);
   this->Mapper->SetCellInterpolation(s.SmoothCellData ? vtkSinglePassAMRVolumeMapper::SMOOTH_CELL
                                                       : vtkSinglePassAMRVolumeMapper::NEAREST_CELL);
 }

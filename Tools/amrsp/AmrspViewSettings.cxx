@@ -423,6 +423,12 @@ RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range)
     throw UsageError{ "--empty-space-skipping must be on or off" };
   }
   s.SkipEmptySpace = skipping == "on";
+  const std::string ropes = a.Get("ropes", "on");
+  if (ropes != "on" && ropes != "off")
+  {
+    throw UsageError{ "--ropes must be on or off" };
+  }
+  s.Ropes = ropes == "on";
   const std::string interpolation = a.Get("interpolation", "nearest");
   if (interpolation != "nearest" && interpolation != "smooth")
   {
