@@ -154,13 +154,32 @@ bool CompareLoopCounts(tool::PackingRenderer& gpu, const Hierarchy& h,
   compare(M::SEGMENT_COUNT, "segment-loop iterations", total(w.Segments));
   compare(M::DESCENT_STEP_COUNT, "descent steps", total(w.DescentSteps));
   const long long samples = compare(M::SAMPLE_COUNT, "samples", total(w.Samples));
+  // without ropes: the same image, and the mirror's longer descents
+  vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
+  double ms = 0.0;
+  const Image roped = gpu.RenderAsIs(ms);
+  mapper->RopesOff();
+  const Image unroped = gpu.RenderAsIs(ms);
+  s.Ropes = false;
+  const WorkSummary pushDown = MeasureSinglePassWork(h, tree, s, FetchModel());
+  const long long ropedDescent = total(w.DescentSteps);
+  const long long descent =
+    compare(M::DESCENT_STEP_COUNT, "descent steps without ropes", total(pushDown.DescentSteps));
+  mapper->RopesOn();
+  const bool same = Rmse(roped, unroped) == 0.0;
+  log << (same ? "ok" : "FAILED") << ": ropes off renders the same image (RMSE "
+      << Rmse(roped, unroped) << ")\n";
+  const bool rejectedDescent = !Agree(descent, ropedDescent);
+  log << (rejectedDescent ? "ok" : "FAILED") << ": the descent count with ropes (" << ropedDescent
+      << ") is rejected for the frame without\n";
+  s.Ropes = true;
   s.SampleDistanceFactor *= 2.0;
   const WorkSummary coarse = MeasureSinglePassWork(h, tree, s, FetchModel());
   const long long wrong = std::llround(coarse.Samples.Mean * coarse.Rays);
   const bool rejected = !Agree(samples, wrong);
   log << (rejected ? "ok" : "FAILED") << ": the mirror's samples at twice the sampling distance ("
       << wrong << ") are rejected\n";
-  return ok && rejected;
+  return ok && rejected && same && rejectedDescent;
 }
 
 bool CompareWorkCounters(tool::PackingRenderer& gpu, const RenderStats& cpu, const Hierarchy& h,
