@@ -125,6 +125,7 @@ public:
 
   // what the last frame did
   int LastStorage = -1;
+  bool LastRopes = false;
   int LastAccess = -1;
   std::string StorageNote; // why it did not use the bindless storage it was asked for
   long long TransparentDataNodes = 0;
@@ -277,6 +278,7 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   in.DeactivateTextures(frame);
   in.LastStorage = frame.Storage;
   in.LastAccess = frame.Access;
+  in.LastRopes = frame.Ropes && this->LODThreshold <= 0.0;
   if (frame.Reduced() && !in.Budget.Image.CompositeOver(renWin, viewError))
   {
     this->ReportError(viewError);
@@ -450,6 +452,8 @@ vtkShaderProgram* vtkSinglePassAMRVolumeMapper::vtkInternals::ReadyShader(
   define(frame.SkipEmpty, "AMRSP_SKIP_EMPTY 1");
   define(frame.SmoothCells, "AMRSP_SMOOTH_CELLS 1");
   define(frame.Ropes, "AMRSP_ROPES 1");
+  define(self->DiagnosticAblation != NO_ABLATION,
+    "AMRSP_ABLATION " + std::to_string(self->DiagnosticAblation));
   define(frame.Shade, "AMRSP_SHADE 1");
   define(frame.Shadows, "AMRSP_SHADOWS 1");
   define(
@@ -630,6 +634,10 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::SetDataUniforms(vtkShaderProgra
   program->SetUniform1fv("amrspLevelStep", levelCount, steps.data());
   const long long guard = 4 * d.KdNodes + 16;
   program->SetUniformi("amrspMaxSegments", static_cast<int>(std::min<long long>(guard, 1 << 30)));
+  if (self->DiagnosticAblation == SAMPLING_ONLY)
+  {
+    program->SetUniformi("amrspAblationSamples", self->DiagnosticAblationSamples);
+  }
   program->SetUniform2f("amrspTransferRange", transferRange);
   program->SetUniformf("amrspTransferSize", static_cast<float>(utilities::TransferTableSize));
   // level of detail: world size of a pixel at distance 1 (perspective) or everywhere (parallel),
@@ -830,6 +838,11 @@ int vtkSinglePassAMRVolumeMapper::GetLastDataStorage()
   return this->Internals->LastStorage;
 }
 
+bool vtkSinglePassAMRVolumeMapper::GetLastRopes()
+{
+  return this->Internals->LastRopes;
+}
+
 const char* vtkSinglePassAMRVolumeMapper::GetBindlessFallbackReason()
 {
   return this->Internals->StorageNote.c_str();
@@ -863,6 +876,8 @@ void vtkSinglePassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "WorkCountersOutput: " << (this->WorkCountersOutput ? "on" : "off") << "\n";
   os << indent << "WorkCountOutput: " << this->WorkCountOutput << "\n";
   os << indent << "Ropes: " << (this->Ropes ? "on" : "off") << "\n";
+  os << indent << "DiagnosticAblation: " << this->DiagnosticAblation << " ("
+     << this->DiagnosticAblationSamples << " samples)\n";
   os << indent
      << "CellInterpolation: " << (this->CellInterpolation == SMOOTH_CELL ? "smooth" : "nearest")
      << "\n";

@@ -146,6 +146,9 @@ public:
   /// first successful Render), and for bindless DIRECT_ACCESS or WATERFALL_ACCESS (-1 for packing).
   int GetLastDataStorage();
   int GetLastBindlessAccess();
+  /// Whether the last frame's rays followed the tree's ropes (Ropes on, a build with ropes, the
+  /// level of detail off).
+  bool GetLastRopes();
   /// Why the last frame rendered with the atlas although BINDLESS_TEXTURES was asked for (the
   /// missing extension, or a driver limit); empty otherwise.
   const char* GetBindlessFallbackReason();
@@ -284,6 +287,30 @@ public:
   vtkBooleanMacro(Ropes, bool);
   ///@}
 
+  /// Diagnostic ablations (DiagnosticAblation).
+  enum Ablations
+  {
+    NO_ABLATION = 0,    ///< the frame as it is (the default)
+    TRAVERSAL_ONLY = 1, ///< the tree is traversed, but no data segment is sampled
+    SAMPLING_ONLY = 2   ///< each ray samples one brick, without traversing the tree further
+  };
+
+  ///@{
+  /**
+   * Diagnostic ablation (default NO_ABLATION), to locate where a frame's GPU time goes; the
+   * images are not meant to be looked at. TRAVERSAL_ONLY walks the tree as usual but adds a
+   * constant per data segment instead of its samples (no brick or transfer-function reads).
+   * SAMPLING_ONLY descends once to the ray's first leaf with data and samples that brick
+   * DiagnosticAblationSamples times over the rest of the ray (clamped into the brick), with
+   * compositing and early termination as usual, and no further traversal. WorkCountOutput
+   * counts what an ablated frame did.
+   */
+  vtkSetClampMacro(DiagnosticAblation, int, NO_ABLATION, SAMPLING_ONLY);
+  vtkGetMacro(DiagnosticAblation, int);
+  vtkSetClampMacro(DiagnosticAblationSamples, int, 1, 1 << 20);
+  vtkGetMacro(DiagnosticAblationSamples, int);
+  ///@}
+
   /// What WorkCountOutput writes.
   enum WorkCounts
   {
@@ -386,6 +413,8 @@ protected:
   bool WorkCountersOutput = false;
   int WorkCountOutput = NO_WORK_COUNT;
   bool Ropes = true;
+  int DiagnosticAblation = NO_ABLATION;
+  int DiagnosticAblationSamples = 256;
   int CellInterpolation = NEAREST_CELL;
   bool Shadows = false;
   double ShadowSampleDistance = 0.0;

@@ -44,6 +44,10 @@
 //   AMRSP_ROPES         neighbour links (amrsp/KdTreeRopes.h) in amrspRopes: a ray that leaves a
 //                       leaf through one face continues from that face's rope (where the level
 //                       of detail is off), as amrsp::TraverseKdTree
+//   AMRSP_ABLATION      diagnostic ablations that locate a frame's time (not images): 1 traversal
+//                       only (every data segment adds a constant instead of being sampled), 2
+//                       sampling only (the first data segment's brick is sampled
+//                       amrspAblationSamples times over the rest of the ray, no further traversal)
 //   AMRSP_WORK_COUNTERS diagnostic output: the ray's work counts instead of its colour (opaque,
 //                       8-bit exact): red skipped data segments, green 1 when the ray stopped
 //                       early, blue data segments reached; counted as amrsp::RenderStats counts
@@ -146,6 +150,9 @@ uniform float amrspFinestCellSize; // cell size of the finest level, level-0 ind
 #endif
 uniform float amrspLevelStep[AMRSP_LEVEL_COUNT];         // sampling distance D, model units
 uniform int amrspMaxSegments;                             // guard against corrupt textures
+#if defined(AMRSP_ABLATION) && AMRSP_ABLATION == 2
+uniform int amrspAblationSamples; // samples of the one brick per ray
+#endif
 
 uniform vec2 amrspTransferRange; // scalar at the first table entry, 1 / (last - first)
 uniform float amrspTransferSize; // number of table entries
@@ -804,7 +811,15 @@ void main()
       // Sampling rule: n = max(1, ceil(length / D)) equal steps, samples at their midpoints.
       float segmentLength = tLeave - t;
       int n = max(1, int(ceil(segmentLength / amrspStep(level))));
-      float dt = segmentLength / float(n);
+#if defined(AMRSP_ABLATION) && AMRSP_ABLATION == 1
+      n = 0; // traversal only: a constant per segment keeps the traversal's results live
+      colour += (1.0 - alpha) * 1.0e-3 * vec3(float(level + 1), 1.0, 1.0);
+      alpha += (1.0 - alpha) * 1.0e-3;
+#elif defined(AMRSP_ABLATION) && AMRSP_ABLATION == 2
+      segmentLength = tEnd - t; // sampling only: this brick for the rest of the ray
+      n = amrspAblationSamples;
+#endif
+      float dt = segmentLength / float(max(n, 1));
       float exponent = dt / amrspUnitDistance;
       for (int k = 0; k < n; ++k)
       {
@@ -875,6 +890,9 @@ void main()
       {
         break;
       }
+#if defined(AMRSP_ABLATION) && AMRSP_ABLATION == 2
+      break; // one brick per ray
+#endif
     }
 #if AMRSP_BLEND_MODE == 4
     else

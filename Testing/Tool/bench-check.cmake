@@ -1,6 +1,6 @@
 # Checks of `amrsp bench` output (cmake -P). Variables:
 #   AMRSP       the amrsp executable
-#   MODE        schema | plot | scaling | rounds | interactive | bindless (run with zink) |
+#   MODE        schema | plot | scaling | rounds | interactive | counters | bindless (run with zink) |
 #               uniform (DATASET)
 #   WORK        a folder for the files the run writes
 #   AMR_VOLUME  ON when the build has vtkAMRVolumeMapper (vtk-amr-resample must run), OFF when
@@ -357,6 +357,69 @@ elseif (MODE STREQUAL "interactive")
     fail("multipass has interactive frames: ${none}")
   endif ()
   message("interactive ok: image sample distance ${d}, speedup ${speedup}, RMSE ${rmse}")
+elseif (MODE STREQUAL "counters")
+  # --counters: every kD-tree method has the cost model's fields; the single-pass methods' shader
+  # counts agree with the mirror's (and are the mirror's totals, which the means times the rays
+  # give); multipass has draws and fragments and no descent; the ablations' shader counts are
+  # what they are defined to do: no samples without sampling, N samples per ray with one brick
+  set(work_fields segments_per_ray segments_per_ray_p95 descent_steps_per_ray
+    descent_steps_per_ray_p95 samples_per_ray samples_per_ray_p95 texel_fetches_per_ray
+    texel_fetches_per_ray_p95 steps_per_ray steps_per_pixel lockstep_steps_per_pixel
+    lockstep_efficiency rays)
+  run("${dataset}" --size 32x32 --frames 1 --methods cpu-kdtree,packing,multipass --counters
+    --opacity-threshold 1 --empty-space-skipping off --json "${WORK}/counters.json")
+  file(READ "${WORK}/counters.json" j)
+  json_get(methods "${j}" methods)
+  skip_without_gpu(methods)
+  foreach (m IN ITEMS packing multipass)
+    foreach (f IN LISTS work_fields)
+      json_get(v "${methods}" ${m} work ${f})
+    endforeach ()
+  endforeach ()
+  string(JSON none ERROR_VARIABLE missing GET "${methods}" cpu-kdtree work)
+  if (NOT missing)
+    fail("the CPU method has a work object: ${none}")
+  endif ()
+  json_get(agrees "${methods}" packing work gpu agrees)
+  json_get(gpu_samples "${methods}" packing work gpu samples)
+  json_get(mirror_samples "${methods}" packing work gpu mirror_samples)
+  json_get(rays "${methods}" packing work rays)
+  if (NOT agrees OR gpu_samples EQUAL 0 OR rays EQUAL 0)
+    fail("the shader's counts do not agree with the mirror's (samples ${gpu_samples} against "
+      "${mirror_samples}, ${rays} rays)")
+  endif ()
+  json_get(draws "${methods}" multipass work draws)
+  json_get(fragments "${methods}" multipass work fragments_per_pixel)
+  json_get(mp_descent "${methods}" multipass work descent_steps_per_ray)
+  json_get(mp_samples "${methods}" multipass work samples_per_ray)
+  json_get(sp_samples "${methods}" packing work samples_per_ray)
+  if (draws LESS 2 OR NOT fragments GREATER 0 OR NOT mp_descent EQUAL 0 OR
+      NOT mp_samples STREQUAL sp_samples)
+    fail("multipass: ${draws} draws, ${fragments} fragments per pixel, descent ${mp_descent}, "
+      "samples ${mp_samples} per ray against the single pass's ${sp_samples} (no termination)")
+  endif ()
+  run("${dataset}" --size 32x32 --frames 1 --methods packing --counters --opacity-threshold 1
+    --ablation traversal-only --json "${WORK}/traversal.json")
+  file(READ "${WORK}/traversal.json" j)
+  json_get(ablation "${j}" methods packing ablation)
+  json_get(samples "${j}" methods packing work gpu samples)
+  json_get(segments "${j}" methods packing work gpu segments)
+  json_get(full_segments "${methods}" packing work gpu segments)
+  if (NOT ablation STREQUAL "traversal-only" OR NOT samples EQUAL 0 OR
+      NOT segments EQUAL full_segments)
+    fail("traversal-only: ${samples} samples, ${segments} segments (the full frame's: "
+      "${full_segments})")
+  endif ()
+  run("${dataset}" --size 32x32 --frames 1 --methods packing --counters --opacity-threshold 1
+    --ablation sampling-only:7 --json "${WORK}/sampling.json")
+  file(READ "${WORK}/sampling.json" j)
+  json_get(samples "${j}" methods packing work gpu samples)
+  math(EXPR remainder "${samples} % 7")
+  math(EXPR most "${rays} * 7")
+  if (samples EQUAL 0 OR NOT remainder EQUAL 0 OR samples GREATER most)
+    fail("sampling-only:7: ${samples} samples for ${rays} rays")
+  endif ()
+  message("counters ok: ${rays} rays, ${gpu_samples} samples, multipass ${draws} draws")
 else ()
   fail("unknown MODE")
 endif ()

@@ -18,6 +18,7 @@
 #include "amrsp/Render.h"
 
 #include "vtkImageData.h"
+#include "vtkSinglePassAMRVolumeMapper.h"
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
 
@@ -340,6 +341,13 @@ void MapperFields(const Method& m, GpuRenderer& gpu, const Image& first, const B
   if (PackingRenderer* singlePass = dynamic_cast<PackingRenderer*>(&gpu))
   {
     r["storage"] = singlePass->StorageUsed();
+    r["ropes"] = singlePass->GetMapper()->GetLastRopes();
+    if (c.S.GpuAblation != 0)
+    {
+      r["ablation"] = c.S.GpuAblation == 1
+        ? std::string("traversal-only")
+        : "sampling-only:" + std::to_string(c.S.GpuAblationSamples);
+    }
     r["gpu_bytes_packing"] = singlePass->PackedBytes();
     r["gpu_bytes_bindless"] = singlePass->BindlessBytes();
     if (m.Kind == MethodKind::Bindless && singlePass->StorageUsed().rfind("bindless", 0) != 0)

@@ -113,6 +113,13 @@ nlohmann::ordered_json BenchWork::SinglePass(GpuRenderer& gpu)
   const long long descent = singlePass->RenderWorkCount(M::DESCENT_STEP_COUNT);
   const long long samples = singlePass->RenderWorkCount(M::SAMPLE_COUNT);
   const double rays = static_cast<double>(w.Rays);
+  if (S.GpuAblation != 0)
+  {
+    // an ablated frame does other work than the mirror counts: the shader's counts alone
+    j["gpu"] = { { "segments", segments }, { "descent_steps", descent }, { "samples", samples },
+      { "ablation", S.GpuAblation == 1 ? "traversal-only" : "sampling-only" } };
+    return j;
+  }
   const bool agrees = Agrees(segments, w.Segments.Mean * rays, w.Rays) &&
     Agrees(descent, w.DescentSteps.Mean * rays, w.Rays) &&
     Agrees(samples, w.Samples.Mean * rays, w.Rays);

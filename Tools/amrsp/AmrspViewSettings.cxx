@@ -429,6 +429,32 @@ RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range)
     throw UsageError{ "--ropes must be on or off" };
   }
   s.Ropes = ropes == "on";
+  const std::string ablation = a.Get("ablation", "none");
+  const std::string samplingOnly = "sampling-only";
+  if (ablation == "traversal-only")
+  {
+    s.GpuAblation = 1;
+  }
+  else if (ablation.rfind(samplingOnly, 0) == 0)
+  {
+    s.GpuAblation = 2;
+    if (ablation.size() > samplingOnly.size())
+    {
+      const std::string n = ablation.substr(samplingOnly.size() + 1);
+      if (ablation[samplingOnly.size()] != ':' || n.empty() || n.size() > 7 ||
+        n.find_first_not_of("0123456789") != std::string::npos || std::stoi(n) < 1)
+      {
+        throw UsageError{ "--ablation sampling-only:N needs a whole N from 1 to 9999999, got '" +
+          ablation + "'" };
+      }
+      s.GpuAblationSamples = std::stoi(n);
+    }
+  }
+  else if (ablation != "none")
+  {
+    throw UsageError{ "--ablation must be none, traversal-only or sampling-only[:N], got '" +
+      ablation + "'" };
+  }
   const std::string interpolation = a.Get("interpolation", "nearest");
   if (interpolation != "nearest" && interpolation != "smooth")
   {

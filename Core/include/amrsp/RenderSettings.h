@@ -64,6 +64,10 @@ struct RenderSettings
   int Threads = 0; ///< 0 = hardware concurrency
   /// When set, the CPU integrators report the fraction of image rows done (amrsp/Progress.h).
   ProgressCallback Progress;
+  /// The single-pass mapper's DiagnosticAblation (0 none, 1 traversal only, 2 sampling only)
+  /// and DiagnosticAblationSamples; not used by the CPU integrators.
+  int GpuAblation = 0;
+  int GpuAblationSamples = 256;
   /// GPU mappers' MaximumAtlasPageBytes (the largest atlas texture; larger atlases are split
   /// into pages); 0 keeps the mapper's default. Not used by the CPU integrators.
   long long AtlasPageBytes = 0;
