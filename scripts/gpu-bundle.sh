@@ -22,6 +22,9 @@ mkdir -p "$dir/lib" "$dir/data"
 cp "$build/Tools/amrsp/amrsp" "$dir/"
 cp -L "$build/lib/libvtkSinglePassAMR.so.1" "$dir/lib/"
 cp "$repo/scripts/gpu-check.sh" "$dir/"
+# the commit the bundle measures (its profile JSON names it)
+{ git -C "$repo" rev-parse HEAD 2>/dev/null || echo unknown; } | tr -d '\n' >"$dir/VERSION"
+[ -z "$(git -C "$repo" status --porcelain --untracked-files=no 2>/dev/null)" ] || echo " (modified)" >>"$dir/VERSION"
 # every library the tool and the module load, as the root's loader resolves them
 cp "$dir/amrsp" "$dir/lib/libvtkSinglePassAMR.so.1" "$root/tmp/"
 libs=$(chroot "$root" env LD_LIBRARY_PATH=/tmp ldd /tmp/amrsp /tmp/libvtkSinglePassAMR.so.1 |
@@ -37,7 +40,7 @@ for name in libEGL.so.1 libOpenGL.so.0 libGLdispatch.so.0 libGLX.so.0 libGL.so.1
 done
 cp -L "$root/lib64/ld-linux-x86-64.so.2" "$dir/lib/"
 data=$repo/../shared/data
-for d in enzo_moving7 amrex_plt1_Y vthb_hierarchicalbox; do
+for d in enzo_moving7 amrex_plt1_Y vthb_hierarchicalbox chombo3d_vtm; do
   [ -d "$data/$d" ] && cp -r "$data/$d" "$dir/data/"
 done
 mkdir -p "$(dirname "$out")"

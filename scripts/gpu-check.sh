@@ -4,16 +4,34 @@
 # the shading features, then the paper's dataset 3 and a billion cells with times and peak memory.
 #
 #   ./gpu-check.sh [quick]        (in the folder scripts/gpu-bundle.sh made; about 5 min, quick 40 s)
+#   ./gpu-check.sh profile [OUT.json]
+#                                 the GPU profile (docs/performance.md, "GPU profile"): the target
+#                                 table at 1024x1024 (every storage, auto-storage and multipass on
+#                                 the paper's datasets 1-3, the real datasets and a billion cells;
+#                                 bench --rounds 3, orbits of 8 frames, GPU time from timer
+#                                 queries, the cost-model counters) and ablations on dataset 3,
+#                                 in one JSON (default gpu-profile.json); fits 9 minutes
+#                                 (AMRSP_PROFILE_SECONDS, default 500, bounds the whole run)
+#
+# Test hooks (Tool.GpuProfile runs the profile's logic on this machine): AMRSP_PROFILE_TOOL runs
+# that amrsp instead of the bundled one (no EGL vendor file needed), AMRSP_PROFILE_DATA is the
+# real data's folder instead of the bundle's, and AMRSP_PROFILE_SMOKE=1 shrinks every run (small
+# synthetic sets, 32x32, one frame).
 #
 # A machine whose driver is not under /usr/local/nvidia: set AMRSP_EGL_VENDOR_JSON to its
 # glvnd vendor file (10_nvidia.json).
 set -uo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 nv=/usr/local/nvidia
-export __EGL_VENDOR_LIBRARY_FILENAMES=${AMRSP_EGL_VENDOR_JSON:-$nv/share/glvnd/egl_vendor.d/10_nvidia.json}
-[ -f "$__EGL_VENDOR_LIBRARY_FILENAMES" ] || { echo "FAIL: no EGL vendor file $__EGL_VENDOR_LIBRARY_FILENAMES"; exit 1; }
-unset DISPLAY
-amrsp=("$here/lib/ld-linux-x86-64.so.2" --library-path "$here/lib:$nv/lib64:$nv/lib:/usr/lib/x86_64-linux-gnu" "$here/amrsp")
+if [ -n "${AMRSP_PROFILE_TOOL:-}" ]; then
+  amrsp=("$AMRSP_PROFILE_TOOL")
+else
+  export __EGL_VENDOR_LIBRARY_FILENAMES=${AMRSP_EGL_VENDOR_JSON:-$nv/share/glvnd/egl_vendor.d/10_nvidia.json}
+  [ -f "$__EGL_VENDOR_LIBRARY_FILENAMES" ] || { echo "FAIL: no EGL vendor file $__EGL_VENDOR_LIBRARY_FILENAMES"; exit 1; }
+  unset DISPLAY
+  amrsp=("$here/lib/ld-linux-x86-64.so.2" --library-path "$here/lib:$nv/lib64:$nv/lib:/usr/lib/x86_64-linux-gnu" "$here/amrsp")
+fi
+data=${AMRSP_PROFILE_DATA:-$here/data}
 keep='^device\|^storage\|^mapper\|^frames\|^rmse\|error\|warn\|Not a valid'
 # peak resident memory of one command (python's getrusage of its child)
 peak() {
@@ -21,7 +39,95 @@ peak() {
 t = time.time(); r = subprocess.run(sys.argv[1:])
 print("wall %.2f s, peak RSS %.3f GB, exit %d" % (time.time() - t, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1e6, r.returncode))' "$@"
 }
-enzo=$here/data/enzo_moving7/DD0010/moving7_0010.hierarchy
+enzo=$data/enzo_moving7/DD0010/moving7_0010.hierarchy
+if [ "${1:-}" = profile ]; then
+  out=${2:-$PWD/gpu-profile.json}
+  work=$(mktemp -d)
+  budget=${AMRSP_PROFILE_SECONDS:-500}
+  start=$SECONDS
+  ds1=synthetic:cosmo:grids=2666,levels=4,cells=19M
+  ds2=synthetic:cosmo:grids=18528,levels=4,cells=33M
+  ds3=synthetic:cosmo:grids=39061,levels=13,cells=140M
+  billion=synthetic:cosmo:grids=280000,levels=13,cells=1000M
+  size=1024x1024 frames=8 few=4 billionMethods=packing,bindless,linear,multipass
+  if [ "${AMRSP_PROFILE_SMOKE:-0}" = 1 ]; then
+    ds1=synthetic:cosmo:grids=30,levels=3,cells=60k ds2=synthetic:cosmo:grids=40,levels=2,cells=50k
+    ds3=synthetic:cosmo:grids=60,levels=5,cells=80k billion=synthetic:cosmo:grids=20,levels=2,cells=20k
+    size=32x32 frames=1 few=1 billionMethods=packing,multipass
+  fi
+  target=(--size "$size" --sample-factor 1 --rounds 3 --frames "$frames" --no-compare)
+  all=packing,bindless,linear,auto-storage,multipass
+  # one bench run: NAME LIMIT_S ARGS...; its JSON and log land in $work, the run list in runs.tsv
+  bench() {
+    local name=$1 limit=$2 left
+    shift 2
+    left=$((budget - (SECONDS - start)))
+    [ "$left" -lt "$limit" ] && limit=$left
+    if [ "$limit" -lt 15 ]; then
+      printf '%s\t%s\t%s\t%s\n' "$name" skipped 0 "$*" >>"$work/runs.tsv"
+      echo "--- $name: skipped, the profile's $budget s are spent"
+      return
+    fi
+    echo "--- $name (at most $limit s): bench $*"
+    local t0=$SECONDS rc=0
+    timeout "$limit" "${amrsp[@]}" bench "$@" --json "$work/$name.json" --quiet \
+      >"$work/$name.log" 2>&1 || rc=$?
+    printf '%s\t%s\t%s\t%s\n' "$name" "$rc" "$((SECONDS - t0))" "$*" >>"$work/runs.tsv"
+    tail -n 3 "$work/$name.log"
+  }
+  : >"$work/runs.tsv"
+  # the target table, the most important first
+  bench dataset3 120 "$ds3" --methods "$all" "${target[@]}" --counters
+  bench billion 200 "$billion" --methods "$billionMethods" --size "$size" --sample-factor 1 \
+    --rounds 2 --frames "$few" --no-compare --counters
+  bench dataset2 75 "$ds2" --methods "$all" "${target[@]}" --counters
+  bench dataset1 60 "$ds1" --methods "$all" "${target[@]}" --counters
+  for d in "$enzo" "$data/amrex_plt1_Y" "$data"/vthb_hierarchicalbox/*.vthb \
+    "$data"/chombo3d_vtm/chombo3d.vtm; do
+    [ -e "$d" ] && bench "real-$(basename "$d" | cut -d. -f1)" 40 "$d" --methods "$all" \
+      "${target[@]}" --counters
+  done
+  # ablations on dataset 3 (the cost of each part): orbits of 4 frames, two rounds
+  ablate=(--size "$size" --sample-factor 1 --rounds 2 --frames "$few" --no-compare)
+  bench ablation-traversal-only 60 "$ds3" --methods packing,bindless,linear "${ablate[@]}" \
+    --ablation traversal-only --counters
+  bench ablation-sampling-only 60 "$ds3" --methods packing,bindless,linear "${ablate[@]}" \
+    --ablation sampling-only:256 --counters
+  bench ablation-no-ropes 60 "$ds3" --methods packing,bindless,linear,multipass "${ablate[@]}" \
+    --ropes off --counters
+  bench ablation-no-skipping 50 "$ds3" --methods packing,bindless,multipass "${ablate[@]}" \
+    --empty-space-skipping off
+  bench ablation-no-termination 50 "$ds3" --methods packing,bindless,multipass "${ablate[@]}" \
+    --opacity-threshold 1
+  bench ablation-no-ropes-dataset2 45 "$ds2" --methods packing,bindless,multipass "${ablate[@]}" \
+    --ropes off
+  driver=$(nvidia-smi --query-gpu=name,driver_version --format=csv,noheader 2>/dev/null | head -n 1)
+  python3 - "$work" "$out" "$here/VERSION" "$driver" "$budget" "$((SECONDS - start))" <<'PY'
+import json, os, sys, time
+work, out, version, driver, budget, spent = sys.argv[1:7]
+profile = {"profile": {
+    "commit": open(version).read().strip() if os.path.exists(version) else "unknown",
+    "date": time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime()),
+    "nvidia_smi": driver, "budget_s": int(budget), "seconds": int(spent),
+    "target": "1024x1024, nearest, sample factor 1, bench --rounds 3 orbits of 8 frames"},
+  "runs": {}}
+for line in open(os.path.join(work, "runs.tsv")):
+    name, rc, seconds, args = line.rstrip("\n").split("\t", 3)
+    run = {"args": args, "exit": rc, "seconds": int(seconds)}
+    path = os.path.join(work, name + ".json")
+    if rc == "skipped":
+        run["error"] = "not run: the profile's time was spent"
+    elif os.path.exists(path) and os.path.getsize(path) > 0:
+        run["bench"] = json.load(open(path))
+    else:
+        log = open(os.path.join(work, name + ".log"), errors="replace").read()
+        run["error"] = ("timed out" if rc == "124" else "exit " + rc) + ": " + log[-2000:]
+    profile["runs"][name] = run
+json.dump(profile, open(out, "w"), indent=1)
+print("wrote", out)
+PY
+  exit 0
+fi
 echo "=== real datasets, 256x256: RMSE (0-255) against the CPU reference and the CPU kD-tree"
 for d in "$enzo" "$here/data/amrex_plt1_Y" "$here"/data/vthb_hierarchicalbox/*.vthb synthetic:pulse; do
   for m in packing bindless linear multipass; do

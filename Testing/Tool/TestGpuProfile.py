@@ -1,0 +1,65 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
+"""The GPU profile command (scripts/gpu-check.sh profile) run here in its smoke size with this
+build's amrsp: every run ends, its JSON merges into one, every method renders except bindless
+where the context lacks the extension, the cost model is there where asked for, and the ablations
+are marked. A profile whose run failed or whose merge lost a run fails here, so the command a
+lent GPU runs keeps working at every commit.
+
+usage: TestGpuProfile.py AMRSP DATA_DIR SCRIPT WORK_DIR
+"""
+import json
+import os
+import subprocess
+import sys
+
+amrsp, data, script, work = sys.argv[1:5]
+os.makedirs(work, exist_ok=True)
+out = os.path.join(work, "gpu-profile.json")
+if os.path.exists(out):
+    os.remove(out)
+env = dict(os.environ, AMRSP_PROFILE_TOOL=amrsp, AMRSP_PROFILE_DATA=data, AMRSP_PROFILE_SMOKE="1")
+run = subprocess.run(["bash", script, "profile", out], env=env, capture_output=True, text=True,
+                     timeout=300)
+if run.returncode != 0 or not os.path.exists(out):
+    print(run.stdout[-3000:], run.stderr[-3000:])
+    sys.exit("FAIL: the profile exited with %d and wrote %s" % (run.returncode,
+             "its JSON" if os.path.exists(out) else "nothing"))
+profile = json.load(open(out))
+failures = []
+expected = ["dataset3", "billion", "dataset2", "dataset1", "ablation-traversal-only",
+            "ablation-sampling-only", "ablation-no-ropes", "ablation-no-skipping",
+            "ablation-no-termination", "ablation-no-ropes-dataset2"]
+if os.path.isdir(os.path.join(data, "enzo_moving7")):
+    expected += ["real-moving7_0010", "real-amrex_plt1_Y", "real-HierarchicalBoxDataset",
+                 "real-chombo3d"]
+for name in expected:
+    r = profile["runs"].get(name)
+    if r is None or "bench" not in r:
+        failures.append("%s: %s" % (name, "missing" if r is None else r.get("error", "no result")))
+        continue
+    for method, result in r["bench"]["methods"].items():
+        error = result.get("error", "")
+        if "cannot render here" in error:
+            message = "no OpenGL context: " + error
+            if os.environ.get("AMRSP_REQUIRE_GPU") == "1":
+                sys.exit("FAIL: required here (AMRSP_REQUIRE_GPU=1) but missing: " + message)
+            print("SKIPPED: " + message)
+            sys.exit(125)
+        if error and not (method == "bindless" and "not available" in error):
+            failures.append("%s %s: %s" % (name, method, error))
+            continue
+        if error:
+            continue
+        if "--counters" in r["args"] and "work" not in result:
+            failures.append("%s %s: no work object" % (name, method))
+        if "--ablation" in r["args"] and "ablation" not in result:
+            failures.append("%s %s: the ablation is not named" % (name, method))
+        if "gpu_ms_rounds_median" not in result:
+            failures.append("%s %s: no GPU time per frame" % (name, method))
+for f in failures:
+    print("FAIL: " + f)
+if failures:
+    sys.exit(1)
+print("ok: %d runs in %d s, all merged into %s" % (len(profile["runs"]),
+      profile["profile"]["seconds"], out))
