@@ -29,6 +29,7 @@ struct WorkTally
 {
   std::vector<long long> Segments, DescentSteps, Samples, TexelFetches, Steps;
   long long LockstepSteps = 0;
+  long long FlatLoopSteps = 0;
   long long Fragments = 0;
 
   void AddRay(long long segments, long long descent, long long samples, long long fetches)
@@ -50,6 +51,7 @@ struct WorkTally
     append(TexelFetches, other.TexelFetches);
     append(Steps, other.Steps);
     LockstepSteps += other.LockstepSteps;
+    FlatLoopSteps += other.FlatLoopSteps;
     Fragments += other.Fragments;
   }
 };
@@ -102,6 +104,7 @@ WorkSummary Summarize(WorkTally& t, const RenderSettings& s)
   static_assert(WorkTileWidth * WorkTileHeight == 32, "a SIMT group of 32 lanes");
   w.StepsPerPixel = w.Pixels > 0 ? static_cast<double>(steps) / static_cast<double>(w.Pixels) : 0.0;
   w.LockstepStepsPerPixel = lanes > 0.0 ? static_cast<double>(t.LockstepSteps) / lanes : 0.0;
+  w.FlatLoopStepsPerPixel = lanes > 0.0 ? static_cast<double>(t.FlatLoopSteps) / lanes : 0.0;
   w.LockstepEfficiency =
     w.LockstepStepsPerPixel > 0.0 ? w.StepsPerPixel / (32.0 * w.LockstepStepsPerPixel) : 0.0;
   w.FragmentsPerPixel =
@@ -185,6 +188,52 @@ long long TileLockstepSteps(const std::vector<std::vector<SegmentWork>>& rays)
   return steps;
 }
 
+long long TileFlatLoopSteps(const std::vector<std::vector<SegmentWork>>& rays)
+{
+  // each lane's operations in order: per segment 1 + Descent traversal operations, then Samples
+  // samples; a lane's position is (segment, operation within it)
+  struct Lane
+  {
+    const std::vector<SegmentWork>* Segments;
+    std::size_t Segment = 0;
+    uint32_t Op = 0;
+  };
+  std::vector<Lane> lanes;
+  for (const std::vector<SegmentWork>& r : rays)
+  {
+    if (!r.empty())
+    {
+      lanes.push_back(Lane{ &r });
+    }
+  }
+  long long steps = 0;
+  for (;;)
+  {
+    bool traverse = false, sample = false;
+    for (Lane& l : lanes)
+    {
+      if (l.Segment >= l.Segments->size())
+      {
+        continue;
+      }
+      const SegmentWork& w = (*l.Segments)[l.Segment];
+      const bool isTraversal = l.Op < 1 + w.Descent;
+      traverse = traverse || isTraversal;
+      sample = sample || !isTraversal;
+      if (++l.Op >= 1 + w.Descent + w.Samples)
+      {
+        ++l.Segment;
+        l.Op = 0;
+      }
+    }
+    if (!traverse && !sample)
+    {
+      return steps;
+    }
+    steps += (traverse ? 1 : 0) + (sample ? 1 : 0);
+  }
+}
+
 WorkSummary MeasureSinglePassWork(const Hierarchy& h, const EncodedKdTree& tree,
   const RenderSettings& s, const FetchModel& fetches, const BrickAtlas* atlas)
 {
@@ -218,6 +267,7 @@ WorkSummary MeasureSinglePassWork(const Hierarchy& h, const EncodedKdTree& tree,
         }
       }
       t.LockstepSteps += TileLockstepSteps(tile);
+      t.FlatLoopSteps += TileFlatLoopSteps(tile);
     });
   return Summarize(tally, s);
 }

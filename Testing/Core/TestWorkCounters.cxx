@@ -35,6 +35,17 @@ TEST(WorkCounters, LockstepTakesTheLargestCountOfEachLoopPerIteration)
   EXPECT_EQ(TileLockstepSteps({}), 0);
 }
 
+TEST(WorkCounters, FlatLoopCountsOneOperationPerIterationAndDivergenceTwice)
+{
+  // lane a: traverse 1 + 2, sample 3; lane b: traverse 1 + 4, sample 1:
+  // iterations 1-3 both traverse (1 each), 4-5 a samples while b traverses (2 each),
+  // 6 both sample (1): 3 + 4 + 1 = 8
+  EXPECT_EQ(TileFlatLoopSteps({ { Step(2, 3) }, { Step(4, 1) } }), 8);
+  // one lane: its operations one by one, 1 + 2 + 3 and 1 + 1 + 0
+  EXPECT_EQ(TileFlatLoopSteps({ { Step(2, 3), Step(1, 0, false) } }), 8);
+  EXPECT_EQ(TileFlatLoopSteps({}), 0);
+}
+
 TEST(WorkCounters, TexelFetchesPerStorage)
 {
   // root; a far child then 2 levels down into a sampled leaf of 3 samples; 1 level down into an

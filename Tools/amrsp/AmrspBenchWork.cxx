@@ -42,6 +42,10 @@ nlohmann::ordered_json WorkJson(const WorkSummary& w)
   j["steps_per_pixel"] = w.StepsPerPixel;
   j["lockstep_steps_per_pixel"] = w.LockstepStepsPerPixel;
   j["lockstep_efficiency"] = w.LockstepEfficiency;
+  if (w.FlatLoopStepsPerPixel > 0.0)
+  {
+    j["flat_loop_lockstep_steps_per_pixel"] = w.FlatLoopStepsPerPixel; // a prediction
+  }
   return j;
 }
 

@@ -26,6 +26,11 @@
 ///   the image's tiles' sum divided by 32 per tile (the group's time per lane); 32 times it
 ///   equals steps_per_pixel where every lane of every tile does the same work, and exceeds it by
 ///   what divergence and idle lanes cost.
+/// - *flat-loop lockstep steps* of a tile: the same work in one loop that does one operation per
+///   iteration (a segment's set-up or descent step, or a sample: Aila and Laine's "if-if"
+///   structure, not the shader's nested loops): per iteration 1 when the tile's busy lanes all
+///   traverse or all sample, 2 when some do each; a prediction for a loop the shader does not
+///   have yet, normalised as lockstep_steps_per_pixel.
 /// - multi-pass: every data segment of the traversal without level of detail is one fragment of
 ///   its leaf's draw (no early termination, no skipping); a fragment's steps are 1 + its samples;
 ///   a draw's lockstep steps in a tile are 1 + the largest sample count of its fragments there.
@@ -101,6 +106,7 @@ struct WorkSummary
   WorkDistribution Steps;
   double StepsPerPixel = 0.0;         ///< the steps of all rays / pixels
   double LockstepStepsPerPixel = 0.0; ///< the tiles' lockstep steps / (32 per tile)
+  double FlatLoopStepsPerPixel = 0.0; ///< the tiles' flat-loop lockstep steps / (32 per tile)
   /// steps_per_pixel / (32 lockstep_steps_per_pixel): the busy fraction of the groups' lanes, 1
   /// when the lanes of every group stay in step and none is idle.
   double LockstepEfficiency = 0.0;
@@ -127,5 +133,7 @@ WorkSummary MeasureMultipassWork(
 /// The lockstep steps of one tile whose rays' segment-loop iterations are `rays` (see the file
 /// comment); exposed for tests.
 long long TileLockstepSteps(const std::vector<std::vector<SegmentWork>>& rays);
+/// The flat-loop lockstep steps of one tile (see the file comment); exposed for tests.
+long long TileFlatLoopSteps(const std::vector<std::vector<SegmentWork>>& rays);
 
 } // namespace amrsp
