@@ -32,6 +32,7 @@
 #include "amrsp_BrickSample_glsl.h"
 #include "amrsp_KdTreeLayout_glsl.h"
 #include "amrsp_RayCommon_glsl.h"
+#include "amrsp_RaySteps_glsl.h"
 #include "amrsp_Shading_glsl.h"
 #include "amrsp_SmoothCells_glsl.h"
 #include "amrsp_SinglePassAMR_frag_glsl.h"
@@ -452,6 +453,7 @@ vtkShaderProgram* vtkSinglePassAMRVolumeMapper::vtkInternals::ReadyShader(
   define(frame.SkipEmpty, "AMRSP_SKIP_EMPTY 1");
   define(frame.SmoothCells, "AMRSP_SMOOTH_CELLS 1");
   define(frame.Ropes, "AMRSP_ROPES 1");
+  define(self->RayLoop == FLAT_LOOP, "AMRSP_FLAT_LOOP 1");
   define(self->DiagnosticAblation != NO_ABLATION,
     "AMRSP_ABLATION " + std::to_string(self->DiagnosticAblation));
   define(frame.Shade, "AMRSP_SHADE 1");
@@ -464,7 +466,7 @@ vtkShaderProgram* vtkSinglePassAMRVolumeMapper::vtkInternals::ReadyShader(
     utilities::ComposeFragmentShader(amrsp_SinglePassAMR_frag_glsl, defines,
       { { "KdTreeLayout", amrsp_KdTreeLayout_glsl }, { "RayCommon", amrsp_RayCommon_glsl },
         { "BrickSample", amrsp_BrickSample_glsl }, { "SmoothCells", amrsp_SmoothCells_glsl },
-        { "Shading", amrsp_Shading_glsl } },
+        { "Shading", amrsp_Shading_glsl }, { "RaySteps", amrsp_RaySteps_glsl } },
       vol);
   if (fragment == this->FailedFragmentSource)
   {
@@ -876,6 +878,7 @@ void vtkSinglePassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "WorkCountersOutput: " << (this->WorkCountersOutput ? "on" : "off") << "\n";
   os << indent << "WorkCountOutput: " << this->WorkCountOutput << "\n";
   os << indent << "Ropes: " << (this->Ropes ? "on" : "off") << "\n";
+  os << indent << "RayLoop: " << (this->RayLoop == FLAT_LOOP ? "flat" : "nested") << "\n";
   os << indent << "DiagnosticAblation: " << this->DiagnosticAblation << " ("
      << this->DiagnosticAblationSamples << " samples)\n";
   os << indent

@@ -287,6 +287,27 @@ public:
   vtkBooleanMacro(Ropes, bool);
   ///@}
 
+  /// How the shader marches a ray (RayLoop).
+  enum RayLoops
+  {
+    NESTED_LOOPS = 0, ///< per segment a descent loop, then a sample loop
+    FLAT_LOOP = 1     ///< one loop of single descent steps, segment set-ups and samples
+  };
+
+  ///@{
+  /**
+   * The shader's loop structure (default NESTED_LOOPS). A GPU runs a fragment shader in groups of
+   * 32 pixels that share each loop iteration: with nested loops a group waits, per segment, for
+   * its longest descent and then its longest sample run; the flat loop (Aila and Laine's
+   * "if-if") lets every lane take its own next operation each iteration, at the price of both
+   * branches where lanes disagree. The images and counts are the same; which is faster is a
+   * property of the GPU (amrsp/WorkCounters.h predicts it; docs/performance.md has what was
+   * measured).
+   */
+  vtkSetClampMacro(RayLoop, int, NESTED_LOOPS, FLAT_LOOP);
+  vtkGetMacro(RayLoop, int);
+  ///@}
+
   /// Diagnostic ablations (DiagnosticAblation).
   enum Ablations
   {
@@ -413,6 +434,7 @@ protected:
   bool WorkCountersOutput = false;
   int WorkCountOutput = NO_WORK_COUNT;
   bool Ropes = true;
+  int RayLoop = NESTED_LOOPS;
   int DiagnosticAblation = NO_ABLATION;
   int DiagnosticAblationSamples = 256;
   int CellInterpolation = NEAREST_CELL;

@@ -41,6 +41,9 @@
 //                       cells too) or, outside it, looked up through the tree (a coarser level's
 //                       trilinear value there), as amrsp::RenderSettings::SmoothCellData; the
 //                       gradient's neighbours (AMRSP_SHADE) are reconstructed the same way
+//   AMRSP_FLAT_LOOP     march the ray in one loop of single traversal or sample operations
+//                       instead of nested segment, descent and sample loops (Shaders/RaySteps.glsl;
+//                       the same segments, samples and image)
 //   AMRSP_ROPES         neighbour links (amrsp/KdTreeRopes.h) in amrspRopes: a ray that leaves a
 //                       leaf through one face continues from that face's rope (where the level
 //                       of detail is off), as amrsp::TraverseKdTree
@@ -586,350 +589,30 @@ bool amrspDataNodeTransparent(uint dataIndex)
 
 //AMRSP::Shading
 
+//AMRSP::RaySteps
+
 void main()
 {
-  vec3 entry, dirMC;
-  float tMax;
-  amrspPixelRay(entry, dirMC, tMax);
-
-  // Level-0 index units; t stays the model-space distance along the ray.
-  vec3 ro = (entry - amrspOrigin) / amrspSpacing0;
-  vec3 rd = dirMC / amrspSpacing0;
-
-  float tEnter, tExit, clipEnter, clipExit;
-  if (!amrspIntersectBox(amrspRootLo, amrspRootHi, ro, rd, tEnter, tExit) ||
-      !amrspIntersectBox(amrspClipLo, amrspClipHi, ro, rd, clipEnter, clipExit))
+  if (!amrspBeginRay())
   {
     discard;
   }
-  // the traversal still starts from the root node: the clip box only bounds [t, tEnd)
-  float t = max(max(tEnter, clipEnter), 0.0);
-  float tEnd = min(min(tExit, clipExit), tMax);
-  ivec3 rootLoF = ivec3(amrspRootLoFinest[0], amrspRootLoFinest[1], amrspRootLoFinest[2]);
-  ivec3 rootHiF = ivec3(amrspRootHiFinest[0], amrspRootHiFinest[1], amrspRootHiFinest[2]);
-
-  vec3 colour = vec3(0.0);
-  float alpha = 0.0;
-#ifdef AMRSP_WORK_COUNTERS
-  int workDataSegments = 0;    // data segments reached (skipped ones included)
-  int workSampledSegments = 0; // of which sampled (the others were skipped as empty space)
-#endif
-#ifdef AMRSP_WORK_COUNT
-  int workCount = 0; // the loop iterations AMRSP_WORK_COUNT selects
-#endif
-  // maximum/minimum/average intensity: the scalar kept, or the length-weighted sum and length
-  float kept = 0.0;
-  bool anySample = false;
-  float weightedSum = 0.0;
-  float sampledLength = 0.0;
-#if AMRSP_BLEND_MODE == 4
-  bool havePrevious = false; // iso-surfaces: the previous present sample along the ray
-  vec3 previousP = vec3(0.0);
-  float previousValue = 0.0;
-#endif
-  // kd-restart with push-down: the restart node is the deepest node reached so far without a
-  // choice between two children, i.e. whose box holds the rest of the ray [t, tEnd); each
-  // restart descends from it instead of the root, and visits the same leaves as from the root.
-  // Level-of-detail cut-offs in perspective depend on t, so there every restart is from the root.
-  bool canPushDown = amrspLodThreshold <= 0.0 || amrspParallelPixelSize > 0.0;
-  uint restartNode = 0u;
-  vec3 restartLo = amrspRootLo;
-  vec3 restartHi = amrspRootHi;
-  ivec3 restartLoF = rootLoF;
-  ivec3 restartHiF = rootHiF;
-  uvec2 restartTexel = amrspFetchNode(0u);
-  // Far child of the deepest split plane the last descent crossed, and where the ray leaves it
-  // (farEnd). The leaf that descent found ends on that plane, so the next leaf lies in this child
-  // and the next descent starts there: a one-entry short stack, used where push-down is.
-  bool haveFar = false;
-  uint farNode = 0u;
-  vec3 farLo = vec3(0.0);
-  vec3 farHi = vec3(0.0);
-  ivec3 farLoF = ivec3(0);
-  ivec3 farHiF = ivec3(0);
-  float farEnd = 0.0;
-#ifdef AMRSP_ROPES
-  // The rope across the face the last leaf was left through, and its box (exactly the box a
-  // descent from the root computes: amrsp/KdTreeRopes.h).
-  bool useRopes = canPushDown && amrspLodThreshold <= 0.0;
-  bool haveRope = false;
-  uint ropeNode = 0u;
-  ivec3 ropeLoF = ivec3(0);
-  ivec3 ropeHiF = ivec3(0);
+#ifdef AMRSP_FLAT_LOOP
+  amrspMarchFlat();
 #else
-  const bool haveRope = false;
+  amrspMarchNested();
 #endif
-  for (int iteration = 0; t < tEnd && iteration < amrspMaxSegments; ++iteration)
-  {
-#if AMRSP_WORK_COUNT == 1
-    ++workCount;
-#endif
-    bool fromRope = haveRope;
-#ifdef AMRSP_ROPES
-    haveRope = false;
-#endif
-    // An empty far interval (planes meeting where the leaf ends) is left to the restart.
-    bool fromFar = !fromRope && haveFar && farEnd > t;
-    haveFar = false;
-    uvec2 texel = restartTexel;
-#ifdef AMRSP_ROPES
-    vec3 ropeLo = vec3(ropeLoF) * amrspRopeCellSize;
-    vec3 ropeHi = vec3(ropeHiF) * amrspRopeCellSize;
-    if (fromRope)
-    {
-      texel = amrspFetchNode(ropeNode);
-    }
-#else
-    uint ropeNode = 0u;
-    vec3 ropeLo = vec3(0.0);
-    vec3 ropeHi = vec3(0.0);
-    ivec3 ropeLoF = ivec3(0);
-    ivec3 ropeHiF = ivec3(0);
-#endif
-    if (fromFar)
-    {
-      texel = amrspFetchNode(farNode);
-      if (farEnd >= tEnd)
-      {
-        restartNode = farNode; // the far child holds the rest of the ray
-        restartLo = farLo;
-        restartHi = farHi;
-        restartLoF = farLoF;
-        restartHiF = farHiF;
-        restartTexel = texel;
-      }
-    }
-    // kd-restart: descend from the far child or the restart node to the node containing the ray
-    // at t.
-    uint node = fromRope ? ropeNode : fromFar ? farNode : restartNode;
-    vec3 lo = fromRope ? ropeLo : fromFar ? farLo : restartLo;
-    vec3 hi = fromRope ? ropeHi : fromFar ? farHi : restartHi;
-    // the same box in exact finest-level cells
-    ivec3 loF = fromRope ? ropeLoF : fromFar ? farLoF : restartLoF;
-    ivec3 hiF = fromRope ? ropeHiF : fromFar ? farHiF : restartHiF;
-    float tLeave = fromFar ? farEnd : tEnd;
-#ifdef AMRSP_ROPES
-    if (fromRope)
-    {
-      tLeave = min(amrspExitDistance(ropeLo, ropeHi, ro, rd), tEnd);
-    }
-#endif
-    bool pushDown = canPushDown && !fromRope && (!fromFar || farEnd >= tEnd);
-    for (;;)
-    {
-      uint child = amrspNodeFirstChild(texel);
-      if (child == 0u)
-      {
-        break;
-      }
-      uint lodData = amrspNodeData(texel);
-      if (lodData != 0u && amrspLodThreshold > 0.0)
-      {
-        uint dataLevel = amrspDataLevel(amrspFetchDataNode(lodData));
-        vec3 cell = amrspCellSize(int(dataLevel)) * amrspSpacing0;
-        float cellWorld = max(cell.x, max(cell.y, cell.z));
-        float pixel = amrspParallelPixelSize > 0.0 ? amrspParallelPixelSize
-                                                   : t * amrspPixelSizePerDistance;
-        if (cellWorld < amrspLodThreshold * pixel)
-        {
-          break;
-        }
-      }
-      int axis = int(amrspNodeAxis(texel));
-      uint level = amrspNodeLevel(texel);
-      uint split = amrspNodeSplit(texel);
-      float plane = lo[axis] + float(split) * amrspCellSizeOnAxis(int(level), axis);
-      int planeF = loF[axis] + int(split) * amrspToFinestOnAxis(int(level), axis);
-      float o = ro[axis];
-      float d = rd[axis];
-      bool originBelow = o < plane || (o == plane && d > 0.0);
-      float tSplit = d != 0.0 ? (plane - o) / d : AMRSP_INF;
-      bool lower;
-      if (tSplit >= tLeave || tSplit < 0.0)
-      {
-        lower = originBelow; // the whole rest of the interval is on the origin's side
-      }
-      else if (tSplit <= t)
-      {
-        lower = !originBelow; // already past the plane
-      }
-      else
-      {
-        lower = originBelow;
-        if (canPushDown)
-        {
-          haveFar = true;
-          farNode = lower ? child + 1u : child;
-          farLo = lo;
-          farHi = hi;
-          farLoF = loF;
-          farHiF = hiF;
-          amrspChildBox(farLo, farHi, farLoF, farHiF, axis, plane, planeF, !lower);
-          farEnd = tLeave;
-        }
-        tLeave = tSplit;
-        pushDown = false;
-      }
-      amrspChildBox(lo, hi, loF, hiF, axis, plane, planeF, lower);
-      node = lower ? child : child + 1u;
-      texel = amrspFetchNode(node);
-#if AMRSP_WORK_COUNT == 2
-      ++workCount;
-#endif
-      if (pushDown)
-      {
-        restartNode = node;
-        restartLo = lo;
-        restartHi = hi;
-        restartLoF = loF;
-        restartHiF = hiF;
-        restartTexel = texel;
-      }
-    }
-
-    uint data = amrspNodeData(texel);
-#ifdef AMRSP_WORK_COUNTERS
-    workDataSegments += data != 0u ? 1 : 0;
-#endif
-#ifdef AMRSP_SKIP_EMPTY
-    if (data != 0u && amrspDataNodeTransparent(data))
-    {
-      data = 0u; // empty space under this transfer function: nothing to sample
-    }
-#endif
-    if (data != 0u)
-    {
-#ifdef AMRSP_WORK_COUNTERS
-      ++workSampledSegments; // skipped = reached - sampled: counted where sampling really starts
-#endif
-      uvec2 dataNode = amrspFetchDataNode(data);
-      uvec2 brickRef = amrspBrickRef(dataNode); // once per segment, not per sample
-      int level = int(amrspDataLevel(dataNode));
-      ivec3 firstCell, lastCell;
-      amrspLeafCells(level, loF, hiF, firstCell, lastCell);
-      vec3 cellSize = amrspCellSize(level);
-      // Sampling rule: n = max(1, ceil(length / D)) equal steps, samples at their midpoints.
-      float segmentLength = tLeave - t;
-      int n = max(1, int(ceil(segmentLength / amrspStep(level))));
-#if defined(AMRSP_ABLATION) && AMRSP_ABLATION == 1
-      n = 0; // traversal only: a constant per segment keeps the traversal's results live
-      colour += (1.0 - alpha) * 1.0e-3 * vec3(float(level + 1), 1.0, 1.0);
-      alpha += (1.0 - alpha) * 1.0e-3;
-#elif defined(AMRSP_ABLATION) && AMRSP_ABLATION == 2
-      segmentLength = tEnd - t; // sampling only: this brick for the rest of the ray
-      n = amrspAblationSamples;
-#endif
-      float dt = segmentLength / float(max(n, 1));
-      float exponent = dt / amrspUnitDistance;
-      for (int k = 0; k < n; ++k)
-      {
-#if AMRSP_WORK_COUNT == 3
-        ++workCount;
-#endif
-        float ts = t + (float(k) + 0.5) * dt;
-        vec3 p = ro + ts * rd;
-        float scalar = amrspSampleBrick(dataNode, brickRef, p, cellSize, firstCell, lastCell);
-#ifdef AMRSP_SMOOTH_CELLS
-        scalar = amrspSampleSmooth(p, level, dataNode, loF, hiF, firstCell, lastCell, scalar);
-#endif
-        if (isnan(scalar))
-        {
-#if AMRSP_BLEND_MODE == 4
-          havePrevious = false;
-#endif
-          continue; // missing data is transparent
-        }
-#if AMRSP_BLEND_MODE == 1
-        kept = anySample ? max(kept, scalar) : scalar;
-        anySample = true;
-#elif AMRSP_BLEND_MODE == 2
-        kept = anySample ? min(kept, scalar) : scalar;
-        anySample = true;
-#elif AMRSP_BLEND_MODE == 3
-        weightedSum += scalar * dt;
-        sampledLength += dt;
-        anySample = true;
-#elif AMRSP_BLEND_MODE == 4
-        if (havePrevious)
-        {
-          amrspIsoCrossings(previousP, previousValue, p, scalar, -dirMC, colour, alpha);
-        }
-        havePrevious = true;
-        previousP = p;
-        previousValue = scalar;
-        if (alpha >= amrspOpacityThreshold)
-        {
-          break;
-        }
-#else
-        vec4 tf = amrspTransferFunction(scalar);
-        if (tf.a > 0.0)
-        {
-          float a = 1.0 - pow(1.0 - min(tf.a, 1.0), exponent);
-#if defined(AMRSP_SHADE) || defined(AMRSP_SHADOWS)
-          amrspInNode = true;
-          amrspNodeLo = lo;
-          amrspNodeHi = hi;
-          amrspNodeLoF = loF;
-          amrspNodeHiF = hiF;
-          amrspNodeDataNode = dataNode;
-          amrspNodeFirstCell = firstCell;
-          amrspNodeLastCell = lastCell;
-          tf.rgb = amrspShade(tf.rgb, p, scalar, cellSize, -dirMC);
-#endif
-          colour += (1.0 - alpha) * a * tf.rgb;
-          alpha += (1.0 - alpha) * a;
-          if (alpha >= amrspOpacityThreshold)
-          {
-            break;
-          }
-        }
-#endif
-      }
-      if (alpha >= amrspOpacityThreshold)
-      {
-        break;
-      }
-#if defined(AMRSP_ABLATION) && AMRSP_ABLATION == 2
-      break; // one brick per ray
-#endif
-    }
-#if AMRSP_BLEND_MODE == 4
-    else
-    {
-      havePrevious = false; // empty space breaks the pairing of samples
-    }
-#endif
-    t = tLeave;
-#ifdef AMRSP_ROPES
-    if (useRopes && t < tEnd)
-    {
-      int axis = amrspExitAxis(lo, hi, ro, rd, tLeave);
-      if (axis >= 0)
-      {
-        uint rope = amrspRopeOf(amrspFetchRope(node, amrspRopeTexelOfAxis(uint(axis))),
-          uint(axis), rd[axis] > 0.0);
-        if (rope != 0u)
-        {
-          haveRope = true;
-          ropeNode = rope;
-          uvec4 box = amrspFetchRope(rope, 0u);
-          ropeLoF = amrspRopeBoxLo(box);
-          ropeHiF = amrspRopeBoxHi(box, amrspFetchRope(rope, 1u));
-        }
-      }
-    }
-#endif
-  }
-
+  vec3 colour = amrspColour;
+  float alpha = amrspAlpha;
 #if AMRSP_BLEND_MODE != 0 && AMRSP_BLEND_MODE != 4
   // the kept scalar through the transfer function, without opacity correction
-  if (!anySample)
+  if (!amrspAnySample)
   {
     discard;
   }
+  float kept = amrspKept;
 #if AMRSP_BLEND_MODE == 3
-  kept = weightedSum / sampledLength;
+  kept = amrspWeightedSum / amrspSampledLength;
 #endif
   vec4 keptTF = amrspTransferFunction(kept);
   alpha = min(keptTF.a, 1.0);
@@ -939,13 +622,13 @@ void main()
   // as amrsp::RenderStats: a ray terminated early is a composite ray that reached a threshold < 1
   bool workTerminated = AMRSP_BLEND_MODE == 0 && amrspOpacityThreshold < 1.0 &&
     alpha >= amrspOpacityThreshold;
-  gl_FragData[0] = vec4(float(min(workDataSegments - workSampledSegments, 255)) / 255.0,
-    workTerminated ? 1.0 : 0.0,
-    float(min(workDataSegments, 255)) / 255.0, 1.0);
+  gl_FragData[0] =
+    vec4(float(min(amrspWorkDataSegments - amrspWorkSampledSegments, 255)) / 255.0,
+      workTerminated ? 1.0 : 0.0, float(min(amrspWorkDataSegments, 255)) / 255.0, 1.0);
   return;
 #endif
 #ifdef AMRSP_WORK_COUNT
-  int c = min(workCount, 0xffffff);
+  int c = min(amrspWorkCount, 0xffffff);
   gl_FragData[0] = vec4(float(c & 255), float((c >> 8) & 255), float(c >> 16), 255.0) / 255.0;
   return;
 #endif

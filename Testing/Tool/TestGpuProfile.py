@@ -27,7 +27,8 @@ if run.returncode != 0 or not os.path.exists(out):
              "its JSON" if os.path.exists(out) else "nothing"))
 profile = json.load(open(out))
 failures = []
-expected = ["dataset3", "billion", "dataset2", "dataset1", "ablation-traversal-only",
+expected = ["dataset3", "billion", "dataset2", "dataset1", "flat-loop-dataset3",
+            "flat-loop-dataset2", "ablation-traversal-only",
             "ablation-sampling-only", "ablation-no-ropes", "ablation-no-skipping",
             "ablation-no-termination", "ablation-no-ropes-dataset2"]
 if os.path.isdir(os.path.join(data, "enzo_moving7")):

@@ -140,7 +140,7 @@ const std::vector<std::string> AtlasOptions = { "packer", "max-3d-texture-size",
 const std::vector<std::string> ViewOptions = { "size", "azimuth", "elevation", "zoom", "tf",
   "scale", "unit-distance", "sample-factor", "reference-sample-factor", "lod", "threads", "blend",
   "view-json", "opacity-threshold", "empty-space-skipping", "interpolation", "shade", "iso",
-  "shadows", "light", "crop", "ropes", "ablation" };
+  "shadows", "light", "crop", "ropes", "ablation", "loop" };
 
 std::vector<std::string> Concat(std::initializer_list<std::vector<std::string>> lists)
 {
@@ -238,6 +238,9 @@ const char* const ViewHelp =
   "  --ropes on|off              neighbour links of the kD-tree: a ray leaving a leaf through\n"
   "                              one face continues from that face's rope instead of a new\n"
   "                              descent (single pass and cpu-kdtree; default on; same image)\n"
+  "  --loop nested|flat          the single-pass shader's loop structure (default nested): per\n"
+  "                              segment a descent loop then a sample loop, or one loop of\n"
+  "                              single operations; the same image\n"
   "  --ablation A                diagnostic, single pass only: none (default), traversal-only\n"
   "                              (no data segment sampled) or sampling-only[:N] (each ray\n"
   "                              samples its first brick N times, default 256, no further\n"

@@ -60,6 +60,8 @@ PackingRenderer::PackingRenderer(vtkSinglePassAMRVolumeMapper* mapper, const Hie
   this->Mapper->SetOpacityThreshold(s.OpacityThreshold);
   this->Mapper->SetEmptySpaceSkipping(s.SkipEmptySpace);
   this->Mapper->SetRopes(s.Ropes);
+  this->Mapper->SetRayLoop(s.GpuFlatLoop ? vtkSinglePassAMRVolumeMapper::FLAT_LOOP
+                                         : vtkSinglePassAMRVolumeMapper::NESTED_LOOPS);
   this->Mapper->SetDiagnosticAblation(s.GpuAblation);
   this->Mapper->SetDiagnosticAblationSamples(s.GpuAblationSamples);
   this->Mapper->SetCellInterpolation(s.SmoothCellData ? vtkSinglePassAMRVolumeMapper::SMOOTH_CELL

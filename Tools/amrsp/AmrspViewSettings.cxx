@@ -429,6 +429,12 @@ RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range)
     throw UsageError{ "--ropes must be on or off" };
   }
   s.Ropes = ropes == "on";
+  const std::string loop = a.Get("loop", "nested");
+  if (loop != "nested" && loop != "flat")
+  {
+    throw UsageError{ "--loop must be nested or flat" };
+  }
+  s.GpuFlatLoop = loop == "flat";
   const std::string ablation = a.Get("ablation", "none");
   const std::string samplingOnly = "sampling-only";
   if (ablation == "traversal-only")

@@ -67,6 +67,9 @@ struct RenderSettings
   /// The single-pass mapper's DiagnosticAblation (0 none, 1 traversal only, 2 sampling only)
   /// and DiagnosticAblationSamples; not used by the CPU integrators.
   int GpuAblation = 0;
+  /// The single-pass mapper's RayLoop: false nested loops, true the flat loop (the image is the
+  /// same); not used by the CPU integrators.
+  bool GpuFlatLoop = false;
   int GpuAblationSamples = 256;
   /// GPU mappers' MaximumAtlasPageBytes (the largest atlas texture; larger atlases are split
   /// into pages); 0 keeps the mapper's default. Not used by the CPU integrators.

@@ -172,6 +172,16 @@ bool CompareLoopCounts(tool::PackingRenderer& gpu, const Hierarchy& h,
   const bool rejectedDescent = !Agree(descent, ropedDescent);
   log << (rejectedDescent ? "ok" : "FAILED") << ": the descent count with ropes (" << ropedDescent
       << ") is rejected for the frame without\n";
+  // the flat loop: the same image and the same loop counts as the nested loops
+  mapper->SetRayLoop(vtkSinglePassAMRVolumeMapper::FLAT_LOOP);
+  const Image flat = gpu.RenderAsIs(ms);
+  const bool flatSame = Rmse(roped, flat) == 0.0;
+  log << (flatSame ? "ok" : "FAILED") << ": the flat loop renders the same image (RMSE "
+      << Rmse(roped, flat) << ")\n";
+  compare(M::SEGMENT_COUNT, "segment-loop iterations in the flat loop", total(w.Segments));
+  compare(M::DESCENT_STEP_COUNT, "descent steps in the flat loop", ropedDescent);
+  compare(M::SAMPLE_COUNT, "samples in the flat loop", total(w.Samples));
+  mapper->SetRayLoop(vtkSinglePassAMRVolumeMapper::NESTED_LOOPS);
   s.Ropes = true;
   s.SampleDistanceFactor *= 2.0;
   const WorkSummary coarse = MeasureSinglePassWork(h, tree, s, FetchModel());
@@ -179,7 +189,7 @@ bool CompareLoopCounts(tool::PackingRenderer& gpu, const Hierarchy& h,
   const bool rejected = !Agree(samples, wrong);
   log << (rejected ? "ok" : "FAILED") << ": the mirror's samples at twice the sampling distance ("
       << wrong << ") are rejected\n";
-  return ok && rejected && same && rejectedDescent;
+  return ok && rejected && same && rejectedDescent && flatSame;
 }
 
 bool CompareWorkCounters(tool::PackingRenderer& gpu, const RenderStats& cpu, const Hierarchy& h,
