@@ -12,7 +12,10 @@ repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 config=${1:?usage: scripts/run-tests.sh CONFIG [BACKEND...]}
 shift
 amrsp_run_where_config_belongs scripts/run-tests.sh "$config" "$@"
-build=$repo/build/$config
+# AMRSP_BUILD_DIR and AMRSP_SUMMARY_FILE point a run elsewhere (Testing.SkipBackstop runs this
+# script on a ctest folder of its own)
+build=${AMRSP_BUILD_DIR:-$repo/build/$config}
+summary=${AMRSP_SUMMARY_FILE:-$repo/build/test-summary.txt}
 [ -f "$build/CTestTestfile.cmake" ] || { echo "[test] $config is not built (scripts/build.sh $config)" >&2; exit 1; }
 backends=("$@")
 [ "${#backends[@]}" -gt 0 ] || read -r -a backends <<<"$(amrsp_config_backends "$config")"
@@ -73,7 +76,11 @@ for backend in "${backends[@]}"; do
   seconds=$((SECONDS - t0))
   total=$(sed -nE 's/.*tests? failed out of ([0-9]+).*/\1/p' "$log" | tail -n 1)
   failed=$(sed -nE 's/.* ([0-9]+) tests? failed out of.*/\1/p' "$log" | tail -n 1)
-  skipped=$(grep -cE '^ *[0-9]+ - .*\(Skipped\)' "$log" || true)
+  # ctest marks a skipped test "***Skipped" on its result line, and lists it again (indented by a
+  # tab) under "The following tests did not run"
+  skipped=$(grep -cE '^[[:space:]]*[0-9]+/[0-9]+ Test +#[0-9]+: .*\*\*\*Skipped' "$log" || true)
+  listed=$(grep -cE '^[[:space:]]*[0-9]+ - .*\(Skipped\)' "$log" || true)
+  [ "$listed" -le "$skipped" ] || skipped=$listed
   total=${total:-0} failed=${failed:-0}
   passed=$((total - failed - skipped))
   line="[summary] $config $backend: $passed passed, $failed failed, $skipped skipped of $total tests in $seconds s"
@@ -91,6 +98,6 @@ for backend in "${backends[@]}"; do
     fi
   fi
   echo "$line"
-  echo "$line" >>"$repo/build/test-summary.txt"
+  echo "$line" >>"$summary"
 done
 exit $status

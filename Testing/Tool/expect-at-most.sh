@@ -1,9 +1,13 @@
 #!/bin/sh
-# usage: expect-at-most.sh 'LABEL=BOUND' ['LABEL' ...] -- COMMAND [ARGS...]
+# usage: expect-at-most.sh [--after=TEXT] 'LABEL=BOUND' ['LABEL' ...] -- COMMAND [ARGS...]
 # Passes when COMMAND exits 0 and, for each LABEL=BOUND (LABEL a fixed string), the first number
 # after LABEL on the first line of its stdout containing LABEL is at most BOUND; a LABEL without a
-# bound must appear in stdout. A missing label or number fails. With
+# bound must appear in stdout. A missing label or number fails. --after=TEXT: the labels are
+# looked for only after the first line containing TEXT (one method's block of bench's JSON), which
+# must be there. With
 # AMRSP_REQUIRE_GPU unset, a command that says it cannot render here is reported as skipped (125).
+after=""
+case "${1:-}" in --after=*) after=${1#--after=}; shift ;; esac
 checks=""
 while [ "$#" -gt 0 ] && [ "$1" != "--" ]; do checks="$checks
 $1"; shift; done
@@ -22,6 +26,15 @@ if grep -qh "cannot render here" "$err" "$out"; then
 fi
 status=0
 if [ "$rc" -ne 0 ]; then echo "FAIL: exit code $rc"; status=1; fi
+if [ -n "$after" ]; then
+  if ! grep -qF -- "$after" "$out"; then
+    echo "FAIL: '$after' not printed"; rm -f "$out" "$err"; exit 1
+  fi
+  scoped=$(mktemp)
+  awk -v t="$after" 'on { print } !on && index($0, t) { on = 1 }' "$out" >"$scoped"
+  mv "$scoped" "$out"
+  echo "(checks after the line with '$after')"
+fi
 printf '%s\n' "$checks" | while IFS= read -r check; do
   [ -n "$check" ] || continue
   case "$check" in
