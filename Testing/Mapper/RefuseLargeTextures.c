@@ -20,13 +20,30 @@ typedef void (*TexImage2D)(unsigned int target, int level, int internalFormat, i
   int height, int border, unsigned int format, unsigned int type, const void* pixels);
 
 /* Tells a test that the library is loaded, and whether VTK took glTexImage3D from it: VTK 9.1
- * and 9.2 (GLEW) and 9.3 on GLX do; VTK's run-time EGL and OSMesa loaders (9.4 on) resolve
- * OpenGL with dlsym, past the preload. */
+ * and 9.2 (GLEW) and 9.3 on GLX through the loaders wrapped below; VTK's run-time EGL and OSMesa
+ * loaders (9.4 on) resolve OpenGL with dlsym, which this library wraps too. */
 int amrsp_refuse_large_textures_loaded = 1;
 int amrsp_refuse_large_textures_active = 0;
 /* Whether VTK's glTexImage2D calls come here: through a wrapped loader (glad) or, with GLEW,
  * which links OpenGL 1.1 functions directly, once the symbol below has been called. */
 int amrsp_refuse_large_textures_2d_active = 0;
+
+typedef void* (*Dlsym)(void* handle, const char* name);
+
+/* glibc's own dlsym (this library exports a dlsym of its own, below, so its calls go here) */
+static void* RealDlsym(void* handle, const char* name)
+{
+  static Dlsym real;
+  if (!real)
+  {
+    real = (Dlsym)dlvsym(RTLD_NEXT, "dlsym", "GLIBC_2.34");
+    if (!real)
+    {
+      real = (Dlsym)dlvsym(RTLD_NEXT, "dlsym", "GLIBC_2.2.5");
+    }
+  }
+  return real ? real(handle, name) : 0;
+}
 
 static TexImage3D RealTexImage3D;
 static TexImage2D RealTexImage2D;
@@ -101,7 +118,7 @@ unsigned int glGetError(void)
 {
   if (!RealGetError)
   {
-    RealGetError = (GetError)dlsym(RTLD_NEXT, "glGetError");
+    RealGetError = (GetError)RealDlsym(RTLD_NEXT, "glGetError");
   }
   return ReportingGetError();
 }
@@ -112,7 +129,7 @@ void glTexImage2D(unsigned int target, int level, int internalFormat, int width,
 {
   if (!RealTexImage2D)
   {
-    RealTexImage2D = (TexImage2D)dlsym(RTLD_NEXT, "glTexImage2D");
+    RealTexImage2D = (TexImage2D)RealDlsym(RTLD_NEXT, "glTexImage2D");
   }
   amrsp_refuse_large_textures_2d_active = 1;
   RefusingTexImage2D(target, level, internalFormat, width, height, border, format, type, pixels);
@@ -124,7 +141,7 @@ void glTexImage2D(unsigned int target, int level, int internalFormat, int width,
     static Function (*real)(const char*);                                                          \
     if (!real)                                                                                     \
     {                                                                                              \
-      real = (Function(*)(const char*))dlsym(RTLD_NEXT, #loader);                                  \
+      real = (Function(*)(const char*))RealDlsym(RTLD_NEXT, #loader);                              \
     }                                                                                              \
     return Substitute(name, real ? real(name) : 0);                                                \
   }
@@ -133,3 +150,16 @@ AMRSP_WRAP_LOADER(glXGetProcAddress)
 AMRSP_WRAP_LOADER(glXGetProcAddressARB)
 AMRSP_WRAP_LOADER(eglGetProcAddress)
 AMRSP_WRAP_LOADER(OSMesaGetProcAddress)
+
+/* VTK's run-time loaders (glad, VTK 9.4 on) take OpenGL's functions from the driver's library
+ * with dlsym: the three functions above are substituted there too; every other symbol is
+ * glibc's answer. */
+void* dlsym(void* handle, const char* name)
+{
+  void* found = RealDlsym(handle, name);
+  if (!name || strncmp(name, "gl", 2) != 0)
+  {
+    return found;
+  }
+  return (void*)Substitute(name, (Function)found);
+}

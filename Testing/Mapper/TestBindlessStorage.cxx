@@ -350,8 +350,11 @@ int main(int argc, char* argv[])
     }
     if (bindless)
     {
-      std::cout << "SKIPPED: this context has bindless textures; the fallback needs one without\n";
-      return 125;
+      // CTest runs this mode on the default driver (llvmpipe), which has no bindless textures:
+      // in CI a context with them means the environment is not the one the test was set up for
+      return mappertest::SkipOrFail(
+        "this context has bindless textures; the fallback needs one without (CTest runs this "
+        "mode on Mesa's default llvmpipe)");
     }
     return RunFallback();
   }

@@ -50,7 +50,11 @@ def main():
     pvpython, plugin, outdir = sys.argv[1:]
     patchelf = shutil.which("patchelf")
     if not patchelf:
-        print("SKIPPED: patchelf not found (scripts/install-deps.sh installs it)")
+        why = "patchelf not found (scripts/install-deps.sh installs it)"
+        if os.environ.get("AMRSP_REQUIRE_GPU") == "1":
+            print("FAIL: required here (AMRSP_REQUIRE_GPU=1) but missing: " + why)
+            return 1
+        print("SKIPPED: " + why)
         return SKIP
     os.makedirs(outdir, exist_ok=True)
 
