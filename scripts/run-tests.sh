@@ -65,6 +65,9 @@ for backend in "${backends[@]}"; do
       || { echo "$check"; echo "FAIL: amrsp render could not render through $backend"; exit 1; }
     seen=$(printf '%s\n' "$check" | sed -n 's/^backend: //p')
     echo "backend check: $seen; $(printf '%s\n' "$check" | grep '^device: ')"
+    # the plugin tests compare the renderer they rendered with to this pass's (PluginTestKit.py)
+    AMRSP_EXPECTED_RENDERER=$(printf '%s\n' "$check" | sed -n 's/^device: //p' | head -n 1)
+    export AMRSP_EXPECTED_RENDERER
     case "$backend:$seen" in
       glx:GLX*|egl:EGL*|osmesa:OSMesa*) ;;
       *) echo "FAIL: asked for $backend, the tool rendered through '$seen'"; exit 1 ;;

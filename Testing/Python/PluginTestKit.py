@@ -72,6 +72,32 @@ def check_render_error(error, what="the representation"):
     fail("%s reported an error: %s" % (what, error))
 
 
+# The windows of VTK's window systems; ParaView's own offscreen window wraps one of them.
+WINDOW_SYSTEMS = ("vtkXOpenGLRenderWindow", "vtkEGLRenderWindow", "vtkOSOpenGLRenderWindow")
+
+
+def check_window(view):
+    """Prints the view's render window class and OpenGL renderer string, and fails where the test
+    did not render through the backend of its pass (scripts/run-tests.sh): a window of another
+    window system than VTK_DEFAULT_OPENGL_WINDOW asks for, or another OpenGL renderer than the one
+    the pass's backend check saw the tool render with (AMRSP_EXPECTED_RENDERER; OSMesa's Mesa 25
+    and EGL's Mesa 26 name different LLVM versions)."""
+    window = view.GetRenderWindow()
+    name = window.GetClassName()
+    renderer = "unknown"
+    for line in window.ReportCapabilities().splitlines():
+        if line.startswith("OpenGL renderer string:"):
+            renderer = line.split(":", 1)[1].strip()
+    print("render window: %s, OpenGL renderer: %s" % (name, renderer))
+    wanted = os.environ.get("VTK_DEFAULT_OPENGL_WINDOW")
+    if wanted and name in WINDOW_SYSTEMS and name != wanted:
+        fail("asked for %s (VTK_DEFAULT_OPENGL_WINDOW), rendered through %s" % (wanted, name))
+    expected = os.environ.get("AMRSP_EXPECTED_RENDERER")
+    if expected and not os.environ.get("MESA_LOADER_DRIVER_OVERRIDE") and renderer != expected:
+        fail("rendered by '%s', where this pass's backend check rendered with '%s'"
+             % (renderer, expected))
+
+
 def density_quantiles(source, fractions):
     """Quantiles of the cell array Density over the level-0 blocks, i.e. by volume (builtin
     session: the source's own output, as servermanager.Fetch cannot move a vtkOverlappingAMR)."""

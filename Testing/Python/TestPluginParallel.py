@@ -146,7 +146,7 @@ def run(command, log_path):
     text = read_log_and_rank_logs(log_path)
     lines = [l for l in text.splitlines()
              if l.startswith(("parallel:", "texture builds", "block copies", "rmse", "screenshot",
-                              "SKIPPED", "FAIL", "PASS"))]
+                              "render window:", "SKIPPED", "FAIL", "PASS"))]
     print("$ %s\n  %s" % (" ".join(command), "\n  ".join(lines)))
     if "SKIPPED:" in text:
         if os.environ.get("AMRSP_REQUIRE_GPU") == "1":
@@ -154,6 +154,9 @@ def run(command, log_path):
             sys.exit(1)
         print("SKIPPED: a run was skipped (log %s)" % log_path)
         sys.exit(SKIP)
+    if "render window:" not in text:
+        print("FAIL: the run did not say which window it rendered through (log %s)" % log_path)
+        sys.exit(1)
     if code != 0 or "\nPASS" not in text:
         # the X server's refusals are repeated for RetryOnXFailure.py
         print("\n".join(l for l in text.splitlines() if "X server" in l or "open display" in l))

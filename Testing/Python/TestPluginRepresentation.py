@@ -29,7 +29,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from PluginTestKit import (BEFORE_FAIL, BEFORE_LEAVE, check_render_error, fail, leave, off_share, rmse, skip,  # noqa: E402
+from PluginTestKit import (BEFORE_FAIL, BEFORE_LEAVE, check_render_error, check_window, fail, leave, off_share, rmse, skip,  # noqa: E402
                            write_view_json)  # noqa: E402
 
 SERVER = []  # the pvservers this test started (one; more after a failed start); ended with it
@@ -476,6 +476,7 @@ def main():
     # First render, then a camera change and a colour-map change: none may rebuild the textures.
     simple.Render(view)
     server_died(server)
+    check_window(view)
     error = info_property(display, "SinglePassRenderError")
     check_render_error(error)
     builds = info_property(display, "SinglePassTextureBuilds")
