@@ -135,15 +135,18 @@ void glTexImage2D(unsigned int target, int level, int internalFormat, int width,
   RefusingTexImage2D(target, level, internalFormat, width, height, border, format, type, pixels);
 }
 
+/* The drivers' loaders, wrapped: each takes the real one from the library VTK asked with dlsym
+ * (below), or else the next one after this library. */
+typedef Function (*Loader)(const char*);
 #define AMRSP_WRAP_LOADER(loader)                                                                  \
+  static Loader Real_##loader;                                                                     \
   Function loader(const char* name)                                                                \
   {                                                                                                \
-    static Function (*real)(const char*);                                                          \
-    if (!real)                                                                                     \
+    if (!Real_##loader)                                                                            \
     {                                                                                              \
-      real = (Function(*)(const char*))RealDlsym(RTLD_NEXT, #loader);                              \
+      Real_##loader = (Loader)RealDlsym(RTLD_NEXT, #loader);                                       \
     }                                                                                              \
-    return Substitute(name, real ? real(name) : 0);                                                \
+    return Substitute(name, Real_##loader ? Real_##loader(name) : 0);                              \
   }
 
 AMRSP_WRAP_LOADER(glXGetProcAddress)
@@ -151,13 +154,41 @@ AMRSP_WRAP_LOADER(glXGetProcAddressARB)
 AMRSP_WRAP_LOADER(eglGetProcAddress)
 AMRSP_WRAP_LOADER(OSMesaGetProcAddress)
 
+/* A loader VTK took with dlsym: remembered as the real one, answered with its wrapper. */
+static void* WrapLoader(const char* name, void* found)
+{
+#define AMRSP_LOADER_CASE(loader)                                                                  \
+  if (strcmp(name, #loader) == 0)                                                                  \
+  {                                                                                                \
+    if (!Real_##loader)                                                                            \
+    {                                                                                              \
+      Real_##loader = (Loader)found;                                                               \
+    }                                                                                              \
+    return (void*)loader;                                                                          \
+  }
+  AMRSP_LOADER_CASE(glXGetProcAddress)
+  AMRSP_LOADER_CASE(glXGetProcAddressARB)
+  AMRSP_LOADER_CASE(eglGetProcAddress)
+  AMRSP_LOADER_CASE(OSMesaGetProcAddress)
+#undef AMRSP_LOADER_CASE
+  return found;
+}
+
 /* VTK's run-time loaders (glad, VTK 9.4 on) take OpenGL's functions from the driver's library
  * with dlsym: the three functions above are substituted there too; every other symbol is
  * glibc's answer. */
 void* dlsym(void* handle, const char* name)
 {
   void* found = RealDlsym(handle, name);
-  if (!name || strncmp(name, "gl", 2) != 0)
+  if (!found || !name)
+  {
+    return found;
+  }
+  if (strstr(name, "GetProcAddress"))
+  {
+    return WrapLoader(name, found); /* glad's loaders take the driver's loader this way */
+  }
+  if (strncmp(name, "gl", 2) != 0)
   {
     return found;
   }
