@@ -69,7 +69,7 @@ uint64_t ParseUnsigned(const std::string& key, const std::string& value, bool su
   if (digits == 0)
   {
     BadValue(key, value,
-      suffixes ? "expected a non-negative integer, optionally with a k or M suffix"
+      suffixes ? "expected a non-negative integer, optionally with a k, M or G suffix"
                : "expected a non-negative integer");
   }
   uint64_t fracPart = 0;
@@ -107,23 +107,28 @@ uint64_t ParseUnsigned(const std::string& key, const std::string& value, bool su
       multiplier = 1000000;
       ++i;
     }
+    else if (value[i] == 'G')
+    {
+      multiplier = 1000000000;
+      ++i;
+    }
   }
   if (i != value.size())
   {
     BadValue(key, value,
-      suffixes ? "expected a non-negative integer, optionally with a k or M suffix (e.g. 19M)"
+      suffixes ? "expected a non-negative integer, optionally with a k, M or G suffix (e.g. 19M)"
                : "expected a non-negative integer");
   }
   if (hasFraction && multiplier == 1)
   {
-    BadValue(key, value, "a decimal number needs a k or M suffix");
+    BadValue(key, value, "a decimal number needs a k, M or G suffix");
   }
   if (intPart > maxValue / multiplier)
   {
     BadValue(key, value, "number too large");
   }
   const uint64_t whole = intPart * multiplier;
-  // fracPart < fracScale <= 10^6, multiplier <= 10^6: no overflow.
+  // fracPart < fracScale <= 10^6, multiplier <= 10^9: no overflow.
   const uint64_t fracScaled = fracPart * multiplier;
   if (fracScaled % fracScale != 0)
   {

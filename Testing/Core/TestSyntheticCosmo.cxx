@@ -289,6 +289,10 @@ TEST(SyntheticCosmo, ParserAccepts)
   EXPECT_EQ(p.Cells, 1500000);
   EXPECT_EQ(p.Grids, 18000);
   EXPECT_EQ(p.Seed, 18446744073709551615ULL);
+  p = amrsp::ParseCosmoParameters("cells=1G,grids=0.28M");
+  EXPECT_EQ(p.Cells, 1000000000);
+  EXPECT_EQ(p.Grids, 280000);
+  EXPECT_EQ(amrsp::ParseCosmoParameters("cells=1.5G").Cells, 1500000000);
   p = amrsp::ParseCosmoParameters("levels=13,roots=27,values=0");
   EXPECT_EQ(p.Levels, 13);
   EXPECT_EQ(p.RootGrids, 27);
@@ -310,7 +314,7 @@ TEST(SyntheticCosmo, ParserRejects)
   ExpectInvalid(parse("grid=50"), "'grid'");                    // unknown key
   ExpectInvalid(parse("grids=abc"), "'abc'");                   // not a number
   ExpectInvalid(parse("grids=12x"), "'12x'");                   // bad suffix
-  ExpectInvalid(parse("cells=19G"), "'19G'");                   // unsupported suffix
+  ExpectInvalid(parse("cells=19T"), "'19T'");                   // unsupported suffix
   ExpectInvalid(parse("cells=-5"), "'-5'");                     // negative
   ExpectInvalid(parse("levels=2k"), "'2k'");                    // no suffix for levels
   ExpectInvalid(parse("levels=0"), "levels");                   // out of range

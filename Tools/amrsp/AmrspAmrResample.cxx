@@ -4,6 +4,9 @@
 #ifdef AMRSP_HAVE_VTK_AMR_VOLUME_MAPPER
 #include "vtkAMRVolumeMapper.h"
 #include "vtkCamera.h"
+#include "vtkCellData.h"
+#include "vtkCompositeDataIterator.h"
+#include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
 #include "vtkObjectFactory.h"
 #include "vtkOverlappingAMR.h"
@@ -156,6 +159,54 @@ vtkSmartPointer<vtkAmrspTimedAMRVolumeMapper> NewMapper()
 }
 } // namespace
 
+namespace
+{
+/// vtkAMRResampleFilter copies every array of each block into its grid and asserts (aborting
+/// the process) when two blocks hold different numbers of arrays; vtkAMRVolumeMapper blanks the
+/// blocks that lack vtkGhostType itself, only some of them: every block gets it here first.
+GpuScene ResampleScene()
+{
+  GpuScene scene;
+  scene.Blanking = true;
+  return scene;
+}
+
+/// Throws GpuError naming the first block whose number of cell or point arrays differs from the
+/// first block's: vtkAMRResampleFilter would assert on it and abort the process.
+void RequireSameArrays(vtkDataObject* input)
+{
+  vtkCompositeDataSet* amr = vtkCompositeDataSet::SafeDownCast(input);
+  if (!amr)
+  {
+    return;
+  }
+  vtkSmartPointer<vtkCompositeDataIterator> it;
+  it.TakeReference(amr->NewIterator());
+  int cells = -1, points = -1, block = 0;
+  for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem(), ++block)
+  {
+    vtkDataSet* ds = vtkDataSet::SafeDownCast(it->GetCurrentDataObject());
+    if (!ds)
+    {
+      continue;
+    }
+    const int c = ds->GetCellData()->GetNumberOfArrays();
+    const int p = ds->GetPointData()->GetNumberOfArrays();
+    if (cells < 0)
+    {
+      cells = c;
+      points = p;
+    }
+    else if (c != cells || p != points)
+    {
+      throw GpuError("vtkAMRResampleFilter needs the same arrays in every block: block " +
+        std::to_string(block) + " has " + std::to_string(c) + " cell and " + std::to_string(p) +
+        " point arrays, the first " + std::to_string(cells) + " and " + std::to_string(points));
+    }
+  }
+}
+} // namespace
+
 AmrResampleRenderer::AmrResampleRenderer(
   const Hierarchy& h, const RenderSettings& s, const ViewAngles& view, const glm::ivec3& samples)
   : AmrResampleRenderer(NewMapper(), h, s, view, samples)
@@ -164,7 +215,8 @@ AmrResampleRenderer::AmrResampleRenderer(
 
 AmrResampleRenderer::AmrResampleRenderer(vtkAmrspTimedAMRVolumeMapper* mapper, const Hierarchy& h,
   const RenderSettings& s, const ViewAngles& view, const glm::ivec3& samples)
-  : GpuRenderer(samples.x < 0 ? "vtk-amr-resample:finest" : "vtk-amr-resample", mapper, h, s, view)
+  : GpuRenderer(samples.x < 0 ? "vtk-amr-resample:finest" : "vtk-amr-resample", mapper, h, s, view,
+      ResampleScene())
   , Mapper(mapper)
 {
   // the resampler turns cell data into point data at its sample points: the mapper expects the
@@ -218,6 +270,7 @@ AmrResampleRenderer::AmrResampleRenderer(vtkAmrspTimedAMRVolumeMapper* mapper, c
   int used[3];
   this->Mapper->GetNumberOfSamples(used);
   this->CellsPerSample = extent / (glm::dvec3(used[0], used[1], used[2]) - 1.0) / finest;
+  RequireSameArrays(this->Mapper->GetInputDataObject(0, 0));
 }
 
 double AmrResampleRenderer::BuildSeconds() const

@@ -209,8 +209,8 @@ GpuRenderer::GpuRenderer(const std::string& method, vtkVolumeMapper* mapper, con
 
   if (scene.AmrInput)
   {
-    // the mappers do not read blanking: no vtkGhostType array (1 byte per cell)
-    vtkSinglePassAMRConversion::ToOverlappingAMR(h, I->Amr, false);
+    // the project's mappers do not read blanking: no vtkGhostType array (1 byte per cell)
+    vtkSinglePassAMRConversion::ToOverlappingAMR(h, I->Amr, scene.Blanking);
     I->Mapper->SetInputDataObject(0, I->Amr);
     I->Mapper->SelectScalarArray(h.ArrayName.empty() ? "values" : h.ArrayName.c_str());
   }

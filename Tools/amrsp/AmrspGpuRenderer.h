@@ -52,6 +52,9 @@ struct GpuScene
   /// The mapper's input is `h` as a vtkOverlappingAMR, array `h.ArrayName` (false: the
   /// subclass sets the mapper's input).
   bool AmrInput = true;
+  /// With AmrInput: every block also carries the vtkGhostType blanking array (the finest ones all
+  /// zero), for VTK's own AMR consumers, which need the same arrays in every block.
+  bool Blanking = false;
   /// The settings' blend mode, lighting, cropping and --view-json camera (false: composite,
   /// unshaded, uncropped, the conventions' camera: uniform-gpu).
   bool Modes = true;

@@ -64,8 +64,8 @@ struct CosmoParameters
 /// Parses "grids=N,levels=L,cells=C,seed=S" (any subset, any order; keys are case-insensitive;
 /// spaces around items are ignored; an empty string gives the defaults). Also accepted:
 /// "roots=R" (CosmoParameters::RootGrids) and "values=0|1" (CosmoParameters::GenerateValues).
-/// N, C and R accept the suffixes k (10^3) and M (10^6), also after a decimal number as long as
-/// the result is an integer (cells=19M, cells=1.5M, grids=2.5k).
+/// N, C and R accept the suffixes k (10^3), M (10^6) and G (10^9), also after a decimal number as
+/// long as the result is an integer (cells=19M, cells=1.5M, grids=2.5k, cells=1G).
 /// @throws std::invalid_argument naming the offending item, key or value.
 CosmoParameters ParseCosmoParameters(const std::string& spec);
 
