@@ -271,14 +271,25 @@ private:
     }
   }
 
+  /// A node still to refine with the grids of the level being merged that overlap it, and whether
+  /// it needs a type (a) node of its own should one grid cover it whole (`OwnLodNode`: false when
+  /// its sibling is covered whole too, so that their parent keeps the coarser data).
+  struct RefineItem
+  {
+    int32_t Node;
+    std::vector<ClippedGrid> Grids;
+    bool OwnLodNode;
+  };
+
   void Refine(int32_t start, std::vector<ClippedGrid>&& startGrids, int level)
   {
-    std::vector<std::pair<int32_t, std::vector<ClippedGrid>>> work;
-    work.emplace_back(start, std::move(startGrids));
+    std::vector<RefineItem> work;
+    work.push_back(RefineItem{ start, std::move(startGrids), true });
     while (!work.empty())
     {
-      const int32_t n = work.back().first;
-      std::vector<ClippedGrid> grids = std::move(work.back().second);
+      const int32_t n = work.back().Node;
+      std::vector<ClippedGrid> grids = std::move(work.back().Grids);
+      const bool ownLodNode = work.back().OwnLodNode;
       work.pop_back();
       if (grids.empty())
       {
@@ -289,8 +300,7 @@ private:
         grids.begin(), grids.end(), [&](const ClippedGrid& g) { return g.Cells.Contains(region); });
       if (cover != grids.end())
       {
-        Nodes[n].Grid = cover->Grid;
-        Nodes[n].Level = level;
+        CoverNode(n, region, cover->Grid, level, ownLodNode);
         continue;
       }
       const SplitChoice s = ChooseSplit(region, grids);
@@ -298,21 +308,7 @@ private:
       {
         throw HierarchyError("internal error: no split plane for a partially covered node");
       }
-      const int32_t first = static_cast<int32_t>(Nodes.size());
-      KdNode& parent = Nodes[n];
-      parent.Axis = s.Axis;
-      parent.Level = level;
-      parent.Split = s.Position - region.Lo[s.Axis];
-      parent.FirstChild = first;
-      KdNode lower, upper;
-      lower.Grid = upper.Grid = parent.Grid; // the covering grid, if any, contains both halves
-      lower.Level = upper.Level = parent.Grid >= 0 ? H.Grids[parent.Grid].Level : level;
-      lower.Region = upper.Region = parent.Region;
-      const int64_t planeFine = s.Position * ToFinest[level][s.Axis];
-      lower.Region.Hi[s.Axis] = planeFine;
-      upper.Region.Lo[s.Axis] = planeFine;
-      Nodes.push_back(lower);
-      Nodes.push_back(upper);
+      const int32_t first = Split(n, region, s.Axis, s.Position, level);
 
       std::vector<ClippedGrid> lowerGrids, upperGrids;
       for (const ClippedGrid& g : grids)
@@ -330,9 +326,63 @@ private:
           upperGrids.push_back(c);
         }
       }
-      work.emplace_back(first, std::move(lowerGrids));
-      work.emplace_back(first + 1, std::move(upperGrids));
+      const auto covered = [&](int32_t child, const std::vector<ClippedGrid>& childGrids)
+      {
+        const Box childRegion = Coarsened(Nodes[child].Region, ToFinest[level]);
+        return std::any_of(childGrids.begin(), childGrids.end(),
+          [&](const ClippedGrid& g) { return g.Cells.Contains(childRegion); });
+      };
+      const bool both = covered(first, lowerGrids) && covered(first + 1, upperGrids);
+      work.push_back(RefineItem{ first, std::move(lowerGrids), !both });
+      work.push_back(RefineItem{ first + 1, std::move(upperGrids), !both });
     }
+  }
+
+  /// Splits leaf `n` (its region in cells of `level`: `region`) on `axis` at `position` (cells of
+  /// `level`, absolute); both children keep the node's grid (which contains both halves).
+  /// Returns the lower child's index.
+  int32_t Split(int32_t n, const Box& region, int axis, int64_t position, int level)
+  {
+    const int32_t first = static_cast<int32_t>(Nodes.size());
+    KdNode& parent = Nodes[n];
+    parent.Axis = axis;
+    parent.Level = level;
+    parent.Split = position - region.Lo[axis];
+    parent.FirstChild = first;
+    KdNode lower, upper;
+    lower.Grid = upper.Grid = parent.Grid;
+    lower.Level = upper.Level = parent.Grid >= 0 ? H.Grids[parent.Grid].Level : level;
+    lower.Region = upper.Region = parent.Region;
+    const int64_t planeFine = position * ToFinest[level][axis];
+    lower.Region.Hi[axis] = planeFine;
+    upper.Region.Lo[axis] = planeFine;
+    Nodes.push_back(lower);
+    Nodes.push_back(upper);
+    return first;
+  }
+
+  /// Leaf `n` (region `region` in cells of `level`) lies wholly in `grid` of `level`. A leaf that
+  /// showed a coarser grid keeps it for the level of detail where no ancestor will
+  /// (`ownLodNode`: its sibling is not covered whole as well): it becomes a type (a) node over two
+  /// halves showing `grid` (split in the middle of its longest axis in `level` cells; a node one
+  /// cell wide on every axis cannot be, and shows `grid` alone). Without the split a single grid
+  /// refining a region would leave no node where the level of detail could stop.
+  void CoverNode(int32_t n, const Box& region, int32_t grid, int level, bool ownLodNode)
+  {
+    const glm::i64vec3 e = region.Extent();
+    const int axis = e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
+    if (ownLodNode && Nodes[n].Grid >= 0 && e[axis] >= 2)
+    {
+      const int32_t first = Split(n, region, axis, region.Lo[axis] + e[axis] / 2, level);
+      for (int32_t c = first; c < first + 2; ++c)
+      {
+        Nodes[c].Grid = grid;
+        Nodes[c].Level = level;
+      }
+      return;
+    }
+    Nodes[n].Grid = grid;
+    Nodes[n].Level = level;
   }
 
   /// Assigns node types bottom-up. An inner node keeps its covering grid (type (a)) only when

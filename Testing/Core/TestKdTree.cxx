@@ -129,6 +129,36 @@ TEST(KdTree, FullyRefinedNodeIsTypeA)
   EXPECT_TRUE(CheckKdTree(h, tree).Ok);
 }
 
+TEST(KdTree, OneGridRefiningAWholeLeafLeavesATypeANode)
+{
+  // A level-1 grid over the middle of a level-0 grid: the splits cut out the patch's region, which
+  // one grid covers whole; it must stay a type (a) node with the level-0 data (over two halves of
+  // the level-1 grid), or the level of detail could never show level 0 there.
+  Hierarchy h;
+  h.RefinementRatio = { glm::ivec3(1), glm::ivec3(2) };
+  h.Grids = { Grid{ 0, MakeBox(0, 0, 0, 8, 8, 8) }, Grid{ 1, MakeBox(4, 4, 4, 12, 12, 12) } };
+  FillValues(h);
+  const KdTree tree = BuildKdTree(h);
+  const Box patch = MakeBox(4, 4, 4, 12, 12, 12); // finest (level-1) cells
+  int typeA = -1;
+  for (std::size_t i = 0; i < tree.Nodes.size(); ++i)
+  {
+    if (tree.Nodes[i].Region == patch && tree.Nodes[i].Type == NodeType::Refined)
+    {
+      typeA = static_cast<int>(i);
+    }
+  }
+  ASSERT_GE(typeA, 0) << "no type (a) node over the patch";
+  EXPECT_EQ(tree.Nodes[typeA].Grid, 0);
+  for (int c = 0; c < 2; ++c)
+  {
+    const KdNode& half = tree.Nodes[tree.Nodes[typeA].FirstChild + c];
+    EXPECT_TRUE(half.IsLeaf());
+    EXPECT_EQ(half.Grid, 1);
+  }
+  EXPECT_TRUE(CheckKdTree(h, tree).Ok);
+}
+
 TEST(KdTree, SplitMinimisesCrossingsThenBalances)
 {
   // Four level-0 grids: a y-plane at 6 cuts none; x = 4 would cut one. Expect the y split.
