@@ -16,6 +16,7 @@
 #include "vtkActor.h"
 #include "vtkImageData.h"
 #include "vtkPNGReader.h"
+#include "vtkPNGWriter.h"
 #include "vtkPointData.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkPlaneSource.h"
@@ -27,6 +28,7 @@
 #include "vtkSinglePassAMRVolumeMapper.h"
 #include "vtkTesting.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -352,6 +354,22 @@ bool CompareWithStoredBaseline(int argc, char* argv[], const Image& image, const
   }
   const char* valid = testing->GetValidImageFileName();
   const std::string path = valid ? valid : "";
+  // AMRSP_WRITE_BASELINE_DIR: this run's image is written there under the baseline's name, for
+  // replacing a baseline after a deliberate change (docs/testing.md, "Baselines")
+  if (const char* dir = std::getenv("AMRSP_WRITE_BASELINE_DIR"))
+  {
+    const std::string name = path.substr(path.find_last_of('/') + 1);
+    const std::vector<std::uint8_t> rgb = image.Rgb8();
+    vtkNew<vtkImageData> data;
+    data->SetDimensions(image.Width, image.Height, 1);
+    data->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+    std::copy(rgb.begin(), rgb.end(), static_cast<std::uint8_t*>(data->GetScalarPointer()));
+    vtkNew<vtkPNGWriter> writer;
+    writer->SetFileName((std::string(dir) + "/" + name).c_str());
+    writer->SetInputData(data);
+    writer->Write();
+    log << "wrote " << dir << "/" << name << "\n";
+  }
   const std::vector<std::uint8_t> baseline = ReadPng(path, image.Width, image.Height);
   if (baseline.empty())
   {

@@ -1,0 +1,457 @@
+// SPDX-License-Identifier: BSD-3-Clause
+//
+// Features of vtkSinglePassAMRVolumeMapper checked against expectations that come from neither
+// the shader's CPU mirror nor the CPU reference: hand-made hierarchies and views whose right image
+// is known from the geometry and the rule's definition, pixel by pixel.
+//
+//   lod         the level-of-detail rule (docs/design.md): a type (a) node stops the descent when
+//               one cell of its data level is smaller than LODThreshold pixels at the ray's entry.
+//               Level 0 holds 1 (red), a level-1 patch over the middle holds 2 (green); maximum
+//               intensity shows which level a ray sampled. Parallel view, level-0 cells of 8
+//               pixels: thresholds 6 and off show the patch green, 10 and 16 red. Perspective view
+//               close to the patch: green exactly where the ray enters the patch nearer than
+//               c0 / (threshold x pixel size per distance), a disc computed per pixel here.
+//   iso         iso-surfaces of f = distance from the centre at two iso-values: two spheres of
+//               known radius seen along an axis; red (the inner value's colour) only inside the
+//               inner ring, blue inside the outer, background beyond.
+//   nan         a column of NaN cells through the whole volume shows the background exactly, the
+//               rest of the volume is drawn.
+//
+// Each mode shows in the test that the wrong rule fails its check: the shader with the LOD rule
+// off by a factor 2 or dropped, one iso-value dropped, NaN samples made opaque (shader
+// replacements, as TestLinearStorage breaks its layer stride).
+
+#include "AmrspPacking.h"
+#include "MapperTestHelpers.h"
+
+#include "amrsp/Hierarchy.h"
+#include "amrsp/KdTraversal.h"
+#include "amrsp/Render.h"
+
+#include "vtkOpenGLShaderProperty.h"
+#include "vtkRenderer.h"
+#include "vtkSinglePassAMRVolumeMapper.h"
+#include "vtkVolume.h"
+#include "vtkVolumeCollection.h"
+
+#include <cmath>
+#include <functional>
+#include <iostream>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace
+{
+using namespace amrsp;
+using namespace amrsp::tool;
+using mappertest::Check;
+using mappertest::Failures;
+using mappertest::Fixed;
+
+vtkOpenGLShaderProperty* ShaderProperty(PackingRenderer& gpu)
+{
+  vtkVolumeCollection* volumes = gpu.GetRenderer()->GetVolumes();
+  volumes->InitTraversal();
+  vtkVolume* volume = volumes->GetNextVolume();
+  return volume ? vtkOpenGLShaderProperty::SafeDownCast(volume->GetShaderProperty()) : nullptr;
+}
+
+/// A grid of `level` over `cells` whose every cell holds value(its centre, world units).
+void AddGrid(
+  Hierarchy& h, int level, const Box& cells, const std::function<float(const glm::dvec3&)>& value)
+{
+  h.Grids.push_back(Grid{ level, cells });
+  h.Grids.back().SourceId = static_cast<int64_t>(h.Grids.size() - 1);
+  const glm::dvec3 size = h.CellSize(level) * h.Spacing0;
+  const glm::i64vec3 e = cells.Extent();
+  GridValues v(static_cast<std::size_t>(cells.Cells()));
+  for (int64_t k = 0; k < e.z; ++k)
+    for (int64_t j = 0; j < e.y; ++j)
+      for (int64_t i = 0; i < e.x; ++i)
+      {
+        const glm::dvec3 centre =
+          h.Origin + (glm::dvec3(cells.Lo + glm::i64vec3(i, j, k)) + 0.5) * size;
+        v[static_cast<std::size_t>((k * e.y + j) * e.x + i)] = value(centre);
+      }
+  h.Values.push_back(std::move(v));
+}
+
+Box Cube(int64_t lo, int64_t hi)
+{
+  return Box{ glm::i64vec3(lo), glm::i64vec3(hi) };
+}
+
+/// The view down -z onto the unit cube: parallel (the square fills the image) or perspective
+/// from `distance` above the cube's top with the full vertical angle `angle`.
+Camera TopView(bool parallel, double distance = 0.0, double angle = 30.0)
+{
+  Camera c;
+  c.FocalPoint = glm::dvec3(0.5);
+  c.Position = glm::dvec3(0.5, 0.5, parallel ? 5.0 : 1.0 + distance);
+  c.ViewUp = glm::dvec3(0.0, 1.0, 0.0);
+  c.Parallel = parallel;
+  c.ParallelScale = 0.5;
+  c.ViewAngle = angle;
+  return c;
+}
+
+/// Renders `h` with `s` (its camera as it is) and returns the frame.
+Image RenderAsSet(PackingRenderer& gpu)
+{
+  double ms = 0.0;
+  return gpu.Render(0.0, ms);
+}
+
+ViewAngles SettingsCamera()
+{
+  ViewAngles v;
+  v.UseSettingsCamera = true;
+  return v;
+}
+
+// ---- level of detail --------------------------------------------------------------------
+
+/// Level 0: 8^3 cells of 1/8 holding 1; level 1 (ratio 2) over [1/4, 3/4)^3 holding 2.
+Hierarchy LevelPatch()
+{
+  Hierarchy h;
+  h.Spacing0 = glm::dvec3(1.0 / 8.0);
+  h.RefinementRatio.push_back(glm::ivec3(2));
+  h.ArrayName = "level";
+  AddGrid(h, 0, Cube(0, 8), [](const glm::dvec3&) { return 1.0f; });
+  AddGrid(h, 1, Cube(4, 12), [](const glm::dvec3&) { return 2.0f; });
+  return h;
+}
+
+/// Maximum intensity through a transfer function red at 1, green at 2, opaque.
+RenderSettings LevelSettings(int size, const Camera& view, float lod)
+{
+  RenderSettings s;
+  s.Width = s.Height = size;
+  s.View = view;
+  s.Blend = BlendMode::Maximum;
+  s.Transfer.Color = { { 1.0, glm::dvec3(1.0, 0.0, 0.0) }, { 2.0, glm::dvec3(0.0, 1.0, 0.0) } };
+  s.Transfer.Opacity = { { 1.0, 1.0 }, { 2.0, 1.0 } };
+  s.Transfer.UnitDistance = 0.1;
+  s.LodThresholdPixels = lod;
+  s.OpacityThreshold = 0.999;
+  return s;
+}
+
+/// Pixels showing the fine level (green above red) and the coarse one (red above green).
+void CountLevels(const Image& img, std::size_t& fine, std::size_t& coarse)
+{
+  fine = coarse = 0;
+  for (const glm::vec4& p : img.Pixels)
+  {
+    fine += p.g > 0.5f && p.r < 0.5f ? 1 : 0;
+    coarse += p.r > 0.5f && p.g < 0.5f ? 1 : 0;
+  }
+}
+
+/// Where the ray through pixel (i, j) enters the patch [1/4, 3/4)^3, or infinity.
+double PatchEntry(const RenderSettings& s, int i, int j)
+{
+  glm::dvec3 o, d;
+  s.View.Ray(s.Width, s.Height, i + 0.5, j + 0.5, o, d);
+  float t0, t1;
+  if (!IntersectBox(glm::vec3(0.25f), glm::vec3(0.75f), glm::vec3(o), glm::vec3(d), t0, t1))
+  {
+    return std::numeric_limits<double>::infinity();
+  }
+  return t0;
+}
+
+/// Pixels whose fine/coarse class differs from the disc expected for threshold `lod` (pixels
+/// whose entry lies within `band` of the boundary distance count for neither), and the pixels
+/// the expectation covers.
+std::size_t PerspectiveMismatches(
+  const Image& img, const RenderSettings& s, double lod, double band, std::size_t& expectedFine)
+{
+  const double perDistance = 2.0 * std::tan(glm::radians(s.View.ViewAngle) * 0.5) / s.Height;
+  const double boundary = (1.0 / 8.0) / (lod * perDistance); // c0 / (T x pixel per distance)
+  std::size_t wrong = 0;
+  expectedFine = 0;
+  for (int j = 0; j < s.Height; ++j)
+  {
+    for (int i = 0; i < s.Width; ++i)
+    {
+      const double t = PatchEntry(s, i, j);
+      if (!std::isfinite(t) || std::fabs(t - boundary) < band)
+      {
+        continue;
+      }
+      const bool fine = t < boundary;
+      expectedFine += fine ? 1 : 0;
+      const glm::vec4& p = img.Pixels[static_cast<std::size_t>(j) * s.Width + i];
+      const bool shownFine = p.g > 0.5f && p.r < 0.5f;
+      wrong += shownFine != fine ? 1 : 0;
+    }
+  }
+  return wrong;
+}
+
+void TestLevelOfDetail()
+{
+  std::cout << "level of detail\n";
+  Hierarchy h = LevelPatch();
+  // parallel: 64 px over the unit square, a level-0 cell is 8 px, the patch 32 x 32 = 1024 px
+  {
+    RenderSettings s = LevelSettings(64, TopView(true), 0.0f);
+    PackingRenderer gpu(h, s, SettingsCamera());
+    vtkSinglePassAMRVolumeMapper* m = gpu.GetMapper();
+    const struct
+    {
+      float Threshold;
+      bool Fine;
+    } cases[] = { { 0.0f, true }, { 6.0f, true }, { 10.0f, false }, { 16.0f, false } };
+    std::size_t fine = 0, coarse = 0;
+    for (const auto& c : cases)
+    {
+      m->SetLODThreshold(c.Threshold);
+      CountLevels(RenderAsSet(gpu), fine, coarse);
+      Check(fine == (c.Fine ? 1024u : 0u) && fine + coarse == 4096u,
+        "parallel, threshold " + Fixed(c.Threshold) + " px (level-0 cells 8 px): " +
+          std::to_string(fine) + " px show level 1, " + std::to_string(coarse) +
+          " level 0 (expected " + (c.Fine ? "1024 and 3072" : "0 and 4096") + ")");
+    }
+    // the rule off by a factor 2 (the pixel size halved) takes threshold 10 for 5: rejected
+    if (vtkOpenGLShaderProperty* shader = ShaderProperty(gpu))
+    {
+      shader->AddFragmentShaderReplacement("if (cellWorld < amrspLodThreshold * pixel)", false,
+        "if (cellWorld < amrspLodThreshold * 0.5 * pixel)", false);
+      m->SetLODThreshold(10.0f);
+      CountLevels(RenderAsSet(gpu), fine, coarse);
+      shader->ClearAllFragmentShaderReplacements();
+      Check(fine == 1024u,
+        "the rule off by a factor 2 shows level 1 at threshold 10 (" + std::to_string(fine) +
+          " px): the check above rejects it");
+    }
+    else
+    {
+      Check(false, "the volume has a vtkOpenGLShaderProperty");
+    }
+  }
+  // perspective, 0.35 above the patch, 90 degrees: level 1 where the ray enters the patch before
+  // c0 / (10 x pixel size per distance) = 0.4, a disc of about 18 px radius inside its 46 px square
+  {
+    RenderSettings s = LevelSettings(64, TopView(false, 0.1, 90.0), 10.0f);
+    PackingRenderer gpu(h, s, SettingsCamera());
+    const Image img = RenderAsSet(gpu);
+    const double band = 0.004; // about half a pixel's change of entry distance at the boundary
+    std::size_t expectedFine = 0;
+    const std::size_t wrong = PerspectiveMismatches(img, s, 10.0, band, expectedFine);
+    std::size_t fine = 0, coarse = 0;
+    CountLevels(img, fine, coarse);
+    Check(wrong <= 4 && expectedFine > 700 && expectedFine < 1300,
+      "perspective, threshold 10 px: " + std::to_string(fine) + " px show level 1, " +
+        std::to_string(wrong) + " px differ from the disc of entries nearer than c0 / (10 x " +
+        "pixel size per distance) (" + std::to_string(expectedFine) + " px; at most 4 may)");
+    // what a rule twice as eager would show: its disc is the one of threshold 20 / 2 ... the
+    // expectation of another threshold must not match the image
+    std::size_t otherFine = 0;
+    const std::size_t wrongFor7 = PerspectiveMismatches(img, s, 7.0, band, otherFine);
+    const std::size_t wrongFor14 = PerspectiveMismatches(img, s, 14.0, band, otherFine);
+    Check(wrongFor7 > 8 * (wrong + 1) && wrongFor14 > 8 * (wrong + 1),
+      "the discs of thresholds 7 and 14 differ from the image by " + std::to_string(wrongFor7) +
+        " and " + std::to_string(wrongFor14) + " px: the check tells the thresholds apart");
+    vtkSinglePassAMRVolumeMapper* m = gpu.GetMapper();
+    m->SetLODThreshold(0.0);
+    std::size_t offExpected = 0;
+    const std::size_t wrongOff =
+      PerspectiveMismatches(RenderAsSet(gpu), s, 10.0, band, offExpected);
+    Check(wrongOff > 8 * (wrong + 1),
+      "with the level of detail off the image differs from the disc by " +
+        std::to_string(wrongOff) + " px: rejected");
+  }
+}
+
+// ---- iso-surfaces -----------------------------------------------------------------------
+
+void TestIsoSurfaces()
+{
+  std::cout << "iso-surfaces\n";
+  // f = distance from the centre, 64^3 cells of 1/64; spheres of radius 0.2 (red) and 0.35
+  // (blue), each crossing half opaque; parallel view down z, 96 px over the unit square
+  Hierarchy h;
+  h.Spacing0 = glm::dvec3(1.0 / 64.0);
+  h.ArrayName = "radius";
+  const glm::dvec3 centre(0.5);
+  AddGrid(h, 0, Cube(0, 64),
+    [&](const glm::dvec3& p) { return static_cast<float>(glm::length(p - centre)); });
+  RenderSettings s;
+  s.Width = s.Height = 96;
+  s.View = TopView(true);
+  s.Blend = BlendMode::IsoSurface;
+  s.Transfer.Color = { { 0.2, glm::dvec3(1.0, 0.0, 0.0) }, { 0.35, glm::dvec3(0.0, 0.0, 1.0) } };
+  s.Transfer.Opacity = { { 0.2, 0.5 }, { 0.35, 0.5 } };
+  s.IsoValues = { 0.2, 0.35 };
+  PackingRenderer gpu(h, s, SettingsCamera());
+  const Image img = RenderAsSet(gpu);
+
+  // per pixel the distance rho of its ray from the centre; nearest cells quantise the field by
+  // up to half a cell diagonal (0.014): zones keep 2 cells (0.031) from each radius
+  const double margin = 2.0 / 64.0;
+  const auto zones = [&](const Image& image, std::size_t counts[3], std::size_t wrong[3])
+  {
+    for (int z = 0; z < 3; ++z)
+    {
+      counts[z] = wrong[z] = 0;
+    }
+    for (int j = 0; j < s.Height; ++j)
+    {
+      for (int i = 0; i < s.Width; ++i)
+      {
+        const double x = (i + 0.5) / s.Width - 0.5, y = (j + 0.5) / s.Height - 0.5;
+        const double rho = std::sqrt(x * x + y * y);
+        const glm::vec4& p = image.Pixels[static_cast<std::size_t>(j) * s.Width + i];
+        const bool red = p.r > 0.08f, blue = p.b > 0.08f, dark = p.r + p.g + p.b < 0.02f;
+        int zone = -1;
+        bool right = false;
+        if (rho < 0.2 - margin)
+        {
+          zone = 0; // both spheres in front: red and blue
+          right = red && blue;
+        }
+        else if (rho > 0.2 + margin && rho < 0.35 - margin)
+        {
+          zone = 1; // the outer sphere only
+          right = blue && !red;
+        }
+        else if (rho > 0.35 + margin)
+        {
+          zone = 2; // nothing
+          right = dark;
+        }
+        if (zone >= 0)
+        {
+          ++counts[zone];
+          wrong[zone] += right ? 0 : 1;
+        }
+      }
+    }
+  };
+  std::size_t counts[3], wrong[3];
+  zones(img, counts, wrong);
+  const char* names[3] = { "inside radius 0.2: red and blue", "between the radii: blue only",
+    "outside radius 0.35: background" };
+  for (int z = 0; z < 3; ++z)
+  {
+    Check(counts[z] > 300 && wrong[z] == 0,
+      std::string(names[z]) + ": " + std::to_string(wrong[z]) + " of " + std::to_string(counts[z]) +
+        " px differ");
+  }
+  // the wrong images: one iso-value dropped
+  vtkSinglePassAMRVolumeMapper* m = gpu.GetMapper();
+  for (const double kept : { 0.2, 0.35 })
+  {
+    RenderSettings one = s;
+    one.IsoValues = { kept };
+    PackingRenderer single(h, one, SettingsCamera());
+    std::size_t c[3], w[3];
+    zones(RenderAsSet(single), c, w);
+    Check(w[0] + w[1] + w[2] > 300,
+      "iso-value " + Fixed(kept) + " alone: " + std::to_string(w[0] + w[1] + w[2]) +
+        " px in the wrong zone (rejected)");
+  }
+  (void)m;
+}
+
+// ---- NaN --------------------------------------------------------------------------------
+
+void TestNaN()
+{
+  std::cout << "NaN samples\n";
+  // 16^3 cells holding 1, a column x, y in [1/4, 1/2) through all z holding NaN; composite,
+  // opaque colour; parallel view down z, 64 px: the column's 16 x 16 px show the background
+  Hierarchy h;
+  h.Spacing0 = glm::dvec3(1.0 / 16.0);
+  h.ArrayName = "withnan";
+  AddGrid(h, 0, Cube(0, 16),
+    [](const glm::dvec3& p)
+    {
+      const bool column = p.x > 0.25 && p.x < 0.5 && p.y > 0.25 && p.y < 0.5;
+      return column ? std::numeric_limits<float>::quiet_NaN() : 1.0f;
+    });
+  RenderSettings s;
+  s.Width = s.Height = 64;
+  s.View = TopView(true);
+  s.Transfer.Color = { { 0.0, glm::dvec3(1.0, 1.0, 0.0) }, { 2.0, glm::dvec3(1.0, 1.0, 0.0) } };
+  s.Transfer.Opacity = { { 0.0, 0.5 }, { 2.0, 0.5 } };
+  s.Transfer.UnitDistance = 0.1;
+  s.OpacityThreshold = 0.999;
+  PackingRenderer gpu(h, s, SettingsCamera());
+  const auto count = [&](const Image& img, std::size_t& columnLit, std::size_t& restDark)
+  {
+    columnLit = restDark = 0;
+    for (int j = 0; j < s.Height; ++j)
+    {
+      for (int i = 0; i < s.Width; ++i)
+      {
+        const glm::vec4& p = img.Pixels[static_cast<std::size_t>(j) * s.Width + i];
+        const bool lit = p.r + p.g + p.b > 0.0f;
+        const bool column = i >= 16 && i < 32 && j >= 16 && j < 32;
+        columnLit += column && lit ? 1 : 0;
+        restDark += !column && !lit ? 1 : 0;
+      }
+    }
+  };
+  std::size_t columnLit = 0, restDark = 0;
+  count(RenderAsSet(gpu), columnLit, restDark);
+  Check(columnLit == 0 && restDark == 0,
+    "the NaN column shows the background (" + std::to_string(columnLit) + " of 256 px lit), " +
+      "the rest is drawn (" + std::to_string(restDark) + " of 3840 px dark)");
+  if (vtkOpenGLShaderProperty* shader = ShaderProperty(gpu))
+  {
+    shader->AddFragmentShaderReplacement(
+      "if (isnan(scalar))", false, "if (isnan(scalar)) { scalar = 1.0; } if (false)", false);
+    count(RenderAsSet(gpu), columnLit, restDark);
+    shader->ClearAllFragmentShaderReplacements();
+    Check(columnLit == 256,
+      "NaN samples made opaque light the column (" + std::to_string(columnLit) +
+        " px): the check above rejects it");
+  }
+  else
+  {
+    Check(false, "the volume has a vtkOpenGLShaderProperty");
+  }
+}
+
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  const std::string mode = argc > 1 ? argv[1] : "";
+  if (mode != "lod" && mode != "iso" && mode != "nan")
+  {
+    std::cerr << "usage: TestAnalyticImages lod|iso|nan\n";
+    return 2;
+  }
+  std::string why;
+  if (!GpuRenderer::Available(why))
+  {
+    return mappertest::SkipOrFail(why);
+  }
+  try
+  {
+    if (mode == "lod")
+    {
+      TestLevelOfDetail();
+    }
+    else if (mode == "iso")
+    {
+      TestIsoSurfaces();
+    }
+    else
+    {
+      TestNaN();
+    }
+  }
+  catch (const std::exception& e)
+  {
+    std::cout << "  FAILED  " << e.what() << "\n";
+    return 1;
+  }
+  return Failures() == 0 ? 0 : 1;
+}
