@@ -279,8 +279,19 @@ Hierarchy UpToLevel(const Hierarchy& h, int last)
 /// A GPU image with a defect renders as the CPU kD-tree integrator (the shader's mirror) renders
 /// the scene with that defect: each such wrong image must fail the test's bounds against the
 /// reference or against the mirror of the right scene.
+/// Whether `wrong` is rejected by a bound with a clear margin: above the bound by at least
+/// twice what separates the bound from what the right image measures (`measured`).
+bool ClearlyAbove(double wrong, double bound, double measured)
+{
+  return wrong > bound && wrong - bound >= 2.0 * (bound - measured);
+}
+
+/// Every wrong image (BaselineCase::WrongImages, and level 0 alone) must be rejected with a clear
+/// margin (ClearlyAbove) by the reference's RMSE or off share, or by the mirror's RMSE, given what
+/// the GPU image measures against each (`gpuToReference`, `gpuToMirror`).
 bool RejectsWrongImages(const Hierarchy& h, const RenderSettings& settings, const Image& reference,
-  const Image& mirror, const BaselineCase& c, std::ostream& log)
+  const Image& mirror, const ImageDifference& gpuToReference, double gpuToMirror,
+  const BaselineCase& c, std::ostream& log)
 {
   std::vector<BaselineCase::WrongImage> wrong = c.WrongImages;
   const int levels = h.NumberOfLevels();
@@ -301,11 +312,16 @@ bool RejectsWrongImages(const Hierarchy& h, const RenderSettings& settings, cons
     const Image image = RenderKdTree(data, EncodeKdTree(data, BuildKdTree(data)), s);
     const ImageDifference toReference = Compare(image, reference);
     const ImageDifference toMirror = Compare(image, mirror);
-    const bool rejected = toReference.Rmse > c.ReferenceBound ||
-      toReference.OffShare > c.ReferenceOffBound || toMirror.Rmse > c.MirrorBound;
+    const bool byRmse = ClearlyAbove(toReference.Rmse, c.ReferenceBound, gpuToReference.Rmse);
+    const bool byOff =
+      ClearlyAbove(toReference.OffShare, c.ReferenceOffBound, gpuToReference.OffShare);
+    const bool byMirror = ClearlyAbove(toMirror.Rmse, c.MirrorBound, gpuToMirror);
+    const bool rejected = byRmse || byOff || (w.ReferenceBlind && byMirror);
     log << (rejected ? "ok" : "FAILED") << ": the bounds reject the image with " << w.What
         << ": against the reference " << toReference.Describe() << "; against the mirror RMSE "
-        << toMirror.Rmse << "\n";
+        << toMirror.Rmse << " (by at least twice the margin: " << (byRmse ? "reference RMSE " : "")
+        << (byOff ? "reference off share " : "") << (byMirror ? "mirror RMSE" : "")
+        << (rejected ? "" : "none") << ")\n";
     ok = ok && rejected;
   }
   return ok;
@@ -483,7 +499,9 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
               << ": GPU image vs CPU kD-tree integrator: " << mirror.Describe() << " (RMSE bound "
               << c.MirrorBound << ")\n";
     agrees = mirrorAgrees && agrees;
-    agrees = RejectsWrongImages(d.Data, ref, reference, mirrorImage, c, std::cout) && agrees;
+    agrees = RejectsWrongImages(d.Data, ref, reference, mirrorImage, Compare(image, reference),
+               mirror.Rmse, c, std::cout) &&
+      agrees;
     agrees = CompareWithStoredBaseline(argc, argv, image, reference, c, std::cout) && agrees;
 
     if (c.CheckWorkCounters)

@@ -8,14 +8,17 @@ int TestSinglePassAMRLevelOfDetail(int argc, char* argv[])
   amrsp::test::BaselineCase c;
   c.Dataset = "data:amrex_plt1_Y";
   c.Options = { "--array", "Y(H2)", "--size", "200x200", "--lod", "8" };
-  // covered-pixel bounds, about 1.5-2x what llvmpipe (LLVM 15) measures: reference 7.64, 43.93 % of
+  // covered-pixel bounds close to what llvmpipe (LLVM 15) measures, each wrong image rejected
+  // by the reference with at least twice the margin; measured: reference 7.64, 43.93 % of
   // the pixels off by more than 8 levels, mirror 0.36, stored baseline 0.16;
   // the reference shows the finest level everywhere; the mirror has the same LOD
   c.ReferenceBound = 11.5;
   c.ReferenceOffBound = 0.879;
   c.MirrorBound = 0.8;
   c.BaselineBound = 0.4;
+  // the reference shows the finest level, as the image without level of detail does: only the
+  // mirror tells them apart here; Mapper.Analytic.lod checks the level-selection rule itself
   c.WrongImages.push_back({ "no level of detail (the finest level everywhere)",
-    [](amrsp::RenderSettings& s) { s.LodThresholdPixels = 0.0f; }, nullptr });
+    [](amrsp::RenderSettings& s) { s.LodThresholdPixels = 0.0f; }, nullptr, true });
   return amrsp::test::RunBaselineTest(argc, argv, c);
 }
