@@ -7,6 +7,7 @@
 #include "AmrspCommands.h"
 #include "AmrspDataset.h"
 
+#include "amrsp/ImageDifference.h"
 #include "amrsp/Render.h"
 
 #include <cstdint>
@@ -19,17 +20,30 @@
 namespace mappertest
 {
 
-/// The GPU mappers' image bounds (RMSE over RGB, 0-255) against the CPU kD-tree integrator (the
-/// shader's mirror) and the tree-free CPU reference, as TestSinglePassAMRMapper measures them.
+/// The GPU mappers' image bounds (RMSE over RGB, 0-255, over the pixels either image covers)
+/// against the CPU kD-tree integrator (the shader's mirror) and the tree-free CPU reference, as
+/// TestSinglePassAMRMapper measures them (largest: 0.49 and 2.10).
 constexpr double BoundVsKdTree = 1.0;
-constexpr double BoundVsReference = 2.0;
+constexpr double BoundVsReference = 2.6;
 
-/// The reference bound where thin sharp features (AMReX's Y(H)) put even the CPU kD-tree
-/// integrator far from the reference (docs/design.md, "Sampling rule"): a GPU image may not be
-/// further than that integrator plus 0.5, nor held to less than BoundVsReference.
-inline double ReferenceBound(double kdTreeVsReference)
+/// The storage tests' datasets at 96 x 96 (TestLinearStorage, TestBindlessStorage): bounds on the
+/// GPU image's covered-pixel RMSE against the CPU reference, fixed from what llvmpipe measures
+/// (not from the CPU mirror's own distance, which would let a mirror and shader wrong the same way
+/// through).
+/// Measured (LLVM 15): one grid 6.83, Enzo moving7 1.21, AMReX plt1_Y 12.82 (its thin sharp
+/// species fronts, sampled once per cell against the reference's two), synthetic vertex-centred
+/// 0.41, smooth cells 0.38.
+constexpr double RefOneGrid = 7.5;
+constexpr double RefEnzo = 1.5;
+constexpr double RefAmrex = 14.0;
+constexpr double RefVertex = 0.6;
+constexpr double RefSmooth = 0.55;
+
+/// RMSE (0-255) over the pixels either image covers (amrsp::ImageDifference), the measure of the
+/// image tests' bounds against the CPU reference and the CPU kD-tree integrator.
+inline double CoveredRmse(const amrsp::Image& a, const amrsp::Image& b)
 {
-  return kdTreeVsReference + 0.5 > BoundVsReference ? kdTreeVsReference + 0.5 : BoundVsReference;
+  return amrsp::Compare(a, b).Rmse;
 }
 
 /// Whether everything a test needs must be here (AMRSP_REQUIRE_GPU=1, set in CI).

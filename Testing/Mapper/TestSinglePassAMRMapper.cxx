@@ -78,6 +78,7 @@ using mappertest::Check;
 using mappertest::CheckSquareInFrontHides;
 using mappertest::CheckTransferChangeRebuildsNothing;
 using mappertest::Coverage;
+using mappertest::CoveredRmse;
 using mappertest::Failures;
 using mappertest::Fixed;
 using mappertest::LoadHierarchy;
@@ -222,7 +223,7 @@ void TestDataset(const std::string& spec)
   Check(coverage > 0.05, "the CPU reference shows the data (coverage " + Fixed(coverage) + ")");
   Check(CameraDifference(gpu.LastCamera(), s.View) < 1e-6,
     "VTK's ResetCamera/Azimuth/Elevation/Zoom match the tool's camera conventions");
-  const double vsRef = Rmse(img, ref), vsKd = Rmse(img, kd);
+  const double vsRef = CoveredRmse(img, ref), vsKd = CoveredRmse(img, kd);
   Check(vsRef < BoundVsReference,
     "GPU vs CPU reference: RMSE " + Fixed(vsRef) + " < " + Fixed(BoundVsReference));
   Check(vsKd < BoundVsKdTree,
@@ -290,7 +291,7 @@ void TestVertexCentred(const std::string& spec)
   const Image img = gpu.Render(0.0, ms);
   const Image kd = RenderKdTree(h, EncodeKdTree(h, BuildKdTree(h)), s);
   const Image ref = RenderReference(h, s);
-  const double vsKd = Rmse(img, kd), vsRef = Rmse(img, ref);
+  const double vsKd = CoveredRmse(img, kd), vsRef = CoveredRmse(img, ref);
   Check(Coverage(ref) > 0.05, "the CPU reference shows the data");
   Check(vsKd < BoundVsKdTree,
     "vertex-centred: GPU vs CPU kD-tree RMSE " + Fixed(vsKd) + " < " + Fixed(BoundVsKdTree));
@@ -349,7 +350,7 @@ void TestRefinementRatios(
   const Image ref = RenderReference(h, s);
   const double coverage = Coverage(ref);
   Check(coverage > 0.05, "the CPU reference shows the data (coverage " + Fixed(coverage) + ")");
-  const double vsRef = Rmse(img, ref), vsKd = Rmse(img, RenderKdTree(h, enc, s));
+  const double vsRef = CoveredRmse(img, ref), vsKd = CoveredRmse(img, RenderKdTree(h, enc, s));
   Check(vsRef < BoundVsReference,
     "GPU vs CPU reference: RMSE " + Fixed(vsRef) + " < " + Fixed(BoundVsReference));
   Check(vsKd < BoundVsKdTree,
