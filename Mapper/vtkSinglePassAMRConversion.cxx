@@ -14,6 +14,8 @@
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
 #include "vtkStructuredData.h"
+#include "vtkRectilinearGrid.h"
+#include "vtkSinglePassAMRDataModel.h"
 #include "vtkUniformGrid.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -26,13 +28,15 @@
 
 namespace
 {
-vtkUniformGrid* FirstBlock(vtkOverlappingAMR* amr)
+namespace model = vtkSinglePassAMRDataModel;
+
+vtkDataSet* FirstBlock(vtkOverlappingAMR* amr)
 {
   for (unsigned int l = 0; l < amr->GetNumberOfLevels(); ++l)
   {
-    for (unsigned int i = 0; i < amr->GetNumberOfDataSets(l); ++i)
+    for (unsigned int i = 0; i < model::NumberOfBlocks(amr, l); ++i)
     {
-      if (vtkUniformGrid* g = amr->GetDataSet(l, i))
+      if (vtkDataSet* g = model::Block(amr, l, i))
       {
         return g;
       }
@@ -189,17 +193,60 @@ bool ChooseArray(vtkOverlappingAMR* amr,
   return true;
 }
 
+/// A rectilinear block (VTK 9.6) is rendered when its coordinates step by its level's spacing
+/// on every axis; false with `error` naming the block otherwise. Image data always passes.
+bool RequireUniformSpacing(vtkOverlappingAMR* amr, unsigned int level, vtkDataSet* block,
+  const std::string& blockName, std::string& error)
+{
+  vtkRectilinearGrid* grid = vtkRectilinearGrid::SafeDownCast(block);
+  if (!grid)
+  {
+    return true;
+  }
+  double spacing[3];
+  amr->GetSpacing(level, spacing);
+  vtkDataArray* coordinates[3] = { grid->GetXCoordinates(), grid->GetYCoordinates(),
+    grid->GetZCoordinates() };
+  for (int a = 0; a < 3; ++a)
+  {
+    vtkDataArray* c = coordinates[a];
+    const vtkIdType n = c ? c->GetNumberOfTuples() : 0;
+    for (vtkIdType k = 1; k < n; ++k)
+    {
+      const double step = c->GetComponent(k, 0) - c->GetComponent(k - 1, 0);
+      if (std::abs(step - spacing[a]) > 1e-6 * spacing[a])
+      {
+        std::ostringstream m;
+        m << blockName << " is a rectilinear grid whose "
+          << "xyz"[a] << " coordinates are not "
+          << "evenly spaced by its level's spacing " << spacing[a] << " (step " << k << ": " << step
+          << "); only rectilinear blocks of uniform spacing can be rendered";
+        error = m.str();
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
 /// The values of grid `g` from its block: the block's own floats where they are one float
 /// component without ghost layers, otherwise the box's cells (or vertices) converted to floats
 /// (`component`, or the magnitude when it is out of range). False with `error` when the block or
 /// its array is missing or its dimensions do not match the box.
-bool ReadBlockValues(vtkUniformGrid* block, const amrsp::Grid& g, const std::string& blockName,
+bool ReadBlockValues(vtkDataSet* block, const amrsp::Grid& g, const std::string& blockName,
   const std::string& name, bool points, int component, amrsp::GridValues& values,
   std::string& error)
 {
   if (!block)
   {
     error = blockName + " has no data loaded";
+    return false;
+  }
+  int dims[3];
+  if (!model::BlockDimensions(block, dims))
+  {
+    error = blockName + " is a " + block->GetClassName() +
+      "; AMR blocks must be image data or rectilinear grids";
     return false;
   }
   vtkDataArray* arr = points ? block->GetPointData()->GetArray(name.c_str())
@@ -210,8 +257,6 @@ bool ReadBlockValues(vtkUniformGrid* block, const amrsp::Grid& g, const std::str
     return false;
   }
   // blocks may carry ghost layers around the box: keep the box's cells (or vertices) only
-  int dims[3];
-  block->GetDimensions(dims);
   const glm::i64vec3 extent = g.Cells.Extent() + glm::i64vec3(points ? 1 : 0);
   glm::i64vec3 cellDims, ghost;
   for (int a = 0; a < 3; ++a)
@@ -277,7 +322,7 @@ std::vector<std::string> vtkSinglePassAMRConversion::CellArrayNames(vtkOverlappi
 std::vector<std::string> vtkSinglePassAMRConversion::ArrayNames(vtkOverlappingAMR* amr, bool points)
 {
   std::vector<std::string> names;
-  if (vtkUniformGrid* g = FirstBlock(amr))
+  if (vtkDataSet* g = FirstBlock(amr))
   {
     vtkDataSetAttributes* cd = points ? static_cast<vtkDataSetAttributes*>(g->GetPointData())
                                       : static_cast<vtkDataSetAttributes*>(g->GetCellData());
@@ -298,7 +343,7 @@ bool vtkSinglePassAMRConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
   const ArraySelection& selection, amrsp::Hierarchy& out, std::string& error)
 {
   out = amrsp::Hierarchy();
-  if (!amr || amr->GetNumberOfLevels() == 0 || amr->GetTotalNumberOfBlocks() == 0)
+  if (!amr || amr->GetNumberOfLevels() == 0 || model::NumberOfBlocks(amr) == 0)
   {
     error = "the AMR hierarchy has no blocks";
     return false;
@@ -310,14 +355,14 @@ bool vtkSinglePassAMRConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
   }
   out.VertexCentred = points;
   // one allocation each (a growing vector would hold up to twice the blocks' bytes)
-  out.Grids.reserve(amr->GetTotalNumberOfBlocks());
+  out.Grids.reserve(model::NumberOfBlocks(amr));
   if (selection.CopyValues)
   {
-    out.Values.reserve(amr->GetTotalNumberOfBlocks());
+    out.Values.reserve(model::NumberOfBlocks(amr));
   }
   for (unsigned int l = 0; l < amr->GetNumberOfLevels(); ++l)
   {
-    for (unsigned int i = 0; i < amr->GetNumberOfDataSets(l); ++i)
+    for (unsigned int i = 0; i < model::NumberOfBlocks(amr, l); ++i)
     {
       const vtkAMRBox& box = amr->GetAMRBox(l, i);
       if (box.IsInvalid())
@@ -328,7 +373,7 @@ bool vtkSinglePassAMRConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
       const int* hi = box.GetHiCorner();
       amrsp::Grid g;
       g.Level = static_cast<int>(l);
-      g.SourceId = static_cast<int64_t>(amr->GetCompositeIndex(l, i));
+      g.SourceId = static_cast<int64_t>(model::AbsoluteBlockIndex(amr, l, i));
       for (int a = 0; a < 3; ++a)
       {
         if (hi[a] < lo[a])
@@ -345,8 +390,10 @@ bool vtkSinglePassAMRConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
         continue;
       }
       amrsp::GridValues values;
-      if (!ReadBlockValues(amr->GetDataSet(l, i), g, BlockName(l, i), out.ArrayName, points,
-            selection.Component, values, error))
+      vtkDataSet* block = model::Block(amr, l, i);
+      if (!RequireUniformSpacing(amr, l, block, BlockName(l, i), error) ||
+        !ReadBlockValues(
+          block, g, BlockName(l, i), out.ArrayName, points, selection.Component, values, error))
       {
         return false;
       }
@@ -374,10 +421,10 @@ void vtkSinglePassAMRConversion::ToOverlappingAMR(
   {
     ++blocksPerLevel[g.Level];
   }
-  out->Initialize(levels, blocksPerLevel.data());
+  model::Initialize(out, blocksPerLevel);
   const double origin[3] = { h.Origin.x, h.Origin.y, h.Origin.z };
   out->SetOrigin(origin);
-  out->SetGridDescription(VTK_XYZ_GRID);
+  out->SetGridDescription(model::XYZGrid);
   for (int l = 0; l < levels; ++l)
   {
     const glm::dvec3 s = h.Spacing0 * h.CellSize(l);

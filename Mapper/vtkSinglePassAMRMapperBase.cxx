@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSinglePassAMRMapperBase.h"
+#include "vtkSinglePassAMRDataModel.h"
 
 #include "vtkSinglePassAMRRenderingUtilities.h"
 
@@ -77,7 +78,8 @@ double* vtkSinglePassAMRMapperBase::GetBounds()
   // An AMR without metadata or blocks (e.g. the empty placeholder a ParaView view's producer
   // holds until it delivers data) has no bounds; it is not built, so the textures of the last
   // real input stay valid and no build is counted.
-  if (!amr || !amr->GetAMRInfo() || amr->GetTotalNumberOfBlocks() == 0)
+  if (!amr || !vtkSinglePassAMRDataModel::HasMetaData(amr) ||
+    vtkSinglePassAMRDataModel::NumberOfBlocks(amr) == 0)
   {
     return this->Bounds;
   }

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSinglePassAMRGather.h"
 
-#include "vtkAMRInformation.h"
+#include "vtkSinglePassAMRDataModel.h"
+
 #include "vtkImageData.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
@@ -26,7 +27,7 @@ std::vector<int> BlockCounts(vtkOverlappingAMR* amr)
   {
     for (unsigned int level = 0; level < amr->GetNumberOfLevels(); ++level)
     {
-      counts.push_back(static_cast<int>(amr->GetNumberOfDataSets(level)));
+      counts.push_back(static_cast<int>(vtkSinglePassAMRDataModel::NumberOfBlocks(amr, level)));
     }
   }
   return counts;
@@ -65,7 +66,7 @@ vtkSmartPointer<vtkOverlappingAMR> vtkSinglePassAMRGather::GatherBlocks(
     {
       for (int index = 0; index < counts[level]; ++index, ++flat)
       {
-        held[flat] = local->GetDataSet(level, index) != nullptr ? 1 : 0;
+        held[flat] = vtkSinglePassAMRDataModel::Block(local, level, index) != nullptr ? 1 : 0;
       }
     }
   }
@@ -87,7 +88,8 @@ vtkSmartPointer<vtkOverlappingAMR> vtkSinglePassAMRGather::GatherBlocks(
       {
         for (int index = 0; index < counts[level]; ++index, ++flat)
         {
-          if (!held[flat] && local->GetDataSet(level, index))
+          // image blocks travel as vtkImageData; a rectilinear block (VTK 9.6) stays on its rank
+          if (!held[flat] && vtkSinglePassAMRDataModel::ImageBlock(local, level, index))
           {
             outgoing.push_back(level);
             outgoing.push_back(index);
@@ -95,7 +97,7 @@ vtkSmartPointer<vtkOverlappingAMR> vtkSinglePassAMRGather::GatherBlocks(
         }
       }
     }
-    else if (local && local->GetTotalNumberOfBlocks() > 0 && error)
+    else if (local && vtkSinglePassAMRDataModel::NumberOfBlocks(local) > 0 && error)
     {
       std::ostringstream message;
       message << "rank " << rank << " holds a different AMR hierarchy ("
@@ -109,7 +111,8 @@ vtkSmartPointer<vtkOverlappingAMR> vtkSinglePassAMRGather::GatherBlocks(
     {
       controller->Send(&outgoing[2 * k], 2, root, GatherTag);
       vtkNew<vtkImageData> grid;
-      grid->ShallowCopy(local->GetDataSet(outgoing[2 * k], outgoing[2 * k + 1]));
+      grid->ShallowCopy(
+        vtkSinglePassAMRDataModel::ImageBlock(local, outgoing[2 * k], outgoing[2 * k + 1]));
       controller->Send(grid, root, GatherTag);
     }
     return local;
@@ -144,14 +147,12 @@ vtkSmartPointer<vtkOverlappingAMR> vtkSinglePassAMRGather::GatherBlocks(
     return nullptr;
   }
   auto gathered = vtkSmartPointer<vtkOverlappingAMR>::New();
-  vtkNew<vtkAMRInformation> info;
-  info->DeepCopy(local->GetAMRInfo());
-  gathered->SetAMRInfo(info);
+  vtkSinglePassAMRDataModel::CopyStructure(local, gathered);
   for (int level = 0; level < levels; ++level)
   {
     for (int index = 0; index < counts[level]; ++index)
     {
-      vtkUniformGrid* grid = local->GetDataSet(level, index);
+      vtkDataSet* grid = vtkSinglePassAMRDataModel::Block(local, level, index);
       if (!grid)
       {
         auto found = received.find(std::make_pair(level, index));
@@ -159,7 +160,7 @@ vtkSmartPointer<vtkOverlappingAMR> vtkSinglePassAMRGather::GatherBlocks(
       }
       if (grid)
       {
-        gathered->SetDataSet(level, index, grid);
+        vtkSinglePassAMRDataModel::SetBlock(gathered, level, index, grid);
       }
     }
   }

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSinglePassAMRRegionSplit.h"
 
+#include "vtkSinglePassAMRDataModel.h"
+
 #include "vtkAMRBox.h"
-#include "vtkAMRInformation.h"
 #include "vtkSinglePassAMRConversion.h"
 #include "vtkCellData.h"
 #include "vtkCharArray.h"
@@ -24,6 +25,8 @@
 #include <sstream>
 #include <tuple>
 #include <vector>
+
+namespace model = vtkSinglePassAMRDataModel;
 
 namespace
 {
@@ -49,7 +52,7 @@ long long MetadataDigest(vtkOverlappingAMR* amr)
     double spacing[3];
     amr->GetSpacing(l, spacing);
     mix(spacing, sizeof(spacing));
-    const unsigned int blocks = amr->GetNumberOfDataSets(l);
+    const unsigned int blocks = model::NumberOfBlocks(amr, l);
     mix(&blocks, sizeof(blocks));
     for (unsigned int i = 0; i < blocks; ++i)
     {
@@ -101,10 +104,14 @@ vtkSmartPointer<vtkAbstractArray> CopyRange(vtkAbstractArray* source, const int6
 /// `cells`, as a vtkImageData with every cell and point array; the block may carry ghost layers
 /// around its box (equal on both sides of an axis).
 vtkSmartPointer<vtkImageData> ExtractPiece(
-  vtkUniformGrid* block, const amrsp::Box& cells, const amrsp::Box& piece)
+  vtkDataSet* block, const amrsp::Box& cells, const amrsp::Box& piece)
 {
   int dims[3];
-  block->GetDimensions(dims);
+  double origin[3], spacing[3];
+  if (!model::BlockDimensions(block, dims) || !model::BlockOriginAndSpacing(block, origin, spacing))
+  {
+    return nullptr; // neither image data nor a rectilinear grid: nothing to send
+  }
   int64_t cellDims[3], pointDims[3], cellLo[3], pointLo[3];
   int64_t pieceLo[3], pieceHi[3], piecePointHi[3];
   for (int a = 0; a < 3; ++a)
@@ -119,9 +126,6 @@ vtkSmartPointer<vtkImageData> ExtractPiece(
     piecePointHi[a] = piece.Hi[a] + 1;
   }
   auto image = vtkSmartPointer<vtkImageData>::New();
-  double origin[3], spacing[3];
-  block->GetOrigin(origin);
-  block->GetSpacing(spacing);
   for (int a = 0; a < 3; ++a)
   {
     origin[a] += static_cast<double>(piece.Lo[a] - cellLo[a]) * spacing[a];
@@ -175,7 +179,7 @@ std::vector<int> FirstBlockOfLevels(vtkOverlappingAMR* local)
   std::vector<int> firstBlock(levels + 1, 0);
   for (unsigned int l = 0; l < levels; ++l)
   {
-    firstBlock[l + 1] = firstBlock[l] + static_cast<int>(local->GetNumberOfDataSets(l));
+    firstBlock[l + 1] = firstBlock[l] + static_cast<int>(model::NumberOfBlocks(local, l));
   }
   return firstBlock;
 }
@@ -192,10 +196,10 @@ std::vector<int> BlockSuppliers(vtkMultiProcessController* controller, vtkOverla
     supplier(static_cast<std::size_t>(total));
   for (unsigned int l = 0; l < levels; ++l)
   {
-    for (unsigned int i = 0; i < local->GetNumberOfDataSets(l); ++i)
+    for (unsigned int i = 0; i < model::NumberOfBlocks(local, l); ++i)
     {
       loaded[static_cast<std::size_t>(firstBlock[l] + static_cast<int>(i))] =
-        local->GetDataSet(l, i) ? rank : ranks;
+        model::Block(local, l, i) ? rank : ranks;
     }
   }
   if (total > 0)
@@ -222,7 +226,7 @@ void ExchangePieces(vtkMultiProcessController* controller, vtkOverlappingAMR* lo
     std::vector<char> message;
     for (unsigned int l = 0; l < levels && !region.Empty(); ++l)
     {
-      for (unsigned int i = 0; i < local->GetNumberOfDataSets(l); ++i)
+      for (unsigned int i = 0; i < model::NumberOfBlocks(local, l); ++i)
       {
         if (supplier[static_cast<std::size_t>(firstBlock[l] + static_cast<int>(i))] != rank)
         {
@@ -234,9 +238,14 @@ void ExchangePieces(vtkMultiProcessController* controller, vtkOverlappingAMR* lo
         {
           continue;
         }
+        vtkSmartPointer<vtkImageData> extracted =
+          ExtractPiece(model::Block(local, l, i), cells, piece);
+        if (!extracted)
+        {
+          continue;
+        }
         vtkNew<vtkCharArray> bytes;
-        vtkCommunicator::MarshalDataObject(
-          ExtractPiece(local->GetDataSet(l, i), cells, piece), bytes);
+        vtkCommunicator::MarshalDataObject(extracted, bytes);
         PieceHeader header{ static_cast<int32_t>(l), static_cast<int32_t>(i),
           { piece.Lo.x, piece.Lo.y, piece.Lo.z }, { piece.Hi.x, piece.Hi.y, piece.Hi.z },
           static_cast<int64_t>(bytes->GetNumberOfValues()) };
@@ -294,7 +303,7 @@ vtkSmartPointer<vtkOverlappingAMR> AssembleRegion(vtkOverlappingAMR* local,
     ++blocksPerLevel[static_cast<std::size_t>(header.Level)];
   }
   auto split = vtkSmartPointer<vtkOverlappingAMR>::New();
-  split->Initialize(static_cast<int>(levels), blocksPerLevel.data());
+  model::Initialize(split, blocksPerLevel);
   split->SetOrigin(local->GetOrigin());
   split->SetGridDescription(local->GetGridDescription());
   for (unsigned int l = 0; l < levels; ++l)
@@ -303,7 +312,7 @@ vtkSmartPointer<vtkOverlappingAMR> AssembleRegion(vtkOverlappingAMR* local,
     local->GetSpacing(l, spacing);
     split->SetSpacing(l, spacing);
   }
-  if (local->GetAMRInfo() && local->GetAMRInfo()->HasRefinementRatio())
+  if (model::HasRefinementRatio(local))
   {
     for (unsigned int l = 0; l < levels; ++l)
     {

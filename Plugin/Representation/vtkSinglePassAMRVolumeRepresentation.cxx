@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSinglePassAMRVolumeRepresentation.h"
 
+#include "vtkSinglePassAMRDataModel.h"
+
 #include "vtkAlgorithmOutput.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkCommand.h"
@@ -31,6 +33,8 @@
 
 #include <algorithm>
 #include <string>
+
+namespace model = vtkSinglePassAMRDataModel;
 
 namespace
 {
@@ -146,7 +150,7 @@ int vtkSinglePassAMRVolumeRepresentation::RequestData(
   vtkSmartPointer<vtkOverlappingAMR> cache;
   this->InputProblem.clear();
   vtkMultiProcessController* global = vtkMultiProcessController::GetGlobalController();
-  if (input && input->GetTotalNumberOfBlocks() == 0 &&
+  if (input && model::NumberOfBlocks(input) == 0 &&
     (!global || global->GetNumberOfProcesses() == 1))
   {
     // one process holds all of the data: none at all is an empty or failed read (with several
@@ -198,9 +202,9 @@ int vtkSinglePassAMRVolumeRepresentation::RequestData(
       long long cells = 0;
       for (unsigned int level = 0; level < region->GetNumberOfLevels(); ++level)
       {
-        for (unsigned int index = 0; index < region->GetNumberOfDataSets(level); ++index)
+        for (unsigned int index = 0; index < model::NumberOfBlocks(region, level); ++index)
         {
-          vtkUniformGrid* grid = region->GetDataSet(level, index);
+          vtkDataSet* grid = model::Block(region, level, index);
           cells += grid ? static_cast<long long>(grid->GetNumberOfCells()) : 0;
         }
       }
@@ -208,12 +212,12 @@ int vtkSinglePassAMRVolumeRepresentation::RequestData(
         "AMR single-pass: rank %d renders region [%g, %g] x [%g, %g] x [%g, %g]: %u blocks, "
         "%lld cells",
         controller->GetLocalProcessId(), regionBounds[0], regionBounds[1], regionBounds[2],
-        regionBounds[3], regionBounds[4], regionBounds[5], region->GetTotalNumberOfBlocks(), cells);
+        regionBounds[3], regionBounds[4], regionBounds[5], model::NumberOfBlocks(region), cells);
       cache = region;
       haveRegion = true;
       // a region in a gap between level-0 grids holds nothing: draw nothing there (the mapper
       // would report an empty hierarchy), but keep the region as this rank's bounds
-      this->RendersLocally = region->GetTotalNumberOfBlocks() > 0;
+      this->RendersLocally = model::NumberOfBlocks(region) > 0;
     }
     else if (controller->GetLocalProcessId() == 0)
     {
@@ -257,7 +261,7 @@ int vtkSinglePassAMRVolumeRepresentation::RequestData(
       // the region, even where its blocks leave gaps: the ranks' bounds must tile the domain
       std::copy(regionBounds, regionBounds + 6, this->DataBounds);
     }
-    else if (cache->GetNumberOfDataSets(0) > 0)
+    else if (model::NumberOfBlocks(cache, 0) > 0)
     {
       cache->GetBounds(this->DataBounds);
     }
@@ -270,11 +274,10 @@ int vtkSinglePassAMRVolumeRepresentation::RequestData(
     // with no level at all is not valid).
     // ParaView's data movement marshals it, which needs an origin and a grid description.
     vtkNew<vtkOverlappingAMR> empty;
-    int blocks = 0;
-    empty->Initialize(1, &blocks);
+    model::Initialize(empty, { 0 });
     const double origin[3] = { 0.0, 0.0, 0.0 };
     empty->SetOrigin(origin);
-    empty->SetGridDescription(VTK_XYZ_GRID);
+    empty->SetGridDescription(model::XYZGrid);
     this->Cache = empty;
   }
   return this->Superclass::RequestData(request, inputVector, outputVector);
@@ -603,11 +606,11 @@ int vtkSinglePassAMRVolumeRepresentation::GetNumberOfBlockCopies()
   for (unsigned int level = 0; level < rendered->GetNumberOfLevels(); ++level)
   {
     const bool inCache = this->Cache && level < this->Cache->GetNumberOfLevels();
-    for (unsigned int index = 0; index < rendered->GetNumberOfDataSets(level); ++index)
+    for (unsigned int index = 0; index < model::NumberOfBlocks(rendered, level); ++index)
     {
-      vtkUniformGrid* block = rendered->GetDataSet(level, index);
-      const bool own = inCache && index < this->Cache->GetNumberOfDataSets(level) &&
-        this->Cache->GetDataSet(level, index) == block;
+      vtkDataSet* block = model::Block(rendered, level, index);
+      const bool own = inCache && index < model::NumberOfBlocks(this->Cache, level) &&
+        model::Block(this->Cache, level, index) == block;
       copies += block && !own ? 1 : 0;
     }
   }

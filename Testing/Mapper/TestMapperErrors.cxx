@@ -26,6 +26,7 @@
 
 #include "amrsp/Render.h"
 
+#include "vtkSinglePassAMRDataModel.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
 
 #include "vtkAMRBox.h"
@@ -83,7 +84,7 @@ vtkSmartPointer<vtkOverlappingAMR> MakeAMR(int n0, const std::vector<int>& ratio
     ++perLevel[b.Level];
   }
   auto amr = vtkSmartPointer<vtkOverlappingAMR>::New();
-  amr->Initialize(levels, perLevel.data());
+  vtkSinglePassAMRDataModel::Initialize(amr, perLevel);
   const double origin[3] = { 0.0, 0.0, 0.0 };
   amr->SetOrigin(origin);
   std::vector<double> h(levels);

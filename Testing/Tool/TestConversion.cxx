@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // vtkOverlappingAMR -> amrsp::Hierarchy: ghost layers, ratios, bad input.
 #include "vtkSinglePassAMRConversion.h"
+#include "vtkSinglePassAMRDataModel.h"
 
 #include "vtkAMRBox.h"
 #include "vtkAMRUtilities.h"
@@ -25,11 +26,10 @@ namespace
 vtkNew<vtkOverlappingAMR> MakeAMR(int ghost, double fineSpacing, int components = 1)
 {
   vtkNew<vtkOverlappingAMR> amr;
-  const int blocks[2] = { 1, 1 };
-  amr->Initialize(2, blocks);
+  vtkSinglePassAMRDataModel::Initialize(amr, { 1, 1 });
   const double origin[3] = { 0, 0, 0 };
   amr->SetOrigin(origin);
-  amr->SetGridDescription(VTK_XYZ_GRID);
+  amr->SetGridDescription(vtkSinglePassAMRDataModel::XYZGrid);
   const double s0[3] = { 1, 1, 1 }, s1[3] = { fineSpacing, fineSpacing, fineSpacing };
   amr->SetSpacing(0, s0);
   amr->SetSpacing(1, s1);
@@ -100,7 +100,7 @@ TEST(Conversion, PointDataIsVertexCentred)
   auto amr = MakeAMR(0, 0.5);
   for (int level = 0; level < 2; ++level)
   {
-    vtkUniformGrid* g = amr->GetDataSet(level, 0);
+    vtkImageData* g = vtkSinglePassAMRDataModel::ImageBlock(amr, level, 0);
     vtkNew<vtkDoubleArray> p;
     p->SetName("pressure");
     p->SetNumberOfTuples(g->GetNumberOfPoints());
@@ -130,7 +130,7 @@ TEST(Conversion, IntegerAndDoubleArraysBecomeFloat)
   auto amr = MakeAMR(0, 0.5);
   for (int level = 0; level < 2; ++level)
   {
-    vtkUniformGrid* g = amr->GetDataSet(level, 0);
+    vtkImageData* g = vtkSinglePassAMRDataModel::ImageBlock(amr, level, 0);
     vtkNew<vtkIntArray> ints;
     ints->SetName("count");
     vtkNew<vtkUnsignedCharArray> bytes;
@@ -198,7 +198,8 @@ amrsp::Hierarchy FloatHierarchy()
 
 vtkFloatArray* BlockArray(vtkOverlappingAMR* amr, unsigned int level)
 {
-  return vtkFloatArray::SafeDownCast(amr->GetDataSet(level, 0)->GetCellData()->GetArray("density"));
+  return vtkFloatArray::SafeDownCast(
+    vtkSinglePassAMRDataModel::Block(amr, level, 0)->GetCellData()->GetArray("density"));
 }
 } // namespace
 
@@ -212,8 +213,8 @@ TEST(Conversion, ToOverlappingAMRSharesTheValuesAndKeepsThemAlive)
     vtkSinglePassAMRConversion::ToOverlappingAMR(h, amr, false);
     ASSERT_NE(BlockArray(amr, 1), nullptr);
     EXPECT_EQ(BlockArray(amr, 1)->GetPointer(0), level1); // no copy
-    EXPECT_EQ(
-      amr->GetDataSet(1, 0)->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName()),
+    EXPECT_EQ(vtkSinglePassAMRDataModel::Block(amr, 1, 0)->GetCellData()->GetArray(
+                vtkDataSetAttributes::GhostArrayName()),
       nullptr); // blanking left out on request
     // writing the hierarchy afterwards copies its values first: VTK's array is unchanged
     h.Values[1][0] = -1.0f;
@@ -271,11 +272,14 @@ TEST(Conversion, BlankingMatchesVtkBlankCells)
   vtkSinglePassAMRConversion::ToOverlappingAMR(h, vtks);
   for (unsigned int l = 0; l < vtks->GetNumberOfLevels(); ++l)
   {
-    for (unsigned int i = 0; i < vtks->GetNumberOfDataSets(l); ++i)
+    for (unsigned int i = 0; i < vtkSinglePassAMRDataModel::NumberOfBlocks(vtks, l); ++i)
     {
-      vtks->GetDataSet(l, i)->GetCellData()->RemoveArray(vtkDataSetAttributes::GhostArrayName());
-      ASSERT_EQ(
-        vtks->GetDataSet(l, i)->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName()),
+      vtkSinglePassAMRDataModel::Block(vtks, l, i)
+        ->GetCellData()
+        ->RemoveArray(vtkDataSetAttributes::GhostArrayName());
+      ASSERT_EQ(vtkSinglePassAMRDataModel::Block(vtks, l, i)
+                  ->GetCellData()
+                  ->GetArray(vtkDataSetAttributes::GhostArrayName()),
         nullptr);
     }
   }
@@ -283,12 +287,14 @@ TEST(Conversion, BlankingMatchesVtkBlankCells)
   int refined = 0;
   for (unsigned int l = 0; l < ours->GetNumberOfLevels(); ++l)
   {
-    for (unsigned int i = 0; i < ours->GetNumberOfDataSets(l); ++i)
+    for (unsigned int i = 0; i < vtkSinglePassAMRDataModel::NumberOfBlocks(ours, l); ++i)
     {
-      vtkDataArray* a =
-        ours->GetDataSet(l, i)->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName());
-      vtkDataArray* b =
-        vtks->GetDataSet(l, i)->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName());
+      vtkDataArray* a = vtkSinglePassAMRDataModel::Block(ours, l, i)
+                          ->GetCellData()
+                          ->GetArray(vtkDataSetAttributes::GhostArrayName());
+      vtkDataArray* b = vtkSinglePassAMRDataModel::Block(vtks, l, i)
+                          ->GetCellData()
+                          ->GetArray(vtkDataSetAttributes::GhostArrayName());
       ASSERT_NE(a, nullptr);
       ASSERT_NE(b, nullptr);
       ASSERT_EQ(a->GetNumberOfTuples(), b->GetNumberOfTuples());

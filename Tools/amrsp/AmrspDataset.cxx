@@ -23,6 +23,7 @@
 #include "vtkOutputWindow.h"
 #include "vtkAMRBox.h"
 #include "vtkAMRUtilities.h"
+#include "vtkSinglePassAMRDataModel.h"
 #include "vtkImageData.h"
 #include "vtkUniformGrid.h"
 #include "vtkXMLDataElement.h"
@@ -267,8 +268,8 @@ vtkSmartPointer<vtkOverlappingAMR> ReadHierarchicalBoxV01(const std::string& pat
     perLevel[b.Level] = std::max(perLevel[b.Level], b.Index + 1);
   }
   auto amr = vtkSmartPointer<vtkOverlappingAMR>::New();
-  amr->Initialize(levels, perLevel.data());
-  amr->SetGridDescription(VTK_XYZ_GRID);
+  vtkSinglePassAMRDataModel::Initialize(amr, perLevel);
+  amr->SetGridDescription(vtkSinglePassAMRDataModel::XYZGrid);
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
   std::vector<bool> levelSet(static_cast<std::size_t>(levels), false);
   std::size_t blocksRead = 0;
@@ -341,7 +342,7 @@ vtkSmartPointer<vtkOverlappingAMR> RunAlgorithm(
   algorithm->RemoveObserver(progress);
   ReportProgress("reading", what, 1.0);
   auto* amr = vtkOverlappingAMR::SafeDownCast(algorithm->GetOutputDataObject(0));
-  if (!amr || amr->GetNumberOfLevels() == 0 || amr->GetTotalNumberOfBlocks() == 0)
+  if (!amr || amr->GetNumberOfLevels() == 0 || vtkSinglePassAMRDataModel::NumberOfBlocks(amr) == 0)
   {
     const std::string why = capture.First();
     throw DatasetError(what + (why.empty() ? " produced no AMR blocks" : " failed: " + why));
@@ -429,9 +430,9 @@ void CheckBlocksRead(vtkOverlappingAMR* amr, const ExpectedBlocks& expected,
   std::set<std::string> missingFiles;
   for (unsigned int l = 0; l < amr->GetNumberOfLevels(); ++l)
   {
-    for (unsigned int i = 0; i < amr->GetNumberOfDataSets(l); ++i, ++flat)
+    for (unsigned int i = 0; i < vtkSinglePassAMRDataModel::NumberOfBlocks(amr, l); ++i, ++flat)
     {
-      vtkUniformGrid* grid = amr->GetDataSet(l, i);
+      vtkDataSet* grid = vtkSinglePassAMRDataModel::Block(amr, l, i);
       const bool has = grid &&
         (grid->GetCellData()->GetAbstractArray(array.c_str()) ||
           grid->GetPointData()->GetAbstractArray(array.c_str()));
