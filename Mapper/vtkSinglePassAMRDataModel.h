@@ -14,11 +14,15 @@
 #ifndef vtkSinglePassAMRDataModel_h
 #define vtkSinglePassAMRDataModel_h
 
+#include "vtkCellData.h"
 #include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkOverlappingAMR.h"
+#include "vtkPointData.h"
 #include "vtkRectilinearGrid.h"
+#include "vtkSmartPointer.h"
 #include "vtkStructuredData.h"
 #include "vtkUniformGrid.h"
 
@@ -131,6 +135,31 @@ inline bool BlockOriginAndSpacing(vtkDataSet* block, double origin[3], double sp
     spacing[a] = c->GetNumberOfTuples() > 1 ? c->GetComponent(1, 0) - origin[a] : 1.0;
   }
   return true;
+}
+
+/// `block` as image data sharing its arrays: image data itself, or an evenly spaced rectilinear
+/// grid's first point, first steps and dimensions (nullptr for any other data set).
+inline vtkSmartPointer<vtkImageData> AsImageData(vtkDataSet* block)
+{
+  int dims[3];
+  double origin[3], spacing[3];
+  if (!BlockDimensions(block, dims) || !BlockOriginAndSpacing(block, origin, spacing))
+  {
+    return nullptr;
+  }
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  if (vtkImageData* given = vtkImageData::SafeDownCast(block))
+  {
+    image->ShallowCopy(given);
+    return image;
+  }
+  image->SetDimensions(dims);
+  image->SetOrigin(origin);
+  image->SetSpacing(spacing);
+  image->GetPointData()->ShallowCopy(block->GetPointData());
+  image->GetCellData()->ShallowCopy(block->GetCellData());
+  image->GetFieldData()->ShallowCopy(block->GetFieldData());
+  return image;
 }
 
 /// Sets up `amr` for `blocksPerLevel[l]` blocks on each level l.

@@ -177,7 +177,11 @@ vtkOverlappingAMR* vtkSinglePassAMRMapperBase::BeginFrame(
     amr = this->GetAMRInput();
     if (!amr)
     {
-      this->ReportError("the input is not a vtkOverlappingAMR");
+      vtkDataObject* given = this->GetInputDataObject(0, 0);
+      this->ReportError(std::string("the input is ") +
+        (given ? std::string("a ") + given->GetClassName() : std::string("empty")) +
+        ", not a vtkOverlappingAMR (levels of blocks with their boxes, spacing and refinement "
+        "ratios)");
     }
   }
   if (!amr)

@@ -88,8 +88,8 @@ vtkSmartPointer<vtkOverlappingAMR> vtkSinglePassAMRGather::GatherBlocks(
       {
         for (int index = 0; index < counts[level]; ++index, ++flat)
         {
-          // image blocks travel as vtkImageData; a rectilinear block (VTK 9.6) stays on its rank
-          if (!held[flat] && vtkSinglePassAMRDataModel::ImageBlock(local, level, index))
+          // blocks travel as vtkImageData: a rectilinear block (VTK 9.6) as its image-data twin
+          if (!held[flat] && vtkSinglePassAMRDataModel::Block(local, level, index))
           {
             outgoing.push_back(level);
             outgoing.push_back(index);
@@ -110,9 +110,12 @@ vtkSmartPointer<vtkOverlappingAMR> vtkSinglePassAMRGather::GatherBlocks(
     for (int k = 0; k < count; ++k)
     {
       controller->Send(&outgoing[2 * k], 2, root, GatherTag);
-      vtkNew<vtkImageData> grid;
-      grid->ShallowCopy(
-        vtkSinglePassAMRDataModel::ImageBlock(local, outgoing[2 * k], outgoing[2 * k + 1]));
+      vtkSmartPointer<vtkImageData> grid = vtkSinglePassAMRDataModel::AsImageData(
+        vtkSinglePassAMRDataModel::Block(local, outgoing[2 * k], outgoing[2 * k + 1]));
+      if (!grid)
+      {
+        grid = vtkSmartPointer<vtkImageData>::New(); // neither image nor rectilinear: empty
+      }
       controller->Send(grid, root, GatherTag);
     }
     return local;

@@ -38,16 +38,21 @@
 #include "vtkNew.h"
 #include "vtkOpenGLShaderProperty.h"
 #include "vtkOverlappingAMR.h"
+#include "vtkPartitionedDataSet.h"
+#include "vtkPartitionedDataSetCollection.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkRectilinearGrid.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkUniformGrid.h"
 #include "vtkUnsignedCharArray.h"
+#include "vtkVersionMacros.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
 #include <dlfcn.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
@@ -427,6 +432,99 @@ void TestShaderFailure(Scene& scene)
   shader->ClearAllFragmentShaderReplacements();
 }
 
+#ifdef AMRSP_VTK_AMR_DATA_OBJECT
+/// `amr` with every block replaced by a vtkRectilinearGrid of the same coordinates and cell data;
+/// the x coordinates of block 0 of `unevenLevel` get an uneven step when `unevenLevel` >= 0.
+vtkSmartPointer<vtkOverlappingAMR> AsRectilinear(vtkOverlappingAMR* amr, int unevenLevel = -1)
+{
+  auto out = vtkSmartPointer<vtkOverlappingAMR>::New();
+  vtkSinglePassAMRDataModel::CopyStructure(amr, out);
+  for (unsigned int l = 0; l < amr->GetNumberOfLevels(); ++l)
+  {
+    for (unsigned int i = 0; i < vtkSinglePassAMRDataModel::NumberOfBlocks(amr, l); ++i)
+    {
+      vtkImageData* image = vtkSinglePassAMRDataModel::ImageBlock(amr, l, i);
+      int dims[3];
+      double origin[3], spacing[3];
+      image->GetDimensions(dims);
+      image->GetOrigin(origin);
+      image->GetSpacing(spacing);
+      vtkNew<vtkRectilinearGrid> grid;
+      grid->SetDimensions(dims);
+      vtkNew<vtkDoubleArray> axes[3];
+      for (int a = 0; a < 3; ++a)
+      {
+        axes[a]->SetNumberOfTuples(dims[a]);
+        for (int k = 0; k < dims[a]; ++k)
+        {
+          axes[a]->SetValue(k, origin[a] + k * spacing[a]);
+        }
+      }
+      if (static_cast<int>(l) == unevenLevel && i == 0)
+      {
+        axes[0]->SetValue(1, origin[0] + 0.6 * spacing[0]);
+      }
+      grid->SetXCoordinates(axes[0]);
+      grid->SetYCoordinates(axes[1]);
+      grid->SetZCoordinates(axes[2]);
+      grid->GetCellData()->ShallowCopy(image->GetCellData());
+      vtkSinglePassAMRDataModel::SetBlock(out, l, i, grid);
+    }
+  }
+  return out;
+}
+#endif
+
+/// The largest difference of one RGB byte between two frames.
+int LargestDifference(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b)
+{
+  int largest = a.size() == b.size() ? 0 : 255;
+  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i)
+  {
+    largest = std::max(largest, std::abs(static_cast<int>(a[i]) - static_cast<int>(b[i])));
+  }
+  return largest;
+}
+
+/// VTK 9.6's data model: a partitioned data set collection that is not AMR is refused by name;
+/// an AMR of rectilinear blocks renders as its image-data twin when evenly spaced, and an uneven
+/// block is refused by name.
+void TestDataModel(Scene& scene)
+{
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(4, 4, 4);
+  vtkNew<vtkPartitionedDataSet> partitions;
+  partitions->SetPartition(0, image);
+  vtkNew<vtkPartitionedDataSetCollection> collection;
+  collection->SetPartitionedDataSet(0, partitions);
+  ExpectError(scene, collection, "a vtkPartitionedDataSetCollection, not a vtkOverlappingAMR",
+    "a partitioned data set collection that is not AMR");
+#ifdef AMRSP_VTK_AMR_DATA_OBJECT
+  vtkSmartPointer<vtkOverlappingAMR> amr = GoodAMR();
+  scene.Render(amr);
+  const std::vector<unsigned char> imageBlocks = scene.Pixels();
+  ExpectImage(scene, AsRectilinear(amr), 0.05, "rectilinear blocks");
+  const int same = LargestDifference(imageBlocks, scene.Pixels());
+  Check(same <= 1,
+    "rectilinear blocks render as their image-data twin: largest byte difference " +
+      std::to_string(same) + " (at most 1)");
+  // the comparison sees a change of the fine level's values
+  vtkSmartPointer<vtkOverlappingAMR> dimmer = MakeAMR(8, { 1, 2 },
+    { { 0, { 0, 0, 0 }, { 8, 8, 8 } }, { 1, { 4, 4, 4 }, { 8, 8, 8 } } },
+    [](int level, double x, double y, double z) { return (level == 1 ? 0.7 : 1.0) * Blob(x, y, z); });
+  scene.Render(AsRectilinear(dimmer));
+  const int changed = LargestDifference(imageBlocks, scene.Pixels());
+  Check(changed > 8,
+    "the comparison rejects a rectilinear AMR whose fine level is dimmer: largest byte difference " +
+      std::to_string(changed) + " (more than 8)");
+  ExpectError(scene, AsRectilinear(amr, 1), "block 0 of level 1 is a rectilinear grid",
+    "a rectilinear block of uneven spacing");
+#else
+  std::cout << "rectilinear blocks: not checked, VTK " << VTK_VERSION
+            << " has no AMR of rectilinear blocks (VTK 9.6 has)\n";
+#endif
+}
+
 } // namespace
 
 int main(int argc, char* argv[])
@@ -446,6 +544,7 @@ int main(int argc, char* argv[])
     scene.Mapper->SetDataStorageToLinearBricks();
   }
   TestInputs(scene);
+  TestDataModel(scene);
   TestEncodingLimit(scene);
   TestIsoValues(scene);
   TestOutOfMemory(scene);
