@@ -4,6 +4,10 @@
 import os
 import sys
 
+sys.path.insert(
+    0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Tools", "scripts"))
+from pvpython_exit import exit_keeping_output  # noqa: E402
+
 SKIP = 125  # CTest's skip code (SKIP_RETURN_CODE)
 
 # Functions called (without arguments) before a failure is printed, e.g. to repeat what a
@@ -14,14 +18,12 @@ BEFORE_LEAVE = []
 
 
 def leave(code):
-    """Ends the process with `code`. pvpython 5.11 (GLX) raises an X error (GLXBadContext) while
-    finalising after sys.exit() once a render view exists, which turns every exit code into 1:
-    leave without finalising instead. A test that passes simply returns from the script."""
+    """Ends the process with `code`, without finalising ParaView and keeping what was printed
+    (Tools/scripts/pvpython_exit.py says why). A test that passes simply returns from the
+    script."""
     for hook in BEFORE_LEAVE:
         hook()
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(code)
+    exit_keeping_output(code)
 
 
 def fail(message):

@@ -17,6 +17,9 @@ import sys
 import time
 
 import numpy
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pvpython_exit import exit_keeping_output  # noqa: E402
+
 from paraview import simple
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkRenderingCore import vtkWindowToImageFilter
@@ -137,8 +140,7 @@ def main():
         "coverage": round(float(numpy.mean(numpy.any(first_still != background, axis=2))), 3),
         "steps": steps,
     }, indent=1))
-    sys.stdout.flush()
-    os._exit(0)  # pvpython 5.11 (GLX) may raise an X error while finalising after a render
+    exit_keeping_output(0)
 
 
 if __name__ == "__main__":

@@ -11,6 +11,9 @@ import os
 import sys
 import time
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pvpython_exit import exit_keeping_output  # noqa: E402
+
 from paraview import simple
 
 
@@ -62,5 +65,4 @@ print(json.dumps({
     "bound_bytes": 2 * cell_bytes + 300 * 1000 * 1000,
     "peak_over_cell_data": round(peak * 1024 / cell_bytes, 3),
 }))
-sys.stdout.flush()
-os._exit(0)  # pvpython 5.11 (GLX) may raise an X error while finalising after a render
+exit_keeping_output(0)
