@@ -167,6 +167,13 @@ bool vtkSinglePassAMRVolumeMapper::BuildData(
     {
       return false;
     }
+    this->LastBorrowedValues = 0;
+    this->LastCopiedValues = 0;
+    for (const amrsp::GridValues& values : h.Values)
+    {
+      (values.IsBorrowed() ? this->LastBorrowedValues : this->LastCopiedValues) +=
+        static_cast<vtkIdType>(values.size());
+    }
     in.Data = amrsp::PrepareRayCasting(
       std::move(h), this->MaximumAtlasSize,
       static_cast<int64_t>(this->MaximumAtlasPageBytes / amrsp::AtlasTexelBytes),

@@ -233,6 +233,17 @@ public:
 
   ///@{
   /**
+   * Values of the last build's input that the conversion read in place, borrowed from the
+   * blocks' one-component float arrays without ghost layers, and values it copied (other types,
+   * components, ghost layers, vertex data made continuous). In situ, a simulation that hands
+   * over such float arrays is copied only into the GPU's textures.
+   */
+  vtkGetMacro(LastBorrowedValues, vtkIdType);
+  vtkGetMacro(LastCopiedValues, vtkIdType);
+  ///@}
+
+  ///@{
+  /**
    * Early ray termination (composite blending): a ray stops once its accumulated opacity reaches
    * this value, in [0, 1]. The default 0.999 changes no 8-bit channel by more than 0.26 of 255;
    * 1 never stops a ray early. A pixel whose ray stopped at opacity A misses at most (1 - A) of
@@ -434,6 +445,8 @@ protected:
   bool WorkCountersOutput = false;
   int WorkCountOutput = NO_WORK_COUNT;
   bool Ropes = true;
+  vtkIdType LastBorrowedValues = 0;
+  vtkIdType LastCopiedValues = 0;
   int RayLoop = NESTED_LOOPS;
   int DiagnosticAblation = NO_ABLATION;
   int DiagnosticAblationSamples = 256;

@@ -103,6 +103,26 @@ vtkSmartPointer<vtkAbstractArray> CopyRange(vtkAbstractArray* source, const int6
 /// The part `piece` (cells of the block's level, inside `cells`) of `block`, whose box is
 /// `cells`, as a vtkImageData with every cell and point array; the block may carry ghost layers
 /// around its box (equal on both sides of an axis).
+/// `block` itself as image data sharing its arrays when `piece` is all of its cells and it has
+/// no ghost layers; nullptr otherwise (then ExtractPiece copies the piece).
+vtkSmartPointer<vtkImageData> WholeBlock(
+  vtkDataSet* block, const amrsp::Box& cells, const amrsp::Box& piece)
+{
+  int dims[3];
+  if (!(piece.Lo == cells.Lo && piece.Hi == cells.Hi) || !model::BlockDimensions(block, dims))
+  {
+    return nullptr;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    if (std::max(1, dims[a] - 1) != cells.Extent()[a])
+    {
+      return nullptr; // ghost layers: the piece leaves them out
+    }
+  }
+  return model::AsImageData(block);
+}
+
 vtkSmartPointer<vtkImageData> ExtractPiece(
   vtkDataSet* block, const amrsp::Box& cells, const amrsp::Box& piece)
 {
@@ -238,17 +258,33 @@ void ExchangePieces(vtkMultiProcessController* controller, vtkOverlappingAMR* lo
         {
           continue;
         }
-        vtkSmartPointer<vtkImageData> extracted =
-          ExtractPiece(model::Block(local, l, i), cells, piece);
+        vtkDataSet* block = model::Block(local, l, i);
+        PieceHeader header{ static_cast<int32_t>(l), static_cast<int32_t>(i),
+          { piece.Lo.x, piece.Lo.y, piece.Lo.z }, { piece.Hi.x, piece.Hi.y, piece.Hi.z }, 0 };
+        if (destination == rank)
+        {
+          // this rank's own piece stays here; a whole block without ghost layers is not copied
+          // (its image shares the block's arrays: in situ, the simulation's memory)
+          vtkSmartPointer<vtkImageData> own = WholeBlock(block, cells, piece);
+          if (!own)
+          {
+            own = ExtractPiece(block, cells, piece);
+          }
+          if (own)
+          {
+            received.push_back(header);
+            receivedImages.push_back(own);
+          }
+          continue;
+        }
+        vtkSmartPointer<vtkImageData> extracted = ExtractPiece(block, cells, piece);
         if (!extracted)
         {
           continue;
         }
         vtkNew<vtkCharArray> bytes;
         vtkCommunicator::MarshalDataObject(extracted, bytes);
-        PieceHeader header{ static_cast<int32_t>(l), static_cast<int32_t>(i),
-          { piece.Lo.x, piece.Lo.y, piece.Lo.z }, { piece.Hi.x, piece.Hi.y, piece.Hi.z },
-          static_cast<int64_t>(bytes->GetNumberOfValues()) };
+        header.Bytes = static_cast<int64_t>(bytes->GetNumberOfValues());
         Append(message, &header, sizeof(header));
         Append(message, bytes->GetPointer(0), static_cast<std::size_t>(header.Bytes));
       }

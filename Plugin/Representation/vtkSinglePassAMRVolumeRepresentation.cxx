@@ -3,10 +3,14 @@
 
 #include "vtkSinglePassAMRDataModel.h"
 
+#include "vtkAbstractArray.h"
 #include "vtkAlgorithmOutput.h"
+#include "vtkCellData.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkCommand.h"
+#include "vtkContourValues.h"
 #include "vtkDataObject.h"
+#include "vtkFieldData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkLODProp3D.h"
@@ -15,11 +19,12 @@
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkOverlappingAMR.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkProcessModule.h"
 #include "vtkPVLODVolume.h"
 #include "vtkPVLogger.h"
 #include "vtkPVRenderView.h"
-#include "vtkPolyData.h"
-#include "vtkProcessModule.h"
 #include "vtkRenderer.h"
 #include "vtkScalarsToColors.h"
 #include "vtkSinglePassAMRGather.h"
@@ -28,10 +33,10 @@
 #include "vtkSinglePassAMRVolumeMapper.h"
 #include "vtkStructuredData.h"
 #include "vtkUniformGrid.h"
-#include "vtkContourValues.h"
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
+#include <functional>
 #include <string>
 
 namespace model = vtkSinglePassAMRDataModel;
@@ -79,6 +84,50 @@ private:
   void operator=(const vtkSinglePassAMRLODVolume&) = delete;
 };
 vtkStandardNewMacro(vtkSinglePassAMRLODVolume);
+} // namespace
+
+namespace
+{
+/// Calls `visit` with every non-empty cell and point array of every block of `amr`.
+void ForEachArray(vtkOverlappingAMR* amr, const std::function<void(vtkAbstractArray*)>& visit)
+{
+  if (!amr)
+  {
+    return;
+  }
+  for (unsigned int level = 0; level < amr->GetNumberOfLevels(); ++level)
+  {
+    for (unsigned int index = 0; index < model::NumberOfBlocks(amr, level); ++index)
+    {
+      vtkDataSet* block = model::Block(amr, level, index);
+      if (!block)
+      {
+        continue;
+      }
+      for (vtkFieldData* data : { static_cast<vtkFieldData*>(block->GetCellData()),
+             static_cast<vtkFieldData*>(block->GetPointData()) })
+      {
+        for (int a = 0; a < data->GetNumberOfArrays(); ++a)
+        {
+          vtkAbstractArray* array = data->GetAbstractArray(a);
+          if (array && array->GetNumberOfValues() > 0)
+          {
+            visit(array);
+          }
+        }
+      }
+    }
+  }
+}
+
+/// The memory of the arrays of `amr`'s blocks, sorted.
+std::vector<const void*> ArrayMemory(vtkOverlappingAMR* amr)
+{
+  std::vector<const void*> memory;
+  ForEachArray(amr, [&memory](vtkAbstractArray* a) { memory.push_back(a->GetVoidPointer(0)); });
+  std::sort(memory.begin(), memory.end());
+  return memory;
+}
 } // namespace
 
 vtkStandardNewMacro(vtkSinglePassAMRVolumeRepresentation);
@@ -175,6 +224,7 @@ int vtkSinglePassAMRVolumeRepresentation::RequestData(
     cache = vtkSmartPointer<vtkOverlappingAMR>::New();
     cache->CompositeShallowCopy(input);
   }
+  this->InputArrayMemory = ArrayMemory(cache);
 
   // Several ranks (pvbatch or pvserver under mpiexec): each holds the whole metadata but only
   // some blocks' data. pvbatch: each rank takes its region of the hierarchy and renders it; its
@@ -618,6 +668,26 @@ int vtkSinglePassAMRVolumeRepresentation::GetNumberOfBlockCopies()
 }
 
 //------------------------------------------------------------------------------
+double vtkSinglePassAMRVolumeRepresentation::GetNumberOfCopiedValues()
+{
+  vtkOverlappingAMR* rendered =
+    vtkOverlappingAMR::SafeDownCast(this->VolumeMapper->GetNumberOfInputConnections(0) > 0
+        ? this->VolumeMapper->GetInputDataObject(0, 0)
+        : nullptr);
+  double copied = 0.0;
+  ForEachArray(rendered,
+    [this, &copied](vtkAbstractArray* array)
+    {
+      if (!std::binary_search(this->InputArrayMemory.begin(), this->InputArrayMemory.end(),
+            static_cast<const void*>(array->GetVoidPointer(0))))
+      {
+        copied += static_cast<double>(array->GetNumberOfValues());
+      }
+    });
+  return copied;
+}
+
+//------------------------------------------------------------------------------
 double* vtkSinglePassAMRVolumeRepresentation::GetLastFrameQuality()
 {
   vtkSinglePassAMRVolumeMapper* m = this->VolumeMapper;
@@ -627,6 +697,23 @@ double* vtkSinglePassAMRVolumeRepresentation::GetLastFrameQuality()
   this->LastFrameQuality[3] = m->GetLastFrameBudget();
   this->LastFrameQuality[4] = m->GetLastFrameSeconds();
   return this->LastFrameQuality;
+}
+
+double* vtkSinglePassAMRVolumeRepresentation::GetLastBuildSeconds()
+{
+  vtkSinglePassAMRMapperBase* m = this->Method == METHOD_MULTI_PASS
+    ? static_cast<vtkSinglePassAMRMapperBase*>(this->MultiPassMapper)
+    : static_cast<vtkSinglePassAMRMapperBase*>(this->VolumeMapper);
+  this->LastBuildSeconds[0] = m->GetLastBuildSeconds();
+  this->LastBuildSeconds[1] = m->GetLastUploadSeconds();
+  return this->LastBuildSeconds;
+}
+
+double* vtkSinglePassAMRVolumeRepresentation::GetLastInputValues()
+{
+  this->LastInputValues[0] = static_cast<double>(this->VolumeMapper->GetLastBorrowedValues());
+  this->LastInputValues[1] = static_cast<double>(this->VolumeMapper->GetLastCopiedValues());
+  return this->LastInputValues;
 }
 
 void vtkSinglePassAMRVolumeRepresentation::SetAutoAdjustSampleDistances(int on)

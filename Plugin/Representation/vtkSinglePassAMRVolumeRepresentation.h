@@ -51,6 +51,7 @@
 #include "vtkVolumeRepresentation.h"
 
 #include <string> // for ivar
+#include <vector> // for ivar
 
 class vtkMultiPassAMRVolumeMapper;
 class vtkOverlappingAMR;
@@ -188,10 +189,21 @@ public:
   /// and the rest): { interactive (0 or 1), image sample distance, sample-distance scale,
   /// allocated seconds, measured seconds }.
   double* GetLastFrameQuality() VTK_SIZEHINT(5);
+  /// The last data change's CPU build (conversion, kD-tree, packing, encoding) and GPU upload,
+  /// in seconds, of the mapper the Method selects (SinglePassLastBuildSeconds).
+  double* GetLastBuildSeconds() VTK_SIZEHINT(2);
+  /// The single-pass mapper's last build: input values it read in place and values it copied
+  /// (vtkSinglePassAMRVolumeMapper::GetLastBorrowedValues; SinglePassLastInputValues).
+  double* GetLastInputValues() VTK_SIZEHINT(2);
   /// Blocks of the hierarchy the mappers read that are not the block objects of this process's
   /// own copy of its input (SinglePassBlockCopies): 0 where the mappers read that copy (builtin
   /// sessions, pvbatch); every delivered block on a client that renders what a pvserver sent.
   int GetNumberOfBlockCopies();
+  /// Array values (cell and point data) of the hierarchy the mappers read that do not lie in
+  /// the memory of this process's input arrays (SinglePassCopiedValues): 0 where every block is
+  /// the input's or shares its arrays; the pieces of other ranks' blocks and the blocks cut to
+  /// this rank's region under MPI; everything a client received from a pvserver.
+  double GetNumberOfCopiedValues();
   /// What rendered the last frame (SinglePassDataStorage): "packing", "bindless (waterfall)",
   /// "bindless (direct)", "multi-pass", or "none" before the first successful frame.
   const char* GetLastDataStorage();
@@ -230,6 +242,9 @@ protected:
   /// blocks; with several ranks, this rank's region of the hierarchy, or (gathering) the whole
   /// hierarchy on rank 0 and an empty one on the others.
   vtkSmartPointer<vtkOverlappingAMR> Cache;
+  /// The memory of the input blocks' arrays at the last RequestData, sorted (for
+  /// GetNumberOfCopiedValues: never read through).
+  std::vector<const void*> InputArrayMemory;
   /// False on the ranks other than 0 when gathering on rank 0: they draw nothing.
   bool RendersLocally = true;
   /// True where the process that renders is the one that holds the data (a builtin session,
@@ -242,6 +257,8 @@ protected:
   bool ReportedParallelRenderingOff = false;
   // What is wrong with the delivered data itself (no blocks at all), said once per change in
   double LastFrameQuality[5] = { 0.0, 1.0, 1.0, 0.0, 0.0 };
+  double LastBuildSeconds[2] = { 0.0, 0.0 };
+  double LastInputValues[2] = { 0.0, 0.0 };
   // ParaView's output window and returned by GetLastRenderError before the mapper's error.
   std::string InputProblem;
   std::string ReportedInputProblem;

@@ -1,0 +1,172 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "CatalystAdaptor.h"
+
+#include "BlobSimulation.h"
+
+#include "vtkAMRBox.h"
+#include "vtkCPDataDescription.h"
+#include "vtkCPInputDataDescription.h"
+#include "vtkCPProcessor.h"
+#include "vtkCPPythonPipeline.h"
+#include "vtkCellData.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkNew.h"
+#include "vtkOverlappingAMR.h"
+#include "vtkSMPluginManager.h"
+#include "vtkSMProxyManager.h"
+#include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
+#include "vtkStructuredData.h"
+#include "vtkUniformGrid.h"
+
+#include <algorithm>
+#include <chrono>
+#include <stdexcept>
+#include <vector>
+
+#if defined(__has_include)
+#if __has_include("vtkAMRDataObject.h")
+#define INSITU_VTK_AMR_DATA_OBJECT 1 // VTK 9.6's AMR data model
+#endif
+#endif
+
+namespace insitu
+{
+namespace
+{
+
+double SecondsSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+} // namespace
+
+vtkSmartPointer<vtkOverlappingAMR> CatalystAdaptor::Describe(
+  BlobSimulation& simulation, long long& borrowed)
+{
+  std::vector<Block>& blocks = simulation.Blocks();
+  int levels = 0;
+  for (const Block& b : blocks)
+  {
+    levels = std::max(levels, b.Level + 1);
+  }
+  std::vector<unsigned int> perLevel(static_cast<std::size_t>(levels), 0);
+  for (const Block& b : blocks)
+  {
+    ++perLevel[static_cast<std::size_t>(b.Level)];
+  }
+  auto amr = vtkSmartPointer<vtkOverlappingAMR>::New();
+#ifdef INSITU_VTK_AMR_DATA_OBJECT
+  amr->Initialize(perLevel);
+  amr->SetGridDescription(vtkStructuredData::VTK_STRUCTURED_XYZ_GRID);
+#else
+  const std::vector<int> counts(perLevel.begin(), perLevel.end());
+  amr->Initialize(levels, counts.data());
+  amr->SetGridDescription(VTK_XYZ_GRID);
+#endif
+  const double origin[3] = { 0.0, 0.0, 0.0 };
+  amr->SetOrigin(origin);
+  for (int level = 0; level < levels; ++level)
+  {
+    const double h = simulation.CellSize(level);
+    const double spacing[3] = { h, h, h };
+    amr->SetSpacing(level, spacing);
+    if (level + 1 < levels)
+    {
+      amr->SetRefinementRatio(level, 2);
+    }
+  }
+  std::vector<unsigned int> next(perLevel.size(), 0);
+  borrowed = 0;
+  for (Block& b : blocks)
+  {
+    const unsigned int level = static_cast<unsigned int>(b.Level);
+    const unsigned int index = next[level]++;
+    const int hi[3] = { b.Lo[0] + b.Cells[0] - 1, b.Lo[1] + b.Cells[1] - 1,
+      b.Lo[2] + b.Cells[2] - 1 };
+    amr->SetAMRBox(level, index, vtkAMRBox(b.Lo.data(), hi));
+    if (b.Values.empty())
+    {
+      continue; // another rank's block
+    }
+    const double h = simulation.CellSize(b.Level);
+    vtkNew<vtkUniformGrid> grid;
+    grid->SetOrigin(b.Lo[0] * h, b.Lo[1] * h, b.Lo[2] * h);
+    grid->SetSpacing(h, h, h);
+    grid->SetDimensions(b.Cells[0] + 1, b.Cells[1] + 1, b.Cells[2] + 1);
+    vtkNew<vtkFloatArray> density;
+    density->SetName("density");
+    // save = 1: VTK reads the simulation's memory and never frees it
+    density->SetArray(b.Values.data(), static_cast<vtkIdType>(b.Values.size()), 1);
+    grid->GetCellData()->SetScalars(density);
+    amr->SetDataSet(level, index, grid);
+    borrowed += static_cast<long long>(b.Values.size());
+  }
+  return amr;
+}
+
+struct CatalystAdaptor::Internals
+{
+  vtkNew<vtkCPProcessor> Processor;
+  vtkNew<vtkFieldData> UserData;
+};
+
+CatalystAdaptor::CatalystAdaptor(
+  const std::string& script, const std::string& plugin, const Settings& settings)
+  : Internal(new Internals)
+{
+  if (!this->Internal->Processor->Initialize())
+  {
+    throw std::runtime_error("Catalyst (vtkCPProcessor) failed to initialise");
+  }
+  if (!plugin.empty() &&
+    !vtkSMProxyManager::GetProxyManager()->GetPluginManager()->LoadLocalPlugin(plugin.c_str()))
+  {
+    throw std::runtime_error("ParaView could not load the plugin " + plugin);
+  }
+  vtkSmartPointer<vtkCPPythonPipeline> pipeline =
+    vtkCPPythonPipeline::CreateAndInitializePipeline(script.c_str());
+  if (!pipeline)
+  {
+    throw std::runtime_error("the Catalyst script " + script + " failed to load");
+  }
+  this->Internal->Processor->AddPipeline(pipeline);
+  for (const auto& setting : settings)
+  {
+    vtkNew<vtkStringArray> value;
+    value->SetName(setting.first.c_str());
+    value->InsertNextValue(setting.second);
+    this->Internal->UserData->AddArray(value);
+  }
+}
+
+CatalystAdaptor::~CatalystAdaptor()
+{
+  this->Internal->Processor->Finalize();
+}
+
+CatalystAdaptor::StepCost CatalystAdaptor::CoProcess(BlobSimulation& simulation)
+{
+  StepCost cost;
+  vtkNew<vtkCPDataDescription> description;
+  description->AddInput("input");
+  description->SetTimeData(simulation.Time(), simulation.StepIndex());
+  description->SetUserData(this->Internal->UserData);
+  if (!this->Internal->Processor->RequestDataDescription(description))
+  {
+    return cost;
+  }
+  auto start = std::chrono::steady_clock::now();
+  vtkSmartPointer<vtkOverlappingAMR> amr = Describe(simulation, cost.BorrowedValues);
+  description->GetInputDescriptionByName("input")->SetGrid(amr);
+  cost.DescribeSeconds = SecondsSince(start);
+  start = std::chrono::steady_clock::now();
+  this->Internal->Processor->CoProcess(description);
+  cost.CoProcessSeconds = SecondsSince(start);
+  cost.Processed = true;
+  return cost;
+}
+
+} // namespace insitu
