@@ -121,8 +121,10 @@ public:
 
   /// CPU side: convert, build the tree, pack, and list the nodes' draws. Returns false with
   /// `error` set on failure.
+  /// `mayRefresh`: a hierarchy of the built structure keeps the tree, layout and draws
+  /// (`refreshed` true) and takes the new values only.
   bool Build(vtkOverlappingAMR* amr, const std::string& array, int component, int packLimit,
-    int64_t maxPageTexels, std::string& error);
+    int64_t maxPageTexels, bool mayRefresh, bool& refreshed, std::string& error);
 
   /// Fills Order with the data leaves front to back for rays from `view` (see the class comment).
   void OrderNodes(const utilities::ViewGeometry& view);
@@ -141,12 +143,18 @@ public:
 
 //------------------------------------------------------------------------------
 bool vtkMultiPassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
-  const std::string& array, int component, int packLimit, int64_t maxPageTexels, std::string& error)
+  const std::string& array, int component, int packLimit, int64_t maxPageTexels, bool mayRefresh,
+  bool& refreshed, std::string& error)
 {
+  const bool ok = utilities::RefreshPackedHierarchy(
+    amr, array, component, packLimit, maxPageTexels, mayRefresh, this->Data, refreshed, error);
+  if (ok && refreshed)
+  {
+    return true; // a time step of the same structure: the nodes to draw are the same
+  }
   this->Draws.clear();
   this->DrawOfNode.clear();
-  if (!utilities::BuildPackedHierarchy(
-        amr, array, component, packLimit, maxPageTexels, this->Data, error))
+  if (!ok)
   {
     return false;
   }
@@ -372,14 +380,15 @@ vtkMultiPassAMRVolumeMapper::~vtkMultiPassAMRVolumeMapper()
 }
 
 //------------------------------------------------------------------------------
-bool vtkMultiPassAMRVolumeMapper::BuildData(
-  vtkOverlappingAMR* amr, const std::string& array, std::string& error)
+bool vtkMultiPassAMRVolumeMapper::BuildData(vtkOverlappingAMR* amr, const std::string& array,
+  bool mayRefresh, bool& refreshed, std::string& error)
 {
   // ProgressEvent: 0 and 1 around the build; the upload in the first render 0 to 1 again
   this->BeginProgressPhase(PROGRESS_BUILD, "converting the AMR blocks, kD-tree and packing");
   const bool built =
     this->Internals->Build(amr, array, this->ArrayComponent, this->MaximumAtlasSize,
-      static_cast<int64_t>(this->MaximumAtlasPageBytes / amrsp::AtlasTexelBytes), error);
+      static_cast<int64_t>(this->MaximumAtlasPageBytes / amrsp::AtlasTexelBytes), mayRefresh,
+      refreshed, error);
   this->UpdateProgress(1.0);
   return built;
 }

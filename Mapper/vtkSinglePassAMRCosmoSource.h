@@ -48,17 +48,34 @@ public:
   vtkGetMacro(Seed, int);
   ///@}
 
+  ///@{
+  /**
+   * A time series (amrsp::GenerateCosmoStep): NumberOfTimeSteps steps at times 0, 1, ...
+   * (default 1: no time), the halos drifting from step to step; the grids are rebuilt every
+   * RegridEvery steps (default 0: never, the boxes of step 0 throughout), as AMR codes regrid
+   * every few steps. The step rendered is the one the pipeline asks for (UPDATE_TIME_STEP,
+   * rounded to the nearest step).
+   */
+  vtkSetClampMacro(NumberOfTimeSteps, int, 1, 1000000);
+  vtkGetMacro(NumberOfTimeSteps, int);
+  vtkSetClampMacro(RegridEvery, int, 0, 1000000);
+  vtkGetMacro(RegridEvery, int);
+  ///@}
+
 protected:
   vtkSinglePassAMRCosmoSource();
   ~vtkSinglePassAMRCosmoSource() override = default;
 
   int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   vtkIdType NumberOfGrids = 2666;
   int NumberOfLevels = 4;
   vtkIdType NumberOfCells = 19000000;
   int Seed = 1;
+  int NumberOfTimeSteps = 1;
+  int RegridEvery = 0;
 
 private:
   vtkSinglePassAMRCosmoSource(const vtkSinglePassAMRCosmoSource&) = delete;

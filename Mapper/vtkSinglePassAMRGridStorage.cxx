@@ -319,6 +319,51 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, int stor
 }
 
 //------------------------------------------------------------------------------
+bool vtkSinglePassAMRGridStorage::UploadValues(vtkOpenGLRenderWindow* renWin,
+  const amrsp::RayCastingData& data, std::string& error,
+  const std::function<void(double)>& progress)
+{
+  const int storage = this->UploadedStorage;
+  this->TransparentFlags = nullptr; // the node ranges are the new step's
+  while (glGetError() != GL_NO_ERROR)
+  {
+  }
+  bool ok = false;
+  if (storage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES)
+  {
+    this->ReleaseBindless(renWin);
+    this->HandlesTexture = nullptr;
+    ok = this->UploadBindless(renWin, data, error);
+  }
+  else if (storage == vtkSinglePassAMRVolumeMapper::LINEAR_BRICKS)
+  {
+    this->Linear.Clear();
+    ok = this->Linear.Upload(
+      renWin, data.Data, data.VertexCentred, this->LinearPageBytes, error, progress);
+  }
+  else
+  {
+    this->AtlasPages.clear();
+    ok = this->UploadAtlas(renWin, data, progress);
+  }
+  const GLenum glError = glGetError();
+  if (!ok || glError != GL_NO_ERROR)
+  {
+    if (error.empty())
+    {
+      error = std::string("uploading the new time step's grid data failed") +
+        (glError == GL_OUT_OF_MEMORY ? ": out of GPU memory" : "");
+    }
+    this->ReleaseBindless(renWin);
+    this->AtlasPages.clear();
+    this->Linear.Clear();
+    this->UploadedStorage = -1;
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
 bool vtkSinglePassAMRGridStorage::UploadAtlas(vtkOpenGLRenderWindow* renWin,
   const amrsp::RayCastingData& data, const std::function<void(double)>& progress)
 {

@@ -76,6 +76,13 @@ public:
     const amrsp::RayCastingData& data, std::string& error,
     const std::function<void(double)>& progress = nullptr);
 
+  /// A new time step of the uploaded structure (amrsp::RefreshValues): uploads the grid data of
+  /// `data` into the storage uploaded last (IsUploaded), keeping the tree, data-node, rope and
+  /// brick-box textures and the atlas layout; the transparency flags are computed again. Same
+  /// errors as Upload; on failure nothing is left uploaded.
+  bool UploadValues(vtkOpenGLRenderWindow* renWin, const amrsp::RayCastingData& data,
+    std::string& error, const std::function<void(double)>& progress = nullptr);
+
   /// Flags the data nodes whose value range (`nodeRanges`, entry 0 unused) is transparent under
   /// the tabulated opacities `opacity` over [tableRange[0], tableRange[0] + 1 / tableRange[1]]
   /// (amrsp::TableRangeTransparent), when `tableTime` differs from the last call's or the flags

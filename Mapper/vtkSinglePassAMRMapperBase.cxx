@@ -110,19 +110,22 @@ bool vtkSinglePassAMRMapperBase::EnsureBuilt(vtkOverlappingAMR* amr)
 {
   const std::string array = vtkSinglePassAMRRenderingUtilities::RequestedArray(
     amr, this->ArrayAccessMode, this->ArrayName, this->ArrayId);
+  const bool sameSettings = this->BuiltArray == array &&
+    this->BuiltComponent == this->ArrayComponent && this->BuiltPackLimit == this->MaximumAtlasSize &&
+    this->BuiltPageBytes == this->MaximumAtlasPageBytes &&
+    this->BuiltPacked == this->BuildPacksBricks();
   if (!this->Built || this->BuiltInput != amr || this->BuiltInputMTime != amr->GetMTime() ||
-    this->BuiltArray != array || this->BuiltComponent != this->ArrayComponent ||
-    this->BuiltPackLimit != this->MaximumAtlasSize ||
-    this->BuiltPageBytes != this->MaximumAtlasPageBytes ||
-    (this->BuildPacksBricks() && !this->BuiltPacked))
+    !sameSettings)
   {
+    // only the input changed since a build that succeeded: its structure may be kept
+    const bool mayRefresh = this->Built && this->DataValid && sameSettings;
     this->BuiltInput = amr;
     this->BuiltInputMTime = amr->GetMTime();
     this->BuiltArray = array;
     this->BuiltComponent = this->ArrayComponent;
     this->BuiltPackLimit = this->MaximumAtlasSize;
     this->BuiltPageBytes = this->MaximumAtlasPageBytes;
-    this->RunBuild(amr);
+    this->RunBuild(amr, mayRefresh);
   }
   return this->DataValid;
 }
@@ -134,7 +137,7 @@ bool vtkSinglePassAMRMapperBase::Rebuild(vtkOverlappingAMR* amr)
 }
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMRMapperBase::RunBuild(vtkOverlappingAMR* amr)
+bool vtkSinglePassAMRMapperBase::RunBuild(vtkOverlappingAMR* amr, bool mayRefresh)
 {
   const auto t0 = std::chrono::steady_clock::now();
   this->Built = true;
@@ -143,7 +146,11 @@ bool vtkSinglePassAMRMapperBase::RunBuild(vtkOverlappingAMR* amr)
   this->BuildError.clear();
   ++this->NumberOfBuilds;
   std::string error;
-  if (!this->BuildData(amr, this->BuiltArray, error))
+  bool refreshed = false;
+  const bool ok = this->BuildData(amr, this->BuiltArray, mayRefresh, refreshed, error);
+  this->LastBuildRefreshed = ok && refreshed;
+  this->NumberOfValueRefreshes += this->LastBuildRefreshed ? 1 : 0;
+  if (!ok)
   {
     this->BuildError = error.empty() ? "the AMR input could not be prepared for rendering" : error;
     return false;
@@ -216,6 +223,18 @@ const char* vtkSinglePassAMRMapperBase::GetLastError()
   return this->LastError.c_str();
 }
 
+int vtkSinglePassAMRMapperBase::GetNumberOfValueRefreshes()
+{
+  return this->NumberOfValueRefreshes;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRMapperBase::GetLastBuildRefreshedValues()
+{
+  return this->LastBuildRefreshed;
+}
+
+//------------------------------------------------------------------------------
 double vtkSinglePassAMRMapperBase::GetLastBuildSeconds()
 {
   return this->BuildSeconds;

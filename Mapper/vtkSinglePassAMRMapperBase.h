@@ -99,8 +99,15 @@ public:
   double GetLastBuildSeconds();
   double GetLastUploadSeconds();
   /// Number of times the data were (re)built; camera or transfer-function changes must not
-  /// increase it.
+  /// increase it. A new time step counts, whether rebuilt or refreshed.
   int GetNumberOfBuilds();
+  /// Of those, the builds that kept the structure: a new input (a time step) whose hierarchy
+  /// (levels, boxes, ratios, array, centring) equals the one built last only took its values,
+  /// keeping the kD-tree, its encoding and the brick layout; the upload then sends the grid
+  /// data only. The image is the full rebuild's.
+  int GetNumberOfValueRefreshes();
+  /// Whether the last build was such a refresh.
+  bool GetLastBuildRefreshedValues();
   /// What a ProgressEvent reports, read during the event: the CPU build (conversion, kD-tree,
   /// packing, encoding; in GetBounds or the first render after a data change) or the upload of
   /// the grid data in a render. Each runs its progress from 0 to 1 and names its current step in
@@ -136,8 +143,12 @@ protected:
   void BeginProgressPhase(int phase, const char* text);
 
   /// The CPU build of `amr` (array `array`, component ArrayComponent, MaximumAtlasSize): returns
-  /// false with a one-line `error` when the input cannot be rendered.
-  virtual bool BuildData(vtkOverlappingAMR* amr, const std::string& array, std::string& error) = 0;
+  /// false with a one-line `error` when the input cannot be rendered. `mayRefresh`: only the
+  /// input changed since the last successful build (same array, component and limits), so a
+  /// hierarchy of the same structure may keep what was built from it (amrsp::RefreshValues);
+  /// `refreshed` says whether it did.
+  virtual bool BuildData(vtkOverlappingAMR* amr, const std::string& array, bool mayRefresh,
+    bool& refreshed, std::string& error) = 0;
   /// Model-space bounds of the data built last (called after a successful BuildData).
   virtual void GetBuiltBounds(double bounds[6]) = 0;
   /// Whether the next build should pack the bricks into an atlas (the single-pass mapper's
@@ -190,7 +201,7 @@ private:
   vtkSinglePassAMRMapperBase(const vtkSinglePassAMRMapperBase&) = delete;
   void operator=(const vtkSinglePassAMRMapperBase&) = delete;
 
-  bool RunBuild(vtkOverlappingAMR* amr);
+  bool RunBuild(vtkOverlappingAMR* amr, bool mayRefresh = false);
 
   // the build key and the result of the build made for it
   vtkOverlappingAMR* BuiltInput = nullptr; // identity only, never dereferenced
@@ -205,6 +216,8 @@ private:
   std::string BuildError; // ... or failed with this message
   vtkTimeStamp BuildTime;
   int NumberOfBuilds = 0;
+  int NumberOfValueRefreshes = 0;
+  bool LastBuildRefreshed = false;
   double BuildSeconds = 0.0;
 
   std::string LastError;

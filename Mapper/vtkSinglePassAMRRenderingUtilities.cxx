@@ -240,20 +240,26 @@ ModelLight FirstLightInModel(vtkRenderer* ren, vtkVolume* vol)
 }
 
 //------------------------------------------------------------------------------
-bool BuildPackedHierarchy(vtkOverlappingAMR* amr, const std::string& array, int component,
-  int packLimit, int64_t maxPageTexels, PackedHierarchy& out, std::string& error)
+namespace
 {
-  out = PackedHierarchy();
+/// BuildPackedHierarchy on a converted hierarchy, or keeping `out`'s structure when `h` has it
+/// and `mayRefresh`.
+bool PackHierarchy(amrsp::Hierarchy converted, int packLimit, int64_t maxPageTexels,
+  bool mayRefresh, PackedHierarchy& out, bool& refreshed, std::string& error)
+{
+  refreshed = false;
   try
   {
-    vtkSinglePassAMRConversion::ArraySelection selection;
-    selection.Name = array;
-    selection.Component = component;
-    amrsp::Hierarchy& h = out.Structure;
-    if (!vtkSinglePassAMRConversion::FromOverlappingAMR(amr, selection, h, error))
+    if (mayRefresh && !out.Tree.Nodes.empty() && amrsp::SameStructure(out.Structure, converted))
     {
-      return false;
+      amrsp::FiniteValueRange(converted, out.ScalarRange); // as the full build below
+      out.Structure.Values = std::move(converted.Values);
+      refreshed = true;
+      return true;
     }
+    out = PackedHierarchy();
+    out.Structure = std::move(converted);
+    const amrsp::Hierarchy& h = out.Structure;
     out.Tree = amrsp::BuildKdTree(h);
     // one brick per grid (cells, or vertices one texel larger), packed within the per-axis limit
     // the data-node offsets can address and MaximumAtlasSize when set
@@ -275,6 +281,49 @@ bool BuildPackedHierarchy(vtkOverlappingAMR* amr, const std::string& array, int 
     return false;
   }
   return true;
+}
+
+bool ConvertAndPack(vtkOverlappingAMR* amr, const std::string& array, int component,
+  int packLimit, int64_t maxPageTexels, bool mayRefresh, PackedHierarchy& out, bool& refreshed,
+  std::string& error)
+{
+  refreshed = false;
+  amrsp::Hierarchy h;
+  try
+  {
+    vtkSinglePassAMRConversion::ArraySelection selection;
+    selection.Name = array;
+    selection.Component = component;
+    if (!vtkSinglePassAMRConversion::FromOverlappingAMR(amr, selection, h, error))
+    {
+      out = PackedHierarchy();
+      return false;
+    }
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+    out = PackedHierarchy();
+    return false;
+  }
+  return PackHierarchy(std::move(h), packLimit, maxPageTexels, mayRefresh, out, refreshed, error);
+}
+} // namespace
+
+bool BuildPackedHierarchy(vtkOverlappingAMR* amr, const std::string& array, int component,
+  int packLimit, int64_t maxPageTexels, PackedHierarchy& out, std::string& error)
+{
+  bool refreshed = false;
+  return ConvertAndPack(
+    amr, array, component, packLimit, maxPageTexels, false, out, refreshed, error);
+}
+
+bool RefreshPackedHierarchy(vtkOverlappingAMR* amr, const std::string& array, int component,
+  int packLimit, int64_t maxPageTexels, bool mayRefresh, PackedHierarchy& out, bool& refreshed,
+  std::string& error)
+{
+  return ConvertAndPack(
+    amr, array, component, packLimit, maxPageTexels, mayRefresh, out, refreshed, error);
 }
 
 //------------------------------------------------------------------------------

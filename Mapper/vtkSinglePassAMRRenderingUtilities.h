@@ -101,6 +101,16 @@ bool BuildPackedHierarchy(vtkOverlappingAMR* amr, const std::string& array, int 
   int packLimit, int64_t maxPageTexels, PackedHierarchy& out, std::string& error);
 
 /**
+ * A new time step for `out` built by BuildPackedHierarchy with the same array, component and
+ * limits: when `mayRefresh` and `amr`'s hierarchy has `out`'s structure (amrsp::SameStructure),
+ * `out` keeps its tree and atlas layout and takes the new values and their range (`refreshed`
+ * true); otherwise it is built again as BuildPackedHierarchy does. Same errors.
+ */
+bool RefreshPackedHierarchy(vtkOverlappingAMR* amr, const std::string& array, int component,
+  int packLimit, int64_t maxPageTexels, bool mayRefresh, PackedHierarchy& out, bool& refreshed,
+  std::string& error);
+
+/**
  * Whether an atlas of `dims` texels fits `renWin`'s GL_MAX_3D_TEXTURE_SIZE and `atlasLimit`
  * (> 0: a lower limit set by the user). When not, `why` names the limit it exceeds.
  */

@@ -85,6 +85,8 @@ public:
   /// atlas) and uploads the data when the build, the storage, the context or the atlas limit
   /// changed.
   bool PrepareStorage(vtkOpenGLRenderWindow* renWin, vtkOverlappingAMR* amr, FrameSettings& frame);
+  /// Uploads the refreshed values of the uploaded structure (PendingValuesUpload).
+  bool UploadValues(vtkOpenGLRenderWindow* renWin);
   /// Tabulates the transfer function and resolves blending, shading, shadows and skipping.
   bool PrepareAppearance(
     vtkOpenGLRenderWindow* renWin, vtkVolumeProperty* property, FrameSettings& frame);
@@ -108,9 +110,11 @@ public:
 
   vtkSinglePassAMRVolumeMapper* Self;
 
-  /// The CPU build; its bricks and texels wait in it until uploaded (PendingUpload).
+  /// The CPU build; its bricks and texels wait in it until uploaded (PendingUpload), or, after
+  /// a refresh of the values of an uploaded structure, its new bricks (PendingValuesUpload).
   amrsp::RayCastingData Data;
   bool PendingUpload = false;
+  bool PendingValuesUpload = false;
   vtkSinglePassAMRGridStorage Storage;
   utilities::TransferFunctionTable Transfer;
   utilities::DepthCopy Depth;
@@ -148,12 +152,11 @@ vtkSinglePassAMRVolumeMapper::~vtkSinglePassAMRVolumeMapper()
 }
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMRVolumeMapper::BuildData(
-  vtkOverlappingAMR* amr, const std::string& array, std::string& error)
+bool vtkSinglePassAMRVolumeMapper::BuildData(vtkOverlappingAMR* amr, const std::string& array,
+  bool mayRefresh, bool& refreshed, std::string& error)
 {
   vtkInternals& in = *this->Internals;
-  in.Data = amrsp::RayCastingData();
-  in.PendingUpload = false;
+  refreshed = false;
   try
   {
     vtkSinglePassAMRConversion::ArraySelection selection;
@@ -165,6 +168,9 @@ bool vtkSinglePassAMRVolumeMapper::BuildData(
     this->BeginProgressPhase(PROGRESS_BUILD, "converting the AMR blocks");
     if (!vtkSinglePassAMRConversion::FromOverlappingAMR(amr, selection, h, error))
     {
+      in.Data = amrsp::RayCastingData();
+      in.PendingUpload = false;
+      in.PendingValuesUpload = false;
       return false;
     }
     this->LastBorrowedValues = 0;
@@ -174,6 +180,20 @@ bool vtkSinglePassAMRVolumeMapper::BuildData(
       (values.IsBorrowed() ? this->LastBorrowedValues : this->LastCopiedValues) +=
         static_cast<vtkIdType>(values.size());
     }
+    if (mayRefresh && (in.Data.NodeBlocks || in.Data.PendingNodeBlocks.valid()) &&
+      amrsp::SameStructure(in.Data.Data, h))
+    {
+      // a time step between regrids: the tree, its encoding and the brick layout stay
+      this->SetProgressText("the new values' ranges");
+      amrsp::RefreshValues(in.Data, std::move(h), true);
+      in.PendingValuesUpload = !in.PendingUpload; // else the pending full upload sends them
+      refreshed = true;
+      this->UpdateProgress(1.0);
+      return true;
+    }
+    in.Data = amrsp::RayCastingData();
+    in.PendingUpload = false;
+    in.PendingValuesUpload = false;
     in.Data = amrsp::PrepareRayCasting(
       std::move(h), this->MaximumAtlasSize,
       static_cast<int64_t>(this->MaximumAtlasPageBytes / amrsp::AtlasTexelBytes),
@@ -189,6 +209,8 @@ bool vtkSinglePassAMRVolumeMapper::BuildData(
   {
     error = e.what();
     in.Data = amrsp::RayCastingData();
+    in.PendingUpload = false;
+    in.PendingValuesUpload = false;
     return false;
   }
   in.PendingUpload = true;
@@ -318,8 +340,12 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareStorage(
   }
   frame.Storage = choice.Storage;
   frame.Access = choice.Access;
-  if (!this->PendingUpload &&
-    this->Storage.IsUploaded(renWin, frame.Storage, self->MaximumAtlasSize))
+  const bool uploaded = this->Storage.IsUploaded(renWin, frame.Storage, self->MaximumAtlasSize);
+  if (!this->PendingUpload && this->PendingValuesUpload && uploaded)
+  {
+    return this->UploadValues(renWin);
+  }
+  if (!this->PendingUpload && !this->PendingValuesUpload && uploaded)
   {
     return true;
   }
@@ -349,6 +375,39 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareStorage(
   try
   {
     // the one join of the build's deferred node ranges: every build is followed by this upload
+    this->Data.WaitForNodeRanges();
+  }
+  catch (const std::exception& e)
+  {
+    self->ReportError(std::string("computing the value ranges failed: ") + e.what());
+    return false;
+  }
+  self->UploadSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRVolumeMapper::vtkInternals::UploadValues(vtkOpenGLRenderWindow* renWin)
+{
+  vtkSinglePassAMRVolumeMapper* self = this->Self;
+  const auto t0 = std::chrono::steady_clock::now();
+  std::string error;
+  self->BeginProgressPhase(PROGRESS_UPLOAD, "uploading the new time step's grid data");
+  const bool ok =
+    this->Storage.UploadValues(renWin, this->Data, error, [self](double f) { self->UpdateProgress(f); });
+  this->PendingValuesUpload = false;
+  if (!ok)
+  {
+    // the CPU copies of the tree are gone: the next frame builds from the input again
+    self->InvalidateBuild();
+    self->ReportError(error);
+    return false;
+  }
+  self->UpdateProgress(1.0);
+  this->Data.FreeUploadData();
+  try
+  {
     this->Data.WaitForNodeRanges();
   }
   catch (const std::exception& e)

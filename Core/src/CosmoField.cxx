@@ -244,7 +244,7 @@ struct CosmoField::Impl
 
   /// The catalogue: clusters with satellites, filaments between neighbouring clusters, field
   /// halos, and the background waves. All lengths in unit-cube (world) units.
-  explicit Impl(uint64_t seed)
+  explicit Impl(uint64_t seed, double time)
   {
     SplitMix64 rng(seed ^ 0x5DEECE66D1234567ULL);
 
@@ -359,12 +359,37 @@ struct CosmoField::Impl
       const double r = PowerLawRadius(rng, 0.003, 0.015);
       addHalo(p, r);
     }
+    if (time != 0.0)
+    {
+      this->Drift(seed, time);
+    }
     this->BuildBuckets();
+  }
+
+  /// Moves every halo by `time` times its velocity: a direction uniform on the sphere and a
+  /// speed uniform in [0, HaloSpeed], from a stream of its own.
+  void Drift(uint64_t seed, double time)
+  {
+    SplitMix64 rng(seed ^ 0x2545F4914F6CDD1DULL);
+    for (Halo& h : this->Halos)
+    {
+      glm::dvec3 d;
+      double n2 = 0.0;
+      do
+      {
+        d = rng.UniformVector(-1.0, 1.0);
+        n2 = d.x * d.x + d.y * d.y + d.z * d.z;
+      } while (n2 > 1.0 || n2 < 1e-6);
+      const double speed = rng.Uniform(0.0, CosmoField::HaloSpeed) / std::sqrt(n2);
+      h.Cx += time * speed * d.x;
+      h.Cy += time * speed * d.y;
+      h.Cz += time * speed * d.z;
+    }
   }
 };
 
-CosmoField::CosmoField(uint64_t seed)
-  : Internals(std::make_shared<const Impl>(seed))
+CosmoField::CosmoField(uint64_t seed, double time)
+  : Internals(std::make_shared<const Impl>(seed, time))
 {
 }
 

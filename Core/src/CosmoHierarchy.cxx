@@ -21,7 +21,13 @@ namespace amrsp
 
 using namespace cosmo;
 
-Hierarchy GenerateCosmo(const CosmoParameters& p, const ProgressCallback& progress)
+namespace
+{
+
+/// The hierarchy of `p` refined on the field at `boxesTime`, its values from the field at
+/// `valuesTime`.
+Hierarchy Generate(
+  const CosmoParameters& p, double boxesTime, double valuesTime, const ProgressCallback& progress)
 {
   const std::string what = "cosmo generator (" + FormatCosmoParameters(p) + "): ";
   if (p.Levels < 1 || p.Levels > 30)
@@ -75,7 +81,8 @@ Hierarchy GenerateCosmo(const CosmoParameters& p, const ProgressCallback& progre
       " root grids (root domain would be " + std::to_string(n0) + "^3 cells)");
   }
 
-  const CosmoField field(p.Seed);
+  const CosmoField field(p.Seed, boxesTime);
+  const CosmoField valuesField = valuesTime == boxesTime ? field : CosmoField(p.Seed, valuesTime);
   Hierarchy h;
   h.Origin = glm::dvec3(0.0);
   h.Spacing0 = glm::dvec3(1.0 / static_cast<double>(n0));
@@ -146,7 +153,7 @@ Hierarchy GenerateCosmo(const CosmoParameters& p, const ProgressCallback& progre
         // Cell size of the grid's level in world units: Spacing0 / 2^level (exact scaling).
         const double cs = std::ldexp(h.Spacing0.x, -grid.Level);
         std::vector<float> values;
-        field.Sample(grid.Cells, cs, values);
+        valuesField.Sample(grid.Cells, cs, values);
         h.Values[g] = GridValues(std::move(values));
         ticker.Done(grid.Cells.Cells());
       },
@@ -154,6 +161,29 @@ Hierarchy GenerateCosmo(const CosmoParameters& p, const ProgressCallback& progre
     ticker.Finish();
   }
   return h;
+}
+
+} // namespace
+
+Hierarchy GenerateCosmo(const CosmoParameters& p, const ProgressCallback& progress)
+{
+  return GenerateCosmoStep(p, p.Step, progress);
+}
+
+int CosmoRegridStep(const CosmoParameters& p, int step)
+{
+  return p.RegridEvery > 0 ? step - step % p.RegridEvery : 0;
+}
+
+Hierarchy GenerateCosmoStep(const CosmoParameters& p, int step, const ProgressCallback& progress)
+{
+  if (step < 0 || step >= p.Steps)
+  {
+    throw std::invalid_argument("cosmo series: step " + std::to_string(step) +
+      " is outside the series' " + std::to_string(p.Steps) + " steps");
+  }
+  return Generate(p, static_cast<double>(CosmoRegridStep(p, step)), static_cast<double>(step),
+    progress);
 }
 
 CosmoStatistics ComputeCosmoStatistics(const Hierarchy& h)

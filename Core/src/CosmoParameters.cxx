@@ -178,7 +178,7 @@ CosmoParameters ParseCosmoParameters(const std::string& spec)
     if (eq == std::string::npos)
     {
       throw std::invalid_argument("cosmo parameters: item '" + item +
-        "' is not key=value (keys: grids, levels, cells, seed, roots, values)");
+        "' is not key=value (keys: grids, levels, cells, seed, roots, values, steps, regrid, step)");
     }
     const std::string key = Lower(Trim(item.substr(0, eq)));
     const std::string value = Trim(item.substr(eq + 1));
@@ -208,6 +208,18 @@ CosmoParameters ParseCosmoParameters(const std::string& spec)
     {
       p.RootGrids = ParseSigned(key, value, true, 0, maxCount);
     }
+    else if (key == "steps")
+    {
+      p.Steps = static_cast<int>(ParseSigned(key, value, false, 1, 1000000));
+    }
+    else if (key == "step")
+    {
+      p.Step = static_cast<int>(ParseSigned(key, value, false, 0, 1000000));
+    }
+    else if (key == "regrid")
+    {
+      p.RegridEvery = static_cast<int>(ParseSigned(key, value, false, 0, 1000000));
+    }
     else if (key == "values")
     {
       const std::string v = Lower(value);
@@ -227,7 +239,7 @@ CosmoParameters ParseCosmoParameters(const std::string& spec)
     else
     {
       throw std::invalid_argument("cosmo parameters: unknown key '" + key +
-        "' (keys: grids, levels, cells, seed, roots, values)");
+        "' (keys: grids, levels, cells, seed, roots, values, steps, regrid, step)");
     }
     if (comma == std::string::npos)
     {
@@ -243,6 +255,10 @@ std::string FormatCosmoParameters(const CosmoParameters& p)
   std::ostringstream s;
   s << "grids=" << p.Grids << ",levels=" << p.Levels << ",cells=" << p.Cells << ",seed=" << p.Seed
     << ",roots=" << p.RootGrids << ",values=" << (p.GenerateValues ? 1 : 0);
+  if (p.Steps != 1 || p.RegridEvery != 0 || p.Step != 0)
+  {
+    s << ",steps=" << p.Steps << ",regrid=" << p.RegridEvery << ",step=" << p.Step;
+  }
   return s.str();
 }
 

@@ -17,58 +17,64 @@
 namespace amrsp
 {
 
-std::vector<glm::vec2> ComputeDataNodeRanges(const Hierarchy& h, const EncodedKdTree& tree)
+std::vector<DataNodeBlock> DataNodeBlocks(const Hierarchy& h, const EncodedKdTree& tree)
 {
   using namespace layout;
+  const KdTree decoded = DecodeKdTree(h, tree);
+  const glm::i64vec3 finest = h.CumulativeRatio(decoded.FinestLevel);
+  std::vector<DataNodeBlock> found;
+  found.reserve(static_cast<std::size_t>(tree.DataNodeCount));
+  for (std::size_t i = 0; i < decoded.Nodes.size(); ++i)
+  {
+    const KdNode& n = decoded.Nodes[i];
+    const uint data = amrspNodeData(tree.Tree.Texels[i]);
+    if (data == 0 || !n.HasData())
+    {
+      continue;
+    }
+    const Grid& g = h.Grids[n.Grid];
+    const glm::i64vec3 toData = finest / h.CumulativeRatio(g.Level);
+    DataNodeBlock b{ data, static_cast<std::size_t>(n.Grid), glm::i64vec3(0), glm::i64vec3(0),
+      g.Cells.Extent() };
+    for (int a = 0; a < 3; ++a)
+    {
+      b.First[a] = FloorDiv(n.Region.Lo[a], toData[a]);
+      b.Last[a] = CeilDiv(n.Region.Hi[a], toData[a]) - 1;
+    }
+    b.First = glm::clamp(b.First, g.Cells.Lo, g.Cells.Hi - glm::i64vec3(1)) - g.Cells.Lo;
+    b.Last = glm::clamp(b.Last, g.Cells.Lo, g.Cells.Hi - glm::i64vec3(1)) - g.Cells.Lo;
+    if (h.VertexCentred)
+    {
+      b.Last += glm::i64vec3(1); // the vertices of the node's cells
+      b.Extent += glm::i64vec3(1);
+    }
+    found.push_back(b);
+  }
+  return found;
+}
+
+std::vector<glm::vec2> ComputeDataNodeRanges(const Hierarchy& h, const EncodedKdTree& tree)
+{
+  if (!h.HasValues())
+  {
+    return std::vector<glm::vec2>(
+      static_cast<std::size_t>(tree.DataNodeCount + 1), glm::vec2(FLT_MAX, -FLT_MAX));
+  }
+  // the decoded tree (about 80 bytes per node) is freed before the scan, which may run beside
+  // the atlas upload (PrepareRayCasting's deferNodeRanges)
+  return ComputeDataNodeRanges(h, DataNodeBlocks(h, tree), tree.DataNodeCount);
+}
+
+std::vector<glm::vec2> ComputeDataNodeRanges(
+  const Hierarchy& h, const std::vector<DataNodeBlock>& blocks, int64_t dataNodeCount)
+{
+  using Block = DataNodeBlock;
   std::vector<glm::vec2> ranges(
-    static_cast<std::size_t>(tree.DataNodeCount + 1), glm::vec2(FLT_MAX, -FLT_MAX));
+    static_cast<std::size_t>(dataNodeCount + 1), glm::vec2(FLT_MAX, -FLT_MAX));
   if (!h.HasValues())
   {
     return ranges;
   }
-  // each data node's block of values: its grid's values [first, last] (vertices: one more)
-  struct Block
-  {
-    uint Data;
-    std::size_t Grid;
-    glm::i64vec3 First, Last, Extent;
-  };
-  // the decoded tree (about 80 bytes per node) is freed before the scan, which may run beside
-  // the atlas upload (PrepareRayCasting's deferNodeRanges)
-  const std::vector<Block> blocks = [&h, &tree]
-  {
-    const KdTree decoded = DecodeKdTree(h, tree);
-    const glm::i64vec3 finest = h.CumulativeRatio(decoded.FinestLevel);
-    std::vector<Block> found;
-    found.reserve(static_cast<std::size_t>(tree.DataNodeCount));
-    for (std::size_t i = 0; i < decoded.Nodes.size(); ++i)
-    {
-      const KdNode& n = decoded.Nodes[i];
-      const uint data = amrspNodeData(tree.Tree.Texels[i]);
-      if (data == 0 || !n.HasData())
-      {
-        continue;
-      }
-      const Grid& g = h.Grids[n.Grid];
-      const glm::i64vec3 toData = finest / h.CumulativeRatio(g.Level);
-      Block b{ data, static_cast<std::size_t>(n.Grid), glm::i64vec3(0), glm::i64vec3(0),
-        g.Cells.Extent() };
-      for (int a = 0; a < 3; ++a)
-      {
-        b.First[a] = FloorDiv(n.Region.Lo[a], toData[a]);
-        b.Last[a] = CeilDiv(n.Region.Hi[a], toData[a]) - 1;
-      }
-      b.First = glm::clamp(b.First, g.Cells.Lo, g.Cells.Hi - glm::i64vec3(1)) - g.Cells.Lo;
-      b.Last = glm::clamp(b.Last, g.Cells.Lo, g.Cells.Hi - glm::i64vec3(1)) - g.Cells.Lo;
-      if (h.VertexCentred)
-      {
-        b.Last += glm::i64vec3(1); // the vertices of the node's cells
-        b.Extent += glm::i64vec3(1);
-      }
-      found.push_back(b);
-    }
-    return found;
-  }();
   // work items of at most about 2^18 values (slabs of a block's layers), so that the few large
   // blocks of the coarse levels spread over the workers too
   struct Item

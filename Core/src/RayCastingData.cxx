@@ -150,7 +150,6 @@ bool FiniteValueRange(const Hierarchy& h, double range[2])
 void RayCastingData::FreeUploadData()
 {
   this->Data.Values = std::vector<GridValues>();
-  this->Atlas = AtlasPages();
   this->TreeTexels = UIntTexture3D();
   this->PackedDataNodeTexels = UIntTexture3D();
   this->BindlessDataNodeTexels = UIntTexture3D();
@@ -164,6 +163,11 @@ void RayCastingData::WaitForNodeRanges()
     // a moved-from shared_future is no longer valid: nothing is pending after this
     const std::shared_future<std::vector<glm::vec2>> pending = std::move(this->PendingNodeRanges);
     this->NodeRanges = pending.get();
+  }
+  if (this->PendingNodeBlocks.valid())
+  {
+    const auto pending = std::move(this->PendingNodeBlocks);
+    this->NodeBlocks = pending.get();
   }
 }
 
@@ -205,14 +209,20 @@ RayCastingData PrepareRayCasting(Hierarchy h, int packLimit, int64_t maxPageTexe
   if (deferNodeRanges)
   {
     // shallow copies: the values are shared (GridValues), the tree's texels are a few MB
+    out.PendingNodeBlocks = std::async(std::launch::async,
+      [hierarchy = h, tree = enc]() -> std::shared_ptr<const std::vector<DataNodeBlock>> {
+        return std::make_shared<const std::vector<DataNodeBlock>>(
+          DataNodeBlocks(hierarchy, tree));
+      }).share();
     out.PendingNodeRanges = std::async(std::launch::async,
-      [hierarchy = h, tree = enc] {
-        return ComputeDataNodeRanges(hierarchy, tree);
+      [hierarchy = h, blocks = out.PendingNodeBlocks, count = enc.DataNodeCount] {
+        return ComputeDataNodeRanges(hierarchy, *blocks.get(), count);
       }).share();
   }
   else
   {
-    out.NodeRanges = ComputeDataNodeRanges(h, enc);
+    out.NodeBlocks = std::make_shared<const std::vector<DataNodeBlock>>(DataNodeBlocks(h, enc));
+    out.NodeRanges = ComputeDataNodeRanges(h, *out.NodeBlocks, enc.DataNodeCount);
   }
   out.BindlessDataNodeTexels = std::move(enc.DataNodes);
   // packing: one brick per grid (cells, or vertices one texel larger), within the per-axis limit
@@ -274,6 +284,35 @@ RayCastingData PrepareRayCasting(Hierarchy h, int packLimit, int64_t maxPageTexe
   report(1.0, "done");
   out.Data = std::move(h);
   return out;
+}
+
+void RefreshValues(RayCastingData& data, Hierarchy h, bool deferNodeRanges)
+{
+  data.WaitForNodeRanges(); // the previous step's blocks, if still pending
+  if (!data.NodeBlocks || !SameStructure(data.Data, h))
+  {
+    throw std::logic_error("RefreshValues: the new step's hierarchy is not the built one");
+  }
+  double range[2];
+  if (!FiniteValueRange(h, range) && !h.Grids.empty())
+  {
+    throw std::runtime_error("the array '" + h.ArrayName +
+      "' holds no finite value (NaN or +-Inf in every cell): nothing to render");
+  }
+  std::copy(range, range + 2, data.ScalarRange);
+  data.NodeRanges.clear();
+  if (deferNodeRanges)
+  {
+    data.PendingNodeRanges = std::async(std::launch::async,
+      [hierarchy = h, blocks = data.NodeBlocks, count = data.DataNodes] {
+        return ComputeDataNodeRanges(hierarchy, *blocks, count);
+      }).share();
+  }
+  else
+  {
+    data.NodeRanges = ComputeDataNodeRanges(h, *data.NodeBlocks, data.DataNodes);
+  }
+  data.Data = std::move(h);
 }
 
 } // namespace amrsp

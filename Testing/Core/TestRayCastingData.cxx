@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -228,4 +229,64 @@ TEST(RayCastingData, TooSmallAPageBudgetIsAPackingErrorNamingThePages)
   const RayCastingData d = PrepareRayCasting(h, 0, 64);
   EXPECT_NE(d.PackingError.find("atlas pages"), std::string::npos) << d.PackingError;
   EXPECT_TRUE(d.Atlas.Pages.empty());
+}
+
+// A new time step of the same structure: RefreshValues keeps the tree, the encodings and the
+// atlas layout and gives the ranges a full build of that step computes.
+TEST(RayCastingData, RefreshedValuesEqualAFullBuildOfTheNewStep)
+{
+  Hierarchy first = amrsp::test::PaperExample();
+  Hierarchy second = first;
+  for (std::size_t g = 0; g < first.Values.size(); ++g)
+  {
+    for (std::size_t i = 0; i < first.Values[g].size(); ++i)
+    {
+      first.Values[g][i] = static_cast<float>(g * 100 + (i * 7) % 13);
+      second.Values[g][i] = static_cast<float>(1000 - g * 50 - (i * 5) % 11);
+    }
+  }
+  for (bool deferred : { false, true })
+  {
+    RayCastingData refreshed = PrepareRayCasting(first, 0, 0, nullptr, deferred);
+    refreshed.WaitForNodeRanges();
+    const auto tree = refreshed.TreeTexels.Texels;
+    refreshed.FreeUploadData(); // as the mapper does after the first step's upload
+    ASSERT_TRUE(refreshed.NodeBlocks);
+    RefreshValues(refreshed, second, deferred);
+    refreshed.WaitForNodeRanges();
+    const RayCastingData full = PrepareRayCasting(second, 0);
+    EXPECT_EQ(tree, full.TreeTexels.Texels); // what the kept textures hold
+    EXPECT_EQ(refreshed.NodeRanges, full.NodeRanges);
+    EXPECT_EQ(refreshed.ScalarRange[0], full.ScalarRange[0]);
+    EXPECT_EQ(refreshed.ScalarRange[1], full.ScalarRange[1]);
+    EXPECT_EQ(refreshed.Atlas.Origins, full.Atlas.Origins);
+    EXPECT_EQ(refreshed.Atlas.PageOfGrid, full.Atlas.PageOfGrid);
+    ASSERT_TRUE(refreshed.Data.HasValues());
+    EXPECT_EQ(refreshed.Data.Values[1], second.Values[1]);
+    // the check sees a range that is not the new step's
+    EXPECT_NE(PrepareRayCasting(first, 0).NodeRanges, full.NodeRanges);
+  }
+}
+
+TEST(RayCastingData, RefreshValuesRefusesAnotherStructure)
+{
+  const Hierarchy h = amrsp::test::PaperExample();
+  RayCastingData d = PrepareRayCasting(h, 0);
+  Hierarchy moved = h;
+  moved.Grids.back().Cells.Lo.x += 1;
+  moved.Grids.back().Cells.Hi.x += 1;
+  EXPECT_FALSE(SameStructure(h, moved));
+  EXPECT_THROW(RefreshValues(d, moved), std::logic_error);
+  Hierarchy renamed = h;
+  renamed.ArrayName = "other";
+  EXPECT_FALSE(SameStructure(h, renamed));
+  Hierarchy other = h;
+  other.Values[0][0] += 1.0f; // values are not structure
+  EXPECT_TRUE(SameStructure(h, other));
+  Hierarchy nan = h;
+  for (GridValues& v : nan.Values)
+  {
+    std::fill(v.begin(), v.end(), std::numeric_limits<float>::quiet_NaN());
+  }
+  EXPECT_THROW(RefreshValues(d, nan), std::runtime_error);
 }

@@ -565,3 +565,55 @@ TEST(SyntheticCosmo, PaperTable1Sizes)
     EXPECT_FALSE(h.HasValues());
   }
 }
+
+// The time series: halos drift with the steps, the boxes change only at the regrid steps.
+TEST(SyntheticCosmo, SeriesDriftsAndRegridsEveryKSteps)
+{
+  CosmoParameters p = amrsp::ParseCosmoParameters("grids=60,levels=4,cells=300k,seed=3,steps=5,regrid=2");
+  EXPECT_EQ(p.Steps, 5);
+  EXPECT_EQ(p.RegridEvery, 2);
+  const CosmoParameters q = amrsp::ParseCosmoParameters(amrsp::FormatCosmoParameters(p));
+  EXPECT_EQ(q.Steps, 5);
+  EXPECT_EQ(q.RegridEvery, 2);
+  EXPECT_THROW(amrsp::ParseCosmoParameters("steps=0"), std::invalid_argument);
+  EXPECT_THROW(amrsp::ParseCosmoParameters("regrid=-1"), std::invalid_argument);
+
+  std::vector<Hierarchy> steps;
+  for (int s = 0; s < p.Steps; ++s)
+  {
+    steps.push_back(amrsp::GenerateCosmoStep(p, s));
+    EXPECT_EQ(amrsp::CosmoRegridStep(p, s), s - s % 2);
+  }
+  EXPECT_THROW(amrsp::GenerateCosmoStep(p, 5), std::invalid_argument);
+  // step 0 is the plain generator's, bit for bit
+  const Hierarchy plain = amrsp::GenerateCosmo(p);
+  ASSERT_TRUE(amrsp::SameStructure(plain, steps[0]));
+  for (std::size_t g = 0; g < plain.Values.size(); ++g)
+  {
+    ASSERT_EQ(plain.Values[g], steps[0].Values[g]) << "grid " << g;
+  }
+  // between regrids the structure stays and the values move; at a regrid the boxes follow
+  EXPECT_TRUE(amrsp::SameStructure(steps[0], steps[1]));
+  EXPECT_TRUE(amrsp::SameStructure(steps[2], steps[3]));
+  EXPECT_FALSE(amrsp::SameStructure(steps[1], steps[2]));
+  EXPECT_FALSE(amrsp::SameStructure(steps[3], steps[4]));
+  std::size_t changed = 0;
+  for (std::size_t g = 0; g < steps[0].Values.size(); ++g)
+  {
+    changed += steps[0].Values[g] == steps[1].Values[g] ? 0 : 1;
+  }
+  EXPECT_GT(changed, steps[0].Values.size() / 2);
+  // the field of a step is the drifted field: the boxes of step 3 are those built on time 2
+  const amrsp::CosmoField at0(3), at1(3, 1.0), atZero(3, 0.0);
+  int moved = 0;
+  for (int i = 0; i < 1000; ++i)
+  {
+    const glm::dvec3 x(0.001 * i, std::fmod(0.618 * i, 1.0), std::fmod(0.414 * i, 1.0));
+    moved += at1(x) != at0(x) ? 1 : 0;
+    ASSERT_EQ(atZero(x), at0(x));
+  }
+  EXPECT_GT(moved, 10); // where halos reach; the background does not move
+  // without regrids every step keeps step 0's boxes
+  p.RegridEvery = 0;
+  EXPECT_TRUE(amrsp::SameStructure(steps[0], amrsp::GenerateCosmoStep(p, 4)));
+}

@@ -3,6 +3,7 @@
 #include "AmrspCommandShared.h"
 
 #include "AmrspBench.h"
+#include "AmrspSeries.h"
 #include "AmrspBenchPlot.h"
 #include "AmrspDriver.h"
 #include "AmrspMethods.h"
@@ -90,6 +91,7 @@ std::string BenchHelp()
        "                   [--interactive [--interactive-rate FPS]] [--counters] [--no-compare]\n"
        "       amrsp bench --scaling [--scaling-sizes G:L:C,...] [--methods LIST] [--size WxH]\n"
        "                   [--frames N] [--json FILE] [--rounds R]\n"
+       "       amrsp bench SERIES --time-series [--methods LIST] [--size WxH] [--json FILE]\n"
        "Renders an orbit of N frames (default 8; --scaling: 2) per method in one process, after\n"
        "one untimed warm-up frame per method (build, upload, shader compile: first_frame_ms),\n"
        "each frame ending with glFinish before the clock is read. Prints Markdown: Table 1\n"
@@ -121,6 +123,14 @@ std::string BenchHelp()
        "as ParaView's interactive renders) and then still at the same camera: interactive {fps,\n"
        "ms_mean, still_ms_mean, speedup, rmse_mean, rmse_max (0-255, against its still frame),\n"
        "image_sample_distance, sample_distance_scale, allocated_s, still_bit_identical}.\n"
+       "--time-series renders the steps of SERIES (synthetic:cosmo:...,steps=T[,regrid=K] or a\n"
+       "quoted path pattern with * or ?) in order with one renderer per GPU method (default\n"
+       "packing,multipass), all steps in memory first: step_switch_s is the median time from a\n"
+       "step's new vtkOverlappingAMR to its first image over the steps whose hierarchy did not\n"
+       "change (the mapper uploads the values only), rebuild_s the same over the regrid steps,\n"
+       "with switch_over_rebuild, still_frame_s, the mapper's own part step_switch_build_upload_s and\n"
+       "rebuild_build_upload_s, and per_step {seconds, refreshed, build_s,\n"
+       "upload_s}.\n"
        "--scaling runs synthetic:cosmo at each GRIDS:LEVELS:CELLS of --scaling-sizes (default "
     << DefaultScalingSizes
     << ",\n"
@@ -389,7 +399,8 @@ int RunBench(int argc, char** argv)
       Concat({ DatasetOptions, ViewOptions,
         { "frames", "methods", "json", "plot", "plot-size", "scaling-sizes", "seed", "save-images",
           "driver", "backend", "rounds", "interactive-rate" } }),
-      Concat({ DatasetFlags, { "scaling", "interactive", "counters", "no-compare" } }));
+      Concat({ DatasetFlags,
+        { "scaling", "interactive", "counters", "no-compare", "time-series" } }));
     if (WantsHelp(a))
     {
       std::cout << BenchHelp() << ViewHelp << DriverHelp << DatasetHelp;
@@ -398,6 +409,10 @@ int RunBench(int argc, char** argv)
     // every method of the run renders in contexts of this driver (comparable timings)
     SelectDriver(a.Get("driver", "default"));
     SelectBackend(a.Get("backend", "auto"));
+    if (a.Has("time-series"))
+    {
+      return BenchSeries(a);
+    }
     const BenchRequest r = ParseBenchRequest(a);
     if (!r.Plot.empty() && !std::ofstream(r.Plot, std::ios::app))
     {

@@ -262,9 +262,14 @@ const char* const ViewHelp =
 
 LoadedDataset Load(const Arguments& a, bool needValues, bool needVTK)
 {
+  return Load(a, a.Positional.size() > 1 ? a.Positional[1] : DefaultDataset, needValues, needVTK);
+}
+
+LoadedDataset Load(const Arguments& a, const std::string& spec, bool needValues, bool needVTK)
+{
   SetProgressQuiet(a.Has("quiet"));
   DatasetRequest r;
-  r.Spec = a.Positional.size() > 1 ? a.Positional[1] : DefaultDataset;
+  r.Spec = spec;
   r.Array = a.Get("array", "");
   r.Component = static_cast<int>(a.GetNumber("component", -1));
   r.Centering = a.Get("centering", "auto");

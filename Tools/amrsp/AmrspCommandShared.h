@@ -48,6 +48,8 @@ extern const char* const ViewHelp;
 
 /// The dataset the command line names (DATASET and the dataset options).
 LoadedDataset Load(const Arguments& a, bool needValues, bool needVTK);
+/// The same for the dataset `spec` instead of DATASET (a step of a series).
+LoadedDataset Load(const Arguments& a, const std::string& spec, bool needValues, bool needVTK);
 
 /// Packing settings from the command line.
 struct AtlasRequest

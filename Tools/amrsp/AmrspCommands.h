@@ -54,6 +54,11 @@ int RunBench(int argc, char** argv);
 /// display range in `range`. Throws UsageError for bad options.
 RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range = nullptr);
 
+/// Maps the scalars for display (--scale `scale`: log10 when "log", or with "auto" for
+/// non-negative data whose positive values span more than 3 decades; zeros map to the smallest
+/// positive value) and returns their range. MakeSettings does this for its hierarchy.
+void PrepareScalars(Hierarchy& h, const std::string& scale, double& lo, double& hi);
+
 /// The VTK camera operations the view options ask for (--azimuth, --elevation, --zoom).
 ViewAngles ViewOf(const Arguments& a);
 

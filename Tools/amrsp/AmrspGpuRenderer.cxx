@@ -46,7 +46,7 @@ namespace tool
 struct GpuRenderer::Internals
 {
   std::string Method;
-  vtkNew<vtkOverlappingAMR> Amr;
+  vtkSmartPointer<vtkOverlappingAMR> Amr = vtkSmartPointer<vtkOverlappingAMR>::New();
   vtkSmartPointer<vtkVolumeMapper> Mapper;
   vtkSinglePassAMRMapperBase* AmrMapper = nullptr; // Mapper, when it is one of the project's
   vtkNew<vtkVolumeProperty> Property;
@@ -398,6 +398,19 @@ double GpuRenderer::UploadSeconds() const
 int GpuRenderer::NumberOfBuilds() const
 {
   return I->AmrMapper ? I->AmrMapper->GetNumberOfBuilds() : 0;
+}
+
+int GpuRenderer::NumberOfValueRefreshes() const
+{
+  return I->AmrMapper ? I->AmrMapper->GetNumberOfValueRefreshes() : 0;
+}
+
+void GpuRenderer::SetData(const Hierarchy& h, bool blanking)
+{
+  // a new data object, as a reader's next time step is: the mapper sees another input
+  I->Amr = vtkSmartPointer<vtkOverlappingAMR>::New();
+  vtkSinglePassAMRConversion::ToOverlappingAMR(h, I->Amr, blanking);
+  I->Mapper->SetInputDataObject(0, I->Amr);
 }
 
 long long GpuRenderer::TextureBytes() const

@@ -79,6 +79,11 @@ public:
   /// finished. Throws GpuError when the mapper reports an error.
   Image Render(double orbitDegrees, double& milliseconds);
 
+  /// Hands the mapper another hierarchy as a new vtkOverlappingAMR (a time step), keeping the
+  /// camera, transfer function and settings; `blanking` as GpuScene::Blanking. Only for
+  /// renderers of AMR input (GpuScene::AmrInput).
+  void SetData(const Hierarchy& h, bool blanking = false);
+
   /// Renders with the renderer's current camera and props (tests move the camera or add
   /// opaque geometry through GetRenderer()).
   Image RenderAsIs(double& milliseconds);
@@ -104,6 +109,9 @@ public:
   virtual double BuildSeconds() const;
   virtual double UploadSeconds() const;
   virtual int NumberOfBuilds() const;
+  /// Of the builds, those that kept the structure and took new values only
+  /// (vtkSinglePassAMRMapperBase::GetNumberOfValueRefreshes; 0 for other mappers).
+  virtual int NumberOfValueRefreshes() const;
   /// Bytes of the mapper's data textures.
   virtual long long TextureBytes() const;
   std::string AtlasDimensions() const;

@@ -8,6 +8,7 @@
 #include "AmrspMultipass.h"
 #include "AmrspPacking.h"
 #include "AmrspProgress.h"
+#include "AmrspSeries.h"
 
 #include "amrsp/BrickAtlas.h"
 #include "amrsp/EmptySpace.h"
@@ -177,7 +178,8 @@ int RunRender(int argc, char** argv)
   try
   {
     std::vector<std::string> valueOptions = ImageValueOptions();
-    valueOptions.insert(valueOptions.end(), { "method", "bindless-access", "driver", "backend" });
+    valueOptions.insert(
+      valueOptions.end(), { "method", "bindless-access", "driver", "backend", "time" });
     const Arguments a =
       ParseArguments(argc, argv, 1, valueOptions, Concat({ DatasetFlags, { "compare", "stats" } }));
     if (WantsHelp(a))
@@ -195,6 +197,12 @@ int RunRender(int argc, char** argv)
                    "  --compare                   also render the CPU reference and the CPU "
                    "kD-tree\n"
                    "                              image and print the RMSE (0-255) against them\n"
+                   "  --time all|N|A:B            a time series (synthetic:cosmo:...,steps=T,\n"
+                   "                              regrid=K, or a quoted pattern such as\n"
+                   "                              'run/plt*'): render these steps (0-based) in\n"
+                   "                              order into numbered images (-o frame_%04d.png);\n"
+                   "                              a step with the previous one's hierarchy only\n"
+                   "                              uploads its values\n"
                 << ImageOptionsHelp(name) << ViewHelp << AtlasHelp << DriverHelp << DatasetHelp;
       return 0;
     }
@@ -228,6 +236,14 @@ int RunRender(int argc, char** argv)
       }
     }
     const Method& m = *FindMethod(method, RenderCommand);
+    if (a.Has("time"))
+    {
+      if (a.Has("compare") || a.Has("repeat"))
+      {
+        throw UsageError{ "--time renders each step once: no --compare or --repeat" };
+      }
+      return RenderSeries(m, method, a, bindlessAccess);
+    }
     const AtlasRequest atlasRequest = ParseAtlasRequest(a);
     const std::string output = a.Get("output", name + ".png");
     LoadedDataset d = Load(a, true, false);

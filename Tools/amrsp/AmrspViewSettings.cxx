@@ -16,12 +16,6 @@ namespace amrsp
 namespace tool
 {
 
-namespace
-{
-
-/// Maps the scalars for display (log10 when asked, or automatically for non-negative data whose
-/// positive values span more than 3 decades; zeros map to the smallest positive value) and
-/// returns their range.
 void PrepareScalars(Hierarchy& h, const std::string& scale, double& lo, double& hi)
 {
   lo = std::numeric_limits<double>::max();
@@ -78,6 +72,9 @@ void PrepareScalars(Hierarchy& h, const std::string& scale, double& lo, double& 
     MakeVertexDataContinuous(h); // continuous in the displayed (logarithmic) scalar
   }
 }
+
+namespace
+{
 
 /// A view described explicitly (--view-json). Absent parts keep the conventions.
 struct ExplicitView

@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include <cstdint>
 #include <vector>
 
 namespace amrsp
@@ -26,6 +27,24 @@ struct TransferFunction;
 /// are left out (they are transparent); a node without a finite value gets the empty range
 /// x = +FLT_MAX, y = -FLT_MAX, which every test below treats as transparent.
 std::vector<glm::vec2> ComputeDataNodeRanges(const Hierarchy& h, const EncodedKdTree& tree);
+
+/// What ComputeDataNodeRanges reads for one data node: its grid and the cells (or vertices)
+/// [First, Last] of that grid, relative to the grid's first cell. Depends on the structure only.
+struct DataNodeBlock
+{
+  uint32_t Data;
+  std::size_t Grid;
+  glm::i64vec3 First, Last, Extent;
+};
+
+/// The blocks of every data node of `tree` (decodes the tree once).
+std::vector<DataNodeBlock> DataNodeBlocks(const Hierarchy& h, const EncodedKdTree& tree);
+
+/// ComputeDataNodeRanges from blocks kept from an earlier build of the same structure: `h`'s
+/// values, `dataNodeCount` data nodes. Lets a new time step with the same hierarchy refresh the
+/// ranges without the tree.
+std::vector<glm::vec2> ComputeDataNodeRanges(
+  const Hierarchy& h, const std::vector<DataNodeBlock>& blocks, int64_t dataNodeCount);
 
 /// Whether the piecewise-linear opacity of `tf` is zero everywhere on [lo, hi] (with the
 /// transfer function's clamping beyond its end points). An empty range (lo > hi) is transparent.

@@ -195,4 +195,10 @@ struct Hierarchy
   }
 };
 
+/// Whether `a` and `b` have the same structure: origin, level-0 spacing, refinement ratios,
+/// grids (level and cells, in the same order), centring and array name. Two time steps of a
+/// simulation between regrids do; then everything built from the structure alone (the kD-tree,
+/// its encoding, the atlas layout) is the same for both.
+bool SameStructure(const Hierarchy& a, const Hierarchy& b);
+
 } // namespace amrsp

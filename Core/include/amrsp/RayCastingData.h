@@ -12,6 +12,7 @@
 
 #include "amrsp/AtlasPages.h"
 #include "amrsp/BrickPacking.h"
+#include "amrsp/EmptySpace.h"
 #include "amrsp/Hierarchy.h"
 #include "amrsp/KdTree.h"
 #include "amrsp/KdTreeEncoding.h"
@@ -20,6 +21,7 @@
 
 #include <functional>
 #include <future>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -86,6 +88,10 @@ struct RayCastingData
   /// deferNodeRanges); it reads its own shallow copies of the hierarchy and the tree, so the
   /// upload may free this object's copies meanwhile.
   std::shared_future<std::vector<glm::vec2>> PendingNodeRanges;
+  /// What each data node's range is computed from (amrsp::DataNodeBlocks), kept for
+  /// RefreshValues: set by PrepareRayCasting, or by WaitForNodeRanges when deferred.
+  std::shared_ptr<const std::vector<DataNodeBlock>> NodeBlocks;
+  std::shared_future<std::shared_ptr<const std::vector<DataNodeBlock>>> PendingNodeBlocks;
   /// The bricks' atlas pages (one texture each; usually one page); no page when the bricks could
   /// not be packed.
   AtlasPages Atlas;
@@ -105,8 +111,9 @@ struct RayCastingData
   long long BrickBytes = 0;
   bool VertexCentred = false;
 
-  /// Drops the CPU copies the upload consumed (bricks, layout, texels); the figures (sizes,
-  /// ranges, level table, AtlasDims) stay.
+  /// Drops the CPU copies the upload consumed (bricks, texels); the structure (Data's grids,
+  /// the atlas layout, NodeBlocks) and the figures (sizes, ranges, level table, AtlasDims) stay,
+  /// for RefreshValues.
   void FreeUploadData();
   /// Waits for PendingNodeRanges, if valid, and moves them into NodeRanges; rethrows what their
   /// computation threw.
@@ -132,5 +139,14 @@ using BuildProgress = std::function<void(double fraction, const char* step)>;
 /// the bricks otherwise (the linear storage).
 RayCastingData PrepareRayCasting(Hierarchy h, int packLimit, int64_t maxPageTexels = 0,
   const BuildProgress& progress = nullptr, bool deferNodeRanges = false, bool packBricks = true);
+
+/// A new time step of the same structure (SameStructure(data.Data, h), which it checks): `data`
+/// keeps its tree, encoding and atlas layout and takes `h`'s values; the scalar range and the
+/// data nodes' value ranges (from the kept NodeBlocks; deferred like PrepareRayCasting's) are
+/// computed from them. The result equals PrepareRayCasting(h)'s in every field the upload and
+/// the shaders read, so the image is the full rebuild's. Throws std::logic_error when the
+/// structure differs or data has no NodeBlocks, std::runtime_error when `h` holds no finite
+/// value.
+void RefreshValues(RayCastingData& data, Hierarchy h, bool deferNodeRanges = false);
 
 } // namespace amrsp

@@ -59,11 +59,20 @@ struct CosmoParameters
   bool GenerateValues = true;
   /// Number of root grids; 0 = automatic: 8 (2x2x2) when Levels >= 2, Grids when Levels == 1.
   int64_t RootGrids = 0;
+  /// A time series of Steps steps (>= 1): at step s every halo has drifted s times its own
+  /// velocity (CosmoField's time s). The boxes are those of the last regrid step: every
+  /// RegridEvery steps (0: never, the boxes of step 0 throughout), as AMR codes regrid every
+  /// few steps; the values always follow the field of the step. Step 0 is GenerateCosmo's.
+  int Steps = 1;
+  int RegridEvery = 0;
+  /// The step GenerateCosmo builds (0 <= Step < Steps).
+  int Step = 0;
 };
 
 /// Parses "grids=N,levels=L,cells=C,seed=S" (any subset, any order; keys are case-insensitive;
 /// spaces around items are ignored; an empty string gives the defaults). Also accepted:
-/// "roots=R" (CosmoParameters::RootGrids) and "values=0|1" (CosmoParameters::GenerateValues).
+/// "roots=R" (CosmoParameters::RootGrids), "values=0|1" (CosmoParameters::GenerateValues),
+/// "steps=T", "regrid=K" and "step=S" (CosmoParameters::Steps, RegridEvery, Step).
 /// N, C and R accept the suffixes k (10^3), M (10^6) and G (10^9), also after a decimal number as
 /// long as the result is an integer (cells=19M, cells=1.5M, grids=2.5k, cells=1G).
 /// @throws std::invalid_argument naming the offending item, key or value.
@@ -90,7 +99,13 @@ std::string FormatCosmoParameters(const CosmoParameters& p);
 class CosmoField
 {
 public:
-  explicit CosmoField(uint64_t seed);
+  /// The field of `seed` at `time`: every halo moved by `time` times its velocity (a random
+  /// direction, at most HaloSpeed box lengths per unit time, from a stream of its own, so time 0
+  /// is bit for bit the field without motion); the background does not move.
+  explicit CosmoField(uint64_t seed, double time = 0.0);
+
+  /// The largest halo speed, in box lengths per unit time (one step of a series).
+  static constexpr double HaloSpeed = 0.01;
 
   /// Density at a world position (unit cube).
   double operator()(const glm::dvec3& world) const;
@@ -111,12 +126,22 @@ private:
   std::shared_ptr<const Impl> Internals;
 };
 
-/// Builds the hierarchy.
+/// Builds the hierarchy (of step p.Step of a series: GenerateCosmoStep).
 /// @throws std::invalid_argument for impossible requests: Levels < 1 or > 30, Grids < 1,
 /// Grids smaller than the number of root grids plus one grid per refined level, Cells smaller
 /// than 64 cells per grid on average, RootGrids incompatible with Levels/Grids.
 /// `progress`, when set, receives the fraction of the cells whose values are generated.
 Hierarchy GenerateCosmo(const CosmoParameters& p, const ProgressCallback& progress = nullptr);
+
+/// Step `step` (0 <= step < p.Steps) of the time series p describes: the boxes GenerateCosmo
+/// builds on the field at the last regrid step (step - step % RegridEvery, or 0 without
+/// regrids), the values of the field at `step`. Step 0 equals GenerateCosmo(p).
+/// @throws std::invalid_argument for a step outside the series, and as GenerateCosmo.
+Hierarchy GenerateCosmoStep(
+  const CosmoParameters& p, int step, const ProgressCallback& progress = nullptr);
+
+/// The step whose boxes step `step` uses (its last regrid).
+int CosmoRegridStep(const CosmoParameters& p, int step);
 
 /// The density field of GenerateCosmo(p) at a point given in level-0 index units of `h` (the
 /// hierarchy made by GenerateCosmo with a parameter set of seed `seed`): CosmoField(seed) at

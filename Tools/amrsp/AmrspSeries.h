@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/// @file
+/// Time series in the amrsp tool: which datasets make up a series, which steps --time selects,
+/// the numbered outputs, and the series commands (`render --time`, `bench --time-series`).
+///
+/// A series is
+/// - `synthetic:cosmo:...,steps=T[,regrid=K]`: its T steps (amrsp::GenerateCosmoStep);
+/// - a path pattern with `*` or `?` (quote it for the shell): the matching files or folders in
+///   name order, numbers compared as numbers (plt9 before plt10), one step each;
+/// - anything else: one step.
+
+#include "AmrspCommands.h"
+#include "AmrspMethods.h"
+
+#include <string>
+#include <vector>
+
+namespace amrsp
+{
+namespace tool
+{
+
+/// The dataset argument of each step of the series `spec` (see above). Throws DatasetError for
+/// a pattern that matches nothing and UsageError for bad synthetic parameters.
+std::vector<std::string> SeriesSteps(const std::string& spec);
+
+/// The steps `--time` selects among `count`: "all", "N" or "A:B" (inclusive), 0-based. Throws
+/// UsageError naming the problem.
+std::vector<int> SelectSteps(const std::string& time, int count);
+
+/// The image path of step `step`: `pattern` with its printf field (%d, %04d, ...) filled in, or,
+/// without one, "_NNNN" inserted before the extension.
+std::string StepOutputPath(const std::string& pattern, int step);
+
+/// `amrsp render SERIES --time T -o PATTERN`: the selected steps rendered in order by one
+/// renderer of `method` (GPU: each step a new input of the same mapper, so that a step of the
+/// same structure refreshes the values only), one line per step. The view and transfer function
+/// are the first selected step's, the scalar scale (--scale) is decided on it and kept.
+int RenderSeries(const Method& m, std::string method, const Arguments& a,
+  const std::string& bindlessAccess);
+
+/// `amrsp bench SERIES --time-series [--methods ...]`: per GPU method, every step after the
+/// first rendered by one renderer; step_switch_s is the median time from the step's data in
+/// memory (a new vtkOverlappingAMR) to its first image over the steps whose hierarchy did not
+/// change, rebuild_s the same over those with a regrid. Prints a table, or JSON with --json.
+int BenchSeries(const Arguments& a);
+
+} // namespace tool
+} // namespace amrsp
