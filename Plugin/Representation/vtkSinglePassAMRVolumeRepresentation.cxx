@@ -22,6 +22,7 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkProcessModule.h"
+#include "vtkPVDataRepresentationPipeline.h"
 #include "vtkPVLODVolume.h"
 #include "vtkPVLogger.h"
 #include "vtkPVRenderView.h"
@@ -36,7 +37,9 @@
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
+#include <limits>
 #include <string>
 
 namespace model = vtkSinglePassAMRDataModel;
@@ -330,7 +333,72 @@ int vtkSinglePassAMRVolumeRepresentation::RequestData(
     empty->SetGridDescription(model::XYZGrid);
     this->Cache = empty;
   }
+  this->Executed = true;
+  this->CacheTime =
+    this->GetUpdateTimeValid() ? this->GetUpdateTime() : std::numeric_limits<double>::quiet_NaN();
   return this->Superclass::RequestData(request, inputVector, outputVector);
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeRepresentation::FollowAnimationCache(vtkInformation* inInfo)
+{
+  vtkPVView* view = vtkPVView::SafeDownCast(inInfo->Get(vtkPVView::VIEW()));
+  if (!view || !(view->GetUseCache() || this->GetForceUseCache()))
+  {
+    this->CachedSteps.clear();
+    this->Executed = false;
+    return;
+  }
+  const double key = this->GetCacheKey();
+  const double time =
+    this->GetUpdateTimeValid() ? this->GetUpdateTime() : std::numeric_limits<double>::quiet_NaN();
+  const auto sameTime = [time](double t) { return t == time || (std::isnan(t) && std::isnan(time)); };
+  auto found = this->CachedSteps.find(key);
+  if (!this->Executed && found != this->CachedSteps.end() && sameTime(found->second.Time))
+  {
+    // the view skipped RequestData for a step it had cached: show that step's data again
+    const CachedStep& step = found->second;
+    if (step.Data != this->Cache)
+    {
+      this->Cache = step.Data;
+      this->CacheTime = step.Time;
+      this->InputArrayMemory = step.InputArrayMemory;
+      std::copy(step.Bounds, step.Bounds + 6, this->DataBounds);
+      this->DataSize = step.Size;
+      this->RendersLocally = step.RendersLocally;
+      for (vtkVolumeMapper* mapper : { static_cast<vtkVolumeMapper*>(this->VolumeMapper),
+             static_cast<vtkVolumeMapper*>(this->MultiPassMapper) })
+      {
+        mapper->SetCropping(step.Cropping ? 1 : 0);
+        if (step.Cropping)
+        {
+          mapper->SetCroppingRegionPlanes(step.Bounds);
+        }
+      }
+    }
+    return;
+  }
+  if (!this->Executed && !sameTime(this->CacheTime))
+  {
+    // the view holds a piece for this key from an update at another time (ParaView keeps the
+    // last piece under the view's cache key when it is not caching): update for this time
+    auto executive = vtkPVDataRepresentationPipeline::SafeDownCast(this->GetExecutive());
+    if (executive)
+    {
+      executive->SetNeedsUpdate(true);
+      this->Update();
+      executive->SetNeedsUpdate(false);
+    }
+  }
+  this->Executed = false;
+  CachedStep& step = this->CachedSteps[key];
+  step.Time = this->CacheTime;
+  step.Data = this->Cache;
+  step.InputArrayMemory = this->InputArrayMemory;
+  std::copy(this->DataBounds, this->DataBounds + 6, step.Bounds);
+  step.Size = this->DataSize;
+  step.RendersLocally = this->RendersLocally;
+  step.Cropping = this->VolumeMapper->GetCropping() != 0;
 }
 
 //------------------------------------------------------------------------------
@@ -344,6 +412,7 @@ int vtkSinglePassAMRVolumeRepresentation::ProcessViewRequest(
   }
   if (request_type == vtkPVView::REQUEST_UPDATE())
   {
+    this->FollowAnimationCache(inInfo);
     // DataSize (kibibytes) drives the view's remote-rendering and LOD decisions, whatever piece
     // stands for the data
     vtkDataObject* piece = this->RendersFromCache
@@ -777,6 +846,12 @@ int vtkSinglePassAMRVolumeRepresentation::GetNumberOfTextureBuilds()
 {
   return this->Method == METHOD_MULTI_PASS ? this->MultiPassMapper->GetNumberOfBuilds()
                                            : this->VolumeMapper->GetNumberOfBuilds();
+}
+
+int vtkSinglePassAMRVolumeRepresentation::GetNumberOfValueRefreshes()
+{
+  return this->Method == METHOD_MULTI_PASS ? this->MultiPassMapper->GetNumberOfValueRefreshes()
+                                           : this->VolumeMapper->GetNumberOfValueRefreshes();
 }
 
 const char* vtkSinglePassAMRVolumeRepresentation::GetLastDataStorage()

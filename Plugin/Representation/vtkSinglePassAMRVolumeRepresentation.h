@@ -50,6 +50,7 @@
 #include "vtkSmartPointer.h"                // for ivar
 #include "vtkVolumeRepresentation.h"
 
+#include <map>    // for ivar
 #include <string> // for ivar
 #include <vector> // for ivar
 
@@ -185,6 +186,9 @@ public:
    */
   const char* GetLastRenderError();
   int GetNumberOfTextureBuilds();
+  /// Of those builds, the ones that kept the structure and took new values only: a time step
+  /// between regrids (SinglePassValueRefreshes).
+  int GetNumberOfValueRefreshes();
   /// The single-pass mapper's last frame (vtkSinglePassAMRVolumeMapper::GetLastFrameInteractive
   /// and the rest): { interactive (0 or 1), image sample distance, sample-distance scale,
   /// allocated seconds, measured seconds }.
@@ -245,6 +249,25 @@ protected:
   /// The memory of the input blocks' arrays at the last RequestData, sorted (for
   /// GetNumberOfCopiedValues: never read through).
   std::vector<const void*> InputArrayMemory;
+  /// With ParaView's animation caching (the view's UseCache, *Cache Geometry For Animation*) the
+  /// view skips RequestData for a time step it has cached: what RequestData made for each cache
+  /// key is kept here, and put back when the view shows that key again. Emptied as soon as the
+  /// view stops caching.
+  struct CachedStep
+  {
+    double Time; ///< the update time it was made for (NaN: none)
+    vtkSmartPointer<vtkOverlappingAMR> Data;
+    std::vector<const void*> InputArrayMemory;
+    double Bounds[6];
+    unsigned long Size;
+    bool RendersLocally;
+    bool Cropping;
+  };
+  std::map<double, CachedStep> CachedSteps;
+  bool Executed = false; ///< RequestData ran since the last REQUEST_UPDATE pass
+  double CacheTime = 0.0; ///< the update time Cache was made for (NaN: none)
+  /// Keeps or restores CachedSteps around the view's update pass (see CachedSteps).
+  void FollowAnimationCache(vtkInformation* inInfo);
   /// False on the ranks other than 0 when gathering on rank 0: they draw nothing.
   bool RendersLocally = true;
   /// True where the process that renders is the one that holds the data (a builtin session,
