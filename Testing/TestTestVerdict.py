@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: BSD-3-Clause
 """The verdict rule (TestVerdict.py) on commands whose output and exit code are known: a FAIL:
-line or a failing exit code fails even beside SKIPPED: or PASS; a missing pass line fails;
-SKIPPED: alone skips (125); exit 125 skips.
+line or a failing exit code fails even beside SKIPPED: or PASS; a missing pass line fails a run
+that did not skip; SKIPPED: alone skips (125); exit 125 skips.
 
 usage: TestTestVerdict.py TestVerdict.py
 """
@@ -18,6 +18,9 @@ cases = [  # (printed, exit code, pass pattern, expected verdict)
     ("SKIPPED: no X", 0, None, 125),
     ("SKIPPED: no X", 125, None, 125),
     ("", 125, None, 125),
+    ("SKIPPED: no X", 125, "^PASS", 125),      # a skip needs no pass line
+    ("SKIPPED: no X\nFAIL: broken", 125, "^PASS", 1),
+    ("ran", 0, "^PASS", 1),                    # a run that did not skip prints its pass line
     ("all good", 0, r"\bPASS", 1),
     ("FAIL: one check\nPASS", 0, r"\bPASS", 1),
     ("ok", 0, None, 0),
