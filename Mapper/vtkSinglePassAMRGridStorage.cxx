@@ -18,6 +18,23 @@
 #include <chrono>
 #include <sstream>
 
+namespace
+{
+/// One line on a failed upload of `what` textures of `bytes` bytes, `glError` the OpenGL error
+/// after it (GL_NO_ERROR: the driver refused an allocation without one).
+std::string UploadFailure(const std::string& what, long long bytes, GLenum glError)
+{
+  std::ostringstream msg;
+  msg << "uploading " << what << " textures (" << bytes / (1024.0 * 1024.0) << " MiB) failed"
+      << (glError == GL_OUT_OF_MEMORY ? ": out of GPU memory" : "")
+      << (glError == GL_NO_ERROR ? ": the driver refused a texture allocation (out of GPU "
+                                   "memory, or over one of its limits)"
+                                 : "")
+      << (glError != GL_NO_ERROR ? " (OpenGL error " + std::to_string(glError) + ")" : "");
+  return msg.str();
+}
+} // namespace
+
 namespace utilities = vtkSinglePassAMRRenderingUtilities;
 
 //------------------------------------------------------------------------------
@@ -290,18 +307,11 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, int stor
   {
     if (error.empty())
     {
-      std::ostringstream msg;
-      msg << "uploading the kD-tree and "
-          << (bindless    ? "brick"
-                 : linear ? "linear"
-                          : "atlas")
-          << " textures (" << bytes / (1024.0 * 1024.0) << " MiB) failed"
-          << (glError == GL_OUT_OF_MEMORY ? ": out of GPU memory" : "")
-          << (glError == GL_NO_ERROR ? ": the driver refused a texture allocation (out of GPU "
-                                       "memory, or over one of its limits)"
-                                     : "")
-          << (glError != GL_NO_ERROR ? " (OpenGL error " + std::to_string(glError) + ")" : "");
-      error = msg.str();
+      error = UploadFailure(std::string("the kD-tree and ") +
+          (bindless    ? "brick"
+              : linear ? "linear"
+                       : "atlas"),
+        bytes, glError);
     }
     this->ReleaseBindless(renWin);
     this->Tree = nullptr;
@@ -351,8 +361,9 @@ bool vtkSinglePassAMRGridStorage::UploadValues(vtkOpenGLRenderWindow* renWin,
   {
     if (error.empty())
     {
-      error = std::string("uploading the new time step's grid data failed") +
-        (glError == GL_OUT_OF_MEMORY ? ": out of GPU memory" : "");
+      error = UploadFailure(std::string("the new time step's ") +
+          (storage == vtkSinglePassAMRVolumeMapper::LINEAR_BRICKS ? "linear" : "atlas"),
+        data.PackedBytes, glError);
     }
     this->ReleaseBindless(renWin);
     this->AtlasPages.clear();
@@ -361,6 +372,27 @@ bool vtkSinglePassAMRGridStorage::UploadValues(vtkOpenGLRenderWindow* renWin,
     return false;
   }
   return true;
+}
+
+//------------------------------------------------------------------------------
+std::unique_ptr<vtkSinglePassAMRGridStorage> vtkSinglePassAMRGridStorage::ShareStructure() const
+{
+  if (this->UploadedStorage < 0 ||
+    this->UploadedStorage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES)
+  {
+    return nullptr;
+  }
+  std::unique_ptr<vtkSinglePassAMRGridStorage> shared(new vtkSinglePassAMRGridStorage);
+  shared->Tree = this->Tree;
+  shared->DataNodes = this->DataNodes;
+  shared->BrickBoxes = this->BrickBoxes;
+  shared->Ropes = this->Ropes;
+  shared->TextureBytes = this->TextureBytes;
+  shared->UploadedStorage = this->UploadedStorage;
+  shared->UploadLimit = this->UploadLimit;
+  shared->LinearPageBytes = this->LinearPageBytes;
+  shared->Context = this->Context;
+  return shared;
 }
 
 //------------------------------------------------------------------------------

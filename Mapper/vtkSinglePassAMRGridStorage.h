@@ -30,6 +30,7 @@
 
 #include <cstdint>
 #include <functional> // for UpdateTransparentFlags and Upload
+#include <memory>     // for ShareStructure
 #include <string>
 #include <vector>
 
@@ -67,6 +68,8 @@ public:
 
   /// Whether the textures of `storage` in `renWin` are up to date for the data built last.
   bool IsUploaded(vtkOpenGLRenderWindow* renWin, int storage, int atlasLimit) const;
+  /// Whether anything is uploaded (a storage and a context).
+  bool HasUpload() const { return this->UploadedStorage >= 0; }
 
   /// Uploads the tree and the grid data of `data` in `storage`; the previous textures are freed
   /// first. Returns false with a one-line `error` (a texture over GL_MAX_3D_TEXTURE_SIZE, the
@@ -82,6 +85,12 @@ public:
   /// errors as Upload; on failure nothing is left uploaded.
   bool UploadValues(vtkOpenGLRenderWindow* renWin, const amrsp::RayCastingData& data,
     std::string& error, const std::function<void(double)>& progress = nullptr);
+
+  /// A storage that shares this one's tree, data-node, rope and brick-box textures and holds no
+  /// grid data yet: UploadValues fills it with another time step's values of the same structure,
+  /// while this one keeps its own (a step kept for playback). Null for the bindless storage (its
+  /// resident handles are limited) and when nothing is uploaded.
+  std::unique_ptr<vtkSinglePassAMRGridStorage> ShareStructure() const;
 
   /// Flags the data nodes whose value range (`nodeRanges`, entry 0 unused) is transparent under
   /// the tabulated opacities `opacity` over [tableRange[0], tableRange[0] + 1 / tableRange[1]]

@@ -42,6 +42,8 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <list>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -115,7 +117,45 @@ public:
   amrsp::RayCastingData Data;
   bool PendingUpload = false;
   bool PendingValuesUpload = false;
-  vtkSinglePassAMRGridStorage Storage;
+  /// The input Data was built from (identity only, never dereferenced) and its MTime.
+  const void* DataInput = nullptr;
+  vtkMTimeType DataInputMTime = 0;
+
+  /// Time steps shown before, kept with their textures (MaximumKeptStepBytes), most recently
+  /// used first: an input that is one of them again is shown without a build or an upload.
+  struct KeptStep
+  {
+    const void* Input;
+    vtkMTimeType InputMTime;
+    amrsp::RayCastingData Data;
+    std::unique_ptr<vtkSinglePassAMRGridStorage> Storage;
+  };
+  std::list<KeptStep> KeptSteps;
+  int KeptStepHits = 0;
+  /// Whether the current data are on the GPU with nothing pending (then it can be kept).
+  bool CurrentIsUploaded() const
+  {
+    return !this->PendingUpload && !this->PendingValuesUpload && this->Storage->HasUpload();
+  }
+  /// Moves the current step into KeptSteps; `next` becomes the current storage.
+  void KeepCurrent(amrsp::RayCastingData data, std::unique_ptr<vtkSinglePassAMRGridStorage> next)
+  {
+    this->KeptSteps.push_front(
+      KeptStep{ this->DataInput, this->DataInputMTime, std::move(data), std::move(this->Storage) });
+    this->Storage = std::move(next);
+  }
+  /// Frees the least recently used kept steps beyond `budget` bytes of textures (in a render:
+  /// their textures are deleted in the current context).
+  void TrimKeptSteps(long long budget)
+  {
+    long long bytes = 0;
+    for (auto it = this->KeptSteps.begin(); it != this->KeptSteps.end();)
+    {
+      bytes += it->Storage->GetTextureBytes();
+      it = bytes > budget ? this->KeptSteps.erase(it) : std::next(it);
+    }
+  }
+  std::unique_ptr<vtkSinglePassAMRGridStorage> Storage{ new vtkSinglePassAMRGridStorage };
   utilities::TransferFunctionTable Transfer;
   utilities::DepthCopy Depth;
   vtkSinglePassAMRFrameBudget Budget;
@@ -157,6 +197,39 @@ bool vtkSinglePassAMRVolumeMapper::BuildData(vtkOverlappingAMR* amr, const std::
 {
   vtkInternals& in = *this->Internals;
   refreshed = false;
+  const bool keeping = this->MaximumKeptStepBytes > 0;
+  if (!mayRefresh || !keeping)
+  {
+    in.KeptSteps.clear(); // other settings, or nothing to keep: the kept textures do not apply
+  }
+  if (keeping && mayRefresh)
+  {
+    auto kept = std::find_if(in.KeptSteps.begin(), in.KeptSteps.end(),
+      [amr](const vtkInternals::KeptStep& k)
+      { return k.Input == amr && k.InputMTime == amr->GetMTime(); });
+    if (kept != in.KeptSteps.end())
+    {
+      // a step shown before: its build and textures are back, nothing is built or uploaded
+      vtkInternals::KeptStep step = std::move(*kept);
+      in.KeptSteps.erase(kept);
+      if (in.CurrentIsUploaded())
+      {
+        in.KeepCurrent(std::move(in.Data), std::move(step.Storage));
+      }
+      else
+      {
+        in.Storage = std::move(step.Storage);
+      }
+      in.Data = std::move(step.Data);
+      in.DataInput = amr;
+      in.DataInputMTime = amr->GetMTime();
+      in.PendingUpload = false;
+      in.PendingValuesUpload = false;
+      ++in.KeptStepHits;
+      refreshed = true;
+      return true;
+    }
+  }
   try
   {
     vtkSinglePassAMRConversion::ArraySelection selection;
@@ -185,15 +258,32 @@ bool vtkSinglePassAMRVolumeMapper::BuildData(vtkOverlappingAMR* amr, const std::
     {
       // a time step between regrids: the tree, its encoding and the brick layout stay
       this->SetProgressText("the new values' ranges");
+      if (keeping && in.CurrentIsUploaded())
+      {
+        // the shown step keeps its textures; the new one shares their tree textures
+        if (std::unique_ptr<vtkSinglePassAMRGridStorage> shared = in.Storage->ShareStructure())
+        {
+          in.KeepCurrent(in.Data, std::move(shared));
+        }
+      }
       amrsp::RefreshValues(in.Data, std::move(h), true);
+      in.DataInput = amr;
+      in.DataInputMTime = amr->GetMTime();
       in.PendingValuesUpload = !in.PendingUpload; // else the pending full upload sends them
       refreshed = true;
       this->UpdateProgress(1.0);
       return true;
     }
+    if (keeping && in.CurrentIsUploaded())
+    {
+      in.KeepCurrent(std::move(in.Data),
+        std::unique_ptr<vtkSinglePassAMRGridStorage>(new vtkSinglePassAMRGridStorage));
+    }
     in.Data = amrsp::RayCastingData();
     in.PendingUpload = false;
     in.PendingValuesUpload = false;
+    in.DataInput = amr;
+    in.DataInputMTime = amr->GetMTime();
     in.Data = amrsp::PrepareRayCasting(
       std::move(h), this->MaximumAtlasSize,
       static_cast<int64_t>(this->MaximumAtlasPageBytes / amrsp::AtlasTexelBytes),
@@ -323,9 +413,10 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareStorage(
   vtkOpenGLRenderWindow* renWin, vtkOverlappingAMR* amr, FrameSettings& frame)
 {
   vtkSinglePassAMRVolumeMapper* self = this->Self;
-  this->Storage.SetLinearPageBytes(self->MaximumAtlasPageBytes);
+  this->TrimKeptSteps(static_cast<long long>(self->MaximumKeptStepBytes));
+  this->Storage->SetLinearPageBytes(self->MaximumAtlasPageBytes);
   const vtkSinglePassAMRGridStorage::Choice choice =
-    this->Storage.Choose(renWin, this->Data, self->DataStorage, self->BindlessAccess,
+    this->Storage->Choose(renWin, this->Data, self->DataStorage, self->BindlessAccess,
       self->AutoBindlessWaste, self->MaximumAtlasSize, self->AutoLinearBytes);
   if (!choice.FallbackReason.empty())
   {
@@ -340,7 +431,7 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareStorage(
   }
   frame.Storage = choice.Storage;
   frame.Access = choice.Access;
-  const bool uploaded = this->Storage.IsUploaded(renWin, frame.Storage, self->MaximumAtlasSize);
+  const bool uploaded = this->Storage->IsUploaded(renWin, frame.Storage, self->MaximumAtlasSize);
   if (!this->PendingUpload && this->PendingValuesUpload && uploaded)
   {
     return this->UploadValues(renWin);
@@ -362,7 +453,7 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareStorage(
   const auto t0 = std::chrono::steady_clock::now();
   std::string error;
   self->BeginProgressPhase(PROGRESS_UPLOAD, "uploading the grid data");
-  if (!this->Storage.Upload(renWin, frame.Storage, self->MaximumAtlasSize, this->Data, error,
+  if (!this->Storage->Upload(renWin, frame.Storage, self->MaximumAtlasSize, this->Data, error,
         [self](double f) { self->UpdateProgress(f); }))
   {
     // keep the CPU data: a later context (or a smaller input) may succeed
@@ -395,7 +486,7 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::UploadValues(vtkOpenGLRenderWin
   std::string error;
   self->BeginProgressPhase(PROGRESS_UPLOAD, "uploading the new time step's grid data");
   const bool ok =
-    this->Storage.UploadValues(renWin, this->Data, error, [self](double f) { self->UpdateProgress(f); });
+    this->Storage->UploadValues(renWin, this->Data, error, [self](double f) { self->UpdateProgress(f); });
   this->PendingValuesUpload = false;
   if (!ok)
   {
@@ -486,7 +577,7 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareAppearance(
   frame.Shadows = lit && self->Shadows;
   frame.SkipEmpty = self->EmptySpaceSkipping && frame.Blend == 0;
   frame.SmoothCells = self->CellInterpolation == SMOOTH_CELL && !this->Data.VertexCentred;
-  frame.Ropes = self->Ropes && this->Storage.GetRopes() != nullptr;
+  frame.Ropes = self->Ropes && this->Storage->GetRopes() != nullptr;
   frame.UseDepth = self->UseDepthBuffer;
   return true;
 }
@@ -498,7 +589,7 @@ vtkShaderProgram* vtkSinglePassAMRVolumeMapper::vtkInternals::ReadyShader(
   vtkSinglePassAMRVolumeMapper* self = this->Self;
   const amrsp::LevelTable& levels = this->Data.Levels;
   std::string defines = "#define AMRSP_LEVEL_COUNT " +
-    std::to_string(this->Data.LevelCellSize.size()) + "\n" + this->Storage.GetGridDataDefines() +
+    std::to_string(this->Data.LevelCellSize.size()) + "\n" + this->Storage->GetGridDataDefines() +
     (this->Data.VertexCentred ? "#define AMRSP_VERTEX_CENTRED 1\n"
                               : "#define AMRSP_CELL_CENTRED 1\n");
   const auto define = [&defines](bool on, const std::string& line)
@@ -594,13 +685,13 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::UpdateEmptySpaceFlags(
   float tableRange[2];
   this->Transfer.GetShaderRange(tableRange);
   const utilities::TransferFunctionTable& table = this->Transfer;
-  if (!this->Storage.UpdateTransparentFlags(renWin, this->Data.NodeRanges, table.GetOpacityTable(),
+  if (!this->Storage->UpdateTransparentFlags(renWin, this->Data.NodeRanges, table.GetOpacityTable(),
         tableRange, table.GetTableTime(), [&table](float s) { return table.TableScalar(s); }))
   {
     this->Self->ReportError("uploading the empty-space skipping flags failed");
     return false;
   }
-  this->TransparentDataNodes = this->Storage.GetFlaggedDataNodes();
+  this->TransparentDataNodes = this->Storage->GetFlaggedDataNodes();
   return true;
 }
 
@@ -608,7 +699,7 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::UpdateEmptySpaceFlags(
 void vtkSinglePassAMRVolumeMapper::vtkInternals::ActivateTextures(
   vtkShaderProgram* program, const FrameSettings& frame)
 {
-  vtkSinglePassAMRGridStorage& s = this->Storage;
+  vtkSinglePassAMRGridStorage& s = *this->Storage;
   s.GetTree()->Activate();
   s.GetDataNodes()->Activate();
   s.ActivateGridData(program);
@@ -782,7 +873,7 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::DrawBackFaces(
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRVolumeMapper::vtkInternals::DeactivateTextures(const FrameSettings& frame)
 {
-  vtkSinglePassAMRGridStorage& s = this->Storage;
+  vtkSinglePassAMRGridStorage& s = *this->Storage;
   s.GetTree()->Deactivate();
   s.GetDataNodes()->Deactivate();
   s.DeactivateGridData();
@@ -809,7 +900,12 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::DeactivateTextures(const FrameS
 void vtkSinglePassAMRVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   vtkInternals& in = *this->Internals;
-  in.Storage.ReleaseGraphicsResources(window);
+  in.Storage->ReleaseGraphicsResources(window);
+  for (vtkInternals::KeptStep& kept : in.KeptSteps)
+  {
+    kept.Storage->ReleaseGraphicsResources(window);
+  }
+  in.KeptSteps.clear();
   in.Budget.Image.ReleaseGraphicsResources(window);
   in.Depth.ReleaseGraphicsResources(window);
   in.Transfer.ReleaseGraphicsResources(window);
@@ -833,9 +929,32 @@ void vtkSinglePassAMRVolumeMapper::GetAtlasDimensions(int dims[3])
   dims[2] = d.z;
 }
 
+int vtkSinglePassAMRVolumeMapper::GetNumberOfKeptStepHits()
+{
+  return this->Internals->KeptStepHits;
+}
+
+//------------------------------------------------------------------------------
+int vtkSinglePassAMRVolumeMapper::GetNumberOfKeptSteps()
+{
+  return static_cast<int>(this->Internals->KeptSteps.size());
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkSinglePassAMRVolumeMapper::GetKeptStepBytes()
+{
+  vtkIdType bytes = 0;
+  for (const auto& kept : this->Internals->KeptSteps)
+  {
+    bytes += static_cast<vtkIdType>(kept.Storage->GetTextureBytes());
+  }
+  return bytes;
+}
+
+//------------------------------------------------------------------------------
 long long vtkSinglePassAMRVolumeMapper::GetTextureBytes()
 {
-  return this->Internals->Storage.GetTextureBytes();
+  return this->Internals->Storage->GetTextureBytes();
 }
 
 long long vtkSinglePassAMRVolumeMapper::GetPackedTextureBytes()
@@ -875,7 +994,7 @@ double vtkSinglePassAMRVolumeMapper::GetLastFrameBudget()
 
 int vtkSinglePassAMRVolumeMapper::GetNumberOfAtlasPages()
 {
-  const vtkSinglePassAMRGridStorage& s = this->Internals->Storage;
+  const vtkSinglePassAMRGridStorage& s = *this->Internals->Storage;
   return s.GetUploadedStorage() == LINEAR_BRICKS
     ? s.GetNumberOfLinearPages()
     : static_cast<int>(this->Internals->Data.PageDims.size());

@@ -233,6 +233,25 @@ public:
 
   ///@{
   /**
+   * GPU memory for the textures of time steps shown before (default 0: only the current one).
+   * When the input changes to a data object (the same object, unmodified) whose textures are
+   * kept, it is shown without a build or an upload: playing a series again, e.g. from
+   * ParaView's animation cache, costs a frame per step. The least recently used steps are
+   * dropped beyond this many bytes (their textures, tree included, as GetTextureBytes counts
+   * them). Steps of one structure share their tree textures. The bindless storage keeps no
+   * steps (its resident handles are limited). Changing the array, component or atlas limits
+   * drops them all. GetNumberOfKeptStepHits counts the steps shown from them.
+   */
+  vtkSetClampMacro(MaximumKeptStepBytes, vtkIdType, 0, VTK_ID_MAX);
+  vtkGetMacro(MaximumKeptStepBytes, vtkIdType);
+  int GetNumberOfKeptStepHits();
+  /// Kept steps now, and the bytes of their textures.
+  int GetNumberOfKeptSteps();
+  vtkIdType GetKeptStepBytes();
+  ///@}
+
+  ///@{
+  /**
    * Values of the last build's input that the conversion read in place, borrowed from the
    * blocks' one-component float arrays without ghost layers, and values it copied (other types,
    * components, ghost layers, vertex data made continuous). In situ, a simulation that hands
@@ -446,6 +465,7 @@ protected:
   bool WorkCountersOutput = false;
   int WorkCountOutput = NO_WORK_COUNT;
   bool Ropes = true;
+  vtkIdType MaximumKeptStepBytes = 0;
   vtkIdType LastBorrowedValues = 0;
   vtkIdType LastCopiedValues = 0;
   int RayLoop = NESTED_LOOPS;

@@ -848,6 +848,17 @@ int vtkSinglePassAMRVolumeRepresentation::GetNumberOfTextureBuilds()
                                            : this->VolumeMapper->GetNumberOfBuilds();
 }
 
+void vtkSinglePassAMRVolumeRepresentation::SetKeptStepsMiB(double mib)
+{
+  this->VolumeMapper->SetMaximumKeptStepBytes(
+    static_cast<vtkIdType>(std::max(0.0, mib) * 1024.0 * 1024.0));
+}
+
+int vtkSinglePassAMRVolumeRepresentation::GetNumberOfKeptStepHits()
+{
+  return this->VolumeMapper->GetNumberOfKeptStepHits();
+}
+
 int vtkSinglePassAMRVolumeRepresentation::GetNumberOfValueRefreshes()
 {
   return this->Method == METHOD_MULTI_PASS ? this->MultiPassMapper->GetNumberOfValueRefreshes()

@@ -168,6 +168,13 @@ public:
     PARALLEL_GATHER = 1,
   };
   void SetParallelMode(int mode);
+
+  /// GPU memory, in MiB, for the textures of time steps shown before
+  /// (vtkSinglePassAMRVolumeMapper::SetMaximumKeptStepBytes; default 0): playing a series again
+  /// shows them without a build or an upload.
+  void SetKeptStepsMiB(double mib);
+  /// Steps shown from the kept textures so far (SinglePassKeptStepHits).
+  int GetNumberOfKeptStepHits();
   vtkGetMacro(ParallelMode, int);
 
   /// The single-pass mapper (for tests and diagnostics).

@@ -22,6 +22,9 @@
 
 #include "vtkSinglePassAMRVolumeMapper.h"
 
+#include "vtkOverlappingAMR.h"
+#include "vtkSmartPointer.h"
+
 #include <algorithm>
 #include <cstdint>
 #include <iostream>
@@ -119,6 +122,58 @@ void CheckMethod(const std::string& method, std::vector<Hierarchy>& steps)
     method + ": step 2 after the series equals a fresh build of step 2");
 }
 
+/// Steps shown again keep their textures (MaximumKeptStepBytes): going back to steps 1 and 0
+/// shows them without a build or an upload, byte for byte as before; a budget of one step's
+/// textures keeps the last one only.
+void CheckKeptSteps(const std::string& method, std::vector<Hierarchy>& steps)
+{
+  Hierarchy first = steps[0];
+  const RenderSettings s = Settings(first, { "--size", "96x96", "--scale", "linear" });
+  double ms = 0.0;
+  PackingRenderer series(steps[0], s, ViewAngles(), method);
+  vtkSinglePassAMRVolumeMapper* mapper = series.GetMapper();
+  mapper->SetMaximumKeptStepBytes(vtkIdType(1) << 30);
+  std::vector<Image> shown{ series.Render(0.0, ms) };
+  std::vector<vtkSmartPointer<vtkOverlappingAMR>> objects{ series.GetData() };
+  for (std::size_t k = 1; k < steps.size(); ++k)
+  {
+    series.SetData(steps[k]);
+    objects.push_back(series.GetData());
+    shown.push_back(series.Render(0.0, ms));
+  }
+  const long long oneStep = series.TextureBytes();
+  Check(mapper->GetNumberOfKeptSteps() == 2 && mapper->GetNumberOfKeptStepHits() == 0,
+    method + ": after three steps two are kept (" + std::to_string(mapper->GetNumberOfKeptSteps()) +
+      ")");
+  for (int k : { 1, 0 })
+  {
+    const int builds = series.NumberOfBuilds(), hits = mapper->GetNumberOfKeptStepHits();
+    series.SetDataObject(objects[static_cast<std::size_t>(k)]);
+    const Image again = series.Render(0.0, ms);
+    const long long differing = DifferingBytes(again, shown[static_cast<std::size_t>(k)]);
+    Check(mapper->GetNumberOfKeptStepHits() == hits + 1 && differing == 0,
+      method + ": step " + std::to_string(k) + " shown again from its kept textures (" +
+        std::to_string(mapper->GetNumberOfKeptStepHits() - hits) + " hit, " +
+        std::to_string(series.NumberOfBuilds() - builds) + " build call, " +
+        std::to_string(differing) + " bytes differ from its first image)");
+  }
+  // a budget of one step: the older steps are dropped, and showing one again builds it
+  mapper->SetMaximumKeptStepBytes(static_cast<vtkIdType>(oneStep));
+  series.SetDataObject(objects[2]);
+  series.Render(0.0, ms);
+  Check(mapper->GetNumberOfKeptSteps() <= 1 &&
+      mapper->GetKeptStepBytes() <= static_cast<vtkIdType>(oneStep),
+    method + ": a budget of one step's " + std::to_string(oneStep) + " bytes keeps " +
+      std::to_string(mapper->GetNumberOfKeptSteps()) + " step(s), " +
+      std::to_string(mapper->GetKeptStepBytes()) + " bytes");
+  const int hits = mapper->GetNumberOfKeptStepHits();
+  series.SetDataObject(objects[1]);
+  const Image rebuilt = series.Render(0.0, ms);
+  Check(DifferingBytes(rebuilt, shown[1]) == 0,
+    method + ": a dropped step is built again, the same image (" +
+      std::to_string(mapper->GetNumberOfKeptStepHits() - hits) + " hit(s))");
+}
+
 } // namespace
 
 int main()
@@ -140,6 +195,17 @@ int main()
     catch (const std::exception& e)
     {
       Check(false, std::string(method) + ": " + e.what());
+    }
+  }
+  for (const char* method : { "packing", "linear" })
+  {
+    try
+    {
+      CheckKeptSteps(method, steps);
+    }
+    catch (const std::exception& e)
+    {
+      Check(false, std::string(method) + " (kept steps): " + e.what());
     }
   }
   std::cout << (Failures() == 0 ? "PASSED" : "FAILED: " + std::to_string(Failures()) + " check(s)")

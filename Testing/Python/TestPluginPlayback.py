@@ -12,7 +12,8 @@
 #   plays: UseCache, CacheKey = the time), a first loop fills the cache, a second loop forwards
 #   and one backwards show every step from the cache: each image equals, byte for byte, that
 #   step's image without the cache. (ParaView skips the representation's update for a cached
-#   step: showing the last step updated instead is what this rejects.)
+#   step: showing the last step updated instead is what this rejects.) With GPU memory for the
+#   steps shown (KeptStepsMiB), every step from the cache comes from its kept textures, no build;
 # - a playback loop from the cache runs at a speed compared with still frames of one step (the
 #   ratio is printed; timing is measured, not asserted).
 # Exit codes: 0 pass, 1 fail, 125 skipped (no X display or no usable OpenGL context).
@@ -92,13 +93,16 @@ def main():
     check(min(changes) > 8, "every step's image differs from the step before (largest channel "
           "differences %s)" % changes)
 
-    # 2. with the animation cache: a loop to fill it, then forwards and backwards from it
+    # 2. with the animation cache and GPU memory for the steps shown: a loop to fill both, then
+    # forwards and backwards from them
+    display.KeptStepsMiB = 256
     view.UseCache = 1
     for t in times:
         view.ViewTime = t
         view.CacheKey = t
         simple.Render(view)
     builds_filled = info_property(display, "SinglePassTextureBuilds")
+    hits_filled = info_property(display, "SinglePassKeptStepHits")
     for name, order in (("forwards", times), ("backwards", list(reversed(times)))):
         for t in order:
             view.ViewTime = t
@@ -108,6 +112,11 @@ def main():
             check(differing == 0, "%s from the cache, step %d equals its image without the cache "
                   "(%d pixels differ)" % (name, int(t), differing))
     # a broken cache shows the last step updated: that image is not the others' (seen above)
+    builds = info_property(display, "SinglePassTextureBuilds") - builds_filled
+    hits = info_property(display, "SinglePassKeptStepHits") - hits_filled
+    check(builds > 0 and hits == builds,
+          "every step from the cache came from the textures kept on the GPU: %d step changes, "
+          "%d from kept textures" % (builds, hits))
 
     # 3. the speed of a loop from the cache against still frames of one step
     start = time.perf_counter()

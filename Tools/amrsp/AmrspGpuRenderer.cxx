@@ -413,6 +413,17 @@ void GpuRenderer::SetData(const Hierarchy& h, bool blanking)
   I->Mapper->SetInputDataObject(0, I->Amr);
 }
 
+vtkOverlappingAMR* GpuRenderer::GetData() const
+{
+  return I->Amr;
+}
+
+void GpuRenderer::SetDataObject(vtkOverlappingAMR* amr)
+{
+  I->Amr = amr;
+  I->Mapper->SetInputDataObject(0, I->Amr);
+}
+
 long long GpuRenderer::TextureBytes() const
 {
   return I->AmrMapper ? I->AmrMapper->GetTextureBytes() : 0;

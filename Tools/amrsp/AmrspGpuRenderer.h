@@ -20,6 +20,8 @@ class vtkRenderer;
 class vtkSinglePassAMRMapperBase;
 class vtkVolumeMapper;
 
+class vtkOverlappingAMR;
+
 namespace amrsp
 {
 namespace tool
@@ -83,6 +85,10 @@ public:
   /// camera, transfer function and settings; `blanking` as GpuScene::Blanking. Only for
   /// renderers of AMR input (GpuScene::AmrInput).
   void SetData(const Hierarchy& h, bool blanking = false);
+  /// The vtkOverlappingAMR the mapper reads now, and handing it one made before (a step shown
+  /// again: the same object, as ParaView's animation cache hands it back).
+  vtkOverlappingAMR* GetData() const;
+  void SetDataObject(vtkOverlappingAMR* amr);
 
   /// Renders with the renderer's current camera and props (tests move the camera or add
   /// opaque geometry through GetRenderer()).

@@ -34,6 +34,8 @@ def main():
     parser.add_argument("--regrid", type=int, default=4)
     parser.add_argument("--size", type=int, default=512)
     parser.add_argument("--loops", type=int, default=1)
+    parser.add_argument("--kept-mib", type=float, default=0.0,
+                        help="the representation's KeptStepsMiB (GPU memory for shown steps)")
     a = parser.parse_args()
     simple.LoadPlugin(a.plugin, remote=False, ns=globals())
     source = AMRCosmologysynthetic(NumberOfGrids=a.grids, NumberOfLevels=a.levels,  # noqa: F821
@@ -47,6 +49,7 @@ def main():
     display = simple.Show(source, view)
     display.Representation = "AMR Single-Pass Volume"
     simple.ColorBy(display, ("CELLS", "Density"))
+    display.KeptStepsMiB = a.kept_mib
     view.ViewTime = times[0]
     simple.Render(view)
     view.ResetCamera()
@@ -90,6 +93,8 @@ def main():
         "rss_after_playing_bytes": rss_after,
         "texture_builds": display.SMProxy.GetProperty("SinglePassTextureBuilds").GetElement(0),
         "value_refreshes": display.SMProxy.GetProperty("SinglePassValueRefreshes").GetElement(0),
+        "kept_mib": a.kept_mib,
+        "kept_step_hits": display.SMProxy.GetProperty("SinglePassKeptStepHits").GetElement(0),
     }, indent=1))
     exit_keeping_output(0)
 
