@@ -76,8 +76,8 @@ protected:
   vtkMultiPassAMRVolumeMapper();
   ~vtkMultiPassAMRVolumeMapper() override;
 
-  bool BuildData(vtkOverlappingAMR* amr, const std::string& array, bool mayRefresh,
-    bool& refreshed, std::string& error) override;
+  bool BuildData(vtkOverlappingAMR* amr, const std::string& array, bool mayRefresh, bool& refreshed,
+    std::string& error) override;
   void GetBuiltBounds(double bounds[6]) override;
 
 private:

@@ -111,7 +111,8 @@ bool vtkSinglePassAMRMapperBase::EnsureBuilt(vtkOverlappingAMR* amr)
   const std::string array = vtkSinglePassAMRRenderingUtilities::RequestedArray(
     amr, this->ArrayAccessMode, this->ArrayName, this->ArrayId);
   const bool sameSettings = this->BuiltArray == array &&
-    this->BuiltComponent == this->ArrayComponent && this->BuiltPackLimit == this->MaximumAtlasSize &&
+    this->BuiltComponent == this->ArrayComponent &&
+    this->BuiltPackLimit == this->MaximumAtlasSize &&
     this->BuiltPageBytes == this->MaximumAtlasPageBytes &&
     this->BuiltPacked == this->BuildPacksBricks();
   if (!this->Built || this->BuiltInput != amr || this->BuiltInputMTime != amr->GetMTime() ||

@@ -283,9 +283,8 @@ bool PackHierarchy(amrsp::Hierarchy converted, int packLimit, int64_t maxPageTex
   return true;
 }
 
-bool ConvertAndPack(vtkOverlappingAMR* amr, const std::string& array, int component,
-  int packLimit, int64_t maxPageTexels, bool mayRefresh, PackedHierarchy& out, bool& refreshed,
-  std::string& error)
+bool ConvertAndPack(vtkOverlappingAMR* amr, const std::string& array, int component, int packLimit,
+  int64_t maxPageTexels, bool mayRefresh, PackedHierarchy& out, bool& refreshed, std::string& error)
 {
   refreshed = false;
   amrsp::Hierarchy h;

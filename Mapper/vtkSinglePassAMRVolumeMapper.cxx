@@ -485,8 +485,8 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::UploadValues(vtkOpenGLRenderWin
   const auto t0 = std::chrono::steady_clock::now();
   std::string error;
   self->BeginProgressPhase(PROGRESS_UPLOAD, "uploading the new time step's grid data");
-  const bool ok =
-    this->Storage->UploadValues(renWin, this->Data, error, [self](double f) { self->UpdateProgress(f); });
+  const bool ok = this->Storage->UploadValues(
+    renWin, this->Data, error, [self](double f) { self->UpdateProgress(f); });
   this->PendingValuesUpload = false;
   if (!ok)
   {

@@ -442,8 +442,8 @@ protected:
   vtkSinglePassAMRVolumeMapper();
   ~vtkSinglePassAMRVolumeMapper() override;
 
-  bool BuildData(vtkOverlappingAMR* amr, const std::string& array, bool mayRefresh,
-    bool& refreshed, std::string& error) override;
+  bool BuildData(vtkOverlappingAMR* amr, const std::string& array, bool mayRefresh, bool& refreshed,
+    std::string& error) override;
   void GetBuiltBounds(double bounds[6]) override;
   bool BuildPacksBricks() override
   {

@@ -23,7 +23,7 @@ esac
 build="$repo/build/$config"
 mkdir -p "$repo/build"
 echo "[build] $config -> $build"
-cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release \
+cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release -DAMRSP_STRICT_WARNINGS=ON \
   "-DAMRSP_DATA_DIR=${AMRSP_DATA_DIR:-$repo/../shared/data}" "${args[@]}" >"$build.configure.log" 2>&1 \
   || { cat "$build.configure.log"; echo "[build] configure of $config failed" >&2; exit 1; }
 cmake --build "$build" -j "$jobs"

@@ -69,7 +69,7 @@ T_START=$SECONDS
 
 # ---------------------------------------------------------------------------------------------------- packages
 # Build and test tools.
-PKGS_BUILD=(cmake g++ make ninja-build pkg-config patchelf libgtest-dev libgmock-dev libglm-dev nlohmann-json3-dev)
+PKGS_BUILD=(cmake g++ make ninja-build pkg-config patchelf clang-format libgtest-dev libgmock-dev libglm-dev nlohmann-json3-dev)
 # The Debian 13 and testing roots of scripts/debian-root.sh (configurations trixie-*, forky-*).
 PKGS_BUILD+=(debootstrap)
 # Headless GLX rendering.

@@ -182,8 +182,8 @@ Hierarchy GenerateCosmoStep(const CosmoParameters& p, int step, const ProgressCa
     throw std::invalid_argument("cosmo series: step " + std::to_string(step) +
       " is outside the series' " + std::to_string(p.Steps) + " steps");
   }
-  return Generate(p, static_cast<double>(CosmoRegridStep(p, step)), static_cast<double>(step),
-    progress);
+  return Generate(
+    p, static_cast<double>(CosmoRegridStep(p, step)), static_cast<double>(step), progress);
 }
 
 CosmoStatistics ComputeCosmoStatistics(const Hierarchy& h)

@@ -178,7 +178,8 @@ CosmoParameters ParseCosmoParameters(const std::string& spec)
     if (eq == std::string::npos)
     {
       throw std::invalid_argument("cosmo parameters: item '" + item +
-        "' is not key=value (keys: grids, levels, cells, seed, roots, values, steps, regrid, step)");
+        "' is not key=value (keys: grids, levels, cells, seed, roots, values, steps, regrid, "
+        "step)");
     }
     const std::string key = Lower(Trim(item.substr(0, eq)));
     const std::string value = Trim(item.substr(eq + 1));

@@ -211,8 +211,7 @@ RayCastingData PrepareRayCasting(Hierarchy h, int packLimit, int64_t maxPageTexe
     // shallow copies: the values are shared (GridValues), the tree's texels are a few MB
     out.PendingNodeBlocks = std::async(std::launch::async,
       [hierarchy = h, tree = enc]() -> std::shared_ptr<const std::vector<DataNodeBlock>> {
-        return std::make_shared<const std::vector<DataNodeBlock>>(
-          DataNodeBlocks(hierarchy, tree));
+        return std::make_shared<const std::vector<DataNodeBlock>>(DataNodeBlocks(hierarchy, tree));
       }).share();
     out.PendingNodeRanges = std::async(std::launch::async,
       [hierarchy = h, blocks = out.PendingNodeBlocks, count = enc.DataNodeCount] {

@@ -121,12 +121,10 @@ void BlobSimulation::Regrid()
               for (int x = pi; x < pi + half && !steep; ++x)
               {
                 const double cx = (x + 0.5) * h, cy = (y + 0.5) * h, cz = (z + 0.5) * h;
-                const double change = std::max({ std::abs(this->Field(cx + h, cy, cz) -
-                                                   this->Field(cx - h, cy, cz)),
-                                        std::abs(this->Field(cx, cy + h, cz) -
-                                          this->Field(cx, cy - h, cz)),
-                                        std::abs(this->Field(cx, cy, cz + h) -
-                                          this->Field(cx, cy, cz - h)) }) /
+                const double change =
+                  std::max({ std::abs(this->Field(cx + h, cy, cz) - this->Field(cx - h, cy, cz)),
+                    std::abs(this->Field(cx, cy + h, cz) - this->Field(cx, cy - h, cz)),
+                    std::abs(this->Field(cx, cy, cz + h) - this->Field(cx, cy, cz - h)) }) /
                   2.0;
                 steep = change > c.RefineThreshold;
               }
@@ -164,7 +162,7 @@ void BlobSimulation::Regrid()
     for (int bit = 20; bit >= 0; --bit)
     {
       for (int a = 0; a < 3; ++a) // x most significant: halves split x first, as the
-      {                             // representation's regions are cut (longest axis, x first)
+      {                           // representation's regions are cut (longest axis, x first)
         const int centre = (2 * b.Lo[a] + b.Cells[a]) * scale / 2;
         key = (key << 1) | static_cast<std::uint64_t>((centre >> bit) & 1);
       }
@@ -182,8 +180,8 @@ void BlobSimulation::Regrid()
   {
     Block& b = blocks[entry.second];
     const std::int64_t n = static_cast<std::int64_t>(b.Cells[0]) * b.Cells[1] * b.Cells[2];
-    b.Owner = static_cast<int>(std::min<std::int64_t>(
-      this->Ranks - 1, (2 * before + n) * this->Ranks / (2 * total)));
+    b.Owner = static_cast<int>(
+      std::min<std::int64_t>(this->Ranks - 1, (2 * before + n) * this->Ranks / (2 * total)));
     before += n;
   }
   this->Hierarchy = std::move(blocks);
@@ -207,8 +205,8 @@ void BlobSimulation::Compute()
       {
         for (int i = 0; i < b.Cells[0]; ++i)
         {
-          b.Values[n++] = static_cast<float>(this->Field(
-            (b.Lo[0] + i + 0.5) * h, (b.Lo[1] + j + 0.5) * h, (b.Lo[2] + k + 0.5) * h));
+          b.Values[n++] = static_cast<float>(
+            this->Field((b.Lo[0] + i + 0.5) * h, (b.Lo[1] + j + 0.5) * h, (b.Lo[2] + k + 0.5) * h));
         }
       }
     }

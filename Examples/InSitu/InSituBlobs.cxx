@@ -59,7 +59,8 @@ Options Parse(int argc, char* argv[])
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
-    auto value = [&]() -> std::string {
+    auto value = [&]() -> std::string
+    {
       if (i + 1 >= argc)
       {
         throw std::invalid_argument(a + " needs a value");
@@ -129,13 +130,13 @@ struct StepRecord
   long long ResidentBytes;  ///< largest rank
 };
 
-void WriteJson(const std::string& path, const Options& o, int ranks,
-  const std::vector<StepRecord>& steps)
+void WriteJson(
+  const std::string& path, const Options& o, int ranks, const std::vector<StepRecord>& steps)
 {
   std::ofstream out(path);
   out << "{\n  \"ranks\": " << ranks << ",\n  \"base_cells\": " << o.Simulation.BaseCells
-      << ",\n  \"levels\": " << o.Simulation.Levels << ",\n  \"regrid_interval\": "
-      << o.Simulation.RegridInterval << ",\n  \"steps\": [\n";
+      << ",\n  \"levels\": " << o.Simulation.Levels
+      << ",\n  \"regrid_interval\": " << o.Simulation.RegridInterval << ",\n  \"steps\": [\n";
   for (std::size_t i = 0; i < steps.size(); ++i)
   {
     const StepRecord& s = steps[i];
@@ -145,8 +146,8 @@ void WriteJson(const std::string& path, const Options& o, int ranks,
         << ", \"simulate_s\": " << s.SimulateSeconds << ", \"describe_s\": " << s.DescribeSeconds
         << ", \"coprocess_s\": " << s.CoProcessSeconds
         << ", \"borrowed_values\": " << s.BorrowedValues
-        << ", \"resident_bytes\": " << s.ResidentBytes << "}"
-        << (i + 1 < steps.size() ? "," : "") << "\n";
+        << ", \"resident_bytes\": " << s.ResidentBytes << "}" << (i + 1 < steps.size() ? "," : "")
+        << "\n";
   }
   out << "  ]\n}\n";
 }
@@ -208,8 +209,8 @@ int main(int argc, char* argv[])
       {
         continue;
       }
-      StepRecord r{ step, simulation.Time(), 0, 0, 0, simulation.RegriddedLastStep(),
-        slowest[0], slowest[1], slowest[2], allBorrowed, largest };
+      StepRecord r{ step, simulation.Time(), 0, 0, 0, simulation.RegriddedLastStep(), slowest[0],
+        slowest[1], slowest[2], allBorrowed, largest };
       for (const insitu::Block& b : simulation.Blocks())
       {
         r.Levels = std::max(r.Levels, b.Level + 1);

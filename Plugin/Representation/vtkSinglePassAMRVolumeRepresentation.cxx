@@ -352,7 +352,8 @@ void vtkSinglePassAMRVolumeRepresentation::FollowAnimationCache(vtkInformation* 
   const double key = this->GetCacheKey();
   const double time =
     this->GetUpdateTimeValid() ? this->GetUpdateTime() : std::numeric_limits<double>::quiet_NaN();
-  const auto sameTime = [time](double t) { return t == time || (std::isnan(t) && std::isnan(time)); };
+  const auto sameTime = [time](double t)
+  { return t == time || (std::isnan(t) && std::isnan(time)); };
   auto found = this->CachedSteps.find(key);
   if (!this->Executed && found != this->CachedSteps.end() && sameTime(found->second.Time))
   {

@@ -134,15 +134,16 @@ public:
    * Rendering method. METHOD_AUTO: the single-pass mapper with the storage it chooses
    * (vtkSinglePassAMRVolumeMapper::AUTO_STORAGE: bindless where the context offers it and the
    * atlas would not fit or waste memory, else the linear bricks on a CPU driver for 64 MiB of
-   * grid data or more or where the atlas does not fit, else the packed atlas). METHOD_PACKING: the single-pass
-   * mapper, packed atlas. METHOD_BINDLESS: the single-pass mapper, one texture per brick through
-   * GL_ARB_bindless_texture handles (where the context lacks them it renders with the atlas and
-   * warns once). METHOD_LINEAR: the single-pass mapper, the bricks back to back in 2D textures
-   * (no packing; the fastest on CPU drivers such as llvmpipe). METHOD_MULTI_PASS: vtkMultiPassAMRVolumeMapper (one draw per kD-tree data
-   * node, CPU traversal; composite blending only, no level of detail). Each mapper keeps its own
-   * textures: switching to or from multi-pass builds a mapper's textures only the first time it
-   * renders the current data; switching the single-pass mapper's storage re-uploads its data.
-   * Values are stable (they are the proxy property's values).
+   * grid data or more or where the atlas does not fit, else the packed atlas). METHOD_PACKING: the
+   * single-pass mapper, packed atlas. METHOD_BINDLESS: the single-pass mapper, one texture per
+   * brick through GL_ARB_bindless_texture handles (where the context lacks them it renders with the
+   * atlas and warns once). METHOD_LINEAR: the single-pass mapper, the bricks back to back in 2D
+   * textures (no packing; the fastest on CPU drivers such as llvmpipe). METHOD_MULTI_PASS:
+   * vtkMultiPassAMRVolumeMapper (one draw per kD-tree data node, CPU traversal; composite blending
+   * only, no level of detail). Each mapper keeps its own textures: switching to or from multi-pass
+   * builds a mapper's textures only the first time it renders the current data; switching the
+   * single-pass mapper's storage re-uploads its data. Values are stable (they are the proxy
+   * property's values).
    */
   enum Methods
   {
@@ -271,7 +272,7 @@ protected:
     bool Cropping;
   };
   std::map<double, CachedStep> CachedSteps;
-  bool Executed = false; ///< RequestData ran since the last REQUEST_UPDATE pass
+  bool Executed = false;  ///< RequestData ran since the last REQUEST_UPDATE pass
   double CacheTime = 0.0; ///< the update time Cache was made for (NaN: none)
   /// Keeps or restores CachedSteps around the view's update pass (see CachedSteps).
   void FollowAnimationCache(vtkInformation* inInfo);

@@ -569,7 +569,8 @@ TEST(SyntheticCosmo, PaperTable1Sizes)
 // The time series: halos drift with the steps, the boxes change only at the regrid steps.
 TEST(SyntheticCosmo, SeriesDriftsAndRegridsEveryKSteps)
 {
-  CosmoParameters p = amrsp::ParseCosmoParameters("grids=60,levels=4,cells=300k,seed=3,steps=5,regrid=2");
+  CosmoParameters p =
+    amrsp::ParseCosmoParameters("grids=60,levels=4,cells=300k,seed=3,steps=5,regrid=2");
   EXPECT_EQ(p.Steps, 5);
   EXPECT_EQ(p.RegridEvery, 2);
   const CosmoParameters q = amrsp::ParseCosmoParameters(amrsp::FormatCosmoParameters(p));

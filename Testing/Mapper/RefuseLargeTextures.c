@@ -180,7 +180,7 @@ static void* WrapLoader(const char* name, void* found)
 void* dlsym(void* handle, const char* name)
 {
   void* found = RealDlsym(handle, name);
-  if (!found || !name)
+  if (!found) /* name is never null: glibc declares it nonnull */
   {
     return found;
   }

@@ -473,7 +473,6 @@ vtkSmartPointer<vtkOverlappingAMR> AsRectilinear(vtkOverlappingAMR* amr, int une
   }
   return out;
 }
-#endif
 
 /// The largest difference of one RGB byte between two frames.
 int LargestDifference(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b)
@@ -485,6 +484,7 @@ int LargestDifference(const std::vector<unsigned char>& a, const std::vector<uns
   }
   return largest;
 }
+#endif
 
 /// VTK 9.6's data model: a partitioned data set collection that is not AMR is refused by name;
 /// an AMR of rectilinear blocks renders as its image-data twin when evenly spaced, and an uneven
@@ -509,13 +509,15 @@ void TestDataModel(Scene& scene)
     "rectilinear blocks render as their image-data twin: largest byte difference " +
       std::to_string(same) + " (at most 1)");
   // the comparison sees a change of the fine level's values
-  vtkSmartPointer<vtkOverlappingAMR> dimmer = MakeAMR(8, { 1, 2 },
-    { { 0, { 0, 0, 0 }, { 8, 8, 8 } }, { 1, { 4, 4, 4 }, { 8, 8, 8 } } },
-    [](int level, double x, double y, double z) { return (level == 1 ? 0.7 : 1.0) * Blob(x, y, z); });
+  vtkSmartPointer<vtkOverlappingAMR> dimmer =
+    MakeAMR(8, { 1, 2 }, { { 0, { 0, 0, 0 }, { 8, 8, 8 } }, { 1, { 4, 4, 4 }, { 8, 8, 8 } } },
+      [](int level, double x, double y, double z)
+      { return (level == 1 ? 0.7 : 1.0) * Blob(x, y, z); });
   scene.Render(AsRectilinear(dimmer));
   const int changed = LargestDifference(imageBlocks, scene.Pixels());
   Check(changed > 8,
-    "the comparison rejects a rectilinear AMR whose fine level is dimmer: largest byte difference " +
+    "the comparison rejects a rectilinear AMR whose fine level is dimmer: largest byte "
+    "difference " +
       std::to_string(changed) + " (more than 8)");
   ExpectError(scene, AsRectilinear(amr, 1), "block 0 of level 1 is a rectilinear grid",
     "a rectilinear block of uneven spacing");

@@ -125,11 +125,9 @@ void CheckError(F render, const std::vector<std::string>& needles, const std::st
 
 /// Opaque geometry in front of and through the volume, and errors, on the renderers of
 /// TestDataset (multi-pass `gpu`, single-pass `single`; `before`: the default view's image).
-void TestOccludersAndErrors(Hierarchy& h, const EncodedKdTree& enc, const RenderSettings& s,
-  MultipassRenderer& gpu, PackingRenderer& single, const Image& before)
+void TestOccludersAndErrors(MultipassRenderer& gpu, PackingRenderer& single, const Image& before)
 {
   double ms = 0.0;
-  vtkVolume* volume = vtkVolume::SafeDownCast(gpu.GetRenderer()->GetVolumes()->GetItemAsObject(0));
   // opaque geometry: a white square in front of the volume hides it; a black one through the
   // centre hides the back half only
   {
@@ -279,7 +277,7 @@ void TestViewsAndErrors(Hierarchy& h, const EncodedKdTree& enc, const RenderSett
     CheckVsSinglePass(m, p, "viewport (0.5, 0, 1, 1)");
   }
 
-  TestOccludersAndErrors(h, enc, s, gpu, single, before);
+  TestOccludersAndErrors(gpu, single, before);
 }
 
 void TestDataset(const std::string& spec)

@@ -128,7 +128,8 @@ std::string BenchHelp()
        "packing,multipass), all steps in memory first: step_switch_s is the median time from a\n"
        "step's new vtkOverlappingAMR to its first image over the steps whose hierarchy did not\n"
        "change (the mapper uploads the values only), rebuild_s the same over the regrid steps,\n"
-       "with switch_over_rebuild, still_frame_s, the mapper's own part step_switch_build_upload_s and\n"
+       "with switch_over_rebuild, still_frame_s, the mapper's own part step_switch_build_upload_s "
+       "and\n"
        "rebuild_build_upload_s, and per_step {seconds, refreshed, build_s,\n"
        "upload_s}.\n"
        "--scaling runs synthetic:cosmo at each GRIDS:LEVELS:CELLS of --scaling-sizes (default "
@@ -399,8 +400,8 @@ int RunBench(int argc, char** argv)
       Concat({ DatasetOptions, ViewOptions,
         { "frames", "methods", "json", "plot", "plot-size", "scaling-sizes", "seed", "save-images",
           "driver", "backend", "rounds", "interactive-rate" } }),
-      Concat({ DatasetFlags,
-        { "scaling", "interactive", "counters", "no-compare", "time-series" } }));
+      Concat(
+        { DatasetFlags, { "scaling", "interactive", "counters", "no-compare", "time-series" } }));
     if (WantsHelp(a))
     {
       std::cout << BenchHelp() << ViewHelp << DriverHelp << DatasetHelp;

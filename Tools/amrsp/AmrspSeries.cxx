@@ -228,7 +228,8 @@ int RenderSeries(
   const Method& m, std::string method, const Arguments& a, const std::string& bindlessAccess)
 {
   const std::vector<std::string> specs = SeriesSteps(SeriesArgument(a));
-  const std::vector<int> selected = SelectSteps(a.Get("time", "all"), static_cast<int>(specs.size()));
+  const std::vector<int> selected =
+    SelectSteps(a.Get("time", "all"), static_cast<int>(specs.size()));
   const std::string pattern = a.Get("output", "render.png");
   std::unique_ptr<GpuRenderer> gpu;
   SeriesStart start;
@@ -276,10 +277,10 @@ int RenderSeries(
     const double toImage = Seconds(t1);
     const std::string path = StepOutputPath(pattern, step);
     WritePng(img, path);
-    std::cout << "step " << step << " (" << k + 1 << " of " << selected.size() << "): "
-              << h.Grids.size() << " grids, " << how << ", load " << std::fixed
-              << std::setprecision(3) << load << " s, to the image " << toImage << " s -> "
-              << path << std::endl;
+    std::cout << "step " << step << " (" << k + 1 << " of " << selected.size()
+              << "): " << h.Grids.size() << " grids, " << how << ", load " << std::fixed
+              << std::setprecision(3) << load << " s, to the image " << toImage << " s -> " << path
+              << std::endl;
   }
   std::cout << "method: " << method << "\n";
   return 0;
@@ -301,7 +302,8 @@ int BenchSeries(const Arguments& a)
     if (!m || !m->NeedsGpu || !m->IsKdTreeMapper())
     {
       throw UsageError{ "--time-series measures the GPU mappers (packing, bindless, linear, "
-                        "auto-storage, multipass), not '" + name + "'" };
+                        "auto-storage, multipass), not '" +
+        name + "'" };
     }
     methods.push_back(name);
   }
@@ -382,8 +384,8 @@ int BenchSeries(const Arguments& a)
               << r["rebuild_build_upload_s"].get<double>() << " | "
               << r["still_frame_s"].get<double>() << " |\n";
   }
-  std::cout << "series " << j["dataset"].get<std::string>() << ", " << steps.size()
-            << " steps, " << j["size"].get<std::string>() << "\n";
+  std::cout << "series " << j["dataset"].get<std::string>() << ", " << steps.size() << " steps, "
+            << j["size"].get<std::string>() << "\n";
   return 0;
 }
 

@@ -37,8 +37,8 @@ std::string StepOutputPath(const std::string& pattern, int step);
 /// renderer of `method` (GPU: each step a new input of the same mapper, so that a step of the
 /// same structure refreshes the values only), one line per step. The view and transfer function
 /// are the first selected step's, the scalar scale (--scale) is decided on it and kept.
-int RenderSeries(const Method& m, std::string method, const Arguments& a,
-  const std::string& bindlessAccess);
+int RenderSeries(
+  const Method& m, std::string method, const Arguments& a, const std::string& bindlessAccess);
 
 /// `amrsp bench SERIES --time-series [--methods ...]`: per GPU method, every step after the
 /// first rendered by one renderer; step_switch_s is the median time from the step's data in
