@@ -1,7 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkMultiPassAMRVolumeMapper.h"
 
-#include "vtkSinglePassAMRRenderingUtilities.h"
+#include "vtkSinglePassAMRDepthCopy.h"
+#include "vtkSinglePassAMRPackedAtlas.h"
+#include "vtkSinglePassAMRProxyBox.h"
+#include "vtkSinglePassAMRScopedBlendedDraw.h"
+#include "vtkSinglePassAMRShaderComposer.h"
+#include "vtkSinglePassAMRTransferFunctionTable.h"
+#include "vtkSinglePassAMRViewGeometry.h"
 
 #include "amrsp/Hierarchy.h"
 #include "amrsp/IntegerMath.h"
@@ -40,8 +46,6 @@
 #include <memory>
 #include <string>
 #include <vector>
-
-namespace utilities = vtkSinglePassAMRRenderingUtilities;
 
 namespace
 {
@@ -85,8 +89,8 @@ public:
   /// The unit cube's triangles (placed per node by the vertex shader), bound to `program`.
   bool BindCube(vtkShaderProgram* program);
   /// Activates the atlas and transfer table and sets the per-frame uniforms.
-  void SetFrameUniforms(
-    vtkShaderProgram* program, vtkVolumeProperty* property, const utilities::ViewGeometry& view);
+  void SetFrameUniforms(vtkShaderProgram* program, vtkVolumeProperty* property,
+    const vtkSinglePassAMRViewGeometry::ViewGeometry& view);
   /// The box the rays integrate in (index units): the root box, cropped (warns once when the
   /// cropping flags are not supported).
   void ClipBox(glm::vec3& clipLo, glm::vec3& clipHi);
@@ -94,7 +98,8 @@ public:
   vtkMultiPassAMRVolumeMapper* Self;
 
   // ---- CPU results of the build
-  utilities::PackedHierarchy Data; // Data.Structure.Values are dropped once uploaded
+  vtkSinglePassAMRPackedAtlas::PackedHierarchy
+    Data;                          // Data.Structure.Values are dropped once uploaded
   std::vector<NodeDraw> Draws;     // one per leaf with data
   std::vector<int32_t> DrawOfNode; // kD node index -> index into Draws, -1 for none
   long long DataNodes = 0;         // types (a) and (b)
@@ -110,9 +115,9 @@ public:
   int UploadLimit = 0;                // MaximumAtlasSize of the last upload attempt
   vtkMTimeType UploadedBuildTime = 0; // the build the atlas on the GPU holds
   std::vector<vtkSmartPointer<vtkTextureObject>> AtlasPages; // one per atlas page
-  vtkSinglePassAMRRenderingUtilities::DepthCopy Depth;
+  vtkSinglePassAMRDepthCopy Depth;
   vtkSinglePassAMROffscreenImage Accumulation; // viewport-sized, nearest filtering
-  utilities::TransferFunctionTable Transfer;
+  vtkSinglePassAMRTransferFunctionTable Transfer;
   vtkNew<vtkOpenGLBufferObject> CubeBuffer;
   vtkNew<vtkOpenGLVertexArrayObject> CubeArray;
   vtkShaderProgram* CubeArrayProgram = nullptr;
@@ -127,7 +132,7 @@ public:
     int64_t maxPageTexels, bool mayRefresh, bool& refreshed, std::string& error);
 
   /// Fills Order with the data leaves front to back for rays from `view` (see the class comment).
-  void OrderNodes(const utilities::ViewGeometry& view);
+  void OrderNodes(const vtkSinglePassAMRViewGeometry::ViewGeometry& view);
 
   /// Clears the accumulation target and draws the ordered nodes into it, front to back. The
   /// program, its per-frame uniforms, the textures and the cube's vertex array are ready;
@@ -135,8 +140,8 @@ public:
   /// intersected with [clipLo, clipHi] (index units; the cropping sub-volume or the root box),
   /// and nodes outside it are not drawn.
   void DrawNodes(vtkOpenGLState* state, vtkShaderProgram* program,
-    const utilities::ViewGeometry& view, const std::vector<float>& steps, const glm::vec3& clipLo,
-    const glm::vec3& clipHi);
+    const vtkSinglePassAMRViewGeometry::ViewGeometry& view, const std::vector<float>& steps,
+    const glm::vec3& clipLo, const glm::vec3& clipHi);
 
   void ReleaseGraphicsResources(vtkWindow* window);
 };
@@ -146,7 +151,7 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
   const std::string& array, int component, int packLimit, int64_t maxPageTexels, bool mayRefresh,
   bool& refreshed, std::string& error)
 {
-  const bool ok = utilities::RefreshPackedHierarchy(
+  const bool ok = vtkSinglePassAMRPackedAtlas::RefreshPackedHierarchy(
     amr, array, component, packLimit, maxPageTexels, mayRefresh, this->Data, refreshed, error);
   if (ok && refreshed)
   {
@@ -228,7 +233,8 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
 }
 
 //------------------------------------------------------------------------------
-void vtkMultiPassAMRVolumeMapper::vtkInternals::OrderNodes(const utilities::ViewGeometry& view)
+void vtkMultiPassAMRVolumeMapper::vtkInternals::OrderNodes(
+  const vtkSinglePassAMRViewGeometry::ViewGeometry& view)
 {
   const auto t0 = std::chrono::steady_clock::now();
   const amrsp::Hierarchy& h = this->Data.Structure;
@@ -272,8 +278,8 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::OrderNodes(const utilities::View
 
 //------------------------------------------------------------------------------
 void vtkMultiPassAMRVolumeMapper::vtkInternals::DrawNodes(vtkOpenGLState* state,
-  vtkShaderProgram* program, const utilities::ViewGeometry& view, const std::vector<float>& steps,
-  const glm::vec3& clipLo, const glm::vec3& clipHi)
+  vtkShaderProgram* program, const vtkSinglePassAMRViewGeometry::ViewGeometry& view,
+  const std::vector<float>& steps, const glm::vec3& clipLo, const glm::vec3& clipHi)
 {
   // per-node uniforms are set directly through their locations (thousands per frame)
   const GLint nodeLo = program->FindUniform("amrspNodeLo");
@@ -297,7 +303,7 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::DrawNodes(vtkOpenGLState* state,
   // back faces: one fragment per covered pixel, also with the eye inside the box; a mirroring
   // volume transform flips the winding. Front to back: dst += (1 - dst.a) * src for colour and
   // opacity (src premultiplied)
-  const utilities::ScopedBlendedDraw blended(
+  const vtkSinglePassAMRScopedBlendedDraw blended(
     state, view.Mirrored ? GL_BACK : GL_FRONT, GL_ONE_MINUS_DST_ALPHA, GL_ONE);
   // no near/far clipping: the back faces of a node between the eye and the near plane still
   // reach the shader, which starts the rays at the eye as the single-pass shader does
@@ -447,9 +453,9 @@ void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     return;
   }
-  utilities::ViewGeometry view;
+  vtkSinglePassAMRViewGeometry::ViewGeometry view;
   std::string error;
-  if (!utilities::ComputeViewGeometry(ren, vol, view, error) ||
+  if (!vtkSinglePassAMRViewGeometry::ComputeViewGeometry(ren, vol, view, error) ||
     !in.Accumulation.Ensure(renWin, view.Width, view.Height, false, error))
   {
     this->ReportError(error);
@@ -462,7 +468,7 @@ void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   // the opaque geometry's depth, read before the accumulation target is bound
   if (this->UseDepthBuffer)
   {
-    utilities::CopyDepthBuffer(renWin, view, in.Depth); // leaves the depth texture active
+    in.Depth.CopyFrom(renWin, view); // leaves the depth texture active
   }
   in.OrderNodes(view); // CPU: the data nodes front to back for this camera
   in.SetFrameUniforms(program, property, view);
@@ -519,7 +525,7 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::UploadAtlas(
   {
     vtkSmartPointer<vtkTextureObject> page;
     const double share = 1.0 / static_cast<double>(pages.Pages.size());
-    if (!utilities::UploadAtlas(renWin,
+    if (!vtkSinglePassAMRPackedAtlas::UploadAtlas(renWin,
           pages.Pages.size() == 1
             ? this->Data.Structure
             : amrsp::PageHierarchy(this->Data.Structure, pages, static_cast<int>(p)),
@@ -558,7 +564,7 @@ vtkShaderProgram* vtkMultiPassAMRVolumeMapper::vtkInternals::ReadyShaders(
     defines += "#define AMRSP_LOG_TRANSFER 1\n";
   }
   const std::string fragment =
-    utilities::ComposeFragmentShader(amrsp_MultiPassAMR_frag_glsl, defines,
+    vtkSinglePassAMRShaderComposer::ComposeFragmentShader(amrsp_MultiPassAMR_frag_glsl, defines,
       { { "RayCommon", amrsp_RayCommon_glsl }, { "BrickSample", amrsp_BrickSample_glsl } }, vol);
   if (fragment == this->FailedFragmentSource)
   {
@@ -582,7 +588,8 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::BindCube(vtkShaderProgram* progr
   if (this->CubeBuffer->GetHandle() == 0)
   {
     const double lo[3] = { 0.0, 0.0, 0.0 }, hi[3] = { 1.0, 1.0, 1.0 };
-    this->CubeBuffer->Upload(utilities::BoxTriangles(lo, hi), vtkOpenGLBufferObject::ArrayBuffer);
+    this->CubeBuffer->Upload(
+      vtkSinglePassAMRProxyBox::BoxTriangles(lo, hi), vtkOpenGLBufferObject::ArrayBuffer);
     this->CubeArrayProgram = nullptr;
   }
   this->CubeArray->Bind();
@@ -603,8 +610,8 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::BindCube(vtkShaderProgram* progr
 }
 
 //------------------------------------------------------------------------------
-void vtkMultiPassAMRVolumeMapper::vtkInternals::SetFrameUniforms(
-  vtkShaderProgram* program, vtkVolumeProperty* property, const utilities::ViewGeometry& view)
+void vtkMultiPassAMRVolumeMapper::vtkInternals::SetFrameUniforms(vtkShaderProgram* program,
+  vtkVolumeProperty* property, const vtkSinglePassAMRViewGeometry::ViewGeometry& view)
 {
   const amrsp::Hierarchy& h = this->Data.Structure;
   const glm::vec3 origin(h.Origin);
@@ -634,7 +641,8 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::SetFrameUniforms(
   program->SetUniform3f("amrspOrigin", &origin.x);
   program->SetUniform3f("amrspSpacing0", &spacing.x);
   program->SetUniform2f("amrspTransferRange", transferRange);
-  program->SetUniformf("amrspTransferSize", static_cast<float>(utilities::TransferTableSize));
+  program->SetUniformf(
+    "amrspTransferSize", static_cast<float>(vtkSinglePassAMRTransferFunctionTable::Size));
   program->SetUniformf("amrspUnitDistance",
     static_cast<float>(std::max(property->GetScalarOpacityUnitDistance(0), 1e-12)));
   program->SetUniform3f("amrspAtlasSize", &atlasSize.x);
@@ -646,8 +654,8 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::ClipBox(glm::vec3& clipLo, glm::
   const amrsp::Hierarchy& h = this->Data.Structure;
   const amrsp::Box root = h.RootCells();
   std::string cropWarning;
-  utilities::ClipBox(this->Self, h.Origin, h.Spacing0, glm::vec3(root.Lo), glm::vec3(root.Hi),
-    clipLo, clipHi, cropWarning);
+  vtkSinglePassAMRProxyBox::ClipBox(this->Self, h.Origin, h.Spacing0, glm::vec3(root.Lo),
+    glm::vec3(root.Hi), clipLo, clipHi, cropWarning);
   if (!cropWarning.empty())
   {
     this->Self->WarnOnce(cropWarning);

@@ -5,6 +5,7 @@
 #include "amrsp/VertexData.h"
 
 #include "vtkAMRBox.h"
+#include "vtkAbstractMapper.h" // VTK_GET_ARRAY_BY_NAME, VTK_GET_ARRAY_BY_ID
 #include "vtkCellData.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkDataArray.h"
@@ -488,4 +489,23 @@ void vtkSinglePassAMRConversion::ToOverlappingAMR(
     grid->GetCellData()->AddArray(ghosts);
     out->SetDataSet(g.Level, index, grid);
   }
+}
+
+//------------------------------------------------------------------------------
+std::string vtkSinglePassAMRConversion::RequestedArray(
+  vtkOverlappingAMR* amr, int accessMode, const char* name, int id)
+{
+  if (accessMode == VTK_GET_ARRAY_BY_NAME && name && *name)
+  {
+    return name;
+  }
+  if (accessMode == VTK_GET_ARRAY_BY_ID && id >= 0)
+  {
+    const std::vector<std::string> names = CellArrayNames(amr);
+    if (static_cast<std::size_t>(id) < names.size())
+    {
+      return names[static_cast<std::size_t>(id)];
+    }
+  }
+  return std::string();
 }

@@ -54,6 +54,10 @@ public:
 
   /// Names of the cell arrays of the first non-empty block.
   static std::vector<std::string> CellArrayNames(vtkOverlappingAMR* amr);
+  /// The array a vtkAbstractVolumeMapper selection asks for: a name, an index into the cell
+  /// arrays, or "" (the first cell array, or the first point array if there is none).
+  static std::string RequestedArray(
+    vtkOverlappingAMR* amr, int accessMode, const char* name, int id);
   /// Names of the cell (points = false) or point arrays of the first non-empty block.
   static std::vector<std::string> ArrayNames(vtkOverlappingAMR* amr, bool points);
 };

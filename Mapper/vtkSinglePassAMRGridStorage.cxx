@@ -2,7 +2,8 @@
 #include "vtkSinglePassAMRGridStorage.h"
 
 #include "vtkSinglePassAMRBindlessBricks.h"
-#include "vtkSinglePassAMRRenderingUtilities.h"
+#include "vtkSinglePassAMRPackedAtlas.h"
+#include "vtkSinglePassAMRTextures.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
 
 #include "amrsp/AtlasPages.h"
@@ -34,8 +35,6 @@ std::string UploadFailure(const std::string& what, long long bytes, GLenum glErr
   return msg.str();
 }
 } // namespace
-
-namespace utilities = vtkSinglePassAMRRenderingUtilities;
 
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRGridStorage::QueryCapabilities(vtkOpenGLRenderWindow* renWin)
@@ -101,7 +100,8 @@ vtkSinglePassAMRGridStorage::Choice vtkSinglePassAMRGridStorage::Choose(
   bool atlasFits = noAtlas.empty();
   for (const glm::ivec3& dims : data.PageDims)
   {
-    atlasFits = atlasFits && utilities::AtlasFitsContext(renWin, dims, atlasLimit, noAtlas);
+    atlasFits =
+      atlasFits && vtkSinglePassAMRPackedAtlas::AtlasFitsContext(renWin, dims, atlasLimit, noAtlas);
   }
   if (requested == vtkSinglePassAMRVolumeMapper::LINEAR_BRICKS)
   {
@@ -259,11 +259,11 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, int stor
   {
   }
 
-  this->Tree = utilities::MakeIntegerTexture(renWin, data.TreeTexels);
-  this->DataNodes = utilities::MakeIntegerTexture(renWin, dataNodes);
+  this->Tree = vtkSinglePassAMRTextures::MakeIntegerTexture(renWin, data.TreeTexels);
+  this->DataNodes = vtkSinglePassAMRTextures::MakeIntegerTexture(renWin, dataNodes);
   this->Ropes = data.RopeTexels.Texels.empty()
     ? nullptr
-    : utilities::MakeInteger4Texture(renWin, data.RopeTexels);
+    : vtkSinglePassAMRTextures::MakeInteger4Texture(renWin, data.RopeTexels);
   bool ok = this->Tree && this->DataNodes && (this->Ropes || data.RopeTexels.Texels.empty());
   long long bytes = bindless ? data.BindlessBytes : data.PackedBytes;
   if (ok && bindless)
@@ -299,7 +299,7 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, int stor
           static_cast<uint32_t>(static_cast<int32_t>(box.Hi[a])));
       }
     }
-    this->BrickBoxes = utilities::MakeIntegerTexture(renWin, boxes);
+    this->BrickBoxes = vtkSinglePassAMRTextures::MakeIntegerTexture(renWin, boxes);
     ok = this->BrickBoxes != nullptr;
   }
   const GLenum glError = glGetError();
@@ -402,7 +402,7 @@ bool vtkSinglePassAMRGridStorage::UploadAtlas(vtkOpenGLRenderWindow* renWin,
   const amrsp::AtlasPages& atlas = data.Atlas;
   for (std::size_t p = 0; p < atlas.Pages.size(); ++p)
   {
-    vtkSmartPointer<vtkTextureObject> page = utilities::UploadAtlasBySlabs(renWin,
+    vtkSmartPointer<vtkTextureObject> page = vtkSinglePassAMRPackedAtlas::UploadAtlasBySlabs(renWin,
       atlas.Pages.size() == 1 ? data.Data
                               : amrsp::PageHierarchy(data.Data, atlas, static_cast<int>(p)),
       atlas.Pages[p], data.VertexCentred,
@@ -455,7 +455,7 @@ bool vtkSinglePassAMRGridStorage::UploadBindless(
     handles.Texels[g] = glm::uvec2(
       static_cast<uint32_t>(resident[g] & 0xffffffffu), static_cast<uint32_t>(resident[g] >> 32));
   }
-  this->HandlesTexture = utilities::MakeIntegerTexture(renWin, handles);
+  this->HandlesTexture = vtkSinglePassAMRTextures::MakeIntegerTexture(renWin, handles);
   return this->HandlesTexture != nullptr;
 }
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSinglePassAMRLinearBricks.h"
 
-#include "vtkSinglePassAMRRenderingUtilities.h"
+#include "vtkSinglePassAMRTextures.h"
 
 #include "amrsp/BrickAtlas.h"
 #include "amrsp/BrickPacking.h"
@@ -162,7 +162,7 @@ bool vtkSinglePassAMRLinearBricks::Upload(vtkOpenGLRenderWindow* renWin, const a
     progress(1.0);
   }
   this->Table =
-    vtkSinglePassAMRRenderingUtilities::MakeIntegerTexture(renWin, amrsp::LinearBrickTable(layout));
+    vtkSinglePassAMRTextures::MakeIntegerTexture(renWin, amrsp::LinearBrickTable(layout));
   if (!this->Table)
   {
     error = "the driver refused the linear storage's brick table";

@@ -2,7 +2,8 @@
 #include "vtkSinglePassAMRMapperBase.h"
 #include "vtkSinglePassAMRDataModel.h"
 
-#include "vtkSinglePassAMRRenderingUtilities.h"
+#include "vtkSinglePassAMRConversion.h"
+#include "vtkSinglePassAMRRenderSupport.h"
 
 #include "vtkInformation.h"
 #include "vtkMath.h"
@@ -102,13 +103,13 @@ void vtkSinglePassAMRMapperBase::GetBounds(double bounds[6])
 //------------------------------------------------------------------------------
 bool vtkSinglePassAMRMapperBase::IsRenderSupported(vtkRenderWindow* window, std::string* why)
 {
-  return vtkSinglePassAMRRenderingUtilities::IsRenderSupported(window, why);
+  return vtkSinglePassAMRRenderSupport::IsRenderSupported(window, why);
 }
 
 //------------------------------------------------------------------------------
 bool vtkSinglePassAMRMapperBase::EnsureBuilt(vtkOverlappingAMR* amr)
 {
-  const std::string array = vtkSinglePassAMRRenderingUtilities::RequestedArray(
+  const std::string array = vtkSinglePassAMRConversion::RequestedArray(
     amr, this->ArrayAccessMode, this->ArrayName, this->ArrayId);
   const bool sameSettings = this->BuiltArray == array &&
     this->BuiltComponent == this->ArrayComponent &&

@@ -10,7 +10,7 @@
 #include "vtkTextureObject.h"
 
 #include "vtkSinglePassAMROpenGL.h"
-#include "vtkSinglePassAMRRenderingUtilities.h"
+#include "vtkSinglePassAMRScopedBlendedDraw.h"
 
 #include "amrsp_OffscreenComposite_frag_glsl.h"
 
@@ -114,7 +114,7 @@ bool vtkSinglePassAMROffscreenImage::CompositeOver(
     return false;
   }
   // premultiplied "over" the frame
-  const vtkSinglePassAMRRenderingUtilities::ScopedBlendedDraw blended(
+  const vtkSinglePassAMRScopedBlendedDraw blended(
     renWin->GetState(), GL_NONE, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   renWin->GetShaderCache()->ReadyShaderProgram(this->Composite->Program);
   this->Colour->Activate();

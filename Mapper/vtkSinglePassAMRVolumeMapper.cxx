@@ -4,8 +4,14 @@
 #include "vtkSinglePassAMRConversion.h"
 #include "vtkSinglePassAMRFrameBudget.h"
 #include "vtkSinglePassAMRGridStorage.h"
-#include "vtkSinglePassAMRRenderingUtilities.h"
+#include "vtkSinglePassAMRDepthCopy.h"
+#include "vtkSinglePassAMRProxyBox.h"
+#include "vtkSinglePassAMRScopedBlendedDraw.h"
+#include "vtkSinglePassAMRShaderComposer.h"
+#include "vtkSinglePassAMRTransferFunctionTable.h"
+#include "vtkSinglePassAMRViewGeometry.h"
 
+#include "amrsp/BrickAtlas.h"
 #include "amrsp/RayCastingData.h"
 #include "amrsp/SampleStep.h"
 
@@ -46,8 +52,6 @@
 #include <memory>
 #include <string>
 #include <vector>
-
-namespace utilities = vtkSinglePassAMRRenderingUtilities;
 
 namespace
 {
@@ -102,12 +106,13 @@ public:
   void ActivateTextures(vtkShaderProgram* program, const FrameSettings& frame);
   /// The tree, the levels, sampling, transfer function, clipping and level of detail.
   void SetDataUniforms(vtkShaderProgram* program, vtkRenderer* ren, vtkVolumeProperty* property,
-    const utilities::ViewGeometry& view, const FrameSettings& frame);
+    const vtkSinglePassAMRViewGeometry::ViewGeometry& view, const FrameSettings& frame);
   /// The first light in model coordinates, the material, shadow step and iso-values.
   void SetLightingUniforms(vtkShaderProgram* program, vtkRenderer* ren, vtkVolume* vol,
     vtkVolumeProperty* property, const FrameSettings& frame);
   /// Draws the proxy box's back faces once per pixel, blending premultiplied colour "over".
-  void DrawBackFaces(vtkOpenGLRenderWindow* renWin, const utilities::ViewGeometry& view);
+  void DrawBackFaces(
+    vtkOpenGLRenderWindow* renWin, const vtkSinglePassAMRViewGeometry::ViewGeometry& view);
   void DeactivateTextures(const FrameSettings& frame);
 
   vtkSinglePassAMRVolumeMapper* Self;
@@ -156,8 +161,8 @@ public:
     }
   }
   std::unique_ptr<vtkSinglePassAMRGridStorage> Storage{ new vtkSinglePassAMRGridStorage };
-  utilities::TransferFunctionTable Transfer;
-  utilities::DepthCopy Depth;
+  vtkSinglePassAMRTransferFunctionTable Transfer;
+  vtkSinglePassAMRDepthCopy Depth;
   vtkSinglePassAMRFrameBudget Budget;
 
   // proxy geometry: the root box's 12 triangles, for the build of BoxBufferTime
@@ -339,9 +344,9 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     return;
   }
-  utilities::ViewGeometry view;
+  vtkSinglePassAMRViewGeometry::ViewGeometry view;
   std::string viewError;
-  if (!utilities::ComputeViewGeometry(ren, vol, view, viewError))
+  if (!vtkSinglePassAMRViewGeometry::ComputeViewGeometry(ren, vol, view, viewError))
   {
     this->ReportError(viewError);
     return;
@@ -352,7 +357,7 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   frame.Quality =
     in.Budget.Begin(vol, budget, view.Width, view.Height, this->GetBuildTime().GetMTime());
   // the rays' image: the viewport, or at (0, 0) the reduced image of this frame
-  utilities::ViewGeometry rays = view;
+  vtkSinglePassAMRViewGeometry::ViewGeometry rays = view;
   if (frame.Reduced())
   {
     rays.X0 = rays.Y0 = 0;
@@ -375,7 +380,7 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   if (frame.UseDepth)
   {
-    utilities::CopyDepthBuffer(renWin, view, in.Depth); // leaves the depth texture active
+    in.Depth.CopyFrom(renWin, view); // leaves the depth texture active
   }
   if (!in.UpdateEmptySpaceFlags(renWin, frame))
   {
@@ -620,7 +625,7 @@ vtkShaderProgram* vtkSinglePassAMRVolumeMapper::vtkInternals::ReadyShader(
   define(self->WorkCountOutput != NO_WORK_COUNT,
     "AMRSP_WORK_COUNT " + std::to_string(self->WorkCountOutput));
   const std::string fragment =
-    utilities::ComposeFragmentShader(amrsp_SinglePassAMR_frag_glsl, defines,
+    vtkSinglePassAMRShaderComposer::ComposeFragmentShader(amrsp_SinglePassAMR_frag_glsl, defines,
       { { "KdTreeLayout", amrsp_KdTreeLayout_glsl }, { "RayCommon", amrsp_RayCommon_glsl },
         { "BrickSample", amrsp_BrickSample_glsl }, { "SmoothCells", amrsp_SmoothCells_glsl },
         { "Shading", amrsp_Shading_glsl }, { "RaySteps", amrsp_RaySteps_glsl } },
@@ -650,7 +655,8 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::BindProxyBox(vtkShaderProgram* 
     const double* b = this->Data.Levels.Bounds;
     const double lo[3] = { b[0], b[2], b[4] };
     const double hi[3] = { b[1], b[3], b[5] };
-    this->BoxBuffer->Upload(utilities::BoxTriangles(lo, hi), vtkOpenGLBufferObject::ArrayBuffer);
+    this->BoxBuffer->Upload(
+      vtkSinglePassAMRProxyBox::BoxTriangles(lo, hi), vtkOpenGLBufferObject::ArrayBuffer);
     this->BoxBufferTime = buildTime;
     this->BoxArrayProgram = nullptr;
   }
@@ -684,7 +690,7 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::UpdateEmptySpaceFlags(
   // the node ranges were joined after the upload (PrepareStorage)
   float tableRange[2];
   this->Transfer.GetShaderRange(tableRange);
-  const utilities::TransferFunctionTable& table = this->Transfer;
+  const vtkSinglePassAMRTransferFunctionTable& table = this->Transfer;
   if (!this->Storage->UpdateTransparentFlags(renWin, this->Data.NodeRanges, table.GetOpacityTable(),
         tableRange, table.GetTableTime(), [&table](float s) { return table.TableScalar(s); }))
   {
@@ -731,8 +737,8 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::ActivateTextures(
 
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRVolumeMapper::vtkInternals::SetDataUniforms(vtkShaderProgram* program,
-  vtkRenderer* ren, vtkVolumeProperty* property, const utilities::ViewGeometry& view,
-  const FrameSettings& frame)
+  vtkRenderer* ren, vtkVolumeProperty* property,
+  const vtkSinglePassAMRViewGeometry::ViewGeometry& view, const FrameSettings& frame)
 {
   vtkSinglePassAMRVolumeMapper* self = this->Self;
   const amrsp::RayCastingData& d = this->Data;
@@ -762,7 +768,7 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::SetDataUniforms(vtkShaderProgra
   program->SetUniform3f("amrspRootHi", &d.RootHi.x);
   glm::vec3 clipLo, clipHi;
   std::string cropWarning;
-  utilities::ClipBox(
+  vtkSinglePassAMRProxyBox::ClipBox(
     self, d.Data.Origin, d.Data.Spacing0, d.RootLo, d.RootHi, clipLo, clipHi, cropWarning);
   if (!cropWarning.empty())
   {
@@ -798,7 +804,8 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::SetDataUniforms(vtkShaderProgra
     program->SetUniformi("amrspAblationSamples", self->DiagnosticAblationSamples);
   }
   program->SetUniform2f("amrspTransferRange", transferRange);
-  program->SetUniformf("amrspTransferSize", static_cast<float>(utilities::TransferTableSize));
+  program->SetUniformf(
+    "amrspTransferSize", static_cast<float>(vtkSinglePassAMRTransferFunctionTable::Size));
   // level of detail: world size of a pixel at distance 1 (perspective) or everywhere (parallel),
   // as amrsp::LevelOfDetail
   vtkCamera* camera = ren->GetActiveCamera();
@@ -819,7 +826,8 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::SetDataUniforms(vtkShaderProgra
 void vtkSinglePassAMRVolumeMapper::vtkInternals::SetLightingUniforms(vtkShaderProgram* program,
   vtkRenderer* ren, vtkVolume* vol, vtkVolumeProperty* property, const FrameSettings& frame)
 {
-  const utilities::ModelLight light = utilities::FirstLightInModel(ren, vol);
+  const vtkSinglePassAMRViewGeometry::ModelLight light =
+    vtkSinglePassAMRViewGeometry::FirstLightInModel(ren, vol);
   const auto setIfUsed = [program](const char* name, auto&& set)
   {
     if (program->IsUniformUsed(name))
@@ -859,11 +867,11 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::SetLightingUniforms(vtkShaderPr
 
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRVolumeMapper::vtkInternals::DrawBackFaces(
-  vtkOpenGLRenderWindow* renWin, const utilities::ViewGeometry& view)
+  vtkOpenGLRenderWindow* renWin, const vtkSinglePassAMRViewGeometry::ViewGeometry& view)
 {
   {
     // back faces only (a mirroring volume transform flips the winding), premultiplied "over"
-    const utilities::ScopedBlendedDraw blended(
+    const vtkSinglePassAMRScopedBlendedDraw blended(
       renWin->GetState(), view.Mirrored ? GL_BACK : GL_FRONT, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glDrawArrays(GL_TRIANGLES, 0, 36);
   }

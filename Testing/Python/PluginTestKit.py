@@ -56,7 +56,7 @@ def skip(message):
     leave(SKIP)
 
 
-# What the mapper's render-support probe (vtkSinglePassAMRRenderingUtilities::IsRenderSupported) says when the
+# What the mapper's render-support probe (vtkSinglePassAMRRenderSupport::IsRenderSupported) says when the
 # OpenGL context cannot run it at all. Only these make a test skip; any other render error, even
 # one that mentions OpenGL or the context (an upload that failed, a texture limit), is a failure.
 UNSUPPORTED_CONTEXT = (

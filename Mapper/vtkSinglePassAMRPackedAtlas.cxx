@@ -1,0 +1,230 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkSinglePassAMRPackedAtlas.h"
+
+#include "vtkSinglePassAMRConversion.h"
+#include "vtkSinglePassAMRTextures.h"
+
+#include "amrsp/BrickPacking.h"
+#include "amrsp/RayCastingData.h"
+
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOverlappingAMR.h"
+#include "vtkSinglePassAMROpenGL.h"
+
+#include <algorithm>
+#include <exception>
+#include <future>
+#include <sstream>
+#include <utility>
+
+namespace vtkSinglePassAMRPackedAtlas
+{
+
+//------------------------------------------------------------------------------
+namespace
+{
+/// BuildPackedHierarchy on a converted hierarchy, or keeping `out`'s structure when `h` has it
+/// and `mayRefresh`.
+bool PackHierarchy(amrsp::Hierarchy converted, int packLimit, int64_t maxPageTexels,
+  bool mayRefresh, PackedHierarchy& out, bool& refreshed, std::string& error)
+{
+  refreshed = false;
+  try
+  {
+    if (mayRefresh && !out.Tree.Nodes.empty() && amrsp::SameStructure(out.Structure, converted))
+    {
+      amrsp::FiniteValueRange(converted, out.ScalarRange); // as the full build below
+      out.Structure.Values = std::move(converted.Values);
+      refreshed = true;
+      return true;
+    }
+    out = PackedHierarchy();
+    out.Structure = std::move(converted);
+    const amrsp::Hierarchy& h = out.Structure;
+    out.Tree = amrsp::BuildKdTree(h);
+    // one brick per grid (cells, or vertices one texel larger), packed within the per-axis limit
+    // the data-node offsets can address and MaximumAtlasSize when set
+    out.Atlas =
+      amrsp::PackBricksInPages(amrsp::BrickExtents(h, h.VertexCentred), amrsp::Packer::Best,
+        amrsp::AtlasLimits(packLimit > 0 ? std::min(packLimit, 2048) : 2048), maxPageTexels);
+    out.VertexCentred = h.VertexCentred;
+
+    // the level table and the finite range as the single-pass build computes them
+    const amrsp::LevelTable levels = amrsp::ComputeLevelTable(h, out.Tree);
+    out.LevelMinEdge = levels.LevelMinEdge;
+    std::copy(levels.Bounds, levels.Bounds + 6, out.Bounds);
+    amrsp::FiniteValueRange(h, out.ScalarRange);
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+    out = PackedHierarchy();
+    return false;
+  }
+  return true;
+}
+
+bool ConvertAndPack(vtkOverlappingAMR* amr, const std::string& array, int component, int packLimit,
+  int64_t maxPageTexels, bool mayRefresh, PackedHierarchy& out, bool& refreshed, std::string& error)
+{
+  refreshed = false;
+  amrsp::Hierarchy h;
+  try
+  {
+    vtkSinglePassAMRConversion::ArraySelection selection;
+    selection.Name = array;
+    selection.Component = component;
+    if (!vtkSinglePassAMRConversion::FromOverlappingAMR(amr, selection, h, error))
+    {
+      out = PackedHierarchy();
+      return false;
+    }
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+    out = PackedHierarchy();
+    return false;
+  }
+  return PackHierarchy(std::move(h), packLimit, maxPageTexels, mayRefresh, out, refreshed, error);
+}
+} // namespace
+
+bool BuildPackedHierarchy(vtkOverlappingAMR* amr, const std::string& array, int component,
+  int packLimit, int64_t maxPageTexels, PackedHierarchy& out, std::string& error)
+{
+  bool refreshed = false;
+  return ConvertAndPack(
+    amr, array, component, packLimit, maxPageTexels, false, out, refreshed, error);
+}
+
+bool RefreshPackedHierarchy(vtkOverlappingAMR* amr, const std::string& array, int component,
+  int packLimit, int64_t maxPageTexels, bool mayRefresh, PackedHierarchy& out, bool& refreshed,
+  std::string& error)
+{
+  return ConvertAndPack(
+    amr, array, component, packLimit, maxPageTexels, mayRefresh, out, refreshed, error);
+}
+
+//------------------------------------------------------------------------------
+bool AtlasFitsContext(
+  vtkOpenGLRenderWindow* renWin, const glm::ivec3& dims, int atlasLimit, std::string& why)
+{
+  const int max3D = vtkTextureObject::GetMaximumTextureSize3D(renWin);
+  const int limit = atlasLimit > 0 ? std::min(atlasLimit, max3D) : max3D;
+  if (dims.x <= limit && dims.y <= limit && dims.z <= limit)
+  {
+    return true;
+  }
+  std::ostringstream msg;
+  msg << "the packed atlas (" << dims.x << " x " << dims.y << " x " << dims.z
+      << " texels) exceeds ";
+  if (limit < max3D)
+  {
+    msg << "MaximumAtlasSize = " << limit << " (GL_MAX_3D_TEXTURE_SIZE is " << max3D << ")";
+  }
+  else
+  {
+    msg << "GL_MAX_3D_TEXTURE_SIZE = " << max3D << " of this OpenGL context";
+  }
+  why = msg.str();
+  return false;
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkTextureObject> UploadAtlasBySlabs(vtkOpenGLRenderWindow* renWin,
+  const amrsp::Hierarchy& h, const amrsp::AtlasLayout& layout, bool vertexCentred,
+  const std::function<void(double)>& progress)
+{
+  const glm::ivec3 d = layout.Dims;
+  vtkSmartPointer<vtkTextureObject> atlas =
+    vtkSinglePassAMRTextures::MakeScalarTexture(renWin, d, nullptr, vertexCentred);
+  if (!atlas)
+  {
+    return nullptr;
+  }
+  const std::size_t layer = static_cast<std::size_t>(d.x) * static_cast<std::size_t>(d.y);
+  const int slab = static_cast<int>(std::max<std::size_t>(
+    1, std::min<std::size_t>(d.z, (std::size_t(16) << 20) / (layer * sizeof(float)))));
+  const amrsp::AtlasSlabFiller filler(h, layout);
+  atlas->Activate(); // bound to a texture unit of its own for the uploads
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  UploadInSlabs(
+    d.z, slab, layer, [&filler](int z0, int z1, float* out) { filler.Fill(z0, z1, out); },
+    [&d](int z0, int z1, const float* texels)
+    { glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, z0, d.x, d.y, z1 - z0, GL_RED, GL_FLOAT, texels); },
+    progress);
+  atlas->Deactivate();
+  return atlas;
+}
+
+//------------------------------------------------------------------------------
+void UploadInSlabs(int units, int slab, std::size_t unitFloats,
+  const std::function<void(int, int, float*)>& fill,
+  const std::function<void(int, int, const float*)>& upload,
+  const std::function<void(double)>& progress)
+{
+  slab = std::max(1, std::min(slab, units));
+  std::vector<float> buffers[2] = { std::vector<float>(unitFloats * static_cast<std::size_t>(slab)),
+    std::vector<float>(unitFloats * static_cast<std::size_t>(slab)) };
+  const auto fillSlab = [&fill, units, slab](int first, std::vector<float>& texels)
+  { fill(first, std::min(units, first + slab), texels.data()); };
+  if (units > 0)
+  {
+    fillSlab(0, buffers[0]);
+  }
+  for (int first = 0, k = 0; first < units; first += slab, k ^= 1)
+  {
+    std::future<void> next;
+    if (first + slab < units)
+    {
+      next = std::async(std::launch::async, fillSlab, first + slab, std::ref(buffers[k ^ 1]));
+    }
+    const int last = std::min(units, first + slab);
+    upload(first, last, buffers[k].data());
+    if (next.valid())
+    {
+      next.get(); // rethrows what the fill threw
+    }
+    if (progress)
+    {
+      progress(static_cast<double>(last) / units);
+    }
+  }
+}
+
+bool UploadAtlas(vtkOpenGLRenderWindow* renWin, const amrsp::Hierarchy& h,
+  const amrsp::AtlasLayout& layout, bool vertexCentred, int atlasLimit,
+  vtkSmartPointer<vtkTextureObject>& texture, std::string& error,
+  const std::function<void(double)>& progress)
+{
+  texture = nullptr;
+  const glm::ivec3 d = layout.Dims;
+  if (!AtlasFitsContext(renWin, d, atlasLimit, error))
+  {
+    return false;
+  }
+  while (glGetError() != GL_NO_ERROR)
+  {
+  }
+  texture = UploadAtlasBySlabs(renWin, h, layout, vertexCentred, progress);
+  const bool ok = texture != nullptr;
+  const GLenum glError = glGetError();
+  if (!ok || glError != GL_NO_ERROR)
+  {
+    std::ostringstream msg;
+    msg << "uploading the atlas texture ("
+        << static_cast<double>(layout.TotalTexels) * sizeof(float) / (1024.0 * 1024.0)
+        << " MiB) failed" << (glError == GL_OUT_OF_MEMORY ? ": out of GPU memory" : "")
+        << (glError == GL_NO_ERROR ? ": the driver refused the texture allocation (out of GPU "
+                                     "memory, or over one of its limits)"
+                                   : "")
+        << (glError != GL_NO_ERROR ? " (OpenGL error " + std::to_string(glError) + ")" : "");
+    error = msg.str();
+    texture = nullptr;
+    return false;
+  }
+  return true;
+}
+
+} // namespace vtkSinglePassAMRPackedAtlas

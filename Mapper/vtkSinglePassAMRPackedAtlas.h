@@ -1,0 +1,116 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file    vtkSinglePassAMRPackedAtlas.h
+ * @brief   the packed atlas: its CPU build and its upload (private to the module)
+ *
+ * The paper's packing storage (sections 4.1 and 5.1): every grid's brick packed into one R32F
+ * 3D atlas (or a few pages of it). The CPU build (conversion, kD-tree, packing, level table,
+ * scalar range) as the multi-pass mapper uses it, the atlas's size checks, and its upload slab by
+ * slab, which the single-pass storage uses too.
+ */
+#ifndef vtkSinglePassAMRPackedAtlas_h
+#define vtkSinglePassAMRPackedAtlas_h
+
+#include "amrsp/AtlasPages.h"
+#include "amrsp/BrickAtlas.h"
+#include "amrsp/Hierarchy.h"
+#include "amrsp/KdTree.h"
+
+#include "vtkSmartPointer.h"
+#include "vtkTextureObject.h"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+class vtkOpenGLRenderWindow;
+class vtkOverlappingAMR;
+
+namespace vtkSinglePassAMRPackedAtlas
+{
+
+/**
+ * The CPU side of the packing storage (paper, sections 4.1 and 5.1): the hierarchy's structure,
+ * its kD-tree, one brick per grid packed into one float atlas, and what the shaders need about
+ * the levels.
+ */
+struct PackedHierarchy
+{
+  /// Grids, ratios, origin and spacing, and the values until the atlas holds them.
+  amrsp::Hierarchy Structure;
+  amrsp::KdTree Tree;
+  /// Where each grid's brick lies in the atlas pages (usually one); Structure.Values are the
+  /// bricks (borrowed from the input where possible), dropped by the caller after the upload.
+  amrsp::AtlasPages Atlas;
+  bool VertexCentred = false; ///< vertex bricks (trilinear) instead of cell bricks (nearest)
+  /// Smallest model-space edge of a cell of each level (the sampling rule's D for factor 1).
+  std::vector<double> LevelMinEdge;
+  /// Finite value range of the selected scalars ([0, 1] when there is none).
+  double ScalarRange[2] = { 0.0, 1.0 };
+  /// Model-space bounds of the root box [xmin, xmax, ymin, ymax, zmin, zmax].
+  double Bounds[6] = { 0.0, -1.0, 0.0, -1.0, 0.0, -1.0 };
+};
+
+/**
+ * Converts `amr` (array `array`, component `component`), builds the kD-tree and packs the bricks
+ * with the better packer within `packLimit` texels per axis (0: the 2048 the data-node offsets
+ * address; a positive value lowers it), over atlas pages of at most `maxPageTexels` texels (0:
+ * one atlas). Returns false with a one-line `error` (conversion, tree or packing failure).
+ */
+bool BuildPackedHierarchy(vtkOverlappingAMR* amr, const std::string& array, int component,
+  int packLimit, int64_t maxPageTexels, PackedHierarchy& out, std::string& error);
+
+/**
+ * A new time step for `out` built by BuildPackedHierarchy with the same array, component and
+ * limits: when `mayRefresh` and `amr`'s hierarchy has `out`'s structure (amrsp::SameStructure),
+ * `out` keeps its tree and atlas layout and takes the new values and their range (`refreshed`
+ * true); otherwise it is built again as BuildPackedHierarchy does. Same errors.
+ */
+bool RefreshPackedHierarchy(vtkOverlappingAMR* amr, const std::string& array, int component,
+  int packLimit, int64_t maxPageTexels, bool mayRefresh, PackedHierarchy& out, bool& refreshed,
+  std::string& error);
+
+/**
+ * Whether an atlas of `dims` texels fits `renWin`'s GL_MAX_3D_TEXTURE_SIZE and `atlasLimit`
+ * (> 0: a lower limit set by the user). When not, `why` names the limit it exceeds.
+ */
+bool AtlasFitsContext(
+  vtkOpenGLRenderWindow* renWin, const glm::ivec3& dims, int atlasLimit, std::string& why);
+
+/**
+ * Hands `units` units (atlas layers, page rows) of `unitFloats` floats each to `upload` in slabs
+ * of at most `slab` units, double-buffered: a worker thread fills the next slab (`fill(first,
+ * last, out)`, units first <= u < last) while `upload(first, last, texels)` hands the current one
+ * to the driver. `progress` gets the fraction of the units done after each slab. Rethrows what
+ * `fill` threw.
+ */
+void UploadInSlabs(int units, int slab, std::size_t unitFloats,
+  const std::function<void(int, int, float*)>& fill,
+  const std::function<void(int, int, const float*)>& upload,
+  const std::function<void(double)>& progress);
+
+/**
+ * The atlas of `h`'s bricks placed by `layout` as an R32F 3D texture (MakeScalarTexture's
+ * filtering), allocated empty and filled slab by slab (amrsp::AtlasSlabFiller, about 16 MiB per
+ * glTexSubImage3D, the next slab filled on a worker thread meanwhile): the whole atlas never
+ * exists in host memory. `progress` gets the fraction of the layers uploaded after each slab.
+ * Null when OpenGL refused the allocation.
+ */
+vtkSmartPointer<vtkTextureObject> UploadAtlasBySlabs(vtkOpenGLRenderWindow* renWin,
+  const amrsp::Hierarchy& h, const amrsp::AtlasLayout& layout, bool vertexCentred,
+  const std::function<void(double)>& progress = nullptr);
+
+/**
+ * UploadAtlasBySlabs with checks: fails with a one-line `error` when an edge exceeds
+ * GL_MAX_3D_TEXTURE_SIZE or `atlasLimit` (> 0), or when OpenGL reports an error (e.g. out of
+ * memory); `texture` is then null.
+ */
+bool UploadAtlas(vtkOpenGLRenderWindow* renWin, const amrsp::Hierarchy& h,
+  const amrsp::AtlasLayout& layout, bool vertexCentred, int atlasLimit,
+  vtkSmartPointer<vtkTextureObject>& texture, std::string& error,
+  const std::function<void(double)>& progress = nullptr);
+
+} // namespace vtkSinglePassAMRPackedAtlas
+
+#endif
