@@ -1,0 +1,135 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file    vtkMultiPassAMRVolumeMapperInternals.h
+ * @brief   the multi-pass mapper's state and its per-node draws (private to the module)
+ *
+ * vtkMultiPassAMRVolumeMapper.cxx holds the build, the upload and the frame;
+ * vtkMultiPassAMRVolumeMapperDraw.cxx the node order, the shaders, their uniforms and the draws.
+ */
+#ifndef vtkMultiPassAMRVolumeMapperInternals_h
+#define vtkMultiPassAMRVolumeMapperInternals_h
+
+#include "vtkMultiPassAMRVolumeMapper.h"
+
+#include "vtkSinglePassAMRDepthCopy.h"
+#include "vtkSinglePassAMROffscreenImage.h"
+#include "vtkSinglePassAMRPackedAtlas.h"
+#include "vtkSinglePassAMRTransferFunctionTable.h"
+#include "vtkSinglePassAMRViewGeometry.h"
+
+#include "vtkNew.h"
+#include "vtkOpenGLBufferObject.h"
+#include "vtkOpenGLVertexArrayObject.h"
+#include "vtkSmartPointer.h"
+#include "vtkTextureObject.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+class vtkOpenGLRenderWindow;
+class vtkOpenGLState;
+class vtkOverlappingAMR;
+class vtkRenderer;
+class vtkShaderProgram;
+class vtkVolume;
+class vtkVolumeProperty;
+class vtkWindow;
+
+/// Everything one draw needs about its data node (the per-node uniforms).
+struct vtkMultiPassAMRNodeDraw
+{
+  /// The node's box in level-0 index units, computed from the root down in float exactly as the
+  /// single-pass shader computes it during its traversal (plane = lo + split * cell size).
+  float Lo[3];
+  float Hi[3];
+  /// Size of a cell of the node's data level, level-0 index units (float, as the shaders').
+  float CellSize[3];
+  int Level = 0;
+  /// First and last cell of the node in its level's index space (exact: floor and ceiling of the
+  /// node's finest-cell box), and the atlas texel holding FirstCell.
+  int FirstCell[3];
+  int LastCell[3];
+  int AtlasOffset[3];
+  int Page = 0; ///< the atlas page (texture) holding the node's brick
+};
+
+//------------------------------------------------------------------------------
+class vtkMultiPassAMRVolumeMapper::vtkInternals
+{
+public:
+  explicit vtkInternals(vtkMultiPassAMRVolumeMapper* self)
+    : Self(self)
+  {
+  }
+
+  // The steps of a frame (see Render). Each returns false after Self->ReportError when the frame
+  // cannot be drawn.
+  /// Uploads the atlas after a build, or to another context or atlas limit.
+  bool UploadAtlas(vtkOpenGLRenderWindow* renWin, vtkOverlappingAMR* amr);
+  /// The node raycaster (one variant per centring and depth use; cached by VTK's shader cache)
+  /// and the final composite.
+  vtkShaderProgram* ReadyShaders(vtkOpenGLRenderWindow* renWin, vtkVolume* vol);
+  /// The unit cube's triangles (placed per node by the vertex shader), bound to `program`.
+  bool BindCube(vtkShaderProgram* program);
+  /// Activates the atlas and transfer table and sets the per-frame uniforms.
+  void SetFrameUniforms(vtkShaderProgram* program, vtkVolumeProperty* property,
+    const vtkSinglePassAMRViewGeometry::ViewGeometry& view);
+  /// The box the rays integrate in (index units): the root box, cropped (warns once when the
+  /// cropping flags are not supported).
+  void ClipBox(glm::vec3& clipLo, glm::vec3& clipHi);
+
+  vtkMultiPassAMRVolumeMapper* Self;
+
+  // ---- CPU results of the build
+  vtkSinglePassAMRPackedAtlas::PackedHierarchy
+    Data;                                     // Data.Structure.Values are dropped once uploaded
+  std::vector<vtkMultiPassAMRNodeDraw> Draws; // one per leaf with data
+  std::vector<int32_t> DrawOfNode;            // kD node index -> index into Draws, -1 for none
+  long long DataNodes = 0;                    // types (a) and (b)
+  long long TextureBytes = 0;
+
+  // ---- per frame
+  std::vector<int32_t> Order; // indices into Draws, front to back
+  double OrderSeconds = 0.0;
+  long long Passes = 0;
+
+  // ---- OpenGL resources
+  vtkOpenGLRenderWindow* Context = nullptr;
+  int UploadLimit = 0;                // MaximumAtlasSize of the last upload attempt
+  vtkMTimeType UploadedBuildTime = 0; // the build the atlas on the GPU holds
+  std::vector<vtkSmartPointer<vtkTextureObject>> AtlasPages; // one per atlas page
+  vtkSinglePassAMRDepthCopy Depth;
+  vtkSinglePassAMROffscreenImage Accumulation; // viewport-sized, nearest filtering
+  vtkSinglePassAMRTransferFunctionTable Transfer;
+  vtkNew<vtkOpenGLBufferObject> CubeBuffer;
+  vtkNew<vtkOpenGLVertexArrayObject> CubeArray;
+  vtkShaderProgram* CubeArrayProgram = nullptr;
+
+  std::string FailedFragmentSource; // do not retry a program that failed to compile
+
+  /// CPU side: convert, build the tree, pack, and list the nodes' draws. Returns false with
+  /// `error` set on failure.
+  /// `mayRefresh`: a hierarchy of the built structure keeps the tree, layout and draws
+  /// (`refreshed` true) and takes the new values only.
+  bool Build(vtkOverlappingAMR* amr, const std::string& array, int component, int packLimit,
+    int64_t maxPageTexels, bool mayRefresh, bool& refreshed, std::string& error);
+
+  /// Fills Order with the data leaves front to back for rays from `view` (see the class comment).
+  void OrderNodes(const vtkSinglePassAMRViewGeometry::ViewGeometry& view);
+
+  /// Clears the accumulation target and draws the ordered nodes into it, front to back. The
+  /// program, its per-frame uniforms, the textures and the cube's vertex array are ready;
+  /// `steps` is the sampling distance D of each level in model units. Each node's box is
+  /// intersected with [clipLo, clipHi] (index units; the cropping sub-volume or the root box),
+  /// and nodes outside it are not drawn.
+  void DrawNodes(vtkOpenGLState* state, vtkShaderProgram* program,
+    const vtkSinglePassAMRViewGeometry::ViewGeometry& view, const std::vector<float>& steps,
+    const glm::vec3& clipLo, const glm::vec3& clipHi);
+
+  void ReleaseGraphicsResources(vtkWindow* window);
+};
+
+#endif

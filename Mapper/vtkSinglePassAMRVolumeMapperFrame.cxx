@@ -1,0 +1,433 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The steps of a frame after the storage is ready: appearance (transfer function, blending,
+// shading), the shader variant, the proxy box, empty-space flags, textures and uniforms, and the
+// draw of the proxy box's back faces (vtkSinglePassAMRVolumeMapperInternals.h).
+#include "vtkSinglePassAMRVolumeMapperInternals.h"
+
+#include "vtkSinglePassAMRProxyBox.h"
+#include "vtkSinglePassAMRScopedBlendedDraw.h"
+#include "vtkSinglePassAMRShaderComposer.h"
+
+#include "amrsp/SampleStep.h"
+
+#include "vtkCamera.h"
+#include "vtkContourValues.h"
+#include "vtkMath.h"
+#include "vtkOpenGLError.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+#include "vtkSinglePassAMROpenGL.h"
+
+// GLSL embedded at build time (vtk_encode_string)
+#include "amrsp_BrickSample_glsl.h"
+#include "amrsp_KdTreeLayout_glsl.h"
+#include "amrsp_RayCommon_glsl.h"
+#include "amrsp_RaySteps_glsl.h"
+#include "amrsp_Shading_glsl.h"
+#include "amrsp_SmoothCells_glsl.h"
+#include "amrsp_SinglePassAMR_frag_glsl.h"
+#include "amrsp_SinglePassAMR_vert_glsl.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareAppearance(
+  vtkOpenGLRenderWindow* renWin, vtkVolumeProperty* property, vtkSinglePassAMRFrameSettings& frame)
+{
+  vtkSinglePassAMRVolumeMapper* self = this->Self;
+  if (!property)
+  {
+    self->ReportError("the volume has no vtkVolumeProperty");
+    return false;
+  }
+  if (!this->Transfer.Update(renWin, property, this->Data.ScalarRange, self->GetBuildTime()))
+  {
+    self->ReportError("uploading the transfer-function table failed");
+    return false;
+  }
+  if (!this->Transfer.GetWarning().empty())
+  {
+    self->WarnOnce(this->Transfer.GetWarning());
+  }
+  switch (self->GetBlendMode())
+  {
+    case vtkVolumeMapper::COMPOSITE_BLEND:
+      frame.Blend = vtkSinglePassAMRShaderBlend::Composite;
+      break;
+    case vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND:
+      frame.Blend = vtkSinglePassAMRShaderBlend::Maximum;
+      break;
+    case vtkVolumeMapper::MINIMUM_INTENSITY_BLEND:
+      frame.Blend = vtkSinglePassAMRShaderBlend::Minimum;
+      break;
+    case vtkVolumeMapper::AVERAGE_INTENSITY_BLEND:
+      frame.Blend = vtkSinglePassAMRShaderBlend::Average;
+      break;
+    case vtkVolumeMapper::ISOSURFACE_BLEND:
+      frame.Blend = vtkSinglePassAMRShaderBlend::Isosurface;
+      break;
+    default:
+      self->ReportError("blend mode " + std::to_string(self->GetBlendMode()) +
+        " is not supported (composite, maximum, minimum, average intensity and iso-surface are)");
+      return false;
+  }
+  if (frame.Blend == vtkSinglePassAMRShaderBlend::Isosurface)
+  {
+    vtkContourValues* values = property->GetIsoSurfaceValues();
+    const int count = values ? values->GetNumberOfContours() : 0;
+    if (count < 1 || count > 8)
+    {
+      self->ReportError("iso-surface blending needs 1 to 8 values in "
+                        "vtkVolumeProperty::GetIsoSurfaceValues() (it has " +
+        std::to_string(count) + ")");
+      return false;
+    }
+    for (int i = 0; i < count; ++i)
+    {
+      frame.IsoValues.push_back(static_cast<float>(values->GetValue(i)));
+    }
+    std::sort(frame.IsoValues.begin(), frame.IsoValues.end());
+    frame.IsoValues.resize(8, 0.0f);
+    frame.IsoCount = count;
+  }
+  // shading and shadows apply to composite and iso-surface blending only
+  const bool lit = frame.Blend == vtkSinglePassAMRShaderBlend::Composite ||
+    frame.Blend == vtkSinglePassAMRShaderBlend::Isosurface;
+  frame.Shade = lit && property->GetShade(0) != 0;
+  frame.Shadows = lit && self->Shadows;
+  frame.SkipEmpty =
+    self->EmptySpaceSkipping && frame.Blend == vtkSinglePassAMRShaderBlend::Composite;
+  frame.SmoothCells = self->CellInterpolation == SMOOTH_CELL && !this->Data.VertexCentred;
+  frame.Ropes = self->Ropes && this->Storage->GetRopes() != nullptr;
+  frame.UseDepth = self->UseDepthBuffer;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+vtkShaderProgram* vtkSinglePassAMRVolumeMapper::vtkInternals::ReadyShader(
+  vtkOpenGLRenderWindow* renWin, vtkVolume* vol, const vtkSinglePassAMRFrameSettings& frame)
+{
+  vtkSinglePassAMRVolumeMapper* self = this->Self;
+  const amrsp::LevelTable& levels = this->Data.Levels;
+  std::string defines = "#define AMRSP_LEVEL_COUNT " +
+    std::to_string(this->Data.LevelCellSize.size()) + "\n" + this->Storage->GetGridDataDefines() +
+    (this->Data.VertexCentred ? "#define AMRSP_VERTEX_CENTRED 1\n"
+                              : "#define AMRSP_CELL_CENTRED 1\n");
+  const auto define = [&defines](bool on, const std::string& line)
+  {
+    if (on)
+    {
+      defines += "#define " + line + "\n";
+    }
+  };
+  define(frame.Access == WATERFALL_ACCESS, "AMRSP_WATERFALL 1");
+  define(this->Transfer.IsLogarithmic(), "AMRSP_LOG_TRANSFER 1");
+  define(frame.UseDepth, "AMRSP_USE_DEPTH 1");
+  define(frame.UseDepth && frame.Reduced(), "AMRSP_REDUCED_IMAGE 1");
+  define(!levels.LevelToFinestLog2.empty(), "AMRSP_POWER_OF_TWO_REFINEMENT 1");
+  define(levels.UniformRefinementLog2 > 0,
+    "AMRSP_UNIFORM_REFINEMENT_LOG2 " + std::to_string(levels.UniformRefinementLog2));
+  define(true, "AMRSP_BLEND_MODE " + std::to_string(static_cast<int>(frame.Blend)));
+  define(frame.SkipEmpty, "AMRSP_SKIP_EMPTY 1");
+  define(frame.SmoothCells, "AMRSP_SMOOTH_CELLS 1");
+  define(frame.Ropes, "AMRSP_ROPES 1");
+  define(self->RayLoop == FLAT_LOOP, "AMRSP_FLAT_LOOP 1");
+  define(self->DiagnosticAblation != NO_ABLATION,
+    "AMRSP_ABLATION " + std::to_string(self->DiagnosticAblation));
+  define(frame.Shade, "AMRSP_SHADE 1");
+  define(frame.Shadows, "AMRSP_SHADOWS 1");
+  define(
+    self->WorkCountersOutput && self->WorkCountOutput == NO_WORK_COUNT, "AMRSP_WORK_COUNTERS 1");
+  define(self->WorkCountOutput != NO_WORK_COUNT,
+    "AMRSP_WORK_COUNT " + std::to_string(self->WorkCountOutput));
+  const std::string fragment =
+    vtkSinglePassAMRShaderComposer::ComposeFragmentShader(amrsp_SinglePassAMR_frag_glsl, defines,
+      { { "KdTreeLayout", amrsp_KdTreeLayout_glsl }, { "RayCommon", amrsp_RayCommon_glsl },
+        { "BrickSample", amrsp_BrickSample_glsl }, { "SmoothCells", amrsp_SmoothCells_glsl },
+        { "Shading", amrsp_Shading_glsl }, { "RaySteps", amrsp_RaySteps_glsl } },
+      vol);
+  if (fragment == this->FailedFragmentSource)
+  {
+    self->ReportError(
+      "the single-pass AMR shader failed to compile or link (see the earlier error)");
+    return nullptr;
+  }
+  vtkShaderProgram* program = renWin->GetShaderCache()->ReadyShaderProgram(
+    amrsp_SinglePassAMR_vert_glsl, fragment.c_str(), "");
+  if (!program)
+  {
+    this->FailedFragmentSource = fragment;
+    self->ReportError("the single-pass AMR shader failed to compile or link (see the error above)");
+  }
+  return program;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRVolumeMapper::vtkInternals::BindProxyBox(vtkShaderProgram* program)
+{
+  const vtkMTimeType buildTime = this->Self->GetBuildTime().GetMTime();
+  if (this->BoxBufferTime != buildTime || this->BoxBuffer->GetHandle() == 0)
+  {
+    const double* b = this->Data.Levels.Bounds;
+    const double lo[3] = { b[0], b[2], b[4] };
+    const double hi[3] = { b[1], b[3], b[5] };
+    this->BoxBuffer->Upload(
+      vtkSinglePassAMRProxyBox::BoxTriangles(lo, hi), vtkOpenGLBufferObject::ArrayBuffer);
+    this->BoxBufferTime = buildTime;
+    this->BoxArrayProgram = nullptr;
+  }
+  this->BoxArray->Bind();
+  if (this->BoxArrayProgram != program)
+  {
+    this->BoxArray->ReleaseGraphicsResources();
+    this->BoxArray->Bind();
+    if (!this->BoxArray->AddAttributeArray(
+          program, this->BoxBuffer, "vertexMC", 0, 3 * sizeof(float), VTK_FLOAT, 3, false))
+    {
+      this->BoxArray->Release();
+      this->Self->ReportError("cannot bind the proxy box's vertices to the shader");
+      return false;
+    }
+    this->BoxArrayProgram = program;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRVolumeMapper::vtkInternals::UpdateEmptySpaceFlags(
+  vtkOpenGLRenderWindow* renWin, const vtkSinglePassAMRFrameSettings& frame)
+{
+  // the flags stay valid while skipping is switched off: switching it on again reuses them
+  this->TransparentDataNodes = 0;
+  if (!frame.SkipEmpty)
+  {
+    return true;
+  }
+  // the node ranges were joined after the upload (PrepareStorage)
+  float tableRange[2];
+  this->Transfer.GetShaderRange(tableRange);
+  const vtkSinglePassAMRTransferFunctionTable& table = this->Transfer;
+  if (!this->Storage->UpdateTransparentFlags(renWin, this->Data.NodeRanges, table.GetOpacityTable(),
+        tableRange, table.GetTableTime(), [&table](float s) { return table.TableScalar(s); }))
+  {
+    this->Self->ReportError("uploading the empty-space skipping flags failed");
+    return false;
+  }
+  this->TransparentDataNodes = this->Storage->GetFlaggedDataNodes();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeMapper::vtkInternals::ActivateTextures(
+  vtkShaderProgram* program, const vtkSinglePassAMRFrameSettings& frame)
+{
+  vtkSinglePassAMRGridStorage& s = *this->Storage;
+  s.GetTree()->Activate();
+  s.GetDataNodes()->Activate();
+  s.ActivateGridData(program);
+  this->Transfer.GetTexture()->Activate();
+  program->SetUniformi("amrspTree", s.GetTree()->GetTextureUnit());
+  program->SetUniformi("amrspDataNodes", s.GetDataNodes()->GetTextureUnit());
+  program->SetUniformi("amrspTransfer", this->Transfer.GetTexture()->GetTextureUnit());
+  if (frame.SmoothCells)
+  {
+    s.GetBrickBoxes()->Activate();
+    program->SetUniformi("amrspBrickBoxes", s.GetBrickBoxes()->GetTextureUnit());
+  }
+  if (frame.SkipEmpty)
+  {
+    s.GetTransparentFlags()->Activate();
+    program->SetUniformi("amrspTransparentFlags", s.GetTransparentFlags()->GetTextureUnit());
+  }
+  if (frame.Ropes)
+  {
+    s.GetRopes()->Activate();
+    program->SetUniformi("amrspRopes", s.GetRopes()->GetTextureUnit());
+    program->SetUniform3f("amrspRopeCellSize", &this->Data.RopeCellSize.x);
+  }
+  if (frame.UseDepth)
+  {
+    program->SetUniformi("amrspDepth", this->Depth.Depth->GetTextureUnit());
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeMapper::vtkInternals::SetDataUniforms(vtkShaderProgram* program,
+  vtkRenderer* ren, vtkVolumeProperty* property,
+  const vtkSinglePassAMRViewGeometry::ViewGeometry& view,
+  const vtkSinglePassAMRFrameSettings& frame)
+{
+  vtkSinglePassAMRVolumeMapper* self = this->Self;
+  const amrsp::RayCastingData& d = this->Data;
+  const amrsp::LevelTable& levels = d.Levels;
+  const int levelCount = static_cast<int>(d.LevelCellSize.size());
+  std::vector<float> steps;
+  for (double edge : levels.LevelMinEdge)
+  {
+    steps.push_back(static_cast<float>(amrsp::LevelSampleStep(
+      self->SampleDistanceFactor * frame.Quality.SampleDistanceScale, edge)));
+  }
+  const glm::vec3 origin(d.Data.Origin);
+  const glm::vec3 spacing(d.Data.Spacing0);
+  const float viewport[4] = { static_cast<float>(view.X0), static_cast<float>(view.Y0),
+    static_cast<float>(view.Width), static_cast<float>(view.Height) };
+  float transferRange[2];
+  this->Transfer.GetShaderRange(transferRange);
+
+  program->SetUniformf("amrspOpacityThreshold", static_cast<float>(self->OpacityThreshold));
+  program->SetUniformMatrix4x4("amrspMCDCMatrix", const_cast<float*>(view.MCDC));
+  program->SetUniformMatrix4x4("amrspDCMCMatrix", const_cast<float*>(view.DCMC));
+  program->SetUniform4f("amrspViewport", viewport);
+  program->SetUniform4f("amrspEyeMC", view.EyeMC);
+  program->SetUniform3f("amrspOrigin", &origin.x);
+  program->SetUniform3f("amrspSpacing0", &spacing.x);
+  program->SetUniform3f("amrspRootLo", &d.RootLo.x);
+  program->SetUniform3f("amrspRootHi", &d.RootHi.x);
+  glm::vec3 clipLo, clipHi;
+  std::string cropWarning;
+  vtkSinglePassAMRProxyBox::ClipBox(
+    self, d.Data.Origin, d.Data.Spacing0, d.RootLo, d.RootHi, clipLo, clipHi, cropWarning);
+  if (!cropWarning.empty())
+  {
+    self->WarnOnce(cropWarning);
+  }
+  program->SetUniform3f("amrspClipLo", &clipLo.x);
+  program->SetUniform3f("amrspClipHi", &clipHi.x);
+  program->SetUniform1iv("amrspRootLoFinest", 3, &levels.RootLoFinest.x);
+  program->SetUniform1iv("amrspRootHiFinest", 3, &levels.RootHiFinest.x);
+  // (with uniform power-of-two refinement the shader computes these from the level)
+  if (program->IsUniformUsed("amrspLevelCellSize"))
+  {
+    program->SetUniform3fv("amrspLevelCellSize", levelCount, &d.LevelCellSize[0].x);
+  }
+  if (program->IsUniformUsed("amrspLevelToFinest"))
+  {
+    program->SetUniform1iv("amrspLevelToFinest", 3 * levelCount, levels.LevelToFinest.data());
+  }
+  if (levels.UniformRefinementLog2 > 0)
+  {
+    program->SetUniformf("amrspFinestCellSize", d.LevelCellSize.back().x);
+  }
+  else if (!levels.LevelToFinestLog2.empty())
+  {
+    program->SetUniform1iv(
+      "amrspLevelToFinestLog2", 3 * levelCount, levels.LevelToFinestLog2.data());
+  }
+  program->SetUniform1fv("amrspLevelStep", levelCount, steps.data());
+  const long long guard = 4 * d.KdNodes + 16;
+  program->SetUniformi("amrspMaxSegments", static_cast<int>(std::min<long long>(guard, 1 << 30)));
+  if (self->DiagnosticAblation == SAMPLING_ONLY)
+  {
+    program->SetUniformi("amrspAblationSamples", self->DiagnosticAblationSamples);
+  }
+  program->SetUniform2f("amrspTransferRange", transferRange);
+  program->SetUniformf(
+    "amrspTransferSize", static_cast<float>(vtkSinglePassAMRTransferFunctionTable::Size));
+  // level of detail: world size of a pixel at distance 1 (perspective) or everywhere (parallel),
+  // as amrsp::LevelOfDetail
+  vtkCamera* camera = ren->GetActiveCamera();
+  const float pixelPerDistance = view.Parallel
+    ? 0.0f
+    : static_cast<float>(
+        2.0 * std::tan(vtkMath::RadiansFromDegrees(camera->GetViewAngle()) * 0.5) / view.Height);
+  const float parallelPixel =
+    view.Parallel ? static_cast<float>(2.0 * camera->GetParallelScale() / view.Height) : 0.0f;
+  program->SetUniformf("amrspLodThreshold", static_cast<float>(self->LODThreshold));
+  program->SetUniformf("amrspPixelSizePerDistance", pixelPerDistance);
+  program->SetUniformf("amrspParallelPixelSize", parallelPixel);
+  program->SetUniformf("amrspUnitDistance",
+    static_cast<float>(std::max(property->GetScalarOpacityUnitDistance(0), 1e-12)));
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeMapper::vtkInternals::SetLightingUniforms(vtkShaderProgram* program,
+  vtkRenderer* ren, vtkVolume* vol, vtkVolumeProperty* property,
+  const vtkSinglePassAMRFrameSettings& frame)
+{
+  const vtkSinglePassAMRViewGeometry::ModelLight light =
+    vtkSinglePassAMRViewGeometry::FirstLightInModel(ren, vol);
+  const auto setIfUsed = [program](const char* name, auto&& set)
+  {
+    if (program->IsUniformUsed(name))
+    {
+      set(name);
+    }
+  };
+  setIfUsed("amrspAmbient",
+    [&](const char* n) { program->SetUniformf(n, static_cast<float>(property->GetAmbient(0))); });
+  setIfUsed("amrspDiffuse",
+    [&](const char* n) { program->SetUniformf(n, static_cast<float>(property->GetDiffuse(0))); });
+  setIfUsed("amrspSpecular",
+    [&](const char* n) { program->SetUniformf(n, static_cast<float>(property->GetSpecular(0))); });
+  setIfUsed("amrspSpecularPower",
+    [&](const char* n)
+    { program->SetUniformf(n, static_cast<float>(property->GetSpecularPower(0))); });
+  setIfUsed("amrspLightPositional",
+    [&](const char* n) { program->SetUniformi(n, light.Positional ? 1 : 0); });
+  setIfUsed(
+    "amrspLightPositionMC", [&](const char* n) { program->SetUniform3f(n, light.Position); });
+  setIfUsed(
+    "amrspLightDirectionMC", [&](const char* n) { program->SetUniform3f(n, light.Direction); });
+  setIfUsed("amrspLightColour", [&](const char* n) { program->SetUniform3f(n, light.Colour); });
+  const std::vector<double>& minEdge = this->Data.Levels.LevelMinEdge;
+  const double shadowStep = this->Self->ShadowSampleDistance > 0.0
+    ? this->Self->ShadowSampleDistance
+    : (minEdge.empty() ? 1.0 : minEdge[0]);
+  setIfUsed("amrspShadowStep",
+    [&](const char* n) { program->SetUniformf(n, static_cast<float>(shadowStep)); });
+  setIfUsed("amrspIsoCount", [&](const char* n) { program->SetUniformi(n, frame.IsoCount); });
+  if (!frame.IsoValues.empty())
+  {
+    setIfUsed("amrspIsoValues",
+      [&](const char* n) { program->SetUniform1fv(n, 8, frame.IsoValues.data()); });
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeMapper::vtkInternals::DrawBackFaces(
+  vtkOpenGLRenderWindow* renWin, const vtkSinglePassAMRViewGeometry::ViewGeometry& view)
+{
+  {
+    // back faces only (a mirroring volume transform flips the winding), premultiplied "over"
+    const vtkSinglePassAMRScopedBlendedDraw blended(
+      renWin->GetState(), view.Mirrored ? GL_BACK : GL_FRONT, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    glDrawArrays(GL_TRIANGLES, 0, 36);
+  }
+  this->BoxArray->Release();
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeMapper::vtkInternals::DeactivateTextures(
+  const vtkSinglePassAMRFrameSettings& frame)
+{
+  vtkSinglePassAMRGridStorage& s = *this->Storage;
+  s.GetTree()->Deactivate();
+  s.GetDataNodes()->Deactivate();
+  s.DeactivateGridData();
+  this->Transfer.GetTexture()->Deactivate();
+  if (frame.SmoothCells)
+  {
+    s.GetBrickBoxes()->Deactivate();
+  }
+  if (frame.SkipEmpty)
+  {
+    s.GetTransparentFlags()->Deactivate();
+  }
+  if (frame.Ropes)
+  {
+    s.GetRopes()->Deactivate();
+  }
+  if (frame.UseDepth)
+  {
+    this->Depth.Depth->Deactivate();
+  }
+}

@@ -1,0 +1,175 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file    vtkSinglePassAMRVolumeMapperInternals.h
+ * @brief   the single-pass mapper's state and the steps of its frame (private to the module)
+ *
+ * vtkSinglePassAMRVolumeMapper.cxx holds the build, the storage and the kept time steps;
+ * vtkSinglePassAMRVolumeMapperFrame.cxx the frame's appearance, shader, uniforms and draw.
+ */
+#ifndef vtkSinglePassAMRVolumeMapperInternals_h
+#define vtkSinglePassAMRVolumeMapperInternals_h
+
+#include "vtkSinglePassAMRVolumeMapper.h"
+
+#include "vtkSinglePassAMRDepthCopy.h"
+#include "vtkSinglePassAMRFrameBudget.h"
+#include "vtkSinglePassAMRGridStorage.h"
+#include "vtkSinglePassAMRTransferFunctionTable.h"
+#include "vtkSinglePassAMRViewGeometry.h"
+
+#include "amrsp/RayCastingData.h"
+
+#include "vtkNew.h"
+#include "vtkOpenGLBufferObject.h"
+#include "vtkOpenGLVertexArrayObject.h"
+
+#include <list>
+#include <memory>
+#include <string>
+#include <vector>
+
+class vtkOpenGLRenderWindow;
+class vtkRenderer;
+class vtkShaderProgram;
+class vtkVolume;
+class vtkVolumeProperty;
+
+/// The shader's AMRSP_BLEND_MODE values (Shaders/RaySteps.glsl).
+enum class vtkSinglePassAMRShaderBlend : int
+{
+  Composite = 0,
+  Maximum = 1,
+  Minimum = 2,
+  Average = 3,
+  Isosurface = 4
+};
+
+/// What one frame renders, resolved from the mapper's settings, the volume property and what
+/// the context offers. The shader variant depends on these and on the data only.
+struct vtkSinglePassAMRFrameSettings
+{
+  int Storage = -1; // PACKED_ATLAS, BINDLESS_TEXTURES or LINEAR_BRICKS
+  int Access = -1;  // DIRECT_ACCESS or WATERFALL_ACCESS with bindless, else -1
+  vtkSinglePassAMRShaderBlend Blend = vtkSinglePassAMRShaderBlend::Composite;
+  std::vector<float> IsoValues; // sorted, padded to 8 (iso-surface blending only)
+  int IsoCount = 0;
+  bool Shade = false;       // gradient shading (composite and iso-surface blending)
+  bool Shadows = false;     // shadow rays (composite and iso-surface blending)
+  bool SkipEmpty = false;   // empty-space skipping (composite blending)
+  bool SmoothCells = false; // trilinear cell reconstruction (cell data)
+  bool Ropes = false;       // neighbour links (when the build has them)
+  bool UseDepth = false;
+  amrsp::FrameQuality Quality; // image sample distance and sample-distance scale
+
+  bool Reduced() const { return this->Quality.ImageSampleDistance > 1.0; }
+};
+
+//------------------------------------------------------------------------------
+class vtkSinglePassAMRVolumeMapper::vtkInternals
+{
+public:
+  explicit vtkInternals(vtkSinglePassAMRVolumeMapper* self)
+    : Self(self)
+  {
+  }
+
+  // The steps of a frame, in order. Each returns false after Self->ReportError when the frame
+  // cannot be drawn.
+  /// Chooses the storage (warning once when a requested bindless storage falls back to the
+  /// atlas) and uploads the data when the build, the storage, the context or the atlas limit
+  /// changed.
+  bool PrepareStorage(
+    vtkOpenGLRenderWindow* renWin, vtkOverlappingAMR* amr, vtkSinglePassAMRFrameSettings& frame);
+  /// Uploads the refreshed values of the uploaded structure (PendingValuesUpload).
+  bool UploadValues(vtkOpenGLRenderWindow* renWin);
+  /// Tabulates the transfer function and resolves blending, shading, shadows and skipping.
+  bool PrepareAppearance(vtkOpenGLRenderWindow* renWin, vtkVolumeProperty* property,
+    vtkSinglePassAMRFrameSettings& frame);
+  /// The shader variant of `frame`, compiled once per variant by VTK's shader cache.
+  vtkShaderProgram* ReadyShader(
+    vtkOpenGLRenderWindow* renWin, vtkVolume* vol, const vtkSinglePassAMRFrameSettings& frame);
+  /// Uploads the root box's triangles after a build and binds them to `program`'s vertexMC.
+  bool BindProxyBox(vtkShaderProgram* program);
+  /// Re-flags the transparent data nodes when the transfer table changed (composite only).
+  bool UpdateEmptySpaceFlags(
+    vtkOpenGLRenderWindow* renWin, const vtkSinglePassAMRFrameSettings& frame);
+  void ActivateTextures(vtkShaderProgram* program, const vtkSinglePassAMRFrameSettings& frame);
+  /// The tree, the levels, sampling, transfer function, clipping and level of detail.
+  void SetDataUniforms(vtkShaderProgram* program, vtkRenderer* ren, vtkVolumeProperty* property,
+    const vtkSinglePassAMRViewGeometry::ViewGeometry& view,
+    const vtkSinglePassAMRFrameSettings& frame);
+  /// The first light in model coordinates, the material, shadow step and iso-values.
+  void SetLightingUniforms(vtkShaderProgram* program, vtkRenderer* ren, vtkVolume* vol,
+    vtkVolumeProperty* property, const vtkSinglePassAMRFrameSettings& frame);
+  /// Draws the proxy box's back faces once per pixel, blending premultiplied colour "over".
+  void DrawBackFaces(
+    vtkOpenGLRenderWindow* renWin, const vtkSinglePassAMRViewGeometry::ViewGeometry& view);
+  void DeactivateTextures(const vtkSinglePassAMRFrameSettings& frame);
+
+  vtkSinglePassAMRVolumeMapper* Self;
+
+  /// The CPU build; its bricks and texels wait in it until uploaded (PendingUpload), or, after
+  /// a refresh of the values of an uploaded structure, its new bricks (PendingValuesUpload).
+  amrsp::RayCastingData Data;
+  bool PendingUpload = false;
+  bool PendingValuesUpload = false;
+  /// The input Data was built from (identity only, never dereferenced) and its MTime.
+  const void* DataInput = nullptr;
+  vtkMTimeType DataInputMTime = 0;
+
+  /// Time steps shown before, kept with their textures (MaximumKeptStepBytes), most recently
+  /// used first: an input that is one of them again is shown without a build or an upload.
+  struct KeptStep
+  {
+    const void* Input;
+    vtkMTimeType InputMTime;
+    amrsp::RayCastingData Data;
+    std::unique_ptr<vtkSinglePassAMRGridStorage> Storage;
+  };
+  std::list<KeptStep> KeptSteps;
+  int KeptStepHits = 0;
+  /// Whether the current data are on the GPU with nothing pending (then it can be kept).
+  bool CurrentIsUploaded() const
+  {
+    return !this->PendingUpload && !this->PendingValuesUpload && this->Storage->HasUpload();
+  }
+  /// Moves the current step into KeptSteps; `next` becomes the current storage.
+  void KeepCurrent(amrsp::RayCastingData data, std::unique_ptr<vtkSinglePassAMRGridStorage> next)
+  {
+    this->KeptSteps.push_front(
+      KeptStep{ this->DataInput, this->DataInputMTime, std::move(data), std::move(this->Storage) });
+    this->Storage = std::move(next);
+  }
+  /// Frees the least recently used kept steps beyond `budget` bytes of textures (in a render:
+  /// their textures are deleted in the current context).
+  void TrimKeptSteps(long long budget)
+  {
+    long long bytes = 0;
+    for (auto it = this->KeptSteps.begin(); it != this->KeptSteps.end();)
+    {
+      bytes += it->Storage->GetTextureBytes();
+      it = bytes > budget ? this->KeptSteps.erase(it) : std::next(it);
+    }
+  }
+  std::unique_ptr<vtkSinglePassAMRGridStorage> Storage{ new vtkSinglePassAMRGridStorage };
+  vtkSinglePassAMRTransferFunctionTable Transfer;
+  vtkSinglePassAMRDepthCopy Depth;
+  vtkSinglePassAMRFrameBudget Budget;
+
+  // proxy geometry: the root box's 12 triangles, for the build of BoxBufferTime
+  vtkNew<vtkOpenGLBufferObject> BoxBuffer;
+  vtkNew<vtkOpenGLVertexArrayObject> BoxArray;
+  vtkShaderProgram* BoxArrayProgram = nullptr;
+  vtkMTimeType BoxBufferTime = 0;
+
+  std::string FailedFragmentSource; // do not retry a program that failed to compile
+
+  // what the last frame did
+  int LastStorage = -1;
+  bool LastRopes = false;
+  int LastAccess = -1;
+  std::string StorageNote; // why it did not use the bindless storage it was asked for
+  long long TransparentDataNodes = 0;
+};
+
+#endif
