@@ -4,7 +4,6 @@
 #include "vtkSinglePassAMRBindlessBricks.h"
 #include "vtkSinglePassAMRPackedAtlas.h"
 #include "vtkSinglePassAMRTextures.h"
-#include "vtkSinglePassAMRVolumeMapper.h"
 
 #include "amrsp/AtlasPages.h"
 #include "amrsp/BrickAtlas.h"
@@ -56,103 +55,66 @@ void vtkSinglePassAMRGridStorage::QueryCapabilities(vtkOpenGLRenderWindow* renWi
 }
 
 //------------------------------------------------------------------------------
-int vtkSinglePassAMRGridStorage::ResolveAccess(
-  vtkOpenGLRenderWindow* renWin, int access, std::string& why)
+vtkSinglePassAMRBindlessAccess vtkSinglePassAMRGridStorage::ResolveAccess(
+  vtkOpenGLRenderWindow* renWin, vtkSinglePassAMRBindlessAccess access, std::string& why)
 {
+  using Access = vtkSinglePassAMRBindlessAccess;
   this->QueryCapabilities(renWin);
   if (!this->HasBindless)
   {
     why = "the OpenGL context lacks GL_ARB_bindless_texture";
-    return -1;
+    return Access::None;
   }
-  if (access == vtkSinglePassAMRVolumeMapper::DIRECT_ACCESS ||
-    (access == vtkSinglePassAMRVolumeMapper::AUTO_ACCESS && this->HasNVShader5))
+  if (access == Access::Direct || (access == Access::Auto && this->HasNVShader5))
   {
-    return vtkSinglePassAMRVolumeMapper::DIRECT_ACCESS;
+    return Access::Direct;
   }
   if (this->HasBallot)
   {
-    return vtkSinglePassAMRVolumeMapper::WATERFALL_ACCESS;
+    return Access::Waterfall;
   }
-  why = access == vtkSinglePassAMRVolumeMapper::WATERFALL_ACCESS
+  why = access == Access::Waterfall
     ? "the waterfall access needs GL_ARB_shader_ballot, which the OpenGL context lacks"
     : "non-uniform bindless handles need GL_NV_gpu_shader5 or GL_ARB_shader_ballot, and the "
       "OpenGL context has neither";
-  return -1;
+  return Access::None;
 }
 
 //------------------------------------------------------------------------------
-vtkSinglePassAMRGridStorage::Choice vtkSinglePassAMRGridStorage::Choose(
-  vtkOpenGLRenderWindow* renWin, const amrsp::RayCastingData& data, int requested, int access,
-  double autoBindlessWaste, int atlasLimit, long long autoLinearBytes)
+vtkSinglePassAMRStorageChoice vtkSinglePassAMRGridStorage::Choose(vtkOpenGLRenderWindow* renWin,
+  const amrsp::RayCastingData& data, const vtkSinglePassAMRStorageRequest& request, int atlasLimit)
 {
-  Choice c;
-  std::string noBindless;
-  int resolved = this->ResolveAccess(renWin, access, noBindless);
-  if (resolved >= 0 && this->MaxBindlessTextures >= 0 && data.Grids > this->MaxBindlessTextures)
+  vtkSinglePassAMRStorageFacts facts;
+  facts.Bindless = this->ResolveAccess(renWin, request.Access, facts.NoBindless);
+  if (facts.Bindless != vtkSinglePassAMRBindlessAccess::None && this->MaxBindlessTextures >= 0 &&
+    data.Grids > this->MaxBindlessTextures)
   {
-    noBindless = "this driver (Mesa's zink) holds at most " +
+    facts.NoBindless = "this driver (Mesa's zink) holds at most " +
       std::to_string(this->MaxBindlessTextures) + " bindless textures and the hierarchy has " +
       std::to_string(data.Grids) + " grids";
-    resolved = -1;
+    facts.Bindless = vtkSinglePassAMRBindlessAccess::None;
   }
-  std::string noAtlas = data.PackingError;
-  bool atlasFits = noAtlas.empty();
+  facts.NoAtlas = data.PackingError;
+  facts.AtlasFits = facts.NoAtlas.empty();
   for (const glm::ivec3& dims : data.PageDims)
   {
-    atlasFits =
-      atlasFits && vtkSinglePassAMRPackedAtlas::AtlasFitsContext(renWin, dims, atlasLimit, noAtlas);
+    facts.AtlasFits = facts.AtlasFits &&
+      vtkSinglePassAMRPackedAtlas::AtlasFitsContext(renWin, dims, atlasLimit, facts.NoAtlas);
   }
-  if (requested == vtkSinglePassAMRVolumeMapper::LINEAR_BRICKS)
+  facts.AtlasWaste = data.AtlasWaste;
+  facts.BrickBytes = data.BrickBytes;
+  facts.CpuDriver = this->IsCpuDriver;
+  facts.LinearFits = [this, renWin, &data]
   {
-    // 2D textures and integer fetches: what every context that renders at all offers
-    c.Storage = requested;
-    return c;
-  }
-  int storage = vtkSinglePassAMRVolumeMapper::PACKED_ATLAS;
-  if (requested == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES)
-  {
-    if (resolved >= 0)
-    {
-      storage = vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES;
-    }
-    else
-    {
-      c.FallbackReason = noBindless;
-    }
-  }
-  else if (requested == vtkSinglePassAMRVolumeMapper::AUTO_STORAGE && resolved >= 0 &&
-    (!atlasFits || data.AtlasWaste > autoBindlessWaste))
-  {
-    storage = vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES;
-  }
-  else if (requested == vtkSinglePassAMRVolumeMapper::AUTO_STORAGE &&
-    (!atlasFits || (this->IsCpuDriver && data.BrickBytes >= autoLinearBytes)) &&
-    vtkSinglePassAMRLinearBricks::Fits(
-      renWin, data.Data, data.VertexCentred, this->LinearPageBytes))
-  {
-    c.Storage = vtkSinglePassAMRVolumeMapper::LINEAR_BRICKS;
-    return c;
-  }
-  if (storage == vtkSinglePassAMRVolumeMapper::PACKED_ATLAS && !atlasFits)
-  {
-    c.Error = noAtlas +
-      (requested == vtkSinglePassAMRVolumeMapper::PACKED_ATLAS
-          ? std::string()
-          : "; bindless textures cannot be used: " + noBindless) +
-      (requested == vtkSinglePassAMRVolumeMapper::AUTO_STORAGE
-          ? "; nor do the linear bricks fit the pages this context allows"
-          : "");
-    return c;
-  }
-  c.Storage = storage;
-  c.Access = storage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES ? resolved : -1;
-  return c;
+    return vtkSinglePassAMRLinearBricks::Fits(
+      renWin, data.Data, data.VertexCentred, this->LinearPageBytes);
+  };
+  return vtkSinglePassAMRStorageChoice::Choose(request, facts);
 }
 
 //------------------------------------------------------------------------------
 bool vtkSinglePassAMRGridStorage::IsUploaded(
-  vtkOpenGLRenderWindow* renWin, int storage, int atlasLimit) const
+  vtkOpenGLRenderWindow* renWin, vtkSinglePassAMRStorage storage, int atlasLimit) const
 {
   return this->UploadedStorage == storage && this->Context == renWin &&
     this->UploadLimit == atlasLimit;
@@ -161,11 +123,11 @@ bool vtkSinglePassAMRGridStorage::IsUploaded(
 //------------------------------------------------------------------------------
 std::string vtkSinglePassAMRGridStorage::GetGridDataDefines() const
 {
-  if (this->UploadedStorage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES)
+  if (this->UploadedStorage == vtkSinglePassAMRStorage::BindlessTextures)
   {
     return "#define AMRSP_BINDLESS 1\n";
   }
-  if (this->UploadedStorage == vtkSinglePassAMRVolumeMapper::LINEAR_BRICKS)
+  if (this->UploadedStorage == vtkSinglePassAMRStorage::LinearBricks)
   {
     return this->Linear.GetShaderDefines();
   }
@@ -177,13 +139,13 @@ std::string vtkSinglePassAMRGridStorage::GetGridDataDefines() const
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRGridStorage::ActivateGridData(vtkShaderProgram* program)
 {
-  if (this->UploadedStorage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES)
+  if (this->UploadedStorage == vtkSinglePassAMRStorage::BindlessTextures)
   {
     this->HandlesTexture->Activate();
     program->SetUniformi("amrspHandles", this->HandlesTexture->GetTextureUnit());
     return;
   }
-  if (this->UploadedStorage == vtkSinglePassAMRVolumeMapper::LINEAR_BRICKS)
+  if (this->UploadedStorage == vtkSinglePassAMRStorage::LinearBricks)
   {
     this->Linear.Activate(program);
     return;
@@ -211,11 +173,11 @@ void vtkSinglePassAMRGridStorage::ActivateGridData(vtkShaderProgram* program)
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRGridStorage::DeactivateGridData()
 {
-  if (this->UploadedStorage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES)
+  if (this->UploadedStorage == vtkSinglePassAMRStorage::BindlessTextures)
   {
     this->HandlesTexture->Deactivate();
   }
-  else if (this->UploadedStorage == vtkSinglePassAMRVolumeMapper::LINEAR_BRICKS)
+  else if (this->UploadedStorage == vtkSinglePassAMRStorage::LinearBricks)
   {
     this->Linear.Deactivate();
   }
@@ -226,13 +188,13 @@ void vtkSinglePassAMRGridStorage::DeactivateGridData()
 }
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, int storage, int atlasLimit,
-  const amrsp::RayCastingData& data, std::string& error,
-  const std::function<void(double)>& progress)
+bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin,
+  vtkSinglePassAMRStorage storage, int atlasLimit, const amrsp::RayCastingData& data,
+  std::string& error, const std::function<void(double)>& progress)
 {
   this->UploadLimit = atlasLimit;
-  const bool bindless = storage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES;
-  const bool linear = storage == vtkSinglePassAMRVolumeMapper::LINEAR_BRICKS;
+  const bool bindless = storage == vtkSinglePassAMRStorage::BindlessTextures;
+  const bool linear = storage == vtkSinglePassAMRStorage::LinearBricks;
   // bindless and linear bricks: each data node holds its offset inside its own brick
   const amrsp::UIntTexture3D& dataNodes =
     bindless || linear ? data.BindlessDataNodeTexels : data.PackedDataNodeTexels;
@@ -254,7 +216,7 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, int stor
   this->AtlasPages.clear();
   this->Linear.Clear();
   this->TransparentFlags = nullptr; // the data nodes may have changed: flagged again per frame
-  this->UploadedStorage = -1;
+  this->UploadedStorage = vtkSinglePassAMRStorage::None;
   while (glGetError() != GL_NO_ERROR)
   {
   }
@@ -333,19 +295,19 @@ bool vtkSinglePassAMRGridStorage::UploadValues(vtkOpenGLRenderWindow* renWin,
   const amrsp::RayCastingData& data, std::string& error,
   const std::function<void(double)>& progress)
 {
-  const int storage = this->UploadedStorage;
+  const vtkSinglePassAMRStorage storage = this->UploadedStorage;
   this->TransparentFlags = nullptr; // the node ranges are the new step's
   while (glGetError() != GL_NO_ERROR)
   {
   }
   bool ok = false;
-  if (storage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES)
+  if (storage == vtkSinglePassAMRStorage::BindlessTextures)
   {
     this->ReleaseBindless(renWin);
     this->HandlesTexture = nullptr;
     ok = this->UploadBindless(renWin, data, error);
   }
-  else if (storage == vtkSinglePassAMRVolumeMapper::LINEAR_BRICKS)
+  else if (storage == vtkSinglePassAMRStorage::LinearBricks)
   {
     this->Linear.Clear();
     ok = this->Linear.Upload(
@@ -362,13 +324,13 @@ bool vtkSinglePassAMRGridStorage::UploadValues(vtkOpenGLRenderWindow* renWin,
     if (error.empty())
     {
       error = UploadFailure(std::string("the new time step's ") +
-          (storage == vtkSinglePassAMRVolumeMapper::LINEAR_BRICKS ? "linear" : "atlas"),
+          (storage == vtkSinglePassAMRStorage::LinearBricks ? "linear" : "atlas"),
         data.PackedBytes, glError);
     }
     this->ReleaseBindless(renWin);
     this->AtlasPages.clear();
     this->Linear.Clear();
-    this->UploadedStorage = -1;
+    this->UploadedStorage = vtkSinglePassAMRStorage::None;
     return false;
   }
   return true;
@@ -377,8 +339,8 @@ bool vtkSinglePassAMRGridStorage::UploadValues(vtkOpenGLRenderWindow* renWin,
 //------------------------------------------------------------------------------
 std::unique_ptr<vtkSinglePassAMRGridStorage> vtkSinglePassAMRGridStorage::ShareStructure() const
 {
-  if (this->UploadedStorage < 0 ||
-    this->UploadedStorage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES)
+  if (this->UploadedStorage == vtkSinglePassAMRStorage::None ||
+    this->UploadedStorage == vtkSinglePassAMRStorage::BindlessTextures)
   {
     return nullptr;
   }
@@ -521,7 +483,7 @@ void vtkSinglePassAMRGridStorage::ReleaseGraphicsResources(vtkWindow* window)
   {
     this->ReleaseBindless(window);
   }
-  this->UploadedStorage = -1;
+  this->UploadedStorage = vtkSinglePassAMRStorage::None;
   for (vtkSmartPointer<vtkTextureObject>& page : this->AtlasPages)
   {
     page->ReleaseGraphicsResources(window);
@@ -539,56 +501,4 @@ void vtkSinglePassAMRGridStorage::ReleaseGraphicsResources(vtkWindow* window)
   }
   this->Context = nullptr;
   this->CapsContext = nullptr;
-}
-
-//------------------------------------------------------------------------------
-// The names of vtkSinglePassAMRVolumeMapper's storage and access modes, which this class resolves.
-const char* vtkSinglePassAMRVolumeMapper::GetDataStorageName(int storage)
-{
-  switch (storage)
-  {
-    case PACKED_ATLAS:
-      return "packing";
-    case BINDLESS_TEXTURES:
-      return "bindless";
-    case LINEAR_BRICKS:
-      return "linear";
-    case AUTO_STORAGE:
-      return "auto";
-    default:
-      return "none";
-  }
-}
-
-const char* vtkSinglePassAMRVolumeMapper::GetBindlessAccessName(int access)
-{
-  switch (access)
-  {
-    case DIRECT_ACCESS:
-      return "direct";
-    case WATERFALL_ACCESS:
-      return "waterfall";
-    case AUTO_ACCESS:
-      return "auto";
-    default:
-      return "none";
-  }
-}
-
-//------------------------------------------------------------------------------
-bool vtkSinglePassAMRVolumeMapper::IsBindlessSupported(vtkRenderWindow* window, std::string* why)
-{
-  std::string reason;
-  bool supported = IsRenderSupported(window, &reason);
-  if (supported)
-  {
-    vtkSinglePassAMRGridStorage capabilities;
-    supported = capabilities.ResolveAccess(
-                  vtkOpenGLRenderWindow::SafeDownCast(window), AUTO_ACCESS, reason) >= 0;
-  }
-  if (!supported && why)
-  {
-    *why = reason;
-  }
-  return supported;
 }

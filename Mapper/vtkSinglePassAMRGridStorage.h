@@ -14,8 +14,7 @@
  * - the grids' cell boxes (RG32UI, 3 texels per grid) for the smooth-cell reconstruction;
  * - the empty-space flags (R8, one per data node) for the current transfer-function table.
  * It also answers what the context can do (bindless extensions, access modes, the driver's
- * handle limit) and makes the AUTO_STORAGE choice. Storage and access values are those of
- * vtkSinglePassAMRVolumeMapper's DataStorageMode and BindlessAccessMode.
+ * handle limit), the facts vtkSinglePassAMRStorageChoice decides on.
  */
 #ifndef vtkSinglePassAMRGridStorage_h
 #define vtkSinglePassAMRGridStorage_h
@@ -24,6 +23,7 @@
 
 #include "vtkSinglePassAMRBindlessBricks.h"
 #include "vtkSinglePassAMRLinearBricks.h"
+#include "vtkSinglePassAMRStorageChoice.h"
 
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
@@ -42,40 +42,29 @@ class vtkWindow;
 class vtkSinglePassAMRGridStorage
 {
 public:
-  /// What a frame renders with, and why bindless was not used when it was asked for.
-  struct Choice
-  {
-    int Storage = -1; ///< PACKED_ATLAS, BINDLESS_TEXTURES or LINEAR_BRICKS; -1: none can render
-    int Access = -1;  ///< DIRECT_ACCESS or WATERFALL_ACCESS for bindless, else -1
-    /// Why bindless was not used although BINDLESS_TEXTURES was requested (a warning for the
-    /// user: the frame falls back to the atlas), else empty.
-    std::string FallbackReason;
-    /// Why nothing can render (Storage = -1), else empty.
-    std::string Error;
-  };
+  /// The storage for `data` in `renWin` (vtkSinglePassAMRStorageChoice::Choose on what the
+  /// context and the build allow), the packed atlas held to `atlasLimit` texels per edge (> 0)
+  /// and GL_MAX_3D_TEXTURE_SIZE.
+  vtkSinglePassAMRStorageChoice Choose(vtkOpenGLRenderWindow* renWin,
+    const amrsp::RayCastingData& data, const vtkSinglePassAMRStorageRequest& request,
+    int atlasLimit);
 
-  /// The storage for `data` in `renWin`: `requested` and `access` are the mapper's DataStorage
-  /// and BindlessAccess; AUTO_STORAGE takes bindless where it runs and the atlas cannot be built,
-  /// exceeds `atlasLimit` (> 0) or GL_MAX_3D_TEXTURE_SIZE, or wastes more than `autoBindlessWaste`
-  /// of its texels; else the linear bricks where the atlas cannot be used, or on a CPU driver
-  /// when the grid data holds at least `autoLinearBytes`; else the atlas.
-  Choice Choose(vtkOpenGLRenderWindow* renWin, const amrsp::RayCastingData& data, int requested,
-    int access, double autoBindlessWaste, int atlasLimit, long long autoLinearBytes);
-
-  /// Whether `renWin` can render bindless with `access` (AUTO_ACCESS, DIRECT_ACCESS or
-  /// WATERFALL_ACCESS); returns the access mode that runs, or -1 with `why`.
-  int ResolveAccess(vtkOpenGLRenderWindow* renWin, int access, std::string& why);
+  /// The bindless access `access` resolves to in `renWin` (Auto: direct with GL_NV_gpu_shader5,
+  /// else waterfall), or None with `why`.
+  vtkSinglePassAMRBindlessAccess ResolveAccess(
+    vtkOpenGLRenderWindow* renWin, vtkSinglePassAMRBindlessAccess access, std::string& why);
 
   /// Whether the textures of `storage` in `renWin` are up to date for the data built last.
-  bool IsUploaded(vtkOpenGLRenderWindow* renWin, int storage, int atlasLimit) const;
+  bool IsUploaded(
+    vtkOpenGLRenderWindow* renWin, vtkSinglePassAMRStorage storage, int atlasLimit) const;
   /// Whether anything is uploaded (a storage and a context).
-  bool HasUpload() const { return this->UploadedStorage >= 0; }
+  bool HasUpload() const { return this->UploadedStorage != vtkSinglePassAMRStorage::None; }
 
   /// Uploads the tree and the grid data of `data` in `storage`; the previous textures are freed
   /// first. Returns false with a one-line `error` (a texture over GL_MAX_3D_TEXTURE_SIZE, the
   /// driver refusing an allocation); the caller keeps `data` to try again.
   /// `progress` gets the fraction of the grid data uploaded (0 to 1).
-  bool Upload(vtkOpenGLRenderWindow* renWin, int storage, int atlasLimit,
+  bool Upload(vtkOpenGLRenderWindow* renWin, vtkSinglePassAMRStorage storage, int atlasLimit,
     const amrsp::RayCastingData& data, std::string& error,
     const std::function<void(double)>& progress = nullptr);
 
@@ -129,8 +118,8 @@ public:
   /// Bytes of the textures of the last upload (tree + data nodes + atlas, or + bricks + handles,
   /// or + linear pages + brick table).
   long long GetTextureBytes() const { return this->TextureBytes; }
-  /// The storage of the last upload, -1 when none is on the GPU.
-  int GetUploadedStorage() const { return this->UploadedStorage; }
+  /// The storage of the last upload, None when none is on the GPU.
+  vtkSinglePassAMRStorage GetUploadedStorage() const { return this->UploadedStorage; }
 
   /// The largest linear page the next uploads make, in bytes (the mapper's MaximumAtlasPageBytes;
   /// 0: as large as the context allows).
@@ -161,7 +150,7 @@ private:
   vtkMTimeType FlagsTableTime = 0;
   long long FlaggedDataNodes = 0;
   long long TextureBytes = 0;
-  int UploadedStorage = -1;
+  vtkSinglePassAMRStorage UploadedStorage = vtkSinglePassAMRStorage::None;
   int UploadLimit = 0; // atlasLimit of the last upload
   long long LinearPageBytes = 0;
   vtkOpenGLRenderWindow* Context = nullptr;

@@ -42,6 +42,24 @@
 #include <string>
 #include <vector>
 
+// The public modes are the private storage enums' values.
+static_assert(
+  static_cast<int>(vtkSinglePassAMRStorage::Auto) == vtkSinglePassAMRVolumeMapper::AUTO_STORAGE &&
+    static_cast<int>(vtkSinglePassAMRStorage::PackedAtlas) ==
+      vtkSinglePassAMRVolumeMapper::PACKED_ATLAS &&
+    static_cast<int>(vtkSinglePassAMRStorage::BindlessTextures) ==
+      vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES &&
+    static_cast<int>(vtkSinglePassAMRStorage::LinearBricks) ==
+      vtkSinglePassAMRVolumeMapper::LINEAR_BRICKS,
+  "DataStorageMode and vtkSinglePassAMRStorage differ");
+static_assert(static_cast<int>(vtkSinglePassAMRBindlessAccess::Auto) ==
+      vtkSinglePassAMRVolumeMapper::AUTO_ACCESS &&
+    static_cast<int>(vtkSinglePassAMRBindlessAccess::Direct) ==
+      vtkSinglePassAMRVolumeMapper::DIRECT_ACCESS &&
+    static_cast<int>(vtkSinglePassAMRBindlessAccess::Waterfall) ==
+      vtkSinglePassAMRVolumeMapper::WATERFALL_ACCESS,
+  "BindlessAccessMode and vtkSinglePassAMRBindlessAccess differ");
+
 //------------------------------------------------------------------------------
 vtkStandardNewMacro(vtkSinglePassAMRVolumeMapper);
 
@@ -184,8 +202,8 @@ void vtkSinglePassAMRVolumeMapper::GetBuiltBounds(double bounds[6])
 void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 {
   vtkInternals& in = *this->Internals;
-  in.LastStorage = -1;
-  in.LastAccess = -1;
+  in.LastStorage = vtkSinglePassAMRStorage::None;
+  in.LastAccess = vtkSinglePassAMRBindlessAccess::None;
   in.StorageNote.clear();
   vtkOpenGLRenderWindow* renWin = nullptr;
   vtkOverlappingAMR* amr = this->BeginFrame(ren, renWin);
@@ -281,16 +299,20 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareStorage(
   vtkSinglePassAMRVolumeMapper* self = this->Self;
   this->TrimKeptSteps(static_cast<long long>(self->MaximumKeptStepBytes));
   this->Storage->SetLinearPageBytes(self->MaximumAtlasPageBytes);
-  const vtkSinglePassAMRGridStorage::Choice choice =
-    this->Storage->Choose(renWin, this->Data, self->DataStorage, self->BindlessAccess,
-      self->AutoBindlessWaste, self->MaximumAtlasSize, self->AutoLinearBytes);
+  vtkSinglePassAMRStorageRequest request;
+  request.Storage = static_cast<vtkSinglePassAMRStorage>(self->DataStorage);
+  request.Access = static_cast<vtkSinglePassAMRBindlessAccess>(self->BindlessAccess);
+  request.AutoBindlessWaste = self->AutoBindlessWaste;
+  request.AutoLinearBytes = self->AutoLinearBytes;
+  const vtkSinglePassAMRStorageChoice choice =
+    this->Storage->Choose(renWin, this->Data, request, self->MaximumAtlasSize);
   if (!choice.FallbackReason.empty())
   {
     this->StorageNote = choice.FallbackReason;
     self->WarnOnce("bindless textures requested, but " + choice.FallbackReason +
       ": rendering with the packed atlas instead");
   }
-  if (choice.Storage < 0)
+  if (choice.Storage == vtkSinglePassAMRStorage::None)
   {
     self->ReportError(choice.Error);
     return false;
@@ -476,7 +498,7 @@ double vtkSinglePassAMRVolumeMapper::GetLastFrameBudget()
 int vtkSinglePassAMRVolumeMapper::GetNumberOfAtlasPages()
 {
   const vtkSinglePassAMRGridStorage& s = *this->Internals->Storage;
-  return s.GetUploadedStorage() == LINEAR_BRICKS
+  return s.GetUploadedStorage() == vtkSinglePassAMRStorage::LinearBricks
     ? s.GetNumberOfLinearPages()
     : static_cast<int>(this->Internals->Data.PageDims.size());
 }
@@ -503,7 +525,7 @@ long long vtkSinglePassAMRVolumeMapper::GetNumberOfTransparentDataNodes()
 
 int vtkSinglePassAMRVolumeMapper::GetLastDataStorage()
 {
-  return this->Internals->LastStorage;
+  return static_cast<int>(this->Internals->LastStorage);
 }
 
 bool vtkSinglePassAMRVolumeMapper::GetLastRopes()
@@ -518,7 +540,38 @@ const char* vtkSinglePassAMRVolumeMapper::GetBindlessFallbackReason()
 
 int vtkSinglePassAMRVolumeMapper::GetLastBindlessAccess()
 {
-  return this->Internals->LastAccess;
+  return static_cast<int>(this->Internals->LastAccess);
+}
+
+//------------------------------------------------------------------------------
+const char* vtkSinglePassAMRVolumeMapper::GetDataStorageName(int storage)
+{
+  return vtkSinglePassAMRStorageName(static_cast<vtkSinglePassAMRStorage>(storage));
+}
+
+//------------------------------------------------------------------------------
+const char* vtkSinglePassAMRVolumeMapper::GetBindlessAccessName(int access)
+{
+  return vtkSinglePassAMRBindlessAccessName(static_cast<vtkSinglePassAMRBindlessAccess>(access));
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRVolumeMapper::IsBindlessSupported(vtkRenderWindow* window, std::string* why)
+{
+  std::string reason;
+  bool supported = IsRenderSupported(window, &reason);
+  if (supported)
+  {
+    vtkSinglePassAMRGridStorage capabilities;
+    supported =
+      capabilities.ResolveAccess(vtkOpenGLRenderWindow::SafeDownCast(window),
+        vtkSinglePassAMRBindlessAccess::Auto, reason) != vtkSinglePassAMRBindlessAccess::None;
+  }
+  if (!supported && why)
+  {
+    *why = reason;
+  }
+  return supported;
 }
 
 //------------------------------------------------------------------------------
@@ -537,8 +590,8 @@ void vtkSinglePassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BindlessAccess: " << GetBindlessAccessName(this->BindlessAccess) << "\n";
   os << indent << "AutoBindlessWaste: " << this->AutoBindlessWaste << "\n";
   os << indent << "AutoLinearBytes: " << this->AutoLinearBytes << "\n";
-  os << indent << "LastDataStorage: " << GetDataStorageName(in.LastStorage)
-     << ", LastBindlessAccess: " << GetBindlessAccessName(in.LastAccess) << "\n";
+  os << indent << "LastDataStorage: " << vtkSinglePassAMRStorageName(in.LastStorage)
+     << ", LastBindlessAccess: " << vtkSinglePassAMRBindlessAccessName(in.LastAccess) << "\n";
   os << indent << "OpacityThreshold: " << this->OpacityThreshold << "\n";
   os << indent << "EmptySpaceSkipping: " << (this->EmptySpaceSkipping ? "on" : "off") << "\n";
   os << indent << "WorkCountersOutput: " << (this->WorkCountersOutput ? "on" : "off") << "\n";

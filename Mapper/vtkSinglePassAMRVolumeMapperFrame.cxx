@@ -129,7 +129,7 @@ vtkShaderProgram* vtkSinglePassAMRVolumeMapper::vtkInternals::ReadyShader(
       defines += "#define " + line + "\n";
     }
   };
-  define(frame.Access == WATERFALL_ACCESS, "AMRSP_WATERFALL 1");
+  define(frame.Access == vtkSinglePassAMRBindlessAccess::Waterfall, "AMRSP_WATERFALL 1");
   define(this->Transfer.IsLogarithmic(), "AMRSP_LOG_TRANSFER 1");
   define(frame.UseDepth, "AMRSP_USE_DEPTH 1");
   define(frame.UseDepth && frame.Reduced(), "AMRSP_REDUCED_IMAGE 1");

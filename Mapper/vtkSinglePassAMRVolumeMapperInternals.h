@@ -14,6 +14,7 @@
 #include "vtkSinglePassAMRDepthCopy.h"
 #include "vtkSinglePassAMRFrameBudget.h"
 #include "vtkSinglePassAMRGridStorage.h"
+#include "vtkSinglePassAMRStorageChoice.h"
 #include "vtkSinglePassAMRTransferFunctionTable.h"
 #include "vtkSinglePassAMRViewGeometry.h"
 
@@ -48,8 +49,8 @@ enum class vtkSinglePassAMRShaderBlend : int
 /// the context offers. The shader variant depends on these and on the data only.
 struct vtkSinglePassAMRFrameSettings
 {
-  int Storage = -1; // PACKED_ATLAS, BINDLESS_TEXTURES or LINEAR_BRICKS
-  int Access = -1;  // DIRECT_ACCESS or WATERFALL_ACCESS with bindless, else -1
+  vtkSinglePassAMRStorage Storage = vtkSinglePassAMRStorage::None;
+  vtkSinglePassAMRBindlessAccess Access = vtkSinglePassAMRBindlessAccess::None; // bindless only
   vtkSinglePassAMRShaderBlend Blend = vtkSinglePassAMRShaderBlend::Composite;
   std::vector<float> IsoValues; // sorted, padded to 8 (iso-surface blending only)
   int IsoCount = 0;
@@ -165,9 +166,9 @@ public:
   std::string FailedFragmentSource; // do not retry a program that failed to compile
 
   // what the last frame did
-  int LastStorage = -1;
+  vtkSinglePassAMRStorage LastStorage = vtkSinglePassAMRStorage::None;
   bool LastRopes = false;
-  int LastAccess = -1;
+  vtkSinglePassAMRBindlessAccess LastAccess = vtkSinglePassAMRBindlessAccess::None;
   std::string StorageNote; // why it did not use the bindless storage it was asked for
   long long TransparentDataNodes = 0;
 };
