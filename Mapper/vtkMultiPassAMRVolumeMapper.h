@@ -39,14 +39,14 @@
 #ifndef vtkMultiPassAMRVolumeMapper_h
 #define vtkMultiPassAMRVolumeMapper_h
 
-#include "vtkSinglePassAMRMapperBase.h"
+#include "vtkAMRKdTreeVolumeMapper.h"
 #include "vtkSinglePassAMRModule.h" // for export macro
 
-class VTKSINGLEPASSAMR_EXPORT vtkMultiPassAMRVolumeMapper : public vtkSinglePassAMRMapperBase
+class VTKSINGLEPASSAMR_EXPORT vtkMultiPassAMRVolumeMapper : public vtkAMRKdTreeVolumeMapper
 {
 public:
   static vtkMultiPassAMRVolumeMapper* New();
-  vtkTypeMacro(vtkMultiPassAMRVolumeMapper, vtkSinglePassAMRMapperBase);
+  vtkTypeMacro(vtkMultiPassAMRVolumeMapper, vtkAMRKdTreeVolumeMapper);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /// Renders the volume. Called by vtkVolume during the volumetric pass.
@@ -56,7 +56,7 @@ public:
   void ReleaseGraphicsResources(vtkWindow* window) override;
 
   ///@{
-  /// Diagnostics of the last build and render (see also vtkSinglePassAMRMapperBase).
+  /// Diagnostics of the last build and render (see also vtkAMRKdTreeVolumeMapper).
   /// Atlas texture dimensions, and the bytes of the data textures (the atlas: the multi-pass
   /// method has no tree textures). The RGBA32F accumulation target (16 bytes per viewport pixel)
   /// is counted apart.

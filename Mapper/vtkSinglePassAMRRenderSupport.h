@@ -3,7 +3,7 @@
  * @file    vtkSinglePassAMRRenderSupport.h
  * @brief   whether a render window can run the AMR mappers (private to the module)
  *
- * The one capability probe behind vtkSinglePassAMRMapperBase::IsRenderSupported.
+ * The one capability probe behind vtkAMRKdTreeVolumeMapper::IsRenderSupported.
  */
 #ifndef vtkSinglePassAMRRenderSupport_h
 #define vtkSinglePassAMRRenderSupport_h

@@ -66,18 +66,18 @@
 #ifndef vtkSinglePassAMRVolumeMapper_h
 #define vtkSinglePassAMRVolumeMapper_h
 
-#include "vtkSinglePassAMRMapperBase.h"
+#include "vtkAMRKdTreeVolumeMapper.h"
 #include "vtkSinglePassAMRModule.h" // for export macro
 
 #include <string> // for IsBindlessSupported
 
 class vtkRenderWindow;
 
-class VTKSINGLEPASSAMR_EXPORT vtkSinglePassAMRVolumeMapper : public vtkSinglePassAMRMapperBase
+class VTKSINGLEPASSAMR_EXPORT vtkSinglePassAMRVolumeMapper : public vtkAMRKdTreeVolumeMapper
 {
 public:
   static vtkSinglePassAMRVolumeMapper* New();
-  vtkTypeMacro(vtkSinglePassAMRVolumeMapper, vtkSinglePassAMRMapperBase);
+  vtkTypeMacro(vtkSinglePassAMRVolumeMapper, vtkAMRKdTreeVolumeMapper);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /// How the grid data reaches the GPU (see the class description).
@@ -158,7 +158,7 @@ public:
   ///@}
 
   ///@{
-  /// Diagnostics of the last build and render (see also vtkSinglePassAMRMapperBase).
+  /// Diagnostics of the last build and render (see also vtkAMRKdTreeVolumeMapper).
   /// Atlas texture dimensions (0 when no atlas could be packed) and the bytes of all data
   /// textures uploaded for the last frame (tree + data nodes + atlas, or + bricks + handles).
   void GetAtlasDimensions(int dims[3]) override;

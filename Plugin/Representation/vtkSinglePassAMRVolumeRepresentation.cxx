@@ -29,7 +29,7 @@
 #include "vtkRenderer.h"
 #include "vtkScalarsToColors.h"
 #include "vtkSinglePassAMRGather.h"
-#include "vtkSinglePassAMRMapperBase.h"
+#include "vtkAMRKdTreeVolumeMapper.h"
 #include "vtkSinglePassAMRRegionSplit.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
 #include "vtkStructuredData.h"
@@ -159,7 +159,7 @@ vtkSinglePassAMRVolumeRepresentation::vtkSinglePassAMRVolumeRepresentation()
 void vtkSinglePassAMRVolumeRepresentation::OnMapperProgress(
   vtkObject* caller, unsigned long, void* callData)
 {
-  vtkSinglePassAMRMapperBase* mapper = vtkSinglePassAMRMapperBase::SafeDownCast(caller);
+  vtkAMRKdTreeVolumeMapper* mapper = vtkAMRKdTreeVolumeMapper::SafeDownCast(caller);
   const char* step = mapper ? mapper->GetProgressText() : nullptr;
   if (!step)
   {
@@ -167,7 +167,7 @@ void vtkSinglePassAMRVolumeRepresentation::OnMapperProgress(
   }
   // the mapper reports its build 0 to 1, then its upload 0 to 1: one run here, the build in
   // [0, 0.5] and the upload in [0.5, 1]
-  const bool upload = mapper->GetProgressPhase() == vtkSinglePassAMRMapperBase::PROGRESS_UPLOAD;
+  const bool upload = mapper->GetProgressPhase() == vtkAMRKdTreeVolumeMapper::PROGRESS_UPLOAD;
   const double fraction = 0.5 * (*static_cast<const double*>(callData) + (upload ? 1.0 : 0.0));
   this->SetProgressText((std::string("AMR Single-Pass Volume: ") + step).c_str());
   this->UpdateProgress(fraction);
@@ -771,9 +771,9 @@ double* vtkSinglePassAMRVolumeRepresentation::GetLastFrameQuality()
 
 double* vtkSinglePassAMRVolumeRepresentation::GetLastBuildSeconds()
 {
-  vtkSinglePassAMRMapperBase* m = this->Method == METHOD_MULTI_PASS
-    ? static_cast<vtkSinglePassAMRMapperBase*>(this->MultiPassMapper)
-    : static_cast<vtkSinglePassAMRMapperBase*>(this->VolumeMapper);
+  vtkAMRKdTreeVolumeMapper* m = this->Method == METHOD_MULTI_PASS
+    ? static_cast<vtkAMRKdTreeVolumeMapper*>(this->MultiPassMapper)
+    : static_cast<vtkAMRKdTreeVolumeMapper*>(this->VolumeMapper);
   this->LastBuildSeconds[0] = m->GetLastBuildSeconds();
   this->LastBuildSeconds[1] = m->GetLastUploadSeconds();
   return this->LastBuildSeconds;

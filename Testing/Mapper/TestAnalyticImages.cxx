@@ -21,7 +21,7 @@
 // off by a factor 2 or dropped, one iso-value dropped, NaN samples made opaque (shader
 // replacements, as TestLinearStorage breaks its layer stride).
 
-#include "AmrspPacking.h"
+#include "AmrspSinglePass.h"
 #include "MapperTestHelpers.h"
 
 #include "amrsp/Hierarchy.h"
@@ -49,7 +49,7 @@ using mappertest::Check;
 using mappertest::Failures;
 using mappertest::Fixed;
 
-vtkOpenGLShaderProperty* ShaderProperty(PackingRenderer& gpu)
+vtkOpenGLShaderProperty* ShaderProperty(SinglePassRenderer& gpu)
 {
   vtkVolumeCollection* volumes = gpu.GetRenderer()->GetVolumes();
   volumes->InitTraversal();
@@ -97,7 +97,7 @@ Camera TopView(bool parallel, double distance = 0.0, double angle = 30.0)
 }
 
 /// Renders `h` with `s` (its camera as it is) and returns the frame.
-Image RenderAsSet(PackingRenderer& gpu)
+Image RenderAsSet(SinglePassRenderer& gpu)
 {
   double ms = 0.0;
   return gpu.Render(0.0, ms);
@@ -199,7 +199,7 @@ void TestLevelOfDetail()
   // parallel: 64 px over the unit square, a level-0 cell is 8 px, the patch 32 x 32 = 1024 px
   {
     RenderSettings s = LevelSettings(64, TopView(true), 0.0f);
-    PackingRenderer gpu(h, s, SettingsCamera());
+    SinglePassRenderer gpu(h, s, SettingsCamera());
     vtkSinglePassAMRVolumeMapper* m = gpu.GetMapper();
     const struct
     {
@@ -237,7 +237,7 @@ void TestLevelOfDetail()
   // c0 / (10 x pixel size per distance) = 0.4, a disc of about 18 px radius inside its 46 px square
   {
     RenderSettings s = LevelSettings(64, TopView(false, 0.1, 90.0), 10.0f);
-    PackingRenderer gpu(h, s, SettingsCamera());
+    SinglePassRenderer gpu(h, s, SettingsCamera());
     const Image img = RenderAsSet(gpu);
     const double band = 0.004; // about half a pixel's change of entry distance at the boundary
     std::size_t expectedFine = 0;
@@ -287,7 +287,7 @@ void TestIsoSurfaces()
   s.Transfer.Color = { { 0.2, glm::dvec3(1.0, 0.0, 0.0) }, { 0.35, glm::dvec3(0.0, 0.0, 1.0) } };
   s.Transfer.Opacity = { { 0.2, 0.5 }, { 0.35, 0.5 } };
   s.IsoValues = { 0.2, 0.35 };
-  PackingRenderer gpu(h, s, SettingsCamera());
+  SinglePassRenderer gpu(h, s, SettingsCamera());
   const Image img = RenderAsSet(gpu);
 
   // per pixel the distance rho of its ray from the centre; nearest cells quantise the field by
@@ -348,7 +348,7 @@ void TestIsoSurfaces()
   {
     RenderSettings one = s;
     one.IsoValues = { kept };
-    PackingRenderer single(h, one, SettingsCamera());
+    SinglePassRenderer single(h, one, SettingsCamera());
     std::size_t c[3], w[3];
     zones(RenderAsSet(single), c, w);
     Check(w[0] + w[1] + w[2] > 300,
@@ -381,7 +381,7 @@ void TestNaN()
   s.Transfer.Opacity = { { 0.0, 0.5 }, { 2.0, 0.5 } };
   s.Transfer.UnitDistance = 0.1;
   s.OpacityThreshold = 0.999;
-  PackingRenderer gpu(h, s, SettingsCamera());
+  SinglePassRenderer gpu(h, s, SettingsCamera());
   const auto count = [&](const Image& img, std::size_t& columnLit, std::size_t& restDark)
   {
     columnLit = restDark = 0;

@@ -18,7 +18,7 @@
 #include "AmrspCommands.h"
 #include "MapperTestHelpers.h"
 #include "AmrspDataset.h"
-#include "AmrspPacking.h"
+#include "AmrspSinglePass.h"
 
 #include "amrsp/BrickAtlas.h"
 #include "amrsp/KdTree.h"
@@ -94,7 +94,7 @@ void TestDataset(
   const Image ref = RenderReference(h, s);
   double ms = 0.0;
 
-  PackingRenderer gpu(h, s, ViewAngles());
+  SinglePassRenderer gpu(h, s, ViewAngles());
   Mapper* m = gpu.GetMapper();
   m->SetDataStorageToPackedAtlas();
   const Image packed = gpu.Render(0.0, ms);
@@ -196,7 +196,7 @@ void TestAutomaticChoice()
   std::cout << "automatic storage choice\n";
   Hierarchy h = LoadHierarchy("synthetic:cosmo:grids=30,levels=3,cells=60k,seed=5");
   const RenderSettings s = Settings(h, { "--size", "64x64" });
-  PackingRenderer gpu(h, s, ViewAngles(), "auto");
+  SinglePassRenderer gpu(h, s, ViewAngles(), "auto");
   Mapper* m = gpu.GetMapper();
   double ms = 0.0;
   m->SetAutoBindlessWaste(1.0);
@@ -230,8 +230,8 @@ void TestAutomaticChoice()
 
   // a data change: new bricks and handles, the old ones made non-resident
   Hierarchy other = LoadHierarchy("synthetic:cosmo:grids=30,levels=3,cells=60k,seed=6");
-  Settings(other, { "--size", "64x64" });        // displays log10(Density) like `h`
-  PackingRenderer fresh(other, s, ViewAngles()); // with the same transfer function and view
+  Settings(other, { "--size", "64x64" });           // displays log10(Density) like `h`
+  SinglePassRenderer fresh(other, s, ViewAngles()); // with the same transfer function and view
   fresh.GetMapper()->SetDataStorageToPackedAtlas();
   const Image expectedOther = fresh.Render(0.0, ms);
   m->SetInputData(fresh.GetMapper()->GetAMRInput());
@@ -251,7 +251,7 @@ void TestDriverLimit()
   std::cout << "more grids than zink's 1023 bindless textures\n";
   Hierarchy h = LoadHierarchy("synthetic:cosmo:grids=1100,levels=3,cells=200k,seed=5");
   const RenderSettings s = Settings(h, { "--size", "32x32" });
-  PackingRenderer gpu(h, s, ViewAngles(), "packing");
+  SinglePassRenderer gpu(h, s, ViewAngles(), "packing");
   Mapper* m = gpu.GetMapper();
   double ms = 0.0;
   const Image packed = gpu.Render(0.0, ms);
@@ -295,7 +295,7 @@ int RunFallback()
 {
   Hierarchy h = LoadHierarchy("synthetic:cosmo:grids=30,levels=3,cells=60k,seed=5");
   const RenderSettings s = Settings(h, { "--size", "64x64" });
-  PackingRenderer gpu(h, s, ViewAngles());
+  SinglePassRenderer gpu(h, s, ViewAngles());
   Mapper* m = gpu.GetMapper();
   double ms = 0.0;
   m->SetDataStorageToPackedAtlas();

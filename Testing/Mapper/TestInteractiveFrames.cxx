@@ -3,7 +3,7 @@
 // frame with less than a second allocated casts its rays into a reduced image magnified over the
 // viewport, with a longer sample distance; still frames stay bit for bit what they were.
 #include "AmrspDataset.h"
-#include "AmrspPacking.h"
+#include "AmrspSinglePass.h"
 #include "MapperTestHelpers.h"
 
 #include "vtkActor.h"
@@ -43,7 +43,7 @@ void TestInteractiveFrames()
 {
   Hierarchy h = mappertest::LoadHierarchy("synthetic:cosmo:grids=200,levels=4,cells=2M,seed=5");
   const RenderSettings s = mappertest::Settings(h, { "--size", "128x128" });
-  PackingRenderer gpu(h, s, ViewAngles(), "packing");
+  SinglePassRenderer gpu(h, s, ViewAngles(), "packing");
   vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
   vtkRenderWindow* window = gpu.GetRenderer()->GetRenderWindow();
   double ms = 0.0;
@@ -144,7 +144,7 @@ void TestInteractiveFrames()
 int main()
 {
   std::string why;
-  if (!PackingRenderer::Available(why))
+  if (!SinglePassRenderer::Available(why))
   {
     return mappertest::SkipOrFail(why);
   }

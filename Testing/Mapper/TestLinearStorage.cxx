@@ -13,7 +13,7 @@
 // fail the bound.
 
 #include "AmrspDataset.h"
-#include "AmrspPacking.h"
+#include "AmrspSinglePass.h"
 #include "MapperTestHelpers.h"
 
 #include "amrsp/BrickAtlas.h"
@@ -56,7 +56,7 @@ std::string StorageName(Mapper* m)
   return Mapper::GetDataStorageName(m->GetLastDataStorage());
 }
 
-vtkOpenGLShaderProperty* ShaderProperty(PackingRenderer& gpu)
+vtkOpenGLShaderProperty* ShaderProperty(SinglePassRenderer& gpu)
 {
   vtkVolumeCollection* volumes = gpu.GetRenderer()->GetVolumes();
   volumes->InitTraversal();
@@ -76,7 +76,7 @@ void TestDataset(const std::string& name, Hierarchy h, double referenceBound, bo
   const double vsPackingBound = h.VertexCentred ? BoundVsPackingVertices : 0.0;
   double ms = 0.0;
 
-  PackingRenderer gpu(h, s, ViewAngles(), "packing");
+  SinglePassRenderer gpu(h, s, ViewAngles(), "packing");
   Mapper* m = gpu.GetMapper();
   const Image packed = gpu.Render(0.0, ms);
   Check(m->GetLastDataStorage() == Mapper::PACKED_ATLAS, "packing rendered: " + StorageName(m));
@@ -185,7 +185,7 @@ void TestAutomaticChoice()
   std::cout << "automatic storage choice\n";
   Hierarchy h = LoadHierarchy("synthetic:cosmo:grids=30,levels=3,cells=60k,seed=5");
   const RenderSettings s = Settings(h, { "--size", "64x64" });
-  PackingRenderer gpu(h, s, ViewAngles(), "packing");
+  SinglePassRenderer gpu(h, s, ViewAngles(), "packing");
   Mapper* m = gpu.GetMapper();
   double ms = 0.0;
   const Image packed = gpu.Render(0.0, ms);
@@ -216,7 +216,7 @@ void TestAutomaticChoice()
     Check(vtkSinglePassAMRLinearBricks::Fits(gl, big, false, 0) &&
         !vtkSinglePassAMRLinearBricks::Fits(gl, big, false, 4),
       "100k cells fit linear pages of 1 GiB, not pages of one row");
-    PackingRenderer tight(big, s, ViewAngles(), "linear");
+    SinglePassRenderer tight(big, s, ViewAngles(), "linear");
     tight.GetMapper()->SetMaximumAtlasPageBytes(4);
     std::string error;
     try

@@ -7,7 +7,7 @@
 #include "AmrspCommands.h"
 #include "AmrspDataset.h"
 #include "AmrspMultipass.h"
-#include "AmrspPacking.h"
+#include "AmrspSinglePass.h"
 #include "MapperTestHelpers.h"
 
 #include "amrsp/EmptySpace.h"
@@ -77,9 +77,9 @@ void TestLogTransfer()
   const Image ref = RenderReference(h, s);
   const Image spacedRef = RenderReference(h, spaced);
   double ms = 0.0;
-  PackingRenderer packing(h, s, ViewAngles(), "packing");
+  SinglePassRenderer packing(h, s, ViewAngles(), "packing");
   const Image gpu = packing.Render(0.0, ms);
-  PackingRenderer packingLinear(h, linear, ViewAngles(), "packing");
+  SinglePassRenderer packingLinear(h, linear, ViewAngles(), "packing");
   const Image gpuLinear = packingLinear.Render(0.0, ms);
   MultipassRenderer multipass(h, s, ViewAngles());
   const Image multi = multipass.Render(0.0, ms);
@@ -115,7 +115,7 @@ void TestLogTransfer()
   // below 30 many nodes are skipped, and the image is exact
   RenderSettings sparse = s;
   sparse.Transfer.Opacity = { { 1.0, 0.0 }, { 30.0, 0.0 }, { 1e3, 0.9 } };
-  PackingRenderer sparseGpu(h, sparse, ViewAngles(), "packing");
+  SinglePassRenderer sparseGpu(h, sparse, ViewAngles(), "packing");
   sparseGpu.GetMapper()->SetEmptySpaceSkipping(true);
   const Image skipped = sparseGpu.Render(0.0, ms);
   const long long flagged = sparseGpu.GetMapper()->GetNumberOfTransparentDataNodes();
@@ -143,8 +143,8 @@ void TestLogTransfer()
   zero.Transfer.Opacity.front().X = 0.0;
   RenderSettings zeroLinear = zero;
   zeroLinear.Transfer.ColorLogScale = zeroLinear.Transfer.OpacityLogScale = false;
-  PackingRenderer zeroGpu(h, zero, ViewAngles(), "packing");
-  PackingRenderer zeroLinearGpu(h, zeroLinear, ViewAngles(), "packing");
+  SinglePassRenderer zeroGpu(h, zero, ViewAngles(), "packing");
+  SinglePassRenderer zeroLinearGpu(h, zeroLinear, ViewAngles(), "packing");
   std::string warnings;
   vtkNew<vtkCallbackCommand> collect;
   collect->SetClientData(&warnings);
@@ -168,7 +168,7 @@ void TestLogTransfer()
 int main()
 {
   std::string why;
-  if (!PackingRenderer::Available(why))
+  if (!SinglePassRenderer::Available(why))
   {
     return mappertest::SkipOrFail(why);
   }

@@ -29,7 +29,7 @@
 #include "RendererChecks.h"
 #include "AmrspDataset.h"
 #include "AmrspMultipass.h"
-#include "AmrspPacking.h"
+#include "AmrspSinglePass.h"
 
 #include "amrsp/KdTree.h"
 #include "amrsp/KdTreeEncoding.h"
@@ -125,7 +125,7 @@ void CheckError(F render, const std::vector<std::string>& needles, const std::st
 
 /// Opaque geometry in front of and through the volume, and errors, on the renderers of
 /// TestDataset (multi-pass `gpu`, single-pass `single`; `before`: the default view's image).
-void TestOccludersAndErrors(MultipassRenderer& gpu, PackingRenderer& single, const Image& before)
+void TestOccludersAndErrors(MultipassRenderer& gpu, SinglePassRenderer& single, const Image& before)
 {
   double ms = 0.0;
   // opaque geometry: a white square in front of the volume hides it; a black one through the
@@ -178,7 +178,7 @@ void TestOccludersAndErrors(MultipassRenderer& gpu, PackingRenderer& single, con
 /// geometry and errors, on the renderers of TestDataset (multi-pass `gpu`, single-pass `single`;
 /// `before`: the multi-pass image of the default view).
 void TestViewsAndErrors(Hierarchy& h, const EncodedKdTree& enc, const RenderSettings& s,
-  MultipassRenderer& gpu, PackingRenderer& single, const Image& before)
+  MultipassRenderer& gpu, SinglePassRenderer& single, const Image& before)
 {
   double ms = 0.0;
   vtkVolume* volume = vtkVolume::SafeDownCast(gpu.GetRenderer()->GetVolumes()->GetItemAsObject(0));
@@ -289,7 +289,7 @@ void TestDataset(const std::string& spec)
   const EncodedKdTree enc = EncodeKdTree(h, tree);
 
   MultipassRenderer gpu(h, s, ViewAngles());
-  PackingRenderer single(h, s, ViewAngles());
+  SinglePassRenderer single(h, s, ViewAngles());
   double ms = 0.0;
   const Image img = gpu.Render(0.0, ms);
   const Image ref = RenderReference(h, s);
@@ -327,7 +327,7 @@ void TestDataset(const std::string& spec)
     ViewAngles zoomed;
     zoomed.Zoom = 3.0;
     MultipassRenderer mz(h, zs, zoomed);
-    PackingRenderer sz(h, zs, zoomed);
+    SinglePassRenderer sz(h, zs, zoomed);
     const Image z = mz.Render(0.0, ms);
     CheckVsKdTree(z, h, enc, zs, "zoom 3");
     CheckVsSinglePass(z, sz.Render(0.0, ms), "zoom 3");
@@ -341,7 +341,7 @@ void TestDataset(const std::string& spec)
     view.Azimuth = -60.0;
     view.Elevation = 35.0;
     MultipassRenderer mo(h, os, view);
-    PackingRenderer so(h, os, view);
+    SinglePassRenderer so(h, os, view);
     const Image o = mo.Render(0.0, ms);
     const Image back = mo.Render(180.0, ms);
     CheckVsKdTree(o, h, enc, os, "opaque transfer function");
@@ -368,7 +368,7 @@ void TestVertexCentred(const std::string& spec)
   Check(h.VertexCentred, "the data was converted to vertices");
   const RenderSettings s = Settings(h, { "--size", "96x96" });
   MultipassRenderer gpu(h, s, ViewAngles());
-  PackingRenderer single(h, s, ViewAngles());
+  SinglePassRenderer single(h, s, ViewAngles());
   double ms = 0.0;
   const Image img = gpu.Render(0.0, ms);
   CheckVsKdTree(img, h, EncodeKdTree(h, BuildKdTree(h)), s, "vertex-centred");

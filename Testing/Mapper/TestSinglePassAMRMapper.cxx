@@ -26,7 +26,7 @@
 #include "RendererChecks.h"
 #include "AmrspDataset.h"
 #include "AmrspMultipass.h"
-#include "AmrspPacking.h"
+#include "AmrspSinglePass.h"
 
 #include "amrsp/KdTree.h"
 #include "amrsp/KdTreeEncoding.h"
@@ -88,7 +88,7 @@ using mappertest::Settings;
 /// The camera inside the volume, parallel projection and a moved volume, opaque geometry and
 /// errors, on the renderer `gpu` of TestDataset (`before`: its image of the default view).
 void TestViewsAndErrors(Hierarchy& h, const EncodedKdTree& enc, const RenderSettings& s,
-  PackingRenderer& gpu, const Image& before)
+  SinglePassRenderer& gpu, const Image& before)
 {
   double ms = 0.0;
   vtkVolume* volume = vtkVolume::SafeDownCast(gpu.GetRenderer()->GetVolumes()->GetItemAsObject(0));
@@ -214,7 +214,7 @@ void TestDataset(const std::string& spec)
   const RenderSettings s = Settings(h, { "--size", "128x128" });
   const EncodedKdTree enc = EncodeKdTree(h, BuildKdTree(h));
 
-  PackingRenderer gpu(h, s, ViewAngles());
+  SinglePassRenderer gpu(h, s, ViewAngles());
   double ms = 0.0;
   Image img = gpu.Render(0.0, ms);
   const Image ref = RenderReference(h, s);
@@ -286,7 +286,7 @@ void TestVertexCentred(const std::string& spec)
   Hierarchy h = LoadHierarchy(spec, "vertex");
   Check(h.VertexCentred, "the data was converted to vertices");
   const RenderSettings s = Settings(h, { "--size", "96x96" });
-  PackingRenderer gpu(h, s, ViewAngles());
+  SinglePassRenderer gpu(h, s, ViewAngles());
   double ms = 0.0;
   const Image img = gpu.Render(0.0, ms);
   const Image kd = RenderKdTree(h, EncodeKdTree(h, BuildKdTree(h)), s);
@@ -344,7 +344,7 @@ void TestRefinementRatios(
     { "--size", "96x96", "--scale", "linear", "--sample-factor", "0.25",
       "--reference-sample-factor", "0.125", "--unit-distance", "2" });
   const EncodedKdTree enc = EncodeKdTree(h, BuildKdTree(h));
-  PackingRenderer gpu(h, s, ViewAngles());
+  SinglePassRenderer gpu(h, s, ViewAngles());
   double ms = 0.0;
   const Image img = gpu.Render(0.0, ms);
   const Image ref = RenderReference(h, s);
@@ -393,7 +393,7 @@ void TestLevelOfDetailAndNaN()
     { return g.Level == 1 && p.x < 2.0 && p.y < 2.0 && p.z < 2.0; });
   RenderSettings s = Settings(h, { "--size", "96x96", "--scale", "linear" });
   const EncodedKdTree enc = EncodeKdTree(h, BuildKdTree(h));
-  PackingRenderer gpu(h, s, ViewAngles());
+  SinglePassRenderer gpu(h, s, ViewAngles());
   double ms = 0.0;
   const Image finest = gpu.Render(0.0, ms);
   const double nanVsKd = Rmse(finest, RenderKdTree(h, enc, s));
@@ -430,9 +430,9 @@ void TestAtlasPages()
         continue; // the smooth reconstruction is for cell data
       }
       double ms = 0.0;
-      PackingRenderer one(h, s, ViewAngles(), "packing");
+      SinglePassRenderer one(h, s, ViewAngles(), "packing");
       const Image single = one.Render(0.0, ms);
-      PackingRenderer paged(h, s, ViewAngles(), "packing");
+      SinglePassRenderer paged(h, s, ViewAngles(), "packing");
       paged.GetMapper()->SetMaximumAtlasPageBytes(one.GetMapper()->GetTextureBytes() / 2);
       const Image pages = paged.Render(0.0, ms);
       const int count = paged.GetMapper()->GetNumberOfAtlasPages();
@@ -525,7 +525,7 @@ void TestProgressEvents()
   };
   double ms = 0.0;
   std::vector<Event> single, multi;
-  PackingRenderer packing(h, s, ViewAngles(), "packing");
+  SinglePassRenderer packing(h, s, ViewAngles(), "packing");
   watch(packing.GetMapper(), single);
   packing.Render(0.0, ms);
   check(single, "single-pass", { "converting", "kD-tree", "packing the bricks", "uploading" });
@@ -568,7 +568,7 @@ Image Grab(vtkRenderWindow* window, int x0, int w, int h)
 void TestTwoRenderersAndDataChanges()
 {
   std::cout << "two renderers in one window; repeated data changes\n";
-  std::vector<std::unique_ptr<PackingRenderer>> alone;
+  std::vector<std::unique_ptr<SinglePassRenderer>> alone;
   std::vector<Hierarchy> data;
   std::vector<Image> images;
   for (const char* spec : { "synthetic:cosmo:grids=40,levels=3,cells=100k,seed=3",
@@ -579,7 +579,7 @@ void TestTwoRenderersAndDataChanges()
     request.NeedVTK = false;
     data.push_back(LoadDataset(request).Data);
     const RenderSettings s = Settings(data.back(), { "--size", "96x96" });
-    alone.emplace_back(new PackingRenderer(data.back(), s, ViewAngles()));
+    alone.emplace_back(new SinglePassRenderer(data.back(), s, ViewAngles()));
     double ms = 0.0;
     images.push_back(alone.back()->Render(0.0, ms));
   }
@@ -646,7 +646,7 @@ void TestTwoRenderersAndDataChanges()
 int main()
 {
   std::string why;
-  if (!PackingRenderer::Available(why))
+  if (!SinglePassRenderer::Available(why))
   {
     return mappertest::SkipOrFail(why);
   }

@@ -12,7 +12,7 @@
 // step after a regrid is not refreshed. Exit codes: 0 pass, 1 fail, 125 skipped (no context).
 
 #include "AmrspMultipass.h"
-#include "AmrspPacking.h"
+#include "AmrspSinglePass.h"
 #include "MapperTestHelpers.h"
 
 #include "amrsp/KdTree.h"
@@ -63,7 +63,7 @@ std::unique_ptr<GpuRenderer> MakeRenderer(
   {
     return std::unique_ptr<GpuRenderer>(new MultipassRenderer(h, s, ViewAngles()));
   }
-  return std::unique_ptr<GpuRenderer>(new PackingRenderer(h, s, ViewAngles(), method));
+  return std::unique_ptr<GpuRenderer>(new SinglePassRenderer(h, s, ViewAngles(), method));
 }
 
 /// Bytes of the 8-bit RGB frames that differ (all of them when the sizes differ).
@@ -92,7 +92,7 @@ void CheckMethod(const std::string& method, std::vector<Hierarchy>& steps)
   const int builds = series->NumberOfBuilds();
   series->SetData(steps[1]);
   const Image refreshed = series->Render(0.0, ms);
-  const PackingRenderer* packing = dynamic_cast<const PackingRenderer*>(series.get());
+  const SinglePassRenderer* packing = dynamic_cast<const SinglePassRenderer*>(series.get());
   const std::string storage = packing ? " (" + packing->StorageUsed() + ")" : std::string();
   Check(series->NumberOfValueRefreshes() == 1 && series->NumberOfBuilds() == builds + 1,
     method + storage + ": step 1 (same structure) refreshed the values: " +
@@ -130,7 +130,7 @@ void CheckKeptSteps(const std::string& method, std::vector<Hierarchy>& steps)
   Hierarchy first = steps[0];
   const RenderSettings s = Settings(first, { "--size", "96x96", "--scale", "linear" });
   double ms = 0.0;
-  PackingRenderer series(steps[0], s, ViewAngles(), method);
+  SinglePassRenderer series(steps[0], s, ViewAngles(), method);
   vtkSinglePassAMRVolumeMapper* mapper = series.GetMapper();
   mapper->SetMaximumKeptStepBytes(vtkIdType(1) << 30);
   std::vector<Image> shown{ series.Render(0.0, ms) };

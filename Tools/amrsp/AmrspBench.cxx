@@ -8,7 +8,7 @@
 #include "AmrspBenchWork.h"
 #include "AmrspMethods.h"
 #include "AmrspMultipass.h"
-#include "AmrspPacking.h"
+#include "AmrspSinglePass.h"
 #include "AmrspProgress.h"
 #include "AmrspUniform.h"
 
@@ -338,7 +338,7 @@ void UniformFields(const UniformGpuRenderer& gpu, const Image& first, const Benc
 void MapperFields(const Method& m, GpuRenderer& gpu, const Image& first, const BenchOptions& o,
   const Json& stats, Comparisons& c, BenchWork& work, Json& r)
 {
-  if (PackingRenderer* singlePass = dynamic_cast<PackingRenderer*>(&gpu))
+  if (SinglePassRenderer* singlePass = dynamic_cast<SinglePassRenderer*>(&gpu))
   {
     r["storage"] = singlePass->StorageUsed();
     r["ropes"] = singlePass->GetMapper()->GetLastRopes();

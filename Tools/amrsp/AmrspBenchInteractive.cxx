@@ -5,7 +5,7 @@
 
 #include "AmrspBench.h"
 
-#include "AmrspPacking.h"
+#include "AmrspSinglePass.h"
 
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -48,7 +48,7 @@ std::string Fixed(double v, int digits)
 
 void InteractiveFields(GpuRenderer& gpu, const Image& still0, const BenchOptions& o, BenchJson& r)
 {
-  PackingRenderer* singlePass = dynamic_cast<PackingRenderer*>(&gpu);
+  SinglePassRenderer* singlePass = dynamic_cast<SinglePassRenderer*>(&gpu);
   if (!singlePass)
   {
     return; // only the single-pass mapper adapts interactive frames

@@ -4,7 +4,7 @@
 
 #include "AmrspBenchWork.h"
 
-#include "AmrspPacking.h"
+#include "AmrspSinglePass.h"
 #include "AmrspProgress.h"
 
 #include "vtkSinglePassAMRVolumeMapper.h"
@@ -92,7 +92,7 @@ bool Agrees(long long gpu, double mirror, long long rays)
 
 nlohmann::ordered_json BenchWork::SinglePass(GpuRenderer& gpu)
 {
-  PackingRenderer* singlePass = dynamic_cast<PackingRenderer*>(&gpu);
+  SinglePassRenderer* singlePass = dynamic_cast<SinglePassRenderer*>(&gpu);
   if (!singlePass)
   {
     return { { "error", "not a single-pass renderer" } };

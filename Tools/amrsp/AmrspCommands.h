@@ -4,7 +4,7 @@
 /// The subcommands of the amrsp tool. Each returns the process exit code; errors are printed as
 /// one line "amrsp: error: ..." on stderr.
 
-#include "AmrspPacking.h"
+#include "AmrspSinglePass.h"
 #include "amrsp/Hierarchy.h"
 #include "amrsp/Render.h"
 

@@ -6,7 +6,7 @@
 #include "AmrspProgress.h"
 
 #include "vtkSinglePassAMRConversion.h"
-#include "vtkSinglePassAMRMapperBase.h"
+#include "vtkAMRKdTreeVolumeMapper.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
 #include "vtkSmartPointer.h"
 #include "vtkVolumeMapper.h"
@@ -48,7 +48,7 @@ struct GpuRenderer::Internals
   std::string Method;
   vtkSmartPointer<vtkOverlappingAMR> Amr = vtkSmartPointer<vtkOverlappingAMR>::New();
   vtkSmartPointer<vtkVolumeMapper> Mapper;
-  vtkSinglePassAMRMapperBase* AmrMapper = nullptr; // Mapper, when it is one of the project's
+  vtkAMRKdTreeVolumeMapper* AmrMapper = nullptr; // Mapper, when it is one of the project's
   vtkNew<vtkVolumeProperty> Property;
   vtkNew<vtkColorTransferFunction> Colour;
   vtkNew<vtkPiecewiseFunction> Opacity;
@@ -154,7 +154,7 @@ GpuRenderer::GpuRenderer(const std::string& method, vtkVolumeMapper* mapper, con
 {
   I->Method = method;
   I->Mapper = mapper;
-  I->AmrMapper = vtkSinglePassAMRMapperBase::SafeDownCast(mapper);
+  I->AmrMapper = vtkAMRKdTreeVolumeMapper::SafeDownCast(mapper);
   if (I->AmrMapper)
   {
     // the mapper's build and upload on the terminal's progress bar (AmrspProgress.h)
@@ -162,14 +162,14 @@ GpuRenderer::GpuRenderer(const std::string& method, vtkVolumeMapper* mapper, con
     progress->SetCallback(
       [](vtkObject* caller, unsigned long, void*, void* call)
       {
-        auto* amrMapper = static_cast<vtkSinglePassAMRMapperBase*>(caller);
+        auto* amrMapper = static_cast<vtkAMRKdTreeVolumeMapper*>(caller);
         const char* text = amrMapper->GetProgressText();
         if (!text)
         {
           return; // the executive's events around the input's update, not a preparation's
         }
         const bool upload =
-          amrMapper->GetProgressPhase() == vtkSinglePassAMRMapperBase::PROGRESS_UPLOAD;
+          amrMapper->GetProgressPhase() == vtkAMRKdTreeVolumeMapper::PROGRESS_UPLOAD;
         ReportProgress(upload ? "upload" : "build", text, *static_cast<double*>(call));
       });
     I->AmrMapper->AddObserver(vtkCommand::ProgressEvent, progress);
@@ -380,7 +380,7 @@ Camera GpuRenderer::LastCamera() const
   return out;
 }
 
-vtkSinglePassAMRMapperBase* GpuRenderer::GetAmrMapper() const
+vtkAMRKdTreeVolumeMapper* GpuRenderer::GetAmrMapper() const
 {
   return I->AmrMapper;
 }

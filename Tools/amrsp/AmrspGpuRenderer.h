@@ -3,7 +3,7 @@
 /// @file
 /// The GPU methods of the amrsp tool: one volume mapper in an offscreen vtkRenderWindow with the
 /// tool's camera, transfer-function and background conventions (docs/design.md, "Rendering
-/// conventions"). PackingRenderer (AmrspPacking.h), MultipassRenderer (AmrspMultipass.h),
+/// conventions"). SinglePassRenderer (AmrspSinglePass.h), MultipassRenderer (AmrspMultipass.h),
 /// UniformGpuRenderer (AmrspUniform.h) and AmrResampleRenderer (AmrspAmrResample.h) add their
 /// mapper; AmrspMethods.h says which method uses which.
 
@@ -17,7 +17,7 @@
 #include <string>
 
 class vtkRenderer;
-class vtkSinglePassAMRMapperBase;
+class vtkAMRKdTreeVolumeMapper;
 class vtkVolumeMapper;
 
 class vtkOverlappingAMR;
@@ -110,13 +110,13 @@ public:
   const std::string& Method() const;
 
   /// Build (CPU: conversion, kD-tree, packing, encoding) and upload seconds of the mapper, and
-  /// how often it built. The base answers for the project's mappers (vtkSinglePassAMRMapperBase);
+  /// how often it built. The base answers for the project's mappers (vtkAMRKdTreeVolumeMapper);
   /// a renderer around another mapper overrides these.
   virtual double BuildSeconds() const;
   virtual double UploadSeconds() const;
   virtual int NumberOfBuilds() const;
   /// Of the builds, those that kept the structure and took new values only
-  /// (vtkSinglePassAMRMapperBase::GetNumberOfValueRefreshes; 0 for other mappers).
+  /// (vtkAMRKdTreeVolumeMapper::GetNumberOfValueRefreshes; 0 for other mappers).
   virtual int NumberOfValueRefreshes() const;
   /// Bytes of the mapper's data textures.
   virtual long long TextureBytes() const;
@@ -129,8 +129,8 @@ protected:
   GpuRenderer(const std::string& method, vtkVolumeMapper* mapper, const Hierarchy& h,
     const RenderSettings& s, const ViewAngles& view, const GpuScene& scene = GpuScene());
 
-  /// The mapper when it is one of the project's (vtkSinglePassAMRMapperBase), else nullptr.
-  vtkSinglePassAMRMapperBase* GetAmrMapper() const;
+  /// The mapper when it is one of the project's (vtkAMRKdTreeVolumeMapper), else nullptr.
+  vtkAMRKdTreeVolumeMapper* GetAmrMapper() const;
 
   /// The mapper's GetLastError() (empty after a successful frame).
   virtual std::string LastError() const;

@@ -2,7 +2,7 @@
 // first: see AmrspJson.h
 #include "AmrspCommandShared.h"
 
-#include "AmrspPacking.h"
+#include "AmrspSinglePass.h"
 
 #include "amrsp/BrickAtlas.h"
 #include "amrsp/EmptySpace.h"

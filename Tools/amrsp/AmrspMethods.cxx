@@ -3,7 +3,7 @@
 
 #include "AmrspAmrResample.h"
 #include "AmrspMultipass.h"
-#include "AmrspPacking.h"
+#include "AmrspSinglePass.h"
 #include "AmrspUniform.h"
 
 #include <ostream>
@@ -20,27 +20,27 @@ namespace
 std::unique_ptr<GpuRenderer> MakePacking(const std::string&, const MethodRequest& r)
 {
   return std::unique_ptr<GpuRenderer>(
-    new PackingRenderer(r.Data, r.Settings, r.View, "packing", r.BindlessAccess));
+    new SinglePassRenderer(r.Data, r.Settings, r.View, "packing", r.BindlessAccess));
 }
 
 std::unique_ptr<GpuRenderer> MakeBindless(const std::string&, const MethodRequest& r)
 {
   // the mapper falls back to the atlas where bindless cannot run; the commands check
-  // PackingRenderer::StorageUsed() after a frame
+  // SinglePassRenderer::StorageUsed() after a frame
   return std::unique_ptr<GpuRenderer>(
-    new PackingRenderer(r.Data, r.Settings, r.View, "bindless", r.BindlessAccess));
+    new SinglePassRenderer(r.Data, r.Settings, r.View, "bindless", r.BindlessAccess));
 }
 
 std::unique_ptr<GpuRenderer> MakeLinear(const std::string&, const MethodRequest& r)
 {
   return std::unique_ptr<GpuRenderer>(
-    new PackingRenderer(r.Data, r.Settings, r.View, "linear", r.BindlessAccess));
+    new SinglePassRenderer(r.Data, r.Settings, r.View, "linear", r.BindlessAccess));
 }
 
 std::unique_ptr<GpuRenderer> MakeAutoStorage(const std::string&, const MethodRequest& r)
 {
   return std::unique_ptr<GpuRenderer>(
-    new PackingRenderer(r.Data, r.Settings, r.View, "auto", r.BindlessAccess));
+    new SinglePassRenderer(r.Data, r.Settings, r.View, "auto", r.BindlessAccess));
 }
 
 std::unique_ptr<GpuRenderer> MakeMultipass(const std::string&, const MethodRequest& r)

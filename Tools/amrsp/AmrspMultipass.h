@@ -17,7 +17,7 @@ namespace tool
 class MultipassRenderer : public GpuRenderer
 {
 public:
-  /// As PackingRenderer. The multi-pass method renders the finest level only: a level-of-detail
+  /// As SinglePassRenderer. The multi-pass method renders the finest level only: a level-of-detail
   /// threshold in `s` (--lod) is a GpuError.
   MultipassRenderer(const Hierarchy& h, const RenderSettings& s, const ViewAngles& view);
 

@@ -6,7 +6,7 @@
 #include "AmrspDriver.h"
 #include "AmrspMethods.h"
 #include "AmrspMultipass.h"
-#include "AmrspPacking.h"
+#include "AmrspSinglePass.h"
 #include "AmrspProgress.h"
 #include "AmrspSeries.h"
 
@@ -46,7 +46,7 @@ ImageRun RenderGpu(const Method& m, std::string& method, const LoadedDataset& d,
   std::unique_ptr<GpuRenderer> gpu =
     m.Make(method, MethodRequest{ d.Data, s, ViewOf(a), bindlessAccess });
   GpuRenderer& r = *gpu;
-  auto* singlePass = dynamic_cast<PackingRenderer*>(gpu.get());
+  auto* singlePass = dynamic_cast<SinglePassRenderer*>(gpu.get());
   auto* multipass = dynamic_cast<MultipassRenderer*>(gpu.get());
   double firstMs = 0.0, ms = 0.0;
   r.Render(0.0, firstMs); // converts, builds, packs, uploads and compiles

@@ -4,7 +4,7 @@
 #include "AmrspCommands.h"
 #include "AmrspDataset.h"
 #include "AmrspLighting.h"
-#include "AmrspPacking.h"
+#include "AmrspSinglePass.h"
 #include "MapperTestHelpers.h"
 
 #include "amrsp/ImageDifference.h"
@@ -109,7 +109,7 @@ struct WorkCounts
   long long DataSegments = 0;
 };
 
-WorkCounts RenderWorkCounts(tool::PackingRenderer& gpu)
+WorkCounts RenderWorkCounts(tool::SinglePassRenderer& gpu)
 {
   vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
   mapper->WorkCountersOutputOn();
@@ -134,7 +134,7 @@ bool Agree(long long gpu, long long cpu)
 /// The shader's own counts of its loops (WorkCountOutput) against the cost model's CPU mirror
 /// of the same frame (amrsp::MeasureSinglePassWork), and that the comparison rejects the counts
 /// of another sampling distance.
-bool CompareLoopCounts(tool::PackingRenderer& gpu, const Hierarchy& h,
+bool CompareLoopCounts(tool::SinglePassRenderer& gpu, const Hierarchy& h,
   const RenderSettings& mirrorSettings, std::ostream& log)
 {
   using M = vtkSinglePassAMRVolumeMapper;
@@ -194,7 +194,7 @@ bool CompareLoopCounts(tool::PackingRenderer& gpu, const Hierarchy& h,
   return ok && rejected && same && rejectedDescent && flatSame;
 }
 
-bool CompareWorkCounters(tool::PackingRenderer& gpu, const RenderStats& cpu, const Hierarchy& h,
+bool CompareWorkCounters(tool::SinglePassRenderer& gpu, const RenderStats& cpu, const Hierarchy& h,
   const RenderSettings& mirrorSettings, const BaselineCase& c, std::ostream& log)
 {
   vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
@@ -407,7 +407,7 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
 {
   using namespace amrsp::tool;
   std::string why;
-  if (!PackingRenderer::Available(why))
+  if (!SinglePassRenderer::Available(why))
   {
     return mappertest::SkipOrFail(why);
   }
@@ -463,7 +463,7 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
     view.Elevation = a.GetNumber("elevation", 20.0);
     view.Zoom = a.GetNumber("zoom", 1.0);
 
-    PackingRenderer gpu(d.Data, s, view);
+    SinglePassRenderer gpu(d.Data, s, view);
     for (const BaselineCase::Square& q : c.Squares)
     {
       AddSquare(gpu.GetRenderer(), q);

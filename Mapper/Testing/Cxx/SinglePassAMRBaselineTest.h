@@ -20,7 +20,7 @@ namespace amrsp
 {
 namespace tool
 {
-class PackingRenderer;
+class SinglePassRenderer;
 }
 namespace test
 {
@@ -87,8 +87,8 @@ struct BaselineCase
   /// They may render other frames but must leave the mapper as they found it: the harness
   /// renders again and requires the very same image before comparing with the baseline.
   /// Returns false (after printing why to `log`) to fail the test.
-  std::function<bool(tool::PackingRenderer& gpu, const Image& image, const RenderSettings& settings,
-    std::ostream& log)>
+  std::function<bool(tool::SinglePassRenderer& gpu, const Image& image,
+    const RenderSettings& settings, std::ostream& log)>
     Check;
 
   /// Compare the shader's own work counts (vtkSinglePassAMRVolumeMapper::WorkCountersOutput,

@@ -5,7 +5,7 @@
 // (1 - 0.95) * 255 + 1, and the threshold visibly matters (the test can fail).
 #include "SinglePassAMRBaselineTest.h"
 
-#include "AmrspPacking.h"
+#include "AmrspSinglePass.h"
 
 #include "amrsp/ImageDifference.h"
 
@@ -34,7 +34,7 @@ int TestSinglePassAMREarlyTermination(int argc, char* argv[])
   // the shader's own counts against the CPU mirror's, and zero with the feature off
   c.CheckWorkCounters = true;
   c.ExpectTerminated = true;
-  c.Check = [](amrsp::tool::PackingRenderer& gpu, const amrsp::Image& image,
+  c.Check = [](amrsp::tool::SinglePassRenderer& gpu, const amrsp::Image& image,
               const amrsp::RenderSettings&, std::ostream& log)
   {
     vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();

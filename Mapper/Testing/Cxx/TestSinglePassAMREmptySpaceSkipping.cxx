@@ -5,7 +5,7 @@
 // them without a rebuild, and the CPU mirror of the shader counts the samples skipping saves.
 #include "SinglePassAMRBaselineTest.h"
 
-#include "AmrspPacking.h"
+#include "AmrspSinglePass.h"
 
 #include "vtkPiecewiseFunction.h"
 #include "vtkRenderer.h"
@@ -33,7 +33,7 @@ int TestSinglePassAMREmptySpaceSkipping(int argc, char* argv[])
   // the shader's own counts against the CPU mirror's, and zero with the feature off
   c.CheckWorkCounters = true;
   c.ExpectSkipped = true;
-  c.Check = [](amrsp::tool::PackingRenderer& gpu, const amrsp::Image& image,
+  c.Check = [](amrsp::tool::SinglePassRenderer& gpu, const amrsp::Image& image,
               const amrsp::RenderSettings&, std::ostream& log)
   {
     vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "vtkSinglePassAMRMapperBase.h"
+#include "vtkAMRKdTreeVolumeMapper.h"
 #include "vtkSinglePassAMRDataModel.h"
 
 #include "vtkSinglePassAMRConversion.h"
@@ -15,13 +15,13 @@
 #include <chrono>
 
 //------------------------------------------------------------------------------
-vtkSinglePassAMRMapperBase::vtkSinglePassAMRMapperBase() = default;
+vtkAMRKdTreeVolumeMapper::vtkAMRKdTreeVolumeMapper() = default;
 
 //------------------------------------------------------------------------------
-vtkSinglePassAMRMapperBase::~vtkSinglePassAMRMapperBase() = default;
+vtkAMRKdTreeVolumeMapper::~vtkAMRKdTreeVolumeMapper() = default;
 
 //------------------------------------------------------------------------------
-void vtkSinglePassAMRMapperBase::BeginProgressPhase(int phase, const char* text)
+void vtkAMRKdTreeVolumeMapper::BeginProgressPhase(int phase, const char* text)
 {
   this->ProgressPhase = phase;
   this->SetProgressText(text);
@@ -29,35 +29,35 @@ void vtkSinglePassAMRMapperBase::BeginProgressPhase(int phase, const char* text)
 }
 
 //------------------------------------------------------------------------------
-int vtkSinglePassAMRMapperBase::FillInputPortInformation(int vtkNotUsed(port), vtkInformation* info)
+int vtkAMRKdTreeVolumeMapper::FillInputPortInformation(int vtkNotUsed(port), vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkOverlappingAMR");
   return 1;
 }
 
 //------------------------------------------------------------------------------
-void vtkSinglePassAMRMapperBase::SetInputData(vtkOverlappingAMR* input)
+void vtkAMRKdTreeVolumeMapper::SetInputData(vtkOverlappingAMR* input)
 {
   this->SetInputDataInternal(0, input);
 }
 
-void vtkSinglePassAMRMapperBase::SetInputData(vtkImageData*)
+void vtkAMRKdTreeVolumeMapper::SetInputData(vtkImageData*)
 {
   vtkErrorMacro(<< this->GetClassName() << " renders vtkOverlappingAMR only");
 }
 
-void vtkSinglePassAMRMapperBase::SetInputData(vtkDataSet*)
+void vtkAMRKdTreeVolumeMapper::SetInputData(vtkDataSet*)
 {
   vtkErrorMacro(<< this->GetClassName() << " renders vtkOverlappingAMR only");
 }
 
-void vtkSinglePassAMRMapperBase::SetInputData(vtkRectilinearGrid*)
+void vtkAMRKdTreeVolumeMapper::SetInputData(vtkRectilinearGrid*)
 {
   vtkErrorMacro(<< this->GetClassName() << " renders vtkOverlappingAMR only");
 }
 
 //------------------------------------------------------------------------------
-vtkOverlappingAMR* vtkSinglePassAMRMapperBase::GetAMRInput()
+vtkOverlappingAMR* vtkAMRKdTreeVolumeMapper::GetAMRInput()
 {
   if (this->GetNumberOfInputConnections(0) < 1)
   {
@@ -67,7 +67,7 @@ vtkOverlappingAMR* vtkSinglePassAMRMapperBase::GetAMRInput()
 }
 
 //------------------------------------------------------------------------------
-double* vtkSinglePassAMRMapperBase::GetBounds()
+double* vtkAMRKdTreeVolumeMapper::GetBounds()
 {
   vtkMath::UninitializeBounds(this->Bounds);
   if (this->GetNumberOfInputConnections(0) < 1)
@@ -94,20 +94,20 @@ double* vtkSinglePassAMRMapperBase::GetBounds()
   return this->Bounds;
 }
 
-void vtkSinglePassAMRMapperBase::GetBounds(double bounds[6])
+void vtkAMRKdTreeVolumeMapper::GetBounds(double bounds[6])
 {
   const double* b = this->GetBounds();
   std::copy(b, b + 6, bounds);
 }
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMRMapperBase::IsRenderSupported(vtkRenderWindow* window, std::string* why)
+bool vtkAMRKdTreeVolumeMapper::IsRenderSupported(vtkRenderWindow* window, std::string* why)
 {
   return vtkSinglePassAMRRenderSupport::IsRenderSupported(window, why);
 }
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMRMapperBase::EnsureBuilt(vtkOverlappingAMR* amr)
+bool vtkAMRKdTreeVolumeMapper::EnsureBuilt(vtkOverlappingAMR* amr)
 {
   const std::string array = vtkSinglePassAMRConversion::RequestedArray(
     amr, this->ArrayAccessMode, this->ArrayName, this->ArrayId);
@@ -133,13 +133,13 @@ bool vtkSinglePassAMRMapperBase::EnsureBuilt(vtkOverlappingAMR* amr)
 }
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMRMapperBase::Rebuild(vtkOverlappingAMR* amr)
+bool vtkAMRKdTreeVolumeMapper::Rebuild(vtkOverlappingAMR* amr)
 {
   return this->RunBuild(amr);
 }
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMRMapperBase::RunBuild(vtkOverlappingAMR* amr, bool mayRefresh)
+bool vtkAMRKdTreeVolumeMapper::RunBuild(vtkOverlappingAMR* amr, bool mayRefresh)
 {
   const auto t0 = std::chrono::steady_clock::now();
   this->Built = true;
@@ -164,7 +164,7 @@ bool vtkSinglePassAMRMapperBase::RunBuild(vtkOverlappingAMR* amr, bool mayRefres
 }
 
 //------------------------------------------------------------------------------
-vtkOverlappingAMR* vtkSinglePassAMRMapperBase::BeginFrame(
+vtkOverlappingAMR* vtkAMRKdTreeVolumeMapper::BeginFrame(
   vtkRenderer* ren, vtkOpenGLRenderWindow*& renWin)
 {
   this->PreviousError = this->LastError;
@@ -201,7 +201,7 @@ vtkOverlappingAMR* vtkSinglePassAMRMapperBase::BeginFrame(
 }
 
 //------------------------------------------------------------------------------
-void vtkSinglePassAMRMapperBase::ReportError(const std::string& message)
+void vtkAMRKdTreeVolumeMapper::ReportError(const std::string& message)
 {
   if (message != this->PreviousError)
   {
@@ -211,7 +211,7 @@ void vtkSinglePassAMRMapperBase::ReportError(const std::string& message)
 }
 
 //------------------------------------------------------------------------------
-void vtkSinglePassAMRMapperBase::WarnOnce(const std::string& message)
+void vtkAMRKdTreeVolumeMapper::WarnOnce(const std::string& message)
 {
   if (this->Warned.insert(message).second)
   {
@@ -220,40 +220,40 @@ void vtkSinglePassAMRMapperBase::WarnOnce(const std::string& message)
 }
 
 //------------------------------------------------------------------------------
-const char* vtkSinglePassAMRMapperBase::GetLastError()
+const char* vtkAMRKdTreeVolumeMapper::GetLastError()
 {
   return this->LastError.c_str();
 }
 
-int vtkSinglePassAMRMapperBase::GetNumberOfValueRefreshes()
+int vtkAMRKdTreeVolumeMapper::GetNumberOfValueRefreshes()
 {
   return this->NumberOfValueRefreshes;
 }
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMRMapperBase::GetLastBuildRefreshedValues()
+bool vtkAMRKdTreeVolumeMapper::GetLastBuildRefreshedValues()
 {
   return this->LastBuildRefreshed;
 }
 
 //------------------------------------------------------------------------------
-double vtkSinglePassAMRMapperBase::GetLastBuildSeconds()
+double vtkAMRKdTreeVolumeMapper::GetLastBuildSeconds()
 {
   return this->BuildSeconds;
 }
 
-double vtkSinglePassAMRMapperBase::GetLastUploadSeconds()
+double vtkAMRKdTreeVolumeMapper::GetLastUploadSeconds()
 {
   return this->UploadSeconds;
 }
 
-int vtkSinglePassAMRMapperBase::GetNumberOfBuilds()
+int vtkAMRKdTreeVolumeMapper::GetNumberOfBuilds()
 {
   return this->NumberOfBuilds;
 }
 
 //------------------------------------------------------------------------------
-void vtkSinglePassAMRMapperBase::PrintSelf(ostream& os, vtkIndent indent)
+void vtkAMRKdTreeVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "ArrayComponent: " << this->ArrayComponent << "\n";

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "AmrspPacking.h"
+#include "AmrspSinglePass.h"
 
 #include "vtkSinglePassAMRVolumeMapper.h"
 #include "vtkSmartPointer.h"
@@ -21,13 +21,13 @@ vtkSmartPointer<vtkSinglePassAMRVolumeMapper> NewMapper()
 }
 } // namespace
 
-PackingRenderer::PackingRenderer(const Hierarchy& h, const RenderSettings& s,
+SinglePassRenderer::SinglePassRenderer(const Hierarchy& h, const RenderSettings& s,
   const ViewAngles& view, const std::string& storage, const std::string& bindlessAccess)
-  : PackingRenderer(NewMapper(), h, s, view, storage, bindlessAccess)
+  : SinglePassRenderer(NewMapper(), h, s, view, storage, bindlessAccess)
 {
 }
 
-PackingRenderer::PackingRenderer(vtkSinglePassAMRVolumeMapper* mapper, const Hierarchy& h,
+SinglePassRenderer::SinglePassRenderer(vtkSinglePassAMRVolumeMapper* mapper, const Hierarchy& h,
   const RenderSettings& s, const ViewAngles& view, const std::string& storage,
   const std::string& bindlessAccess)
   : GpuRenderer(storage, mapper, h, s, view)
@@ -68,7 +68,7 @@ PackingRenderer::PackingRenderer(vtkSinglePassAMRVolumeMapper* mapper, const Hie
                                                       : vtkSinglePassAMRVolumeMapper::NEAREST_CELL);
 }
 
-std::string PackingRenderer::StorageUsed() const
+std::string SinglePassRenderer::StorageUsed() const
 {
   const int storage = this->Mapper->GetLastDataStorage();
   std::string name = vtkSinglePassAMRVolumeMapper::GetDataStorageName(storage);
@@ -81,22 +81,22 @@ std::string PackingRenderer::StorageUsed() const
   return name;
 }
 
-std::string PackingRenderer::BindlessFallbackReason() const
+std::string SinglePassRenderer::BindlessFallbackReason() const
 {
   return this->Mapper->GetBindlessFallbackReason();
 }
 
-long long PackingRenderer::PackedBytes() const
+long long SinglePassRenderer::PackedBytes() const
 {
   return this->Mapper->GetPackedTextureBytes();
 }
 
-long long PackingRenderer::BindlessBytes() const
+long long SinglePassRenderer::BindlessBytes() const
 {
   return this->Mapper->GetBindlessTextureBytes();
 }
 
-long long PackingRenderer::RenderWorkCount(int count)
+long long SinglePassRenderer::RenderWorkCount(int count)
 {
   this->Mapper->SetWorkCountOutput(count);
   double ms = 0.0;
@@ -121,7 +121,7 @@ long long PackingRenderer::RenderWorkCount(int count)
   return sum;
 }
 
-vtkSinglePassAMRVolumeMapper* PackingRenderer::GetMapper() const
+vtkSinglePassAMRVolumeMapper* SinglePassRenderer::GetMapper() const
 {
   return this->Mapper;
 }

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
-/// The `packing` method of the amrsp tool: vtkSinglePassAMRVolumeMapper in an offscreen
+/// The single-pass methods of the amrsp tool (packing, bindless, linear, auto):
+/// vtkSinglePassAMRVolumeMapper in an offscreen
 /// vtkRenderWindow with the tool's camera, transfer-function and background conventions
 /// (docs/design.md, "Rendering conventions"; the set-up is GpuRenderer's).
 
@@ -16,7 +17,7 @@ namespace amrsp
 namespace tool
 {
 
-class PackingRenderer : public GpuRenderer
+class SinglePassRenderer : public GpuRenderer
 {
 public:
   /// `h` holds the scalars as they are displayed (after --scale); `s` gives the image size, the
@@ -24,7 +25,7 @@ public:
   /// the tool's method name of the mapper's data storage: "packing" (the packed atlas, default),
   /// "bindless" (one texture per brick; the mapper falls back to the atlas where it cannot) or
   /// "auto"; `bindlessAccess` is "auto", "direct" or "waterfall". Nothing is rendered yet.
-  PackingRenderer(const Hierarchy& h, const RenderSettings& s, const ViewAngles& view,
+  SinglePassRenderer(const Hierarchy& h, const RenderSettings& s, const ViewAngles& view,
     const std::string& storage = "packing", const std::string& bindlessAccess = "auto");
 
   vtkSinglePassAMRVolumeMapper* GetMapper() const;
@@ -44,8 +45,9 @@ public:
   long long RenderWorkCount(int count);
 
 private:
-  PackingRenderer(vtkSinglePassAMRVolumeMapper* mapper, const Hierarchy& h, const RenderSettings& s,
-    const ViewAngles& view, const std::string& storage, const std::string& bindlessAccess);
+  SinglePassRenderer(vtkSinglePassAMRVolumeMapper* mapper, const Hierarchy& h,
+    const RenderSettings& s, const ViewAngles& view, const std::string& storage,
+    const std::string& bindlessAccess);
   vtkSinglePassAMRVolumeMapper* Mapper; // held by the base (its volume's mapper)
 };
 

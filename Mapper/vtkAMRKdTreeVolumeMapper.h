@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @class   vtkSinglePassAMRMapperBase
+ * @class   vtkAMRKdTreeVolumeMapper
  * @brief   what the project's GPU AMR volume mappers share: input, bounds, build, diagnostics
  *
  * Abstract base of vtkSinglePassAMRVolumeMapper (the paper's single-pass ray caster) and
- * vtkMultiPassAMRVolumeMapper (its multi-pass baseline), as vtkGPUVolumeRayCastMapper holds the
- * API of VTK's OpenGL ray caster. It owns
+ * vtkMultiPassAMRVolumeMapper (its multi-pass baseline), which both render through the
+ * hierarchy's kD-tree of same-level blocks, as vtkGPUVolumeRayCastMapper holds the API of VTK's
+ * OpenGL ray caster. C++ code may still name it vtkSinglePassAMRMapperBase (an alias). It owns
  * - the input: one vtkOverlappingAMR port (the vtkDataSet overloads of vtkVolumeMapper are
  *   rejected with an error) and the bounds of its root box;
  * - the array selection: vtkAbstractVolumeMapper's SelectScalarArray, and ArrayComponent;
@@ -18,8 +19,8 @@
  * - the diagnostics of the last build and upload.
  * Subclasses implement the build (BuildData) and Render.
  */
-#ifndef vtkSinglePassAMRMapperBase_h
-#define vtkSinglePassAMRMapperBase_h
+#ifndef vtkAMRKdTreeVolumeMapper_h
+#define vtkAMRKdTreeVolumeMapper_h
 
 #include "vtkSinglePassAMRModule.h" // for export macro
 #include "vtkTimeStamp.h"           // for GetBuildTime
@@ -32,10 +33,10 @@ class vtkOpenGLRenderWindow;
 class vtkOverlappingAMR;
 class vtkRenderWindow;
 
-class VTKSINGLEPASSAMR_EXPORT vtkSinglePassAMRMapperBase : public vtkVolumeMapper
+class VTKSINGLEPASSAMR_EXPORT vtkAMRKdTreeVolumeMapper : public vtkVolumeMapper
 {
 public:
-  vtkTypeMacro(vtkSinglePassAMRMapperBase, vtkVolumeMapper);
+  vtkTypeMacro(vtkAMRKdTreeVolumeMapper, vtkVolumeMapper);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
@@ -134,8 +135,8 @@ public:
 #endif
 
 protected:
-  vtkSinglePassAMRMapperBase();
-  ~vtkSinglePassAMRMapperBase() override;
+  vtkAMRKdTreeVolumeMapper();
+  ~vtkAMRKdTreeVolumeMapper() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
 
@@ -198,8 +199,8 @@ protected:
   int ProgressPhase = PROGRESS_BUILD;
 
 private:
-  vtkSinglePassAMRMapperBase(const vtkSinglePassAMRMapperBase&) = delete;
-  void operator=(const vtkSinglePassAMRMapperBase&) = delete;
+  vtkAMRKdTreeVolumeMapper(const vtkAMRKdTreeVolumeMapper&) = delete;
+  void operator=(const vtkAMRKdTreeVolumeMapper&) = delete;
 
   bool RunBuild(vtkOverlappingAMR* amr, bool mayRefresh = false);
 
@@ -224,5 +225,8 @@ private:
   std::string PreviousError;    // the last frame's error, not reported again
   std::set<std::string> Warned; // warnings already given
 };
+
+/// For code that names the base by its other name.
+using vtkSinglePassAMRMapperBase = vtkAMRKdTreeVolumeMapper;
 
 #endif
