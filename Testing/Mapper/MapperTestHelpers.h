@@ -127,11 +127,11 @@ inline amrsp::RenderSettings Settings(amrsp::Hierarchy& h, std::vector<std::stri
 inline amrsp::Hierarchy LoadHierarchy(
   const std::string& spec, const std::string& centering = "auto")
 {
-  amrsp::tool::DatasetRequest request;
+  amrsp::harness::DatasetRequest request;
   request.Spec = spec;
   request.NeedVTK = false;
   request.Centering = centering;
-  return amrsp::tool::LoadDataset(request).Data;
+  return amrsp::harness::LoadDataset(request).Data;
 }
 
 } // namespace mappertest

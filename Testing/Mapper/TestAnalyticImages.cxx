@@ -44,7 +44,7 @@
 namespace
 {
 using namespace amrsp;
-using namespace amrsp::tool;
+using namespace amrsp::harness;
 using mappertest::Check;
 using mappertest::Failures;
 using mappertest::Fixed;

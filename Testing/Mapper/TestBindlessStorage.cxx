@@ -45,6 +45,7 @@ namespace
 {
 using namespace amrsp;
 using namespace amrsp::tool;
+using namespace amrsp::harness;
 using mappertest::BoundVsKdTree;
 using mappertest::Check;
 using mappertest::Coverage;

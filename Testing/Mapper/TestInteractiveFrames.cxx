@@ -21,7 +21,7 @@
 #include <string>
 
 using namespace amrsp;
-using namespace amrsp::tool;
+using namespace amrsp::harness;
 using mappertest::Check;
 using mappertest::Coverage;
 using mappertest::Failures;

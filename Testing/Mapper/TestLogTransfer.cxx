@@ -27,6 +27,7 @@
 
 using namespace amrsp;
 using namespace amrsp::tool;
+using namespace amrsp::harness;
 using mappertest::Check;
 using mappertest::Coverage;
 using mappertest::Failures;

@@ -65,6 +65,7 @@ namespace
 {
 using namespace amrsp;
 using namespace amrsp::tool;
+using namespace amrsp::harness;
 using mappertest::BoundVsKdTree;
 using mappertest::BoundVsReference;
 using mappertest::Check;

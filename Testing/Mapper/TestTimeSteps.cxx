@@ -35,7 +35,7 @@
 namespace
 {
 using namespace amrsp;
-using namespace amrsp::tool;
+using namespace amrsp::harness;
 using mappertest::Check;
 using mappertest::CoveredRmse;
 using mappertest::Failures;

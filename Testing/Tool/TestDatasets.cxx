@@ -18,7 +18,7 @@
 namespace
 {
 using namespace amrsp;
-using namespace amrsp::tool;
+using namespace amrsp::harness;
 
 struct Expected
 {

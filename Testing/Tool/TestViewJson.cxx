@@ -22,9 +22,9 @@ using amrsp::tool::Arguments;
 
 amrsp::Hierarchy LoadPulse()
 {
-  amrsp::tool::DatasetRequest request;
+  amrsp::harness::DatasetRequest request;
   request.Spec = "synthetic:pulse";
-  return amrsp::tool::LoadDataset(request).Data;
+  return amrsp::harness::LoadDataset(request).Data;
 }
 
 std::string WriteTemporary(const std::string& name, const std::string& text)

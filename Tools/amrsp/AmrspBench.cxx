@@ -41,6 +41,7 @@ namespace amrsp
 {
 namespace tool
 {
+using namespace harness; // the datasets, renderers and checks the commands use
 
 using Json = BenchJson;
 using Clock = std::chrono::steady_clock;

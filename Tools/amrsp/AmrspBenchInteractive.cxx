@@ -20,6 +20,7 @@ namespace amrsp
 {
 namespace tool
 {
+using namespace harness; // the datasets, renderers and checks the commands use
 
 namespace
 {

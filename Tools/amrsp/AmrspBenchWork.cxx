@@ -19,6 +19,7 @@ namespace amrsp
 {
 namespace tool
 {
+using namespace harness; // the datasets, renderers and checks the commands use
 
 using Json = nlohmann::ordered_json;
 

@@ -22,6 +22,7 @@ namespace amrsp
 {
 namespace tool
 {
+using namespace harness; // the datasets, renderers and checks the commands use
 
 class BenchWork
 {

@@ -20,6 +20,7 @@ namespace amrsp
 {
 namespace tool
 {
+using namespace harness; // the datasets, renderers and checks the commands use
 
 const char* const DefaultDataset = "synthetic:cosmo:grids=200,levels=4,cells=1M,seed=7";
 

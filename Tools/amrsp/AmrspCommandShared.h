@@ -25,6 +25,7 @@ namespace amrsp
 {
 namespace tool
 {
+using namespace harness; // the datasets, renderers and checks the commands use
 
 using Json = nlohmann::ordered_json;
 using Clock = std::chrono::steady_clock;

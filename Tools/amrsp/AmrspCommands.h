@@ -19,6 +19,7 @@ namespace amrsp
 {
 namespace tool
 {
+using namespace harness; // the datasets, renderers and checks the commands use
 
 /// Parsed command line: positional arguments and --options (flags map to "1").
 struct Arguments

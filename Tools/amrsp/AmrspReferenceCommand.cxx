@@ -14,6 +14,7 @@ namespace amrsp
 {
 namespace tool
 {
+using namespace harness; // the datasets, renderers and checks the commands use
 
 int RunReference(int argc, char** argv)
 {

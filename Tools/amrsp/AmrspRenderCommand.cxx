@@ -28,6 +28,7 @@ namespace amrsp
 {
 namespace tool
 {
+using namespace harness; // the datasets, renderers and checks the commands use
 
 namespace
 {

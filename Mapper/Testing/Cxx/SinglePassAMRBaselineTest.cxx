@@ -109,7 +109,7 @@ struct WorkCounts
   long long DataSegments = 0;
 };
 
-WorkCounts RenderWorkCounts(tool::SinglePassRenderer& gpu)
+WorkCounts RenderWorkCounts(harness::SinglePassRenderer& gpu)
 {
   vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
   mapper->WorkCountersOutputOn();
@@ -134,7 +134,7 @@ bool Agree(long long gpu, long long cpu)
 /// The shader's own counts of its loops (WorkCountOutput) against the cost model's CPU mirror
 /// of the same frame (amrsp::MeasureSinglePassWork), and that the comparison rejects the counts
 /// of another sampling distance.
-bool CompareLoopCounts(tool::SinglePassRenderer& gpu, const Hierarchy& h,
+bool CompareLoopCounts(harness::SinglePassRenderer& gpu, const Hierarchy& h,
   const RenderSettings& mirrorSettings, std::ostream& log)
 {
   using M = vtkSinglePassAMRVolumeMapper;
@@ -194,8 +194,9 @@ bool CompareLoopCounts(tool::SinglePassRenderer& gpu, const Hierarchy& h,
   return ok && rejected && same && rejectedDescent && flatSame;
 }
 
-bool CompareWorkCounters(tool::SinglePassRenderer& gpu, const RenderStats& cpu, const Hierarchy& h,
-  const RenderSettings& mirrorSettings, const BaselineCase& c, std::ostream& log)
+bool CompareWorkCounters(harness::SinglePassRenderer& gpu, const RenderStats& cpu,
+  const Hierarchy& h, const RenderSettings& mirrorSettings, const BaselineCase& c,
+  std::ostream& log)
 {
   vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
   const WorkCounts w = RenderWorkCounts(gpu);
@@ -406,6 +407,7 @@ bool CompareWithStoredBaseline(int argc, char* argv[], const Image& image, const
 int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
 {
   using namespace amrsp::tool;
+  using namespace amrsp::harness;
   std::string why;
   if (!SinglePassRenderer::Available(why))
   {

@@ -18,7 +18,7 @@ class vtkRenderer;
 
 namespace amrsp
 {
-namespace tool
+namespace harness
 {
 class SinglePassRenderer;
 }
@@ -87,7 +87,7 @@ struct BaselineCase
   /// They may render other frames but must leave the mapper as they found it: the harness
   /// renders again and requires the very same image before comparing with the baseline.
   /// Returns false (after printing why to `log`) to fail the test.
-  std::function<bool(tool::SinglePassRenderer& gpu, const Image& image,
+  std::function<bool(harness::SinglePassRenderer& gpu, const Image& image,
     const RenderSettings& settings, std::ostream& log)>
     Check;
 

@@ -28,7 +28,7 @@ int TestSinglePassAMRCropping(int argc, char* argv[])
   c.BaselineBound = 0.3;
   c.WrongImages.push_back(
     { "no cropping", [](amrsp::RenderSettings& s) { s.Clip = false; }, nullptr });
-  c.Check = [](amrsp::tool::SinglePassRenderer& gpu, const amrsp::Image& image,
+  c.Check = [](amrsp::harness::SinglePassRenderer& gpu, const amrsp::Image& image,
               const amrsp::RenderSettings&, std::ostream& log)
   {
     vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();

@@ -33,7 +33,7 @@ int TestSinglePassAMREmptySpaceSkipping(int argc, char* argv[])
   // the shader's own counts against the CPU mirror's, and zero with the feature off
   c.CheckWorkCounters = true;
   c.ExpectSkipped = true;
-  c.Check = [](amrsp::tool::SinglePassRenderer& gpu, const amrsp::Image& image,
+  c.Check = [](amrsp::harness::SinglePassRenderer& gpu, const amrsp::Image& image,
               const amrsp::RenderSettings&, std::ostream& log)
   {
     vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();

@@ -64,14 +64,14 @@ int TestSinglePassAMRLevelSeams(int argc, char* argv[])
   c.Settings = Transfer;
   c.WrongImages.push_back(
     { "nearest-cell values", [](RenderSettings& s) { s.SmoothCellData = false; }, nullptr });
-  c.Check = [](tool::SinglePassRenderer& gpu, const Image& image, const RenderSettings& s,
+  c.Check = [](harness::SinglePassRenderer& gpu, const Image& image, const RenderSettings& s,
               std::ostream& log)
   {
     const Hierarchy two = test::LevelPatch(2, Finest, Field);
     const Hierarchy one = test::LevelPatch(1, Finest, Field);
-    tool::ViewAngles same;
+    harness::ViewAngles same;
     same.UseSettingsCamera = true;
-    tool::SinglePassRenderer flat(one, s, same);
+    harness::SinglePassRenderer flat(one, s, same);
     double ms = 0.0;
     const Image flatImage = flat.Render(0.0, ms);
     const double seam = Rmse(image, flatImage);

@@ -24,7 +24,7 @@ int TestSinglePassAMRSmoothCells(int argc, char* argv[])
   c.BaselineBound = 0.3;
   c.WrongImages.push_back(
     { "nearest-cell values", [](amrsp::RenderSettings& s) { s.SmoothCellData = false; }, nullptr });
-  c.Check = [](amrsp::tool::SinglePassRenderer& gpu, const amrsp::Image& image,
+  c.Check = [](amrsp::harness::SinglePassRenderer& gpu, const amrsp::Image& image,
               const amrsp::RenderSettings&, std::ostream& log)
   {
     vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();

@@ -11,7 +11,7 @@ class vtkMultiPassAMRVolumeMapper;
 
 namespace amrsp
 {
-namespace tool
+namespace harness
 {
 
 class MultipassRenderer : public GpuRenderer
@@ -36,5 +36,5 @@ private:
   vtkMultiPassAMRVolumeMapper* Mapper; // held by the base (its volume's mapper)
 };
 
-} // namespace tool
+} // namespace harness
 } // namespace amrsp

@@ -28,7 +28,7 @@
 
 namespace amrsp
 {
-namespace tool
+namespace harness
 {
 
 #ifndef AMRSP_HAVE_VTK_AMR_VOLUME_MAPPER
@@ -328,5 +328,5 @@ void AmrResampleRenderer::GetAtlasDimensions(int dims[3]) const
 
 #endif
 
-} // namespace tool
+} // namespace harness
 } // namespace amrsp

@@ -6,7 +6,7 @@
 
 namespace amrsp
 {
-namespace tool
+namespace harness
 {
 
 namespace
@@ -59,5 +59,5 @@ double MultipassRenderer::OrderSeconds() const
   return this->Mapper->GetLastOrderSeconds();
 }
 
-} // namespace tool
+} // namespace harness
 } // namespace amrsp

@@ -14,7 +14,7 @@ class vtkSinglePassAMRVolumeMapper;
 
 namespace amrsp
 {
-namespace tool
+namespace harness
 {
 
 class SinglePassRenderer : public GpuRenderer
@@ -51,5 +51,5 @@ private:
   vtkSinglePassAMRVolumeMapper* Mapper; // held by the base (its volume's mapper)
 };
 
-} // namespace tool
+} // namespace harness
 } // namespace amrsp

@@ -24,7 +24,7 @@ class vtkOverlappingAMR;
 
 namespace amrsp
 {
-namespace tool
+namespace harness
 {
 
 /// The mapper could not render (no display, missing OpenGL features, a mapper error). what() is
@@ -142,5 +142,5 @@ private:
   std::unique_ptr<Internals> I;
 };
 
-} // namespace tool
+} // namespace harness
 } // namespace amrsp

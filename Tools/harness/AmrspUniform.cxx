@@ -19,7 +19,7 @@
 
 namespace amrsp
 {
-namespace tool
+namespace harness
 {
 
 namespace
@@ -130,5 +130,5 @@ void UniformGpuRenderer::GetAtlasDimensions(int dims[3]) const
   dims[2] = this->Dims.z;
 }
 
-} // namespace tool
+} // namespace harness
 } // namespace amrsp

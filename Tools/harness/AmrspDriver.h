@@ -29,7 +29,7 @@ class vtkRenderWindow;
 
 namespace amrsp
 {
-namespace tool
+namespace harness
 {
 
 /// "default" leaves the environment as it is (the system's driver: llvmpipe under Xvfb here, the
@@ -65,5 +65,5 @@ std::string ParaViewVersion();
 /// The options' help lines.
 extern const char* const DriverHelp;
 
-} // namespace tool
+} // namespace harness
 } // namespace amrsp

@@ -12,7 +12,7 @@
 
 namespace amrsp
 {
-namespace tool
+namespace harness
 {
 
 /// `--quiet`: no progress bar whatever stderr is.
@@ -29,5 +29,5 @@ void ReportProgress(const std::string& step, const std::string& detail, double f
 /// A core progress callback (amrsp/Progress.h) that reports to the bar as step `step`.
 ProgressCallback ProgressOf(const std::string& step, const std::string& detail = "");
 
-} // namespace tool
+} // namespace harness
 } // namespace amrsp

@@ -17,7 +17,7 @@
 
 namespace amrsp
 {
-namespace tool
+namespace harness
 {
 namespace
 {
@@ -644,5 +644,5 @@ ExpectedBlocks CheckVTKXMLAMRFiles(const std::string& path)
   return expected;
 }
 
-} // namespace tool
+} // namespace harness
 } // namespace amrsp

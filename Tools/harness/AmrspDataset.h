@@ -15,7 +15,7 @@
 
 namespace amrsp
 {
-namespace tool
+namespace harness
 {
 
 /// A problem with the dataset argument; what() is one line for the user.
@@ -60,5 +60,5 @@ LoadedDataset LoadDataset(const DatasetRequest& request);
 /// LoadDataset without applying DatasetRequest::Centering.
 LoadedDataset LoadDatasetAsStored(const DatasetRequest& request);
 
-} // namespace tool
+} // namespace harness
 } // namespace amrsp

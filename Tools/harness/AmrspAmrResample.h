@@ -16,7 +16,7 @@
 
 namespace amrsp
 {
-namespace tool
+namespace harness
 {
 
 /// Whether this build has vtkAMRVolumeMapper; `why` names what is missing when not.
@@ -62,5 +62,5 @@ private:
 };
 #endif
 
-} // namespace tool
+} // namespace harness
 } // namespace amrsp

@@ -2,7 +2,7 @@
 #include "AmrspGpuRenderer.h"
 
 #include "AmrspDriver.h"
-#include "AmrspLighting.h"
+#include "AmrspSceneLighting.h"
 #include "AmrspProgress.h"
 
 #include "vtkSinglePassAMRConversion.h"
@@ -40,7 +40,7 @@
 
 namespace amrsp
 {
-namespace tool
+namespace harness
 {
 
 struct GpuRenderer::Internals
@@ -465,5 +465,5 @@ std::string GpuRenderer::Backend() const
   return I->Backend;
 }
 
-} // namespace tool
+} // namespace harness
 } // namespace amrsp

@@ -11,7 +11,7 @@
 
 namespace amrsp
 {
-namespace tool
+namespace harness
 {
 
 /// The blocks a dataset's files describe, in the reader's block order (level by level), with
@@ -43,5 +43,5 @@ ExpectedBlocks CheckVTKXMLAMRFiles(const std::string& path);
 /// its superblock records; `why` says what is wrong otherwise.
 bool CheckHDF5File(const std::string& path, std::string& why);
 
-} // namespace tool
+} // namespace harness
 } // namespace amrsp

@@ -10,7 +10,7 @@
 
 namespace amrsp
 {
-namespace tool
+namespace harness
 {
 
 namespace
@@ -104,5 +104,5 @@ ProgressCallback ProgressOf(const std::string& step, const std::string& detail)
   return [step, detail](double fraction) { ReportProgress(step, detail, fraction); };
 }
 
-} // namespace tool
+} // namespace harness
 } // namespace amrsp

@@ -14,7 +14,7 @@
 
 namespace amrsp
 {
-namespace tool
+namespace harness
 {
 
 const char* const DriverHelp =
@@ -151,5 +151,5 @@ std::string ParaViewVersion()
 #endif
 }
 
-} // namespace tool
+} // namespace harness
 } // namespace amrsp

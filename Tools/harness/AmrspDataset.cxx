@@ -50,7 +50,7 @@
 
 namespace amrsp
 {
-namespace tool
+namespace harness
 {
 namespace
 {
@@ -716,5 +716,5 @@ LoadedDataset LoadDatasetAsStored(const DatasetRequest& request)
   }
 }
 
-} // namespace tool
+} // namespace harness
 } // namespace amrsp

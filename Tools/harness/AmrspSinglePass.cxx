@@ -10,7 +10,7 @@
 
 namespace amrsp
 {
-namespace tool
+namespace harness
 {
 
 namespace
@@ -126,5 +126,5 @@ vtkSinglePassAMRVolumeMapper* SinglePassRenderer::GetMapper() const
   return this->Mapper;
 }
 
-} // namespace tool
+} // namespace harness
 } // namespace amrsp

@@ -19,7 +19,7 @@ class vtkGPUVolumeRayCastMapper;
 
 namespace amrsp
 {
-namespace tool
+namespace harness
 {
 
 class UniformGpuRenderer : public GpuRenderer
@@ -57,5 +57,5 @@ private:
   glm::ivec3 Dims{ 0 };
 };
 
-} // namespace tool
+} // namespace harness
 } // namespace amrsp
