@@ -183,18 +183,12 @@ vtkShaderProgram* vtkMultiPassAMRVolumeMapper::vtkInternals::ReadyShaders(
   const std::string fragment =
     vtkSinglePassAMRShaderComposer::ComposeFragmentShader(amrsp_MultiPassAMR_frag_glsl, defines,
       { { "RayCommon", amrsp_RayCommon_glsl }, { "BrickSample", amrsp_BrickSample_glsl } }, vol);
-  if (fragment == this->FailedFragmentSource)
-  {
-    self->ReportError(
-      "the multi-pass AMR shader failed to compile or link (see the earlier error)");
-    return nullptr;
-  }
-  vtkShaderProgram* program = renWin->GetShaderCache()->ReadyShaderProgram(
-    amrsp_MultiPassAMR_vert_glsl, fragment.c_str(), "");
+  std::string error;
+  vtkShaderProgram* program = vtkSinglePassAMRShaderComposer::ReadyProgram(renWin,
+    amrsp_MultiPassAMR_vert_glsl, fragment, "multi-pass AMR", this->FailedFragmentSource, error);
   if (!program)
   {
-    this->FailedFragmentSource = fragment;
-    self->ReportError("the multi-pass AMR shader failed to compile or link (see the error above)");
+    self->ReportError(error);
   }
   return program;
 }

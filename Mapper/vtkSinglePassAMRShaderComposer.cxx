@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSinglePassAMRShaderComposer.h"
 
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLShaderProperty.h"
 #include "vtkShader.h"
 #include "vtkShaderProgram.h"
@@ -39,6 +41,26 @@ std::string ComposeFragmentShader(const char* source, const std::string& defines
   }
   applyUserReplacements(fragment, false);
   return fragment;
+}
+
+//------------------------------------------------------------------------------
+vtkShaderProgram* ReadyProgram(vtkOpenGLRenderWindow* renWin, const char* vertex,
+  const std::string& fragment, const char* name, std::string& failedFragment, std::string& error)
+{
+  const std::string failed = std::string("the ") + name + " shader failed to compile or link";
+  if (fragment == failedFragment)
+  {
+    error = failed + " (see the earlier error)";
+    return nullptr;
+  }
+  vtkShaderProgram* program =
+    renWin->GetShaderCache()->ReadyShaderProgram(vertex, fragment.c_str(), "");
+  if (!program)
+  {
+    failedFragment = fragment;
+    error = failed + " (see the error above)";
+  }
+  return program;
 }
 
 } // namespace vtkSinglePassAMRShaderComposer

@@ -13,6 +13,8 @@
 #include <utility>
 #include <vector>
 
+class vtkOpenGLRenderWindow;
+class vtkShaderProgram;
 class vtkVolume;
 
 namespace vtkSinglePassAMRShaderComposer
@@ -26,6 +28,15 @@ namespace vtkSinglePassAMRShaderComposer
  */
 std::string ComposeFragmentShader(const char* source, const std::string& defines,
   const std::vector<std::pair<std::string, const char*>>& pieces, vtkVolume* vol);
+
+/**
+ * The program of `vertex` and `fragment` from `renWin`'s shader cache (compiled once per source).
+ * A fragment that failed before (`failedFragment`, updated here) is not compiled again. Null on
+ * failure, with `error`: "the <name> shader failed to compile or link (see the error above)"
+ * when it failed now, "(see the earlier error)" when it had failed before.
+ */
+vtkShaderProgram* ReadyProgram(vtkOpenGLRenderWindow* renWin, const char* vertex,
+  const std::string& fragment, const char* name, std::string& failedFragment, std::string& error);
 
 } // namespace vtkSinglePassAMRShaderComposer
 

@@ -155,18 +155,12 @@ vtkShaderProgram* vtkSinglePassAMRVolumeMapper::vtkInternals::ReadyShader(
         { "BrickSample", amrsp_BrickSample_glsl }, { "SmoothCells", amrsp_SmoothCells_glsl },
         { "Shading", amrsp_Shading_glsl }, { "RaySteps", amrsp_RaySteps_glsl } },
       vol);
-  if (fragment == this->FailedFragmentSource)
-  {
-    self->ReportError(
-      "the single-pass AMR shader failed to compile or link (see the earlier error)");
-    return nullptr;
-  }
-  vtkShaderProgram* program = renWin->GetShaderCache()->ReadyShaderProgram(
-    amrsp_SinglePassAMR_vert_glsl, fragment.c_str(), "");
+  std::string error;
+  vtkShaderProgram* program = vtkSinglePassAMRShaderComposer::ReadyProgram(renWin,
+    amrsp_SinglePassAMR_vert_glsl, fragment, "single-pass AMR", this->FailedFragmentSource, error);
   if (!program)
   {
-    this->FailedFragmentSource = fragment;
-    self->ReportError("the single-pass AMR shader failed to compile or link (see the error above)");
+    self->ReportError(error);
   }
   return program;
 }
