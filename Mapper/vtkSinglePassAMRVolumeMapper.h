@@ -29,7 +29,8 @@
  * When bindless is requested and cannot run (extension missing, neither access mode available,
  * or more grids than the driver can hold: Mesa's zink holds 1023), the mapper renders with the
  * packed atlas and says so once with a VTK warning (GetBindlessFallbackReason).
- * GetLastDataStorage() tells what rendered the last frame.
+ * GetLastDataStorage() tells what rendered the last frame. The rule is decided in one place,
+ * vtkSinglePassAMRStorageChoice::Choose (private; Mapper.StorageChoice tests it case by case).
  *
  * Input: vtkOverlappingAMR with cell data (one port). The scalars are the array selected with
  * SelectScalarArray(name) (vtkAbstractVolumeMapper's by-name selection); without a selection the

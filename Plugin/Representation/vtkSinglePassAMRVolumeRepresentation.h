@@ -132,9 +132,8 @@ public:
 
   /**
    * Rendering method. METHOD_AUTO: the single-pass mapper with the storage it chooses
-   * (vtkSinglePassAMRVolumeMapper::AUTO_STORAGE: bindless where the context offers it and the
-   * atlas would not fit or waste memory, else the linear bricks on a CPU driver for 64 MiB of
-   * grid data or more or where the atlas does not fit, else the packed atlas). METHOD_PACKING: the
+   * (vtkSinglePassAMRVolumeMapper::AUTO_STORAGE; the rule is vtkSinglePassAMRStorageChoice's,
+   * described with the mapper's DataStorage). METHOD_PACKING: the
    * single-pass mapper, packed atlas. METHOD_BINDLESS: the single-pass mapper, one texture per
    * brick through GL_ARB_bindless_texture handles (where the context lacks them it renders with the
    * atlas and warns once). METHOD_LINEAR: the single-pass mapper, the bricks back to back in 2D
