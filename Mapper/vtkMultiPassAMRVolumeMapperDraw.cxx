@@ -203,19 +203,11 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::BindCube(vtkShaderProgram* progr
       vtkSinglePassAMRProxyBox::BoxTriangles(lo, hi), vtkOpenGLBufferObject::ArrayBuffer);
     this->CubeArrayProgram = nullptr;
   }
-  this->CubeArray->Bind();
-  if (this->CubeArrayProgram != program)
+  if (!vtkSinglePassAMRProxyBox::BindTriangles(
+        this->CubeArray, this->CubeBuffer, program, "amrspCorner", this->CubeArrayProgram))
   {
-    this->CubeArray->ReleaseGraphicsResources();
-    this->CubeArray->Bind();
-    if (!this->CubeArray->AddAttributeArray(
-          program, this->CubeBuffer, "amrspCorner", 0, 3 * sizeof(float), VTK_FLOAT, 3, false))
-    {
-      this->CubeArray->Release();
-      this->Self->ReportError("cannot bind the node box's vertices to the shader");
-      return false;
-    }
-    this->CubeArrayProgram = program;
+    this->Self->ReportError("cannot bind the node box's vertices to the shader");
+    return false;
   }
   return true;
 }

@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSinglePassAMRProxyBox.h"
 
+#include "vtkOpenGLBufferObject.h"
+#include "vtkOpenGLVertexArrayObject.h"
+#include "vtkShaderProgram.h"
 #include "vtkVolumeMapper.h"
 
 #include <algorithm>
@@ -69,6 +72,27 @@ std::vector<float> BoxTriangles(const double lo[3], const double hi[3])
     }
   }
   return vertices;
+}
+
+//------------------------------------------------------------------------------
+bool BindTriangles(vtkOpenGLVertexArrayObject* array, vtkOpenGLBufferObject* buffer,
+  vtkShaderProgram* program, const char* attribute, vtkShaderProgram*& boundProgram)
+{
+  array->Bind();
+  if (boundProgram == program)
+  {
+    return true;
+  }
+  array->ReleaseGraphicsResources();
+  array->Bind();
+  if (!array->AddAttributeArray(
+        program, buffer, attribute, 0, 3 * sizeof(float), VTK_FLOAT, 3, false))
+  {
+    array->Release();
+    return false;
+  }
+  boundProgram = program;
+  return true;
 }
 
 } // namespace vtkSinglePassAMRProxyBox

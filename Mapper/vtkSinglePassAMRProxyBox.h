@@ -14,6 +14,9 @@
 #include <string>
 #include <vector>
 
+class vtkOpenGLBufferObject;
+class vtkOpenGLVertexArrayObject;
+class vtkShaderProgram;
 class vtkVolumeMapper;
 
 namespace vtkSinglePassAMRProxyBox
@@ -33,6 +36,12 @@ void ClipBox(vtkVolumeMapper* mapper, const glm::dvec3& origin, const glm::dvec3
 /// The 12 triangles (36 vertices, xyz) of the box [lo, hi], wound counter-clockwise seen from
 /// outside: the proxy geometry whose back faces start the rays.
 std::vector<float> BoxTriangles(const double lo[3], const double hi[3]);
+
+/// Binds `array` and, when `program` is not `boundProgram` (then updated), attaches `buffer`'s
+/// triangles (BoxTriangles' xyz floats) to `program`'s vec3 attribute `attribute`. Returns false,
+/// leaving `array` released, when the attribute cannot be attached.
+bool BindTriangles(vtkOpenGLVertexArrayObject* array, vtkOpenGLBufferObject* buffer,
+  vtkShaderProgram* program, const char* attribute, vtkShaderProgram*& boundProgram);
 
 } // namespace vtkSinglePassAMRProxyBox
 

@@ -179,19 +179,11 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::BindProxyBox(vtkShaderProgram* 
     this->BoxBufferTime = buildTime;
     this->BoxArrayProgram = nullptr;
   }
-  this->BoxArray->Bind();
-  if (this->BoxArrayProgram != program)
+  if (!vtkSinglePassAMRProxyBox::BindTriangles(
+        this->BoxArray, this->BoxBuffer, program, "vertexMC", this->BoxArrayProgram))
   {
-    this->BoxArray->ReleaseGraphicsResources();
-    this->BoxArray->Bind();
-    if (!this->BoxArray->AddAttributeArray(
-          program, this->BoxBuffer, "vertexMC", 0, 3 * sizeof(float), VTK_FLOAT, 3, false))
-    {
-      this->BoxArray->Release();
-      this->Self->ReportError("cannot bind the proxy box's vertices to the shader");
-      return false;
-    }
-    this->BoxArrayProgram = program;
+    this->Self->ReportError("cannot bind the proxy box's vertices to the shader");
+    return false;
   }
   return true;
 }

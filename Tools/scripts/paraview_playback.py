@@ -61,21 +61,19 @@ def main():
     still = (time.perf_counter() - start) / 3
     rss_one = resident_bytes()
 
+    def seconds_per_step(order):
+        start = time.perf_counter()
+        for t in order:
+            view.ViewTime = t
+            view.CacheKey = t
+            simple.Render(view)
+        return (time.perf_counter() - start) / len(order)
+
     view.UseCache = 1
-    start = time.perf_counter()
-    for t in times:
-        view.ViewTime = t
-        view.CacheKey = t
-        simple.Render(view)
-    first_loop = (time.perf_counter() - start) / len(times)
+    first_loop = seconds_per_step(times)
     rss_filled = resident_bytes()
     order = (times + list(reversed(times))) * a.loops
-    start = time.perf_counter()
-    for t in order:
-        view.ViewTime = t
-        view.CacheKey = t
-        simple.Render(view)
-    cached_loop = (time.perf_counter() - start) / len(order)
+    cached_loop = seconds_per_step(order)
     rss_after = resident_bytes()
     view.UseCache = 0
     display.SMProxy.UpdatePropertyInformation()
