@@ -398,7 +398,7 @@ int RunBench(int argc, char** argv)
   try
   {
     const Arguments a = ParseArguments(argc, argv, 1,
-      Concat({ DatasetOptions, ViewOptions,
+      Concat({ DatasetOptions, RenderOptionNames,
         { "frames", "methods", "json", "plot", "plot-size", "scaling-sizes", "seed", "save-images",
           "driver", "backend", "rounds", "interactive-rate" } }),
       Concat(

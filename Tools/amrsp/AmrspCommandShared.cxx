@@ -24,104 +24,6 @@ using namespace harness; // the datasets, renderers and checks the commands use
 
 const char* const DefaultDataset = "synthetic:cosmo:grids=200,levels=4,cells=1M,seed=7";
 
-std::string Arguments::Get(const std::string& key, const std::string& fallback) const
-{
-  const auto it = Options.find(key);
-  return it == Options.end() ? fallback : it->second;
-}
-
-double Arguments::GetNumber(const std::string& key, double fallback) const
-{
-  const auto it = Options.find(key);
-  if (it == Options.end())
-  {
-    return fallback;
-  }
-  try
-  {
-    std::size_t used = 0;
-    const double v = std::stod(it->second, &used);
-    if (used == it->second.size() && std::isfinite(v))
-    {
-      return v;
-    }
-  }
-  catch (const std::exception&)
-  {
-  }
-  throw UsageError{ "--" + key + " expects a number, got '" + it->second + "'" };
-}
-
-std::vector<double> Arguments::GetNumbers(const std::string& key, const std::string& fallback) const
-{
-  const std::string text = Get(key, fallback);
-  std::vector<double> out;
-  std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');)
-  {
-    try
-    {
-      std::size_t used = 0;
-      out.push_back(std::stod(item, &used));
-      if (used != item.size() || !std::isfinite(out.back()))
-      {
-        throw std::invalid_argument(item);
-      }
-    }
-    catch (const std::exception&)
-    {
-      throw UsageError{ "--" + key + " expects comma-separated numbers, got '" + text + "'" };
-    }
-  }
-  return out;
-}
-
-Arguments ParseArguments(int argc, char** argv, int first,
-  const std::vector<std::string>& valueOptions, const std::vector<std::string>& flags)
-{
-  Arguments a;
-  for (int i = first; i < argc; ++i)
-  {
-    std::string s = argv[i];
-    if (s == "-o")
-    {
-      s = "--output";
-    }
-    if (s.size() > 2 && s.compare(0, 2, "--") == 0)
-    {
-      std::string key = s.substr(2), value;
-      const std::size_t eq = key.find('=');
-      if (eq != std::string::npos)
-      {
-        value = key.substr(eq + 1);
-        key = key.substr(0, eq);
-      }
-      const bool takesValue =
-        std::find(valueOptions.begin(), valueOptions.end(), key) != valueOptions.end();
-      const bool isFlag =
-        std::find(flags.begin(), flags.end(), key) != flags.end() || key == "help";
-      if (!takesValue && !isFlag)
-      {
-        throw UsageError{ "unknown option --" + key };
-      }
-      if (takesValue && eq == std::string::npos)
-      {
-        if (i + 1 >= argc)
-        {
-          throw UsageError{ "--" + key + " needs a value" };
-        }
-        value = argv[++i];
-      }
-      a.Options[key] = takesValue ? value : "1";
-    }
-    else
-    {
-      a.Positional.push_back(s);
-    }
-  }
-  return a;
-}
-
 double Seconds(Clock::time_point since)
 {
   return std::chrono::duration<double>(Clock::now() - since).count();
@@ -138,11 +40,6 @@ const std::vector<std::string> DatasetOptions = { "array", "component", "centeri
 const std::vector<std::string> DatasetFlags = { "allow-partial", "strict", "quiet" };
 const std::vector<std::string> AtlasOptions = { "packer", "max-3d-texture-size", "atlas-budget-mb",
   "atlas-page-mib" };
-const std::vector<std::string> ViewOptions = { "size", "azimuth", "elevation", "zoom", "tf",
-  "scale", "unit-distance", "sample-factor", "reference-sample-factor", "lod", "threads", "blend",
-  "view-json", "opacity-threshold", "empty-space-skipping", "interpolation", "shade", "iso",
-  "shadows", "light", "crop", "ropes", "ablation", "loop" };
-
 std::vector<std::string> Concat(std::initializer_list<std::vector<std::string>> lists)
 {
   std::vector<std::string> all;
@@ -287,12 +184,6 @@ LoadedDataset Load(const Arguments& a, const std::string& spec, bool needValues,
     throw UsageError{ "--read-timeout must be a positive number of seconds" };
   }
   return LoadDataset(r);
-}
-
-void Bounds(const Hierarchy& h, glm::dvec3& lo, glm::dvec3& hi)
-{
-  lo = h.WorldLo(h.RootCells(), 0);
-  hi = h.WorldHi(h.RootCells(), 0);
 }
 
 void WritePng(const Image& img, const std::string& path)

@@ -41,7 +41,6 @@ bool WantsHelp(const Arguments& a);
 extern const std::vector<std::string> DatasetOptions;
 extern const std::vector<std::string> DatasetFlags;
 extern const std::vector<std::string> AtlasOptions;
-extern const std::vector<std::string> ViewOptions;
 std::vector<std::string> Concat(std::initializer_list<std::vector<std::string>> lists);
 extern const char* const DatasetHelp;
 extern const char* const AtlasHelp;
@@ -61,9 +60,6 @@ struct AtlasRequest
 };
 AtlasRequest ParseAtlasRequest(const Arguments& a);
 Json AtlasJson(const AtlasLayout& layout);
-
-/// World bounds of the hierarchy's root box.
-void Bounds(const Hierarchy& h, glm::dvec3& lo, glm::dvec3& hi);
 
 void WritePng(const Image& img, const std::string& path);
 Json BoxJson(const glm::dvec3& lo, const glm::dvec3& hi);

@@ -14,7 +14,7 @@ namespace tool
 std::vector<std::string> ImageValueOptions()
 {
   std::vector<std::string> options =
-    Concat({ DatasetOptions, ViewOptions, AtlasOptions, { "output" } });
+    Concat({ DatasetOptions, RenderOptionNames, AtlasOptions, { "output" } });
   options.push_back("repeat");
   return options;
 }

@@ -4,8 +4,8 @@
 /// Helpers shared by the mapper image tests: a check counter that prints every check, number
 /// formatting, image coverage and render settings built from `amrsp render` options.
 
-#include "AmrspCommands.h"
 #include "AmrspDataset.h"
+#include "AmrspRenderOptions.h"
 
 #include "amrsp/ImageDifference.h"
 #include "amrsp/Render.h"
@@ -105,21 +105,9 @@ inline double Coverage(const amrsp::Image& img)
 }
 
 /// The settings `amrsp render OPTIONS` would use for `h` (which gets the --scale applied).
-inline amrsp::RenderSettings Settings(amrsp::Hierarchy& h, std::vector<std::string> options)
+inline amrsp::RenderSettings Settings(amrsp::Hierarchy& h, const std::vector<std::string>& options)
 {
-  std::vector<char*> argv;
-  std::string command = "render";
-  argv.push_back(&command[0]);
-  for (std::string& o : options)
-  {
-    argv.push_back(&o[0]);
-  }
-  const amrsp::tool::Arguments a =
-    amrsp::tool::ParseArguments(static_cast<int>(argv.size()), argv.data(), 1,
-      { "size", "azimuth", "elevation", "zoom", "tf", "scale", "unit-distance", "sample-factor",
-        "reference-sample-factor" },
-      {});
-  return amrsp::tool::MakeSettings(h, a);
+  return amrsp::harness::MakeSettings(h, options);
 }
 
 /// The hierarchy of a dataset spec (`amrsp render`'s DATASET), without the VTK objects;

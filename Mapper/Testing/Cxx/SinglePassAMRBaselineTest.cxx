@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "SinglePassAMRBaselineTest.h"
 
-#include "AmrspCommands.h"
+#include "AmrspRenderOptions.h"
 #include "AmrspDataset.h"
-#include "AmrspLighting.h"
 #include "AmrspSinglePass.h"
 #include "MapperTestHelpers.h"
 
@@ -406,7 +405,6 @@ bool CompareWithStoredBaseline(int argc, char* argv[], const Image& image, const
 
 int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
 {
-  using namespace amrsp::tool;
   using namespace amrsp::harness;
   std::string why;
   if (!SinglePassRenderer::Available(why))
@@ -436,10 +434,8 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
   }
   try
   {
-    std::vector<std::string> known = { "array", "centering", "size", "azimuth", "elevation", "zoom",
-      "tf", "scale", "unit-distance", "sample-factor", "reference-sample-factor", "lod", "blend",
-      "opacity-threshold", "empty-space-skipping", "interpolation", "crop" };
-    known.insert(known.end(), LightingOptions.begin(), LightingOptions.end());
+    std::vector<std::string> known = RenderOptionNames;
+    known.insert(known.end(), { "array", "centering" });
     const Arguments a = ParseArguments(static_cast<int>(args.size()), args.data(), 1, known, {});
     DatasetRequest request;
     request.Spec = spec;

@@ -15,7 +15,7 @@
 // The mapper is asked which storage and access mode rendered, so a silent fallback to the atlas
 // cannot pass as bindless.
 
-#include "AmrspCommands.h"
+#include "AmrspRenderOptions.h"
 #include "MapperTestHelpers.h"
 #include "AmrspDataset.h"
 #include "AmrspSinglePass.h"
@@ -44,7 +44,6 @@
 namespace
 {
 using namespace amrsp;
-using namespace amrsp::tool;
 using namespace amrsp::harness;
 using mappertest::BoundVsKdTree;
 using mappertest::Check;

@@ -4,7 +4,7 @@
 // scalar. Checked against the CPU integrators (which evaluate the log interpolation exactly),
 // against a linear map whose points sit at log-spaced positions, with empty-space skipping, and
 // for a range that is not positive (drawn linearly, with a warning).
-#include "AmrspCommands.h"
+#include "AmrspRenderOptions.h"
 #include "AmrspDataset.h"
 #include "AmrspMultipass.h"
 #include "AmrspSinglePass.h"
@@ -26,7 +26,6 @@
 #include <string>
 
 using namespace amrsp;
-using namespace amrsp::tool;
 using namespace amrsp::harness;
 using mappertest::Check;
 using mappertest::Coverage;

@@ -24,7 +24,7 @@
 // Exit code 125 (CTest SKIP) with "SKIPPED: ..." when no suitable OpenGL context can be created
 // (no X display for this GLX-only VTK, or an OpenGL older than 3.2 core).
 
-#include "AmrspCommands.h"
+#include "AmrspRenderOptions.h"
 #include "MapperTestHelpers.h"
 #include "RendererChecks.h"
 #include "AmrspDataset.h"
@@ -64,7 +64,6 @@
 namespace
 {
 using namespace amrsp;
-using namespace amrsp::tool;
 using namespace amrsp::harness;
 using mappertest::BoundVsKdTree;
 using mappertest::BoundVsReference;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
-/// The shading, iso-surface and shadow options of the amrsp tool (docs/design.md, "Shading,
+/// The shading, iso-surface and shadow options of a render (docs/design.md, "Shading,
 /// iso-surfaces and shadows"); AmrspSceneLighting.h turns them into VTK objects.
 
 #include "amrsp/Render.h"
@@ -11,7 +11,7 @@
 
 namespace amrsp
 {
-namespace tool
+namespace harness
 {
 
 struct Arguments;
@@ -24,5 +24,5 @@ extern const std::vector<std::string> LightingOptions;
 /// world position; default: the headlight) into `s`. Throws UsageError.
 void ApplyLightingOptions(RenderSettings& s, const Arguments& a, double lo, double hi);
 
-} // namespace tool
+} // namespace harness
 } // namespace amrsp

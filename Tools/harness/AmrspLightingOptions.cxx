@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "AmrspLighting.h"
+#include "AmrspLightingOptions.h"
 
-#include "AmrspCommands.h"
+#include "AmrspArguments.h"
 
 #include <sstream>
 
 namespace amrsp
 {
-namespace tool
+namespace harness
 {
 
 const std::vector<std::string> LightingOptions = { "shade", "iso", "shadows", "light" };
@@ -57,5 +57,5 @@ void ApplyLightingOptions(RenderSettings& s, const Arguments& a, double lo, doub
   }
 }
 
-} // namespace tool
+} // namespace harness
 } // namespace amrsp

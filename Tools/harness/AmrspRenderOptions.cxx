@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // first: see AmrspJson.h
-#include "AmrspCommandShared.h"
+#include "AmrspJson.h"
 
-#include "AmrspLighting.h"
+#include "AmrspRenderOptions.h"
+
+#include "AmrspDataset.h"
+#include "AmrspLightingOptions.h"
 
 #include "amrsp/VertexData.h"
 
@@ -13,8 +16,15 @@
 
 namespace amrsp
 {
-namespace tool
+namespace harness
 {
+
+using Json = nlohmann::ordered_json;
+
+const std::vector<std::string> RenderOptionNames = { "size", "azimuth", "elevation", "zoom", "tf",
+  "scale", "unit-distance", "sample-factor", "reference-sample-factor", "lod", "threads", "blend",
+  "view-json", "opacity-threshold", "empty-space-skipping", "interpolation", "shade", "iso",
+  "shadows", "light", "crop", "ropes", "ablation", "loop" };
 
 void PrepareScalars(Hierarchy& h, const std::string& scale, double& lo, double& hi)
 {
@@ -478,6 +488,17 @@ RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range)
   return s;
 }
 
+RenderSettings MakeSettings(Hierarchy& h, const std::vector<std::string>& optionWords)
+{
+  return MakeSettings(h, ParseArguments(optionWords, RenderOptionNames));
+}
+
+void Bounds(const Hierarchy& h, glm::dvec3& lo, glm::dvec3& hi)
+{
+  lo = h.WorldLo(h.RootCells(), 0);
+  hi = h.WorldHi(h.RootCells(), 0);
+}
+
 ViewAngles ViewOf(const Arguments& a)
 {
   ViewAngles v;
@@ -501,5 +522,5 @@ double CameraDifference(const Camera& a, const Camera& b)
   return d;
 }
 
-} // namespace tool
+} // namespace harness
 } // namespace amrsp
