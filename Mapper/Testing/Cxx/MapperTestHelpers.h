@@ -6,6 +6,7 @@
 
 #include "AmrspDataset.h"
 #include "AmrspRenderOptions.h"
+#include "AmrspSinglePass.h"
 
 #include "amrsp/ImageDifference.h"
 #include "amrsp/Render.h"
@@ -13,6 +14,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -120,6 +122,55 @@ inline amrsp::Hierarchy LoadHierarchy(
   request.NeedVTK = false;
   request.Centering = centering;
   return amrsp::harness::LoadDataset(request).Data;
+}
+
+/// The Enzo moving7 hierarchy file of ../shared/data (AMRSP_DATA_DIR).
+inline std::string EnzoPath()
+{
+  return std::string(AMRSP_DATA_DIR) + "/enzo_moving7/DD0010/moving7_0010.hierarchy";
+}
+
+/// Calls `test(path)` with the Enzo file when it is there. Without it the Enzo half is left out
+/// and said by hand, and is a failed check in CI (AMRSP_REQUIRE_GPU=1), where it must run.
+template <class Test>
+void WithEnzo(Test test)
+{
+  const std::string enzo = EnzoPath();
+  if (std::FILE* f = std::fopen(enzo.c_str(), "r"))
+  {
+    std::fclose(f);
+    test(enzo);
+    return;
+  }
+  const bool required = EverythingRequired();
+  Check(!required,
+    "the Enzo dataset " + enzo + " is " +
+      (required ? "missing (required here: AMRSP_REQUIRE_GPU=1)" : "missing: left out"));
+}
+
+/// A mapper test's main: SKIPPED (or, in CI, FAILED) when the GPU renderers cannot run
+/// here; otherwise runs `body`, counts an exception escaping it as a failed check, prints PASSED
+/// or "FAILED: N check(s)" and returns the exit code.
+template <class Body>
+int RunChecks(Body body)
+{
+  std::string why;
+  if (!amrsp::harness::GpuRenderer::Available(why))
+  {
+    return SkipOrFail(why);
+  }
+  try
+  {
+    body();
+  }
+  catch (const std::exception& e)
+  {
+    std::cout << "  FAILED  " << e.what() << "\n";
+    ++Failures();
+  }
+  std::cout << (Failures() == 0 ? "PASSED" : "FAILED: " + std::to_string(Failures()) + " check(s)")
+            << "\n";
+  return Failures() == 0 ? 0 : 1;
 }
 
 } // namespace mappertest

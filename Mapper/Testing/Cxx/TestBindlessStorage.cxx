@@ -277,9 +277,7 @@ int RunBindless()
 {
   TestDataset("one grid", LoadHierarchy("synthetic:cosmo:grids=1,levels=1,cells=20k,seed=2"), true,
     mappertest::RefOneGrid);
-  TestDataset("enzo_moving7",
-    LoadHierarchy(std::string(AMRSP_DATA_DIR) + "/enzo_moving7/DD0010/moving7_0010.hierarchy"),
-    false, mappertest::RefEnzo);
+  TestDataset("enzo_moving7", LoadHierarchy(mappertest::EnzoPath()), false, mappertest::RefEnzo);
   TestDataset("amrex_plt1_Y", LoadHierarchy(std::string(AMRSP_DATA_DIR) + "/amrex_plt1_Y"), false,
     mappertest::RefAmrex);
   TestDataset("synthetic, vertex-centred",

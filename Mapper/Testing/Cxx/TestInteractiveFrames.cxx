@@ -143,21 +143,5 @@ void TestInteractiveFrames()
 
 int main()
 {
-  std::string why;
-  if (!SinglePassRenderer::Available(why))
-  {
-    return mappertest::SkipOrFail(why);
-  }
-  try
-  {
-    TestInteractiveFrames();
-  }
-  catch (const std::exception& e)
-  {
-    std::cout << "  FAILED  " << e.what() << "\n";
-    ++Failures();
-  }
-  std::cout << (Failures() == 0 ? "PASSED" : "FAILED: " + std::to_string(Failures()) + " check(s)")
-            << "\n";
-  return Failures() == 0 ? 0 : 1;
+  return mappertest::RunChecks(TestInteractiveFrames);
 }

@@ -242,31 +242,19 @@ void TestAutomaticChoice()
 
 int main()
 {
-  std::string why;
-  if (!GpuRenderer::Available(why))
-  {
-    return mappertest::SkipOrFail(why);
-  }
-  try
-  {
-    using namespace mappertest;
-    TestDataset(
-      "one grid", LoadHierarchy("synthetic:cosmo:grids=1,levels=1,cells=20k,seed=2"), RefOneGrid);
-    TestDataset("enzo_moving7",
-      LoadHierarchy(std::string(AMRSP_DATA_DIR) + "/enzo_moving7/DD0010/moving7_0010.hierarchy"),
-      RefEnzo);
-    TestDataset(
-      "amrex_plt1_Y", LoadHierarchy(std::string(AMRSP_DATA_DIR) + "/amrex_plt1_Y"), RefAmrex);
-    TestDataset("synthetic, vertex-centred",
-      LoadHierarchy("synthetic:cosmo:grids=60,levels=3,cells=100k,seed=4", "vertex"), RefVertex);
-    TestDataset("synthetic, smooth cells",
-      LoadHierarchy("synthetic:cosmo:grids=60,levels=3,cells=100k,seed=4"), RefSmooth, true);
-    TestAutomaticChoice();
-  }
-  catch (const std::exception& e)
-  {
-    std::cout << "  FAILED  " << e.what() << "\n";
-    return 1;
-  }
-  return Failures() == 0 ? 0 : 1;
+  return mappertest::RunChecks(
+    []
+    {
+      using namespace mappertest;
+      TestDataset(
+        "one grid", LoadHierarchy("synthetic:cosmo:grids=1,levels=1,cells=20k,seed=2"), RefOneGrid);
+      TestDataset("enzo_moving7", LoadHierarchy(EnzoPath()), RefEnzo);
+      TestDataset(
+        "amrex_plt1_Y", LoadHierarchy(std::string(AMRSP_DATA_DIR) + "/amrex_plt1_Y"), RefAmrex);
+      TestDataset("synthetic, vertex-centred",
+        LoadHierarchy("synthetic:cosmo:grids=60,levels=3,cells=100k,seed=4", "vertex"), RefVertex);
+      TestDataset("synthetic, smooth cells",
+        LoadHierarchy("synthetic:cosmo:grids=60,levels=3,cells=100k,seed=4"), RefSmooth, true);
+      TestAutomaticChoice();
+    });
 }

@@ -383,48 +383,25 @@ void TestVertexCentred(const std::string& spec)
 
 int main()
 {
-  std::string why;
-  if (!GpuRenderer::Available(why))
-  {
-    return mappertest::SkipOrFail(why);
-  }
-  try
-  {
-    TestDataset("synthetic:cosmo:grids=60,levels=3,cells=200k,seed=3");
-    TestVertexCentred("synthetic:cosmo:grids=40,levels=3,cells=100k,seed=5");
+  const int code = mappertest::RunChecks(
+    []
     {
+      TestDataset("synthetic:cosmo:grids=60,levels=3,cells=200k,seed=3");
+      TestVertexCentred("synthetic:cosmo:grids=40,levels=3,cells=100k,seed=5");
       std::cout << "level of detail\n";
       Hierarchy small = LoadHierarchy("synthetic:cosmo:grids=20,levels=2,cells=50k,seed=1");
       RenderSettings s = Settings(small, { "--size", "32x32" });
       s.LodThresholdPixels = 2.0f;
       CheckError([&] { MultipassRenderer refused(small, s, ViewAngles()); },
         { "finest level only" }, "--lod is refused by the multipass method");
-    }
-    const std::string enzo =
-      std::string(AMRSP_DATA_DIR) + "/enzo_moving7/DD0010/moving7_0010.hierarchy";
-    if (std::FILE* f = std::fopen(enzo.c_str(), "r"))
-    {
-      std::fclose(f);
-      TestDataset(enzo);
-      TestVertexCentred(enzo);
-    }
-    else
-    {
-      // by hand the Enzo half is left out and said; in CI (AMRSP_REQUIRE_GPU=1) it must run
-      const bool required = mappertest::EverythingRequired();
-      Check(!required,
-        "the Enzo dataset " + enzo + " is " +
-          (required ? "missing (required here: AMRSP_REQUIRE_GPU=1)" : "missing: left out"));
-    }
-  }
-  catch (const std::exception& e)
-  {
-    std::cout << "  FAILED  " << e.what() << "\n";
-    ++Failures();
-  }
+      mappertest::WithEnzo(
+        [](const std::string& enzo)
+        {
+          TestDataset(enzo);
+          TestVertexCentred(enzo);
+        });
+    });
   std::cout << "largest RMSE (0-255): multi-pass vs CPU kD-tree " << Fixed(LargestVsKdTree)
             << ", vs single-pass " << Fixed(LargestVsSinglePass) << "\n";
-  std::cout << (Failures() == 0 ? "PASSED" : "FAILED: " + std::to_string(Failures()) + " check(s)")
-            << "\n";
-  return Failures() == 0 ? 0 : 1;
+  return code;
 }

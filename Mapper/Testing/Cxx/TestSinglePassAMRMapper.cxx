@@ -645,43 +645,21 @@ void TestTwoRenderersAndDataChanges()
 
 int main()
 {
-  std::string why;
-  if (!SinglePassRenderer::Available(why))
-  {
-    return mappertest::SkipOrFail(why);
-  }
-  try
-  {
-    TestDataset("synthetic:cosmo:grids=60,levels=3,cells=200k,seed=3");
-    TestLevelOfDetailAndNaN();
-    TestAtlasPages();
-    TestProgressEvents();
-    TestRefinementRatios();
-    TestTwoRenderersAndDataChanges();
-    TestVertexCentred("synthetic:cosmo:grids=40,levels=3,cells=100k,seed=5");
-    const std::string enzo =
-      std::string(AMRSP_DATA_DIR) + "/enzo_moving7/DD0010/moving7_0010.hierarchy";
-    if (std::FILE* f = std::fopen(enzo.c_str(), "r"))
+  return mappertest::RunChecks(
+    []
     {
-      std::fclose(f);
-      TestDataset(enzo);
-      TestVertexCentred(enzo);
-    }
-    else
-    {
-      // by hand the Enzo half is left out and said; in CI (AMRSP_REQUIRE_GPU=1) it must run
-      const bool required = mappertest::EverythingRequired();
-      Check(!required,
-        "the Enzo dataset " + enzo + " is " +
-          (required ? "missing (required here: AMRSP_REQUIRE_GPU=1)" : "missing: left out"));
-    }
-  }
-  catch (const std::exception& e)
-  {
-    std::cout << "  FAILED  " << e.what() << "\n";
-    ++Failures();
-  }
-  std::cout << (Failures() == 0 ? "PASSED" : "FAILED: " + std::to_string(Failures()) + " check(s)")
-            << "\n";
-  return Failures() == 0 ? 0 : 1;
+      TestDataset("synthetic:cosmo:grids=60,levels=3,cells=200k,seed=3");
+      TestLevelOfDetailAndNaN();
+      TestAtlasPages();
+      TestProgressEvents();
+      TestRefinementRatios();
+      TestTwoRenderersAndDataChanges();
+      TestVertexCentred("synthetic:cosmo:grids=40,levels=3,cells=100k,seed=5");
+      mappertest::WithEnzo(
+        [](const std::string& enzo)
+        {
+          TestDataset(enzo);
+          TestVertexCentred(enzo);
+        });
+    });
 }
