@@ -64,10 +64,6 @@
 #include <string>
 #include <vector>
 
-#ifndef AMRSP_DATA_DIR
-#define AMRSP_DATA_DIR ""
-#endif
-
 namespace
 {
 using namespace amrsp;
