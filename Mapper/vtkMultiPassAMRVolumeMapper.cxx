@@ -299,20 +299,30 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::UploadAtlas(
   }
   const auto t0 = std::chrono::steady_clock::now();
   std::string error;
-  this->AtlasPages.clear();
+  // the previous pages, overwritten in place when of the same size in the same context (a time
+  // step's new values: no allocation, no first-touch of fresh driver memory)
   const amrsp::AtlasPages& pages = this->Data.Atlas;
+  std::vector<vtkSmartPointer<vtkTextureObject>> reusable;
+  if (this->Context == renWin)
+  {
+    reusable = vtkSinglePassAMRPackedAtlas::TakeReusablePages(this->AtlasPages, pages);
+  }
+  this->AtlasPages.clear();
   self->BeginProgressPhase(PROGRESS_UPLOAD, "uploading the atlas");
   for (std::size_t p = 0; p < pages.Pages.size(); ++p)
   {
     vtkSmartPointer<vtkTextureObject> page;
+    vtkTextureObject* reuse = p < reusable.size() ? reusable[p].Get() : nullptr;
     const double share = 1.0 / static_cast<double>(pages.Pages.size());
-    if (!vtkSinglePassAMRPackedAtlas::UploadAtlas(renWin,
+    if (!vtkSinglePassAMRPackedAtlas::UploadAtlas(
+          renWin,
           pages.Pages.size() == 1
             ? this->Data.Structure
             : amrsp::PageHierarchy(this->Data.Structure, pages, static_cast<int>(p)),
           pages.Pages[p], this->Data.VertexCentred, self->MaximumAtlasSize, page, error,
           [self, p, share](double f)
-          { self->UpdateProgress((static_cast<double>(p) + f) * share); }))
+          { self->UpdateProgress((static_cast<double>(p) + f) * share); },
+          reuse))
     {
       // keep the CPU data: a later context (or a smaller input) may succeed
       this->AtlasPages.clear();

@@ -309,14 +309,14 @@ bool vtkSinglePassAMRGridStorage::UploadValues(vtkOpenGLRenderWindow* renWin,
   }
   else if (storage == vtkSinglePassAMRStorage::LinearBricks)
   {
-    this->Linear.Clear();
     ok = this->Linear.Upload(
       renWin, data.Data, data.VertexCentred, this->LinearPageBytes, error, progress);
   }
   else
   {
-    this->AtlasPages.clear();
-    ok = this->UploadAtlas(renWin, data, progress);
+    // the previous step's pages, overwritten in place where no kept step holds them
+    ok = this->UploadAtlas(renWin, data, progress,
+      vtkSinglePassAMRPackedAtlas::TakeReusablePages(this->AtlasPages, data.Atlas));
   }
   const GLenum glError = glGetError();
   if (!ok || glError != GL_NO_ERROR)
@@ -359,12 +359,15 @@ std::unique_ptr<vtkSinglePassAMRGridStorage> vtkSinglePassAMRGridStorage::ShareS
 
 //------------------------------------------------------------------------------
 bool vtkSinglePassAMRGridStorage::UploadAtlas(vtkOpenGLRenderWindow* renWin,
-  const amrsp::RayCastingData& data, const std::function<void(double)>& progress)
+  const amrsp::RayCastingData& data, const std::function<void(double)>& progress,
+  const std::vector<vtkSmartPointer<vtkTextureObject>>& reusable)
 {
   const amrsp::AtlasPages& atlas = data.Atlas;
   for (std::size_t p = 0; p < atlas.Pages.size(); ++p)
   {
-    vtkSmartPointer<vtkTextureObject> page = vtkSinglePassAMRPackedAtlas::UploadAtlasBySlabs(renWin,
+    vtkTextureObject* reuse = p < reusable.size() ? reusable[p].Get() : nullptr;
+    vtkSmartPointer<vtkTextureObject> page = vtkSinglePassAMRPackedAtlas::UploadAtlasBySlabs(
+      renWin,
       atlas.Pages.size() == 1 ? data.Data
                               : amrsp::PageHierarchy(data.Data, atlas, static_cast<int>(p)),
       atlas.Pages[p], data.VertexCentred,
@@ -374,7 +377,8 @@ bool vtkSinglePassAMRGridStorage::UploadAtlas(vtkOpenGLRenderWindow* renWin,
         {
           progress((static_cast<double>(p) + f) / static_cast<double>(atlas.Pages.size()));
         }
-      });
+      },
+      reuse);
     if (!page)
     {
       return false;

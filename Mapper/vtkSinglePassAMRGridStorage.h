@@ -130,8 +130,11 @@ public:
 
 private:
   void QueryCapabilities(vtkOpenGLRenderWindow* renWin);
+  /// Uploads the atlas pages; a non-null `reusable[p]` (vtkSinglePassAMRPackedAtlas::
+  /// TakeReusablePages) is overwritten in place as page p.
   bool UploadAtlas(vtkOpenGLRenderWindow* renWin, const amrsp::RayCastingData& data,
-    const std::function<void(double)>& progress);
+    const std::function<void(double)>& progress,
+    const std::vector<vtkSmartPointer<vtkTextureObject>>& reusable = {});
   bool UploadBindless(
     vtkOpenGLRenderWindow* renWin, const amrsp::RayCastingData& data, std::string& error);
   void ReleaseBindless(vtkWindow* window);

@@ -91,6 +91,10 @@ bool vtkSinglePassAMRLinearBricks::Upload(vtkOpenGLRenderWindow* renWin, const a
   bool vertexCentred, long long maxPageBytes, std::string& error,
   const std::function<void(double)>& progress)
 {
+  // this object's previous pages, overwritten in place where nothing else holds them (a time
+  // step's new values in the same layout: no allocation, no first-touch of fresh driver memory)
+  std::vector<vtkSmartPointer<vtkTextureObject>> previous;
+  previous.swap(this->Pages);
   this->Clear();
   int widthLog2 = 0;
   int maxRows = 0;
@@ -123,7 +127,10 @@ bool vtkSinglePassAMRLinearBricks::Upload(vtkOpenGLRenderWindow* renWin, const a
   for (std::size_t p = 0; p < layout.PageRows.size(); ++p)
   {
     const int rows = layout.PageRows[p];
-    vtkSmartPointer<vtkTextureObject> page = MakePage(renWin, width, rows);
+    const bool reusable = p < previous.size() && previous[p]->GetReferenceCount() == 1 &&
+      static_cast<int>(previous[p]->GetWidth()) == width &&
+      static_cast<int>(previous[p]->GetHeight()) == rows;
+    vtkSmartPointer<vtkTextureObject> page = reusable ? previous[p] : MakePage(renWin, width, rows);
     if (!page)
     {
       error = "the driver refused a linear page of " + std::to_string(width) + " x " +

@@ -33,7 +33,8 @@ public:
   /// `renWin`, its context current. Returns false with a one-line `error` when the bricks do not
   /// fit the layout's limits or the driver refuses a texture; nothing is kept then.
   /// `maxPageBytes` (> 0) lowers the page size (MaximumAtlasPageBytes). `progress` gets the
-  /// fraction of the texels uploaded (0 to 1).
+  /// fraction of the texels uploaded (0 to 1). A previous page of the same shape that nothing
+  /// else holds is overwritten in place.
   bool Upload(vtkOpenGLRenderWindow* renWin, const amrsp::Hierarchy& h, bool vertexCentred,
     long long maxPageBytes, std::string& error, const std::function<void(double)>& progress);
 

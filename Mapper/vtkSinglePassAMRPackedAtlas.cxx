@@ -4,6 +4,7 @@
 #include "vtkSinglePassAMRConversion.h"
 #include "vtkSinglePassAMRTextures.h"
 
+#include "amrsp/AtlasPages.h"
 #include "amrsp/BrickPacking.h"
 #include "amrsp/RayCastingData.h"
 
@@ -134,11 +135,15 @@ bool AtlasFitsContext(
 //------------------------------------------------------------------------------
 vtkSmartPointer<vtkTextureObject> UploadAtlasBySlabs(vtkOpenGLRenderWindow* renWin,
   const amrsp::Hierarchy& h, const amrsp::AtlasLayout& layout, bool vertexCentred,
-  const std::function<void(double)>& progress)
+  const std::function<void(double)>& progress, vtkTextureObject* reuse)
 {
   const glm::ivec3 d = layout.Dims;
-  vtkSmartPointer<vtkTextureObject> atlas =
-    vtkSinglePassAMRTextures::MakeScalarTexture(renWin, d, nullptr, vertexCentred);
+  vtkSmartPointer<vtkTextureObject> atlas = reuse;
+  if (!reuse || static_cast<int>(reuse->GetWidth()) != d.x ||
+    static_cast<int>(reuse->GetHeight()) != d.y || static_cast<int>(reuse->GetDepth()) != d.z)
+  {
+    atlas = vtkSinglePassAMRTextures::MakeScalarTexture(renWin, d, nullptr, vertexCentred);
+  }
   if (!atlas)
   {
     return nullptr;
@@ -196,7 +201,7 @@ void UploadInSlabs(int units, int slab, std::size_t unitFloats,
 bool UploadAtlas(vtkOpenGLRenderWindow* renWin, const amrsp::Hierarchy& h,
   const amrsp::AtlasLayout& layout, bool vertexCentred, int atlasLimit,
   vtkSmartPointer<vtkTextureObject>& texture, std::string& error,
-  const std::function<void(double)>& progress)
+  const std::function<void(double)>& progress, vtkTextureObject* reuse)
 {
   texture = nullptr;
   const glm::ivec3 d = layout.Dims;
@@ -207,7 +212,7 @@ bool UploadAtlas(vtkOpenGLRenderWindow* renWin, const amrsp::Hierarchy& h,
   while (glGetError() != GL_NO_ERROR)
   {
   }
-  texture = UploadAtlasBySlabs(renWin, h, layout, vertexCentred, progress);
+  texture = UploadAtlasBySlabs(renWin, h, layout, vertexCentred, progress, reuse);
   const bool ok = texture != nullptr;
   const GLenum glError = glGetError();
   if (!ok || glError != GL_NO_ERROR)
@@ -225,6 +230,26 @@ bool UploadAtlas(vtkOpenGLRenderWindow* renWin, const amrsp::Hierarchy& h,
     return false;
   }
   return true;
+}
+
+//------------------------------------------------------------------------------
+std::vector<vtkSmartPointer<vtkTextureObject>> TakeReusablePages(
+  std::vector<vtkSmartPointer<vtkTextureObject>>& pages, const amrsp::AtlasPages& layout)
+{
+  std::vector<vtkSmartPointer<vtkTextureObject>> old;
+  old.swap(pages);
+  std::vector<vtkSmartPointer<vtkTextureObject>> reusable(layout.Pages.size());
+  for (std::size_t p = 0; p < old.size() && p < reusable.size(); ++p)
+  {
+    const glm::ivec3 d = layout.Pages[p].Dims;
+    vtkTextureObject* t = old[p];
+    if (t && t->GetReferenceCount() == 1 && static_cast<int>(t->GetWidth()) == d.x &&
+      static_cast<int>(t->GetHeight()) == d.y && static_cast<int>(t->GetDepth()) == d.z)
+    {
+      reusable[p] = old[p];
+    }
+  }
+  return reusable; // `old` releases the rest here
 }
 
 } // namespace vtkSinglePassAMRPackedAtlas

@@ -95,21 +95,32 @@ void UploadInSlabs(int units, int slab, std::size_t unitFloats,
  * filtering), allocated empty and filled slab by slab (amrsp::AtlasSlabFiller, about 16 MiB per
  * glTexSubImage3D, the next slab filled on a worker thread meanwhile): the whole atlas never
  * exists in host memory. `progress` gets the fraction of the layers uploaded after each slab.
- * Null when OpenGL refused the allocation.
+ * `reuse`, when given with the layout's dimensions, is overwritten in place instead of allocating
+ * a new texture (a time step's new values in the same layout: no allocation, no first-touch of
+ * fresh driver memory). Null when OpenGL refused the allocation.
  */
 vtkSmartPointer<vtkTextureObject> UploadAtlasBySlabs(vtkOpenGLRenderWindow* renWin,
   const amrsp::Hierarchy& h, const amrsp::AtlasLayout& layout, bool vertexCentred,
-  const std::function<void(double)>& progress = nullptr);
+  const std::function<void(double)>& progress = nullptr, vtkTextureObject* reuse = nullptr);
 
 /**
  * UploadAtlasBySlabs with checks: fails with a one-line `error` when an edge exceeds
  * GL_MAX_3D_TEXTURE_SIZE or `atlasLimit` (> 0), or when OpenGL reports an error (e.g. out of
- * memory); `texture` is then null.
+ * memory); `texture` is then null. `reuse` as for UploadAtlasBySlabs.
  */
 bool UploadAtlas(vtkOpenGLRenderWindow* renWin, const amrsp::Hierarchy& h,
   const amrsp::AtlasLayout& layout, bool vertexCentred, int atlasLimit,
   vtkSmartPointer<vtkTextureObject>& texture, std::string& error,
-  const std::function<void(double)>& progress = nullptr);
+  const std::function<void(double)>& progress = nullptr, vtkTextureObject* reuse = nullptr);
+
+/**
+ * Takes `pages` (emptying it) and returns, page by page of `layout`, the texture that page may
+ * overwrite in place: the old page of the same index and dimensions when nothing but `pages` held
+ * it (no kept time step draws from it), else null. The others are released here, before the new
+ * pages are allocated, so that a changed layout never holds two atlases at once.
+ */
+std::vector<vtkSmartPointer<vtkTextureObject>> TakeReusablePages(
+  std::vector<vtkSmartPointer<vtkTextureObject>>& pages, const amrsp::AtlasPages& layout);
 
 } // namespace vtkSinglePassAMRPackedAtlas
 

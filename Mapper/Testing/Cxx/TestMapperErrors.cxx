@@ -387,20 +387,37 @@ void TestOutOfMemory(Scene& scene)
   // packing: the atlas (two 8^3 bricks), not the tree; linear: the page (one row of 16,384
   // texels), not the transfer table (4,096 x 1) nor the window's 64 x 64 buffers
   const char* limitName = linear ? "AMRSP_REFUSE_TEXELS_2D" : "AMRSP_REFUSE_TEXELS";
-  setenv(limitName, linear ? "8192" : "600", 1);
-  for (int frame = 0; frame < 2; ++frame)
+  const std::string what = linear ? "linear page" : "atlas";
+  const auto expectRefusal = [&](vtkOverlappingAMR* data, const std::string& upload, int frame)
   {
-    const double shown = scene.Render(amr);
+    const double shown = scene.Render(data);
     const std::string error = scene.Error();
     Check((error.find("out of GPU memory") != std::string::npos ||
             error.find("refused") != std::string::npos) &&
         shown == 0.0,
-      std::string("the driver refuses the ") + (linear ? "linear page" : "atlas") + ", frame " +
-        std::to_string(frame + 1) + ": error '" + error + "', " + Percent(shown) +
-        " of the pixels drawn");
-  }
+      "the driver refuses the " + what + " of " + upload + ", frame " + std::to_string(frame) +
+        ": error '" + error + "', " + Percent(shown) + " of the pixels drawn");
+  };
+  // a whole upload: the textures freed first, as when the view's context went away
+  scene.Mapper->ReleaseGraphicsResources(scene.Window);
+  setenv(limitName, linear ? "8192" : "600", 1);
+  expectRefusal(amr, "a whole upload", 1);
+  expectRefusal(amr, "a whole upload", 2);
   unsetenv(limitName);
   ExpectImage(scene, amr, 0.05, "the same data once the driver has the memory again");
+  // a new time step's values while the shown step's textures are kept: they need new textures
+  // (without kept steps the values overwrite the shown step's textures and allocate nothing)
+  scene.Mapper->SetMaximumKeptStepBytes(VTK_ID_MAX);
+  setenv(limitName, linear ? "8192" : "600", 1);
+  expectRefusal(GoodAMR(), "a new time step's values", 1);
+  unsetenv(limitName);
+  scene.Mapper->SetMaximumKeptStepBytes(0);
+  ExpectImage(scene, GoodAMR(), 0.05, "a new step once the driver has the memory again");
+  setenv(limitName, linear ? "8192" : "600", 1);
+  ExpectImage(scene, GoodAMR(), 0.05,
+    "a new step of the same structure with the driver refusing new textures (nothing kept: its "
+    "values overwrite the shown step's)");
+  unsetenv(limitName);
 }
 
 void TestShaderFailure(Scene& scene)
