@@ -9,7 +9,8 @@
 #                                 table at 1024x1024 (every storage, auto-storage and multipass on
 #                                 the paper's datasets 1-3, the real datasets and a billion cells;
 #                                 bench --rounds 3, orbits of 8 frames, GPU time from timer
-#                                 queries, the cost-model counters) and ablations on dataset 3,
+#                                 queries, the cost-model counters), a time series of dataset 2
+#                                 (bench --time-series, 512x512) and ablations on dataset 3,
 #                                 in one JSON (default gpu-profile.json); fits 9 minutes
 #                                 (AMRSP_PROFILE_SECONDS, default 500, bounds the whole run)
 #
@@ -49,11 +50,11 @@ if [ "${1:-}" = profile ]; then
   ds2=synthetic:cosmo:grids=18528,levels=4,cells=33M
   ds3=synthetic:cosmo:grids=39061,levels=13,cells=140M
   billion=synthetic:cosmo:grids=280000,levels=13,cells=1000M
-  size=1024x1024 frames=8 few=4 billionMethods=packing,bindless,linear,multipass
+  size=1024x1024 frames=8 few=4 billionMethods=packing,bindless,linear,multipass seriesSize=512x512
   if [ "${AMRSP_PROFILE_SMOKE:-0}" = 1 ]; then
     ds1=synthetic:cosmo:grids=30,levels=3,cells=60k ds2=synthetic:cosmo:grids=40,levels=2,cells=50k
     ds3=synthetic:cosmo:grids=60,levels=5,cells=80k billion=synthetic:cosmo:grids=20,levels=2,cells=20k
-    size=32x32 frames=1 few=1 billionMethods=packing,multipass
+    size=32x32 frames=1 few=1 billionMethods=packing,multipass seriesSize=32x32
   fi
   target=(--size "$size" --sample-factor 1 --rounds 3 --frames "$frames" --no-compare)
   all=packing,bindless,linear,auto-storage,multipass
@@ -82,6 +83,10 @@ if [ "${1:-}" = profile ]; then
     --rounds 2 --frames "$few" --no-compare --counters
   bench dataset2 75 "$ds2" --methods "$all" "${target[@]}" --counters
   bench dataset1 60 "$ds1" --methods "$all" "${target[@]}" --counters
+  # time series: a step switch (new values, same hierarchy) against a regrid, dataset 2 at 512x512
+  # over 8 steps (the time-series issue's target: step_switch_s <= 0.5 x rebuild_s)
+  bench time-series-dataset2 45 "$ds2,steps=8,regrid=4" --time-series \
+    --methods packing,bindless,linear,multipass --size "$seriesSize"
   for d in "$enzo" "$data/amrex_plt1_Y" "$data"/vthb_hierarchicalbox/*.vthb \
     "$data"/chombo3d_vtm/chombo3d.vtm; do
     [ -e "$d" ] && bench "real-$(basename "$d" | cut -d. -f1)" 40 "$d" --methods "$all" \

@@ -27,7 +27,8 @@ if run.returncode != 0 or not os.path.exists(out):
              "its JSON" if os.path.exists(out) else "nothing"))
 profile = json.load(open(out))
 failures = []
-expected = ["dataset3", "billion", "dataset2", "dataset1", "flat-loop-dataset3",
+expected = ["dataset3", "billion", "dataset2", "dataset1", "time-series-dataset2",
+            "flat-loop-dataset3",
             "flat-loop-dataset2", "ablation-traversal-only",
             "ablation-sampling-only", "ablation-no-ropes", "ablation-no-skipping",
             "ablation-no-termination", "ablation-no-ropes-dataset2"]
@@ -56,6 +57,10 @@ for name in expected:
             failures.append("%s %s: no work object" % (name, method))
         if "--ablation" in r["args"] and "ablation" not in result:
             failures.append("%s %s: the ablation is not named" % (name, method))
+        if "--time-series" in r["args"]:
+            if not (result.get("step_switch_s", 0) > 0 and result.get("rebuild_s", 0) > 0):
+                failures.append("%s %s: no step_switch_s and rebuild_s" % (name, method))
+            continue
         if "gpu_ms_rounds_median" not in result:
             failures.append("%s %s: no GPU time per frame" % (name, method))
 for f in failures:

@@ -129,10 +129,9 @@ std::string BenchHelp()
        "packing,multipass), all steps in memory first: step_switch_s is the median time from a\n"
        "step's new vtkOverlappingAMR to its first image over the steps whose hierarchy did not\n"
        "change (the mapper uploads the values only), rebuild_s the same over the regrid steps,\n"
-       "with switch_over_rebuild, still_frame_s, the mapper's own part step_switch_build_upload_s "
-       "and\n"
-       "rebuild_build_upload_s, and per_step {seconds, refreshed, build_s,\n"
-       "upload_s}.\n"
+       "with switch_over_rebuild, still_frame_s, the mapper's own part step_switch_build_upload_s\n"
+       "and rebuild_build_upload_s, storage (single pass; bindless that fell back to the atlas\n"
+       "gets an error), and per_step {seconds, refreshed, build_s, upload_s}.\n"
        "--scaling runs synthetic:cosmo at each GRIDS:LEVELS:CELLS of --scaling-sizes (default "
     << DefaultScalingSizes
     << ",\n"

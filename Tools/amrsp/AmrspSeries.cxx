@@ -360,6 +360,17 @@ int BenchSeries(const Arguments& a)
     r["switch_over_rebuild"] =
       switches.empty() || rebuilds.empty() ? -1.0 : Median(switches) / Median(rebuilds);
     r["device"] = gpu->Device();
+    if (SinglePassRenderer* singlePass = dynamic_cast<SinglePassRenderer*>(gpu.get()))
+    {
+      r["storage"] = singlePass->StorageUsed();
+      if (m.Kind == MethodKind::Bindless && singlePass->StorageUsed().rfind("bindless", 0) != 0)
+      {
+        // its figures are the atlas's under bindless's name
+        r["error"] =
+          "bindless textures are not available: " + singlePass->BindlessFallbackReason() +
+          " (on a CPU run with --driver zink)";
+      }
+    }
     r["per_step"] = perStep;
     j["methods"][name] = r;
   }
