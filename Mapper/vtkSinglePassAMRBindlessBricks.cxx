@@ -24,6 +24,7 @@ void vtkSinglePassAMRBindlessBricks::Clear()
   // without a context the textures died with it
   this->Names.clear();
   this->Handles.clear();
+  this->Extents.clear();
 }
 
 //------------------------------------------------------------------------------
@@ -89,6 +90,30 @@ bool vtkSinglePassAMRBindlessBricks::Create(vtkOpenGLRenderWindow* renWin,
   {
     glMakeTextureHandleResidentARB(handle);
   }
+  this->Extents = extents;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRBindlessBricks::Overwrite(vtkOpenGLRenderWindow* renWin,
+  const std::vector<glm::ivec3>& extents, const std::function<const float*(std::size_t)>& texels)
+{
+  if (this->Context != renWin || this->Names.empty() || this->Extents != extents)
+  {
+    return false;
+  }
+  vtkTextureUnitManager* units = renWin->GetTextureUnitManager();
+  const int unit = units->Allocate();
+  renWin->GetState()->vtkglActiveTexture(GL_TEXTURE0 + unit);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  for (std::size_t g = 0; g < extents.size(); ++g)
+  {
+    const glm::ivec3 e = extents[g];
+    glBindTexture(GL_TEXTURE_3D, this->Names[g]);
+    glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, e.x, e.y, e.z, GL_RED, GL_FLOAT, texels(g));
+  }
+  glBindTexture(GL_TEXTURE_3D, 0);
+  units->Free(unit);
   return true;
 }
 
@@ -114,4 +139,5 @@ void vtkSinglePassAMRBindlessBricks::Release()
   }
   this->Names.clear();
   this->Handles.clear();
+  this->Extents.clear();
 }

@@ -9,9 +9,10 @@
  * bricks took 26.8 s to create on llvmpipe (VTK 9.2) and 25.5 s on an H100 (VTK 9.6), against
  * 1.1 s with plain names. Here the set holds one weak pointer, to the context of its textures.
  *
- * Invariants: Handles[i] is the resident bindless handle of texture Names[i]; both are empty
- * when nothing is uploaded. The textures are freed by ReleaseGraphicsResources (the context
- * current, as VTK calls it) or, when the set is destroyed first, with the context pushed.
+ * Invariants: Handles[i] is the resident bindless handle of texture Names[i], Extents[i] its
+ * size; all are empty when nothing is uploaded. The textures are freed by ReleaseGraphicsResources
+ * (the context current, as VTK calls it) or, when the set is destroyed first, with the context
+ * pushed.
  */
 #ifndef vtkSinglePassAMRBindlessBricks_h
 #define vtkSinglePassAMRBindlessBricks_h
@@ -43,6 +44,13 @@ public:
   bool Create(vtkOpenGLRenderWindow* renWin, const std::vector<glm::ivec3>& extents,
     const std::function<const float*(std::size_t)>& texels, bool linear, std::string& error);
 
+  /// Writes new texels into the set's textures in place when it holds one texture per extent,
+  /// of these extents, in `renWin` (its context current): brick g gets texels(g). The handles
+  /// stay resident and unchanged (the bindless extension allows new contents, not new storage).
+  /// Returns false, changing nothing, when the set does not match; true after the writes.
+  bool Overwrite(vtkOpenGLRenderWindow* renWin, const std::vector<glm::ivec3>& extents,
+    const std::function<const float*(std::size_t)>& texels);
+
   /// The resident handles, one per brick (empty when nothing is uploaded).
   const std::vector<std::uint64_t>& GetHandles() const { return this->Handles; }
 
@@ -59,6 +67,7 @@ private:
   vtkWeakPointer<vtkOpenGLRenderWindow> Context;
   std::vector<unsigned int> Names;
   std::vector<std::uint64_t> Handles;
+  std::vector<glm::ivec3> Extents; ///< of Names[i], in texels
 };
 
 #endif

@@ -49,6 +49,7 @@ void vtkSinglePassAMRGridStorage::QueryCapabilities(vtkOpenGLRenderWindow* renWi
   const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   const std::string name = renderer ? renderer : "";
   this->MaxBindlessTextures = name.find("zink") != std::string::npos ? 1023 : -1;
+  this->ReleasedBindlessTextures = 0;
   this->IsCpuDriver = name.find("llvmpipe") != std::string::npos ||
     name.find("softpipe") != std::string::npos || name.find("lavapipe") != std::string::npos;
   this->CapsContext = renWin;
@@ -93,6 +94,24 @@ vtkSinglePassAMRStorageChoice vtkSinglePassAMRGridStorage::Choose(vtkOpenGLRende
       std::to_string(this->MaxBindlessTextures) + " bindless textures and the hierarchy has " +
       std::to_string(data.Grids) + " grids";
     facts.Bindless = vtkSinglePassAMRBindlessAccess::None;
+  }
+  else if (facts.Bindless != vtkSinglePassAMRBindlessAccess::None &&
+    this->MaxBindlessTextures >= 0 &&
+    !(this->UploadedStorage == vtkSinglePassAMRStorage::BindlessTextures &&
+      this->Context == renWin && !request.NewTextures))
+  {
+    // the set in use is released before the new one is made, but its slots come back later
+    const long long earlier = std::max(this->ReleasedBindlessTextures,
+      this->Context == renWin ? static_cast<long long>(this->Bricks.GetHandles().size()) : 0LL);
+    if (data.Grids + earlier > this->MaxBindlessTextures)
+    {
+      facts.NoBindless = "this driver (Mesa's zink) holds at most " +
+        std::to_string(this->MaxBindlessTextures) +
+        " bindless textures and frees those of an earlier set only later: " +
+        std::to_string(data.Grids) + " grids now and " + std::to_string(earlier) +
+        " of an earlier set in this context";
+      facts.Bindless = vtkSinglePassAMRBindlessAccess::None;
+    }
   }
   facts.NoAtlas = data.PackingError;
   facts.AtlasFits = facts.NoAtlas.empty();
@@ -303,9 +322,16 @@ bool vtkSinglePassAMRGridStorage::UploadValues(vtkOpenGLRenderWindow* renWin,
   bool ok = false;
   if (storage == vtkSinglePassAMRStorage::BindlessTextures)
   {
-    this->ReleaseBindless(renWin);
-    this->HandlesTexture = nullptr;
-    ok = this->UploadBindless(renWin, data, error);
+    // the same bricks: new texels into the resident textures, the handle table unchanged
+    ok = this->HandlesTexture &&
+      this->Bricks.Overwrite(renWin, amrsp::BrickExtents(data.Data, data.VertexCentred),
+        [&data](std::size_t g) { return data.Data.Values[g].data(); });
+    if (!ok)
+    {
+      this->ReleaseBindless(renWin);
+      this->HandlesTexture = nullptr;
+      ok = this->UploadBindless(renWin, data, error);
+    }
   }
   else if (storage == vtkSinglePassAMRStorage::LinearBricks)
   {
@@ -472,6 +498,11 @@ bool vtkSinglePassAMRGridStorage::UpdateTransparentFlags(vtkOpenGLRenderWindow* 
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRGridStorage::ReleaseBindless(vtkWindow* window)
 {
+  if (window == this->CapsContext)
+  {
+    this->ReleasedBindlessTextures = std::max(
+      this->ReleasedBindlessTextures, static_cast<long long>(this->Bricks.GetHandles().size()));
+  }
   this->Bricks.ReleaseGraphicsResources(window);
   if (this->HandlesTexture)
   {

@@ -170,6 +170,11 @@ private:
   // than 1023 handles are made resident (its bindless descriptor array has 1024 slots); checked
   // with Mesa 25.0.7: 1023 grids render, 1024 crash inside glMakeTextureHandleResidentARB.
   long long MaxBindlessTextures = -1;
+  // zink frees a deleted texture's bindless slot only when the batch that deleted it is
+  // recycled, not at glFinish: a regridded series of 600 grids crashed its driver thread (600 old
+  // and 600 new handles). So where MaxBindlessTextures applies, a new set must also leave room for
+  // the largest set released in this context (a conservative bound: the slots do come back).
+  long long ReleasedBindlessTextures = 0;
 };
 
 #endif

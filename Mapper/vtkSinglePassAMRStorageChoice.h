@@ -48,6 +48,9 @@ struct vtkSinglePassAMRStorageRequest
   double AutoBindlessWaste = 0.25;
   /// Auto takes the linear bricks on a CPU driver from this many bytes of grid data.
   long long AutoLinearBytes = 0;
+  /// Whether a new build waits for its upload (new textures); false when the frame draws (or
+  /// refreshes the values of) what is uploaded.
+  bool NewTextures = true;
 };
 
 /// What the OpenGL context and the build allow.

@@ -304,6 +304,7 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareStorage(
   request.Access = static_cast<vtkSinglePassAMRBindlessAccess>(self->BindlessAccess);
   request.AutoBindlessWaste = self->AutoBindlessWaste;
   request.AutoLinearBytes = self->AutoLinearBytes;
+  request.NewTextures = this->PendingUpload;
   const vtkSinglePassAMRStorageChoice choice =
     this->Storage->Choose(renWin, this->Data, request, self->MaximumAtlasSize);
   if (!choice.FallbackReason.empty())

@@ -27,8 +27,10 @@
  *   holds at least AutoLinearBytes, or where the atlas cannot be built and bindless cannot run;
  *   packing otherwise.
  * When bindless is requested and cannot run (extension missing, neither access mode available,
- * or more grids than the driver can hold: Mesa's zink holds 1023), the mapper renders with the
- * packed atlas and says so once with a VTK warning (GetBindlessFallbackReason).
+ * or more grids than the driver can hold: Mesa's zink holds 1023, and frees a released set's
+ * handles only later, so a new set there must also leave room for the largest earlier set of the
+ * context), the mapper renders with the packed atlas and says so once with a VTK warning
+ * (GetBindlessFallbackReason).
  * GetLastDataStorage() tells what rendered the last frame. The rule is decided in one place,
  * vtkSinglePassAMRStorageChoice::Choose (private; Mapper.StorageChoice tests it case by case).
  *

@@ -24,6 +24,7 @@
 #include "amrsp/KdTree.h"
 #include "amrsp/KdTreeEncoding.h"
 #include "amrsp/Render.h"
+#include "amrsp/SyntheticCosmo.h"
 
 #include "vtkSinglePassAMROpenGL.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
@@ -273,6 +274,47 @@ void TestDriverLimit()
     "1100 grids on zink render with the atlas, one warning: " + reason);
 }
 
+/// Mesa's zink frees a deleted texture's bindless slot only later: a series regridded from 600
+/// grids to 600 others would hold 1,200 handles at once (its driver thread crashed). The regridded
+/// step renders with the atlas, with one warning saying why; on a driver without a known limit it
+/// renders bindless.
+void TestRegridOnZink()
+{
+  std::cout << "a series of 600 grids regridded, on zink\n";
+  const CosmoParameters p =
+    ParseCosmoParameters("grids=600,levels=3,cells=300k,seed=5,steps=3,regrid=2");
+  Hierarchy before = GenerateCosmoStep(p, 0);
+  Hierarchy after = GenerateCosmoStep(p, 2);
+  Settings(after, { "--scale", "log" }); // log10 of the density in both steps
+  const RenderSettings s = Settings(before, { "--size", "32x32", "--scale", "log" });
+  SinglePassRenderer gpu(before, s, ViewAngles(), "bindless");
+  Mapper* m = gpu.GetMapper();
+  double ms = 0.0;
+  gpu.Render(0.0, ms);
+  Check(m->GetLastDataStorage() == Mapper::BINDLESS_TEXTURES,
+    "step 0 (" + std::to_string(before.Grids.size()) +
+      " grids) renders bindless: " + StorageName(m));
+  const bool zink =
+    std::string(gpu.GetRenderer()->GetRenderWindow()->ReportCapabilities()).find("zink") !=
+    std::string::npos;
+  WarningCounter warnings(m);
+  gpu.SetData(after);
+  const Image img = gpu.Render(0.0, ms);
+  const Image packed = SinglePassRenderer(after, s, ViewAngles(), "packing").Render(0.0, ms);
+  if (!zink)
+  {
+    Check(
+      m->GetLastDataStorage() == Mapper::BINDLESS_TEXTURES && Rmse(img, packed) < BoundVsPacking,
+      "this driver has no known bindless limit: the regridded step renders bindless (" +
+        StorageName(m) + ")");
+    return;
+  }
+  Check(m->GetLastDataStorage() == Mapper::PACKED_ATLAS && Rmse(img, packed) < BoundVsPacking &&
+      warnings.Count == 1 && warnings.Last.find("earlier set") != std::string::npos,
+    "the regridded step (" + std::to_string(after.Grids.size()) +
+      " grids) renders with the atlas, one warning: " + warnings.Last);
+}
+
 int RunBindless()
 {
   TestDataset("one grid", LoadHierarchy("synthetic:cosmo:grids=1,levels=1,cells=20k,seed=2"), true,
@@ -285,6 +327,7 @@ int RunBindless()
     mappertest::RefVertex);
   TestAutomaticChoice();
   TestDriverLimit();
+  TestRegridOnZink();
   return Failures() == 0 ? 0 : 1;
 }
 
