@@ -50,7 +50,7 @@ void vtkSinglePassAMRGridStorage::QueryCapabilities(vtkOpenGLRenderWindow* renWi
   const std::string name = renderer ? renderer : "";
   this->MaxBindlessTextures = name.find("zink") != std::string::npos ? 1023 : -1;
   this->ReleasedBindlessTextures = 0;
-  this->IsCpuDriver = name.find("llvmpipe") != std::string::npos ||
+  this->CpuDriver = name.find("llvmpipe") != std::string::npos ||
     name.find("softpipe") != std::string::npos || name.find("lavapipe") != std::string::npos;
   this->CapsContext = renWin;
 }
@@ -122,7 +122,7 @@ vtkSinglePassAMRStorageChoice vtkSinglePassAMRGridStorage::Choose(vtkOpenGLRende
   }
   facts.AtlasWaste = data.AtlasWaste;
   facts.BrickBytes = data.BrickBytes;
-  facts.CpuDriver = this->IsCpuDriver;
+  facts.CpuDriver = this->CpuDriver;
   facts.LinearFits = [this, renWin, &data]
   {
     return vtkSinglePassAMRLinearBricks::Fits(

@@ -54,6 +54,13 @@ public:
   vtkSinglePassAMRBindlessAccess ResolveAccess(
     vtkOpenGLRenderWindow* renWin, vtkSinglePassAMRBindlessAccess access, std::string& why);
 
+  /// Whether `renWin` renders on a CPU driver (Mesa's llvmpipe, softpipe, or zink on lavapipe).
+  bool IsCpuDriver(vtkOpenGLRenderWindow* renWin)
+  {
+    this->QueryCapabilities(renWin);
+    return this->CpuDriver;
+  }
+
   /// Whether the textures of `storage` in `renWin` are up to date for the data built last.
   bool IsUploaded(
     vtkOpenGLRenderWindow* renWin, vtkSinglePassAMRStorage storage, int atlasLimit) const;
@@ -165,7 +172,7 @@ private:
   bool HasBallot = false;
   // a driver that renders on the CPU and keeps its textures linear in host memory (llvmpipe,
   // softpipe, lavapipe under zink)
-  bool IsCpuDriver = false;
+  bool CpuDriver = false;
   // bindless textures the driver can hold (-1: no known limit). Mesa's zink crashes when more
   // than 1023 handles are made resident (its bindless descriptor array has 1024 slots); checked
   // with Mesa 25.0.7: 1023 grids render, 1024 crash inside glMakeTextureHandleResidentARB.

@@ -7,6 +7,7 @@
 #include "vtkSinglePassAMRGridStorage.h"
 #include "vtkSinglePassAMRDepthCopy.h"
 #include "vtkSinglePassAMRProxyBox.h"
+#include "vtkSinglePassAMRRayLoopChoice.h"
 #include "vtkSinglePassAMRTransferFunctionTable.h"
 #include "vtkSinglePassAMRViewGeometry.h"
 
@@ -52,6 +53,11 @@ static_assert(
     static_cast<int>(vtkSinglePassAMRStorage::LinearBricks) ==
       vtkSinglePassAMRVolumeMapper::LINEAR_BRICKS,
   "DataStorageMode and vtkSinglePassAMRStorage differ");
+static_assert(
+  static_cast<int>(vtkSinglePassAMRRayLoop::Nested) == vtkSinglePassAMRVolumeMapper::NESTED_LOOPS &&
+    static_cast<int>(vtkSinglePassAMRRayLoop::Flat) == vtkSinglePassAMRVolumeMapper::FLAT_LOOP &&
+    static_cast<int>(vtkSinglePassAMRRayLoop::Auto) == vtkSinglePassAMRVolumeMapper::AUTO_LOOP,
+  "RayLoops and vtkSinglePassAMRRayLoop differ");
 static_assert(static_cast<int>(vtkSinglePassAMRBindlessAccess::Auto) ==
       vtkSinglePassAMRVolumeMapper::AUTO_ACCESS &&
     static_cast<int>(vtkSinglePassAMRBindlessAccess::Direct) ==
@@ -283,6 +289,7 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   in.LastStorage = frame.Storage;
   in.LastAccess = frame.Access;
   in.LastRopes = frame.Ropes && this->LODThreshold <= 0.0;
+  in.LastFlatLoop = frame.FlatLoop;
   if (frame.Reduced() && !in.Budget.Image.CompositeOver(renWin, viewError))
   {
     this->ReportError(viewError);
@@ -466,7 +473,11 @@ void vtkSinglePassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "WorkCountersOutput: " << (this->WorkCountersOutput ? "on" : "off") << "\n";
   os << indent << "WorkCountOutput: " << this->WorkCountOutput << "\n";
   os << indent << "Ropes: " << (this->Ropes ? "on" : "off") << "\n";
-  os << indent << "RayLoop: " << (this->RayLoop == FLAT_LOOP ? "flat" : "nested") << "\n";
+  os << indent << "RayLoop: "
+     << (this->RayLoop == FLAT_LOOP      ? "flat"
+            : this->RayLoop == AUTO_LOOP ? "auto"
+                                         : "nested")
+     << "\n";
   os << indent << "DiagnosticAblation: " << this->DiagnosticAblation << " ("
      << this->DiagnosticAblationSamples << " samples)\n";
   os << indent

@@ -324,21 +324,25 @@ public:
   enum RayLoops
   {
     NESTED_LOOPS = 0, ///< per segment a descent loop, then a sample loop
-    FLAT_LOOP = 1     ///< one loop of single descent steps, segment set-ups and samples
+    FLAT_LOOP = 1,    ///< one loop of single descent steps, segment set-ups and samples
+    AUTO_LOOP = 2     ///< the flat loop on a GPU, the nested loops on a CPU driver
   };
 
   ///@{
   /**
-   * The shader's loop structure (default NESTED_LOOPS). A GPU runs a fragment shader in groups of
+   * The shader's loop structure (default AUTO_LOOP). A GPU runs a fragment shader in groups of
    * 32 pixels that share each loop iteration: with nested loops a group waits, per segment, for
    * its longest descent and then its longest sample run; the flat loop (Aila and Laine's
    * "if-if") lets every lane take its own next operation each iteration, at the price of both
-   * branches where lanes disagree. The images and counts are the same; which is faster is a
-   * property of the GPU (amrsp/WorkCounters.h predicts it; docs/performance.md has what was
-   * measured).
+   * branches where lanes disagree. The images and counts are the same. AUTO_LOOP takes the flat
+   * loop on a GPU, where the work counters predict fewer lockstep steps (amrsp/WorkCounters.h),
+   * and the nested loops on a CPU driver (Mesa's llvmpipe, softpipe, zink on lavapipe), where the
+   * flat loop measured slower (docs/performance.md, "The flat loop"). GetLastRayLoop tells which
+   * loop the last frame used (NESTED_LOOPS or FLAT_LOOP).
    */
-  vtkSetClampMacro(RayLoop, int, NESTED_LOOPS, FLAT_LOOP);
+  vtkSetClampMacro(RayLoop, int, NESTED_LOOPS, AUTO_LOOP);
   vtkGetMacro(RayLoop, int);
+  int GetLastRayLoop();
   ///@}
 
   /// Diagnostic ablations (DiagnosticAblation).
@@ -471,7 +475,7 @@ protected:
   vtkIdType MaximumKeptStepBytes = 0;
   vtkIdType LastBorrowedValues = 0;
   vtkIdType LastCopiedValues = 0;
-  int RayLoop = NESTED_LOOPS;
+  int RayLoop = AUTO_LOOP;
   int DiagnosticAblation = NO_ABLATION;
   int DiagnosticAblationSamples = 256;
   int CellInterpolation = NEAREST_CELL;

@@ -5,6 +5,7 @@
 #include "vtkSinglePassAMRVolumeMapperInternals.h"
 
 #include "vtkSinglePassAMRProxyBox.h"
+#include "vtkSinglePassAMRRayLoopChoice.h"
 #include "vtkSinglePassAMRScopedBlendedDraw.h"
 #include "vtkSinglePassAMRShaderComposer.h"
 
@@ -108,6 +109,9 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareAppearance(
     self->EmptySpaceSkipping && frame.Blend == vtkSinglePassAMRShaderBlend::Composite;
   frame.SmoothCells = self->CellInterpolation == SMOOTH_CELL && !this->Data.VertexCentred;
   frame.Ropes = self->Ropes && this->Storage->GetRopes() != nullptr;
+  frame.FlatLoop =
+    vtkSinglePassAMRChooseRayLoop(static_cast<vtkSinglePassAMRRayLoop>(self->RayLoop),
+      this->Storage->IsCpuDriver(renWin)) == vtkSinglePassAMRRayLoop::Flat;
   frame.UseDepth = self->UseDepthBuffer;
   return true;
 }
@@ -140,7 +144,7 @@ vtkShaderProgram* vtkSinglePassAMRVolumeMapper::vtkInternals::ReadyShader(
   define(frame.SkipEmpty, "AMRSP_SKIP_EMPTY 1");
   define(frame.SmoothCells, "AMRSP_SMOOTH_CELLS 1");
   define(frame.Ropes, "AMRSP_ROPES 1");
-  define(self->RayLoop == FLAT_LOOP, "AMRSP_FLAT_LOOP 1");
+  define(frame.FlatLoop, "AMRSP_FLAT_LOOP 1");
   define(self->DiagnosticAblation != NO_ABLATION,
     "AMRSP_ABLATION " + std::to_string(self->DiagnosticAblation));
   define(frame.Shade, "AMRSP_SHADE 1");

@@ -59,6 +59,7 @@ struct vtkSinglePassAMRFrameSettings
   bool SkipEmpty = false;   // empty-space skipping (composite blending)
   bool SmoothCells = false; // trilinear cell reconstruction (cell data)
   bool Ropes = false;       // neighbour links (when the build has them)
+  bool FlatLoop = false;    // the flat loop (RayLoop, AUTO_LOOP resolved for the context)
   bool UseDepth = false;
   amrsp::FrameQuality Quality; // image sample distance and sample-distance scale
 
@@ -168,6 +169,7 @@ public:
   // what the last frame did
   vtkSinglePassAMRStorage LastStorage = vtkSinglePassAMRStorage::None;
   bool LastRopes = false;
+  bool LastFlatLoop = false;
   vtkSinglePassAMRBindlessAccess LastAccess = vtkSinglePassAMRBindlessAccess::None;
   std::string StorageNote; // why it did not use the bindless storage it was asked for
   long long TransparentDataNodes = 0;

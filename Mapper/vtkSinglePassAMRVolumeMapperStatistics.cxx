@@ -123,6 +123,11 @@ const char* vtkSinglePassAMRVolumeMapper::GetBindlessFallbackReason()
   return this->Internals->StorageNote.c_str();
 }
 
+int vtkSinglePassAMRVolumeMapper::GetLastRayLoop()
+{
+  return this->Internals->LastFlatLoop ? FLAT_LOOP : NESTED_LOOPS;
+}
+
 int vtkSinglePassAMRVolumeMapper::GetLastBindlessAccess()
 {
   return static_cast<int>(this->Internals->LastAccess);

@@ -343,6 +343,9 @@ void MapperFields(const Method& m, GpuRenderer& gpu, const Image& first, const B
   {
     r["storage"] = singlePass->StorageUsed();
     r["ropes"] = singlePass->GetMapper()->GetLastRopes();
+    r["loop"] = singlePass->GetMapper()->GetLastRayLoop() == vtkSinglePassAMRVolumeMapper::FLAT_LOOP
+      ? "flat"
+      : "nested";
     if (c.S.GpuAblation != 0)
     {
       r["ablation"] = c.S.GpuAblation == 1

@@ -82,7 +82,12 @@ ImageRun RenderGpu(const Method& m, std::string& method, const LoadedDataset& d,
            << (singlePass->PackedBytes() > 0
                   ? std::to_string(singlePass->PackedBytes() / (1024.0 * 1024.0)) + " MiB"
                   : std::string("not built"))
-           << ", for bindless " << singlePass->BindlessBytes() / (1024.0 * 1024.0) << " MiB\n";
+           << ", for bindless " << singlePass->BindlessBytes() / (1024.0 * 1024.0) << " MiB\n"
+           << "ray loop: "
+           << (singlePass->GetMapper()->GetLastRayLoop() == vtkSinglePassAMRVolumeMapper::FLAT_LOOP
+                  ? "flat"
+                  : "nested")
+           << "\n";
   }
   report << "device: " << r.Device() << "\n"
          << "backend: " << r.Backend() << " (VTK " << VtkVersion() << ", ParaView "

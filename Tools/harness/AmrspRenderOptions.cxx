@@ -436,12 +436,14 @@ RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range)
     throw UsageError{ "--ropes must be on or off" };
   }
   s.Ropes = ropes == "on";
-  const std::string loop = a.Get("loop", "nested");
-  if (loop != "nested" && loop != "flat")
+  const std::string loop = a.Get("loop", "auto");
+  if (loop != "auto" && loop != "nested" && loop != "flat")
   {
-    throw UsageError{ "--loop must be nested or flat" };
+    throw UsageError{ "--loop must be auto, nested or flat" };
   }
-  s.GpuFlatLoop = loop == "flat";
+  s.GpuRayLoop = loop == "flat" ? RenderSettings::RayLoop::Flat
+    : loop == "nested"          ? RenderSettings::RayLoop::Nested
+                                : RenderSettings::RayLoop::Auto;
   const std::string ablation = a.Get("ablation", "none");
   const std::string samplingOnly = "sampling-only";
   if (ablation == "traversal-only")

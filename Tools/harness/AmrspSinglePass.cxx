@@ -60,8 +60,10 @@ SinglePassRenderer::SinglePassRenderer(vtkSinglePassAMRVolumeMapper* mapper, con
   this->Mapper->SetOpacityThreshold(s.OpacityThreshold);
   this->Mapper->SetEmptySpaceSkipping(s.SkipEmptySpace);
   this->Mapper->SetRopes(s.Ropes);
-  this->Mapper->SetRayLoop(s.GpuFlatLoop ? vtkSinglePassAMRVolumeMapper::FLAT_LOOP
-                                         : vtkSinglePassAMRVolumeMapper::NESTED_LOOPS);
+  this->Mapper->SetRayLoop(s.GpuRayLoop == RenderSettings::RayLoop::Flat
+      ? vtkSinglePassAMRVolumeMapper::FLAT_LOOP
+      : s.GpuRayLoop == RenderSettings::RayLoop::Nested ? vtkSinglePassAMRVolumeMapper::NESTED_LOOPS
+                                                        : vtkSinglePassAMRVolumeMapper::AUTO_LOOP);
   this->Mapper->SetDiagnosticAblation(s.GpuAblation);
   this->Mapper->SetDiagnosticAblationSamples(s.GpuAblationSamples);
   this->Mapper->SetCellInterpolation(s.SmoothCellData ? vtkSinglePassAMRVolumeMapper::SMOOTH_CELL

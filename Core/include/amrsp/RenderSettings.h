@@ -67,9 +67,14 @@ struct RenderSettings
   /// The single-pass mapper's DiagnosticAblation (0 none, 1 traversal only, 2 sampling only)
   /// and DiagnosticAblationSamples; not used by the CPU integrators.
   int GpuAblation = 0;
-  /// The single-pass mapper's RayLoop: false nested loops, true the flat loop (the image is the
-  /// same); not used by the CPU integrators.
-  bool GpuFlatLoop = false;
+  /// The single-pass mapper's RayLoop (the image is the same); not used by the CPU integrators.
+  enum class RayLoop
+  {
+    Auto,   ///< the mapper's rule: the flat loop on a GPU, the nested loops on a CPU driver
+    Nested, ///< per segment a descent loop, then a sample loop
+    Flat    ///< one loop of single descent steps, segment set-ups and samples
+  };
+  RayLoop GpuRayLoop = RayLoop::Auto;
   int GpuAblationSamples = 256;
   /// GPU mappers' MaximumAtlasPageBytes (the largest atlas texture; larger atlases are split
   /// into pages); 0 keeps the mapper's default. Not used by the CPU integrators.

@@ -155,8 +155,20 @@ bool CompareLoopCounts(harness::SinglePassRenderer& gpu, const Hierarchy& h,
   compare(M::SEGMENT_COUNT, "segment-loop iterations", total(w.Segments));
   compare(M::DESCENT_STEP_COUNT, "descent steps", total(w.DescentSteps));
   const long long samples = compare(M::SAMPLE_COUNT, "samples", total(w.Samples));
-  // without ropes: the same image, and the mirror's longer descents
+  // AUTO_LOOP (the default) took the nested loops on a CPU driver, the flat loop on a GPU
   vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
+  const std::string caps = gpu.GetRenderer()->GetRenderWindow()->ReportCapabilities();
+  const bool cpuDriver = caps.find("llvmpipe") != std::string::npos ||
+    caps.find("softpipe") != std::string::npos || caps.find("lavapipe") != std::string::npos;
+  const int expectedLoop = cpuDriver ? M::NESTED_LOOPS : M::FLAT_LOOP;
+  const bool autoLoop =
+    mapper->GetRayLoop() == M::AUTO_LOOP && mapper->GetLastRayLoop() == expectedLoop;
+  log << (autoLoop ? "ok" : "FAILED") << ": the automatic loop on "
+      << (cpuDriver ? "a CPU driver" : "a GPU") << " is the "
+      << (mapper->GetLastRayLoop() == M::FLAT_LOOP ? "flat loop" : "nested loops") << "\n";
+  ok = ok && autoLoop;
+  // without ropes: the same image, and the mirror's longer descents (the nested loops)
+  mapper->SetRayLoop(M::NESTED_LOOPS);
   double ms = 0.0;
   const Image roped = gpu.RenderAsIs(ms);
   mapper->RopesOff();
@@ -174,15 +186,18 @@ bool CompareLoopCounts(harness::SinglePassRenderer& gpu, const Hierarchy& h,
   log << (rejectedDescent ? "ok" : "FAILED") << ": the descent count with ropes (" << ropedDescent
       << ") is rejected for the frame without\n";
   // the flat loop: the same image and the same loop counts as the nested loops
-  mapper->SetRayLoop(vtkSinglePassAMRVolumeMapper::FLAT_LOOP);
+  mapper->SetRayLoop(M::FLAT_LOOP);
   const Image flat = gpu.RenderAsIs(ms);
+  const bool flatUsed = mapper->GetLastRayLoop() == M::FLAT_LOOP;
+  log << (flatUsed ? "ok" : "FAILED") << ": FLAT_LOOP renders with the flat loop\n";
+  ok = ok && flatUsed;
   const bool flatSame = Rmse(roped, flat) == 0.0;
   log << (flatSame ? "ok" : "FAILED") << ": the flat loop renders the same image (RMSE "
       << Rmse(roped, flat) << ")\n";
   compare(M::SEGMENT_COUNT, "segment-loop iterations in the flat loop", total(w.Segments));
   compare(M::DESCENT_STEP_COUNT, "descent steps in the flat loop", ropedDescent);
   compare(M::SAMPLE_COUNT, "samples in the flat loop", total(w.Samples));
-  mapper->SetRayLoop(vtkSinglePassAMRVolumeMapper::NESTED_LOOPS);
+  mapper->SetRayLoop(M::AUTO_LOOP);
   s.Ropes = true;
   s.SampleDistanceFactor *= 2.0;
   const WorkSummary coarse = MeasureSinglePassWork(h, tree, s, FetchModel());

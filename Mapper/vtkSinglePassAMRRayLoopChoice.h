@@ -1,0 +1,38 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file    vtkSinglePassAMRRayLoopChoice.h
+ * @brief   which loop structure the single-pass shader marches its rays with
+ *
+ * Private to the module; no OpenGL, no VTK, so that the rule is tested on its own
+ * (Mapper.RayLoopChoice.*). The public RayLoops values of vtkSinglePassAMRVolumeMapper are these
+ * enumerators' values (a static_assert in the mapper ties them).
+ */
+#ifndef vtkSinglePassAMRRayLoopChoice_h
+#define vtkSinglePassAMRRayLoopChoice_h
+
+enum class vtkSinglePassAMRRayLoop
+{
+  Nested = 0, ///< per segment a descent loop, then a sample loop
+  Flat = 1,   ///< one loop of single descent steps, segment set-ups and samples
+  Auto = 2    ///< the rule below
+};
+
+/**
+ * The loop a frame uses. Auto: the flat loop on a GPU, the nested loops on a CPU driver (Mesa's
+ * llvmpipe, softpipe, or zink on lavapipe). A GPU runs 32 pixels in lockstep, and the work
+ * counters predict fewer lockstep steps for the flat loop (amrsp/WorkCounters.h; at 512x512
+ * datasets 2 and 3 8.87 and 11.47 per pixel against 11.25 and 15.22); a CPU driver runs no
+ * lockstep groups of that width, and there the flat loop measured 30-42 % slower
+ * (docs/performance.md, "The flat loop"). The image is the same either way.
+ */
+inline vtkSinglePassAMRRayLoop vtkSinglePassAMRChooseRayLoop(
+  vtkSinglePassAMRRayLoop requested, bool cpuDriver)
+{
+  if (requested != vtkSinglePassAMRRayLoop::Auto)
+  {
+    return requested;
+  }
+  return cpuDriver ? vtkSinglePassAMRRayLoop::Nested : vtkSinglePassAMRRayLoop::Flat;
+}
+
+#endif
