@@ -117,6 +117,13 @@ void TestDataset(
   const double refBound = referenceBound;
   Check(wVsRef < refBound,
     "waterfall vs CPU reference RMSE " + Fixed(wVsRef) + " < " + Fixed(refBound));
+  // the other ray loop (the automatic one is the nested loops here, the flat loop on a GPU)
+  m->SetRayLoop(
+    m->GetLastRayLoop() == Mapper::FLAT_LOOP ? Mapper::NESTED_LOOPS : Mapper::FLAT_LOOP);
+  const double otherLoop = Rmse(gpu.Render(0.0, ms), waterfall);
+  m->SetRayLoop(Mapper::AUTO_LOOP);
+  Check(otherLoop == 0.0,
+    "waterfall: the other ray loop renders the same image (RMSE " + Fixed(otherLoop) + ")");
 
   // memory: what was uploaded is what the mapper reports for either storage, and the bindless
   // figure is the tree (and its ropes) plus the bricks plus the handles, computed here

@@ -96,6 +96,13 @@ void TestDataset(const std::string& name, Hierarchy h, double referenceBound, bo
   const double refBound = referenceBound;
   Check(
     lVsRef < refBound, "linear vs CPU reference RMSE " + Fixed(lVsRef) + " < " + Fixed(refBound));
+  // the other ray loop (the automatic one is the nested loops here, the flat loop on a GPU)
+  m->SetRayLoop(
+    m->GetLastRayLoop() == Mapper::FLAT_LOOP ? Mapper::NESTED_LOOPS : Mapper::FLAT_LOOP);
+  const double otherLoop = Rmse(gpu.Render(0.0, ms), linear);
+  m->SetRayLoop(Mapper::AUTO_LOOP);
+  Check(otherLoop == 0.0,
+    "linear: the other ray loop renders the same image (RMSE " + Fixed(otherLoop) + ")");
 
   // memory: the tree textures, the empty-space flags, the ropes, every cell once (whole rows of
   // the page) and the brick table (RG32UI, laid out like the tree)
