@@ -11,6 +11,8 @@
 #include "amrsp/ImageDifference.h"
 #include "amrsp/Render.h"
 
+#include "vtkSinglePassAMRVolumeMapper.h"
+
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -146,6 +148,21 @@ void WithEnzo(Test test)
   Check(!required,
     "the Enzo dataset " + enzo + " is " +
       (required ? "missing (required here: AMRSP_REQUIRE_GPU=1)" : "missing: left out"));
+}
+
+/// RMSE between `image` (the frame `gpu` rendered last, with its automatic ray loop) and the same
+/// frame rendered with the other loop; the mapper is left with AUTO_LOOP. Both loops must give
+/// the same bytes (0).
+inline double OtherRayLoopRmse(amrsp::harness::SinglePassRenderer& gpu, const amrsp::Image& image)
+{
+  using Mapper = vtkSinglePassAMRVolumeMapper;
+  Mapper* m = gpu.GetMapper();
+  m->SetRayLoop(
+    m->GetLastRayLoop() == Mapper::FLAT_LOOP ? Mapper::NESTED_LOOPS : Mapper::FLAT_LOOP);
+  double ms = 0.0;
+  const double rmse = amrsp::Rmse(gpu.RenderAsIs(ms), image);
+  m->SetRayLoop(Mapper::AUTO_LOOP);
+  return rmse;
 }
 
 /// A mapper test's main: SKIPPED (or, in CI, FAILED) when the GPU renderers cannot run

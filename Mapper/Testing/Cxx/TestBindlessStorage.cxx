@@ -118,10 +118,7 @@ void TestDataset(
   Check(wVsRef < refBound,
     "waterfall vs CPU reference RMSE " + Fixed(wVsRef) + " < " + Fixed(refBound));
   // the other ray loop (the automatic one is the nested loops here, the flat loop on a GPU)
-  m->SetRayLoop(
-    m->GetLastRayLoop() == Mapper::FLAT_LOOP ? Mapper::NESTED_LOOPS : Mapper::FLAT_LOOP);
-  const double otherLoop = Rmse(gpu.Render(0.0, ms), waterfall);
-  m->SetRayLoop(Mapper::AUTO_LOOP);
+  const double otherLoop = mappertest::OtherRayLoopRmse(gpu, waterfall);
   Check(otherLoop == 0.0,
     "waterfall: the other ray loop renders the same image (RMSE " + Fixed(otherLoop) + ")");
 

@@ -97,10 +97,7 @@ void TestDataset(const std::string& name, Hierarchy h, double referenceBound, bo
   Check(
     lVsRef < refBound, "linear vs CPU reference RMSE " + Fixed(lVsRef) + " < " + Fixed(refBound));
   // the other ray loop (the automatic one is the nested loops here, the flat loop on a GPU)
-  m->SetRayLoop(
-    m->GetLastRayLoop() == Mapper::FLAT_LOOP ? Mapper::NESTED_LOOPS : Mapper::FLAT_LOOP);
-  const double otherLoop = Rmse(gpu.Render(0.0, ms), linear);
-  m->SetRayLoop(Mapper::AUTO_LOOP);
+  const double otherLoop = mappertest::OtherRayLoopRmse(gpu, linear);
   Check(otherLoop == 0.0,
     "linear: the other ray loop renders the same image (RMSE " + Fixed(otherLoop) + ")");
 
