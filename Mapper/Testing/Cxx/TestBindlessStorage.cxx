@@ -118,9 +118,9 @@ void TestDataset(
   Check(wVsRef < refBound,
     "waterfall vs CPU reference RMSE " + Fixed(wVsRef) + " < " + Fixed(refBound));
   // the other ray loop (the automatic one is the nested loops here, the flat loop on a GPU)
-  const double otherLoop = mappertest::OtherRayLoopRmse(gpu, waterfall);
-  Check(otherLoop == 0.0,
-    "waterfall: the other ray loop renders the same image (RMSE " + Fixed(otherLoop) + ")");
+  const mappertest::RayLoopComparison otherLoop = mappertest::CompareOtherRayLoop(gpu, waterfall);
+  Check(otherLoop.Same(),
+    "waterfall: the other ray loop renders the same image: " + otherLoop.Describe());
 
   // memory: what was uploaded is what the mapper reports for either storage, and the bindless
   // figure is the tree (and its ropes) plus the bricks plus the handles, computed here

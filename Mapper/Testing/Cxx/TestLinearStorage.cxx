@@ -97,9 +97,9 @@ void TestDataset(const std::string& name, Hierarchy h, double referenceBound, bo
   Check(
     lVsRef < refBound, "linear vs CPU reference RMSE " + Fixed(lVsRef) + " < " + Fixed(refBound));
   // the other ray loop (the automatic one is the nested loops here, the flat loop on a GPU)
-  const double otherLoop = mappertest::OtherRayLoopRmse(gpu, linear);
-  Check(otherLoop == 0.0,
-    "linear: the other ray loop renders the same image (RMSE " + Fixed(otherLoop) + ")");
+  const mappertest::RayLoopComparison otherLoop = mappertest::CompareOtherRayLoop(gpu, linear);
+  Check(
+    otherLoop.Same(), "linear: the other ray loop renders the same image: " + otherLoop.Describe());
 
   // memory: the tree textures, the empty-space flags, the ropes, every cell once (whole rows of
   // the page) and the brick table (RG32UI, laid out like the tree)
