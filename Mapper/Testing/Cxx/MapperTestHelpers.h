@@ -151,36 +151,30 @@ void WithEnzo(Test test)
       (required ? "missing (required here: AMRSP_REQUIRE_GPU=1)" : "missing: left out"));
 }
 
-/// The largest difference of one 8-bit channel between two images (256 when the sizes differ).
-inline int LargestChannelDifference(const amrsp::Image& a, const amrsp::Image& b)
-{
-  const std::vector<std::uint8_t> x = a.Rgb8(), y = b.Rgb8();
-  if (x.size() != y.size())
-  {
-    return 256;
-  }
-  int largest = 0;
-  for (std::size_t i = 0; i < x.size(); ++i)
-  {
-    largest = std::max(largest, std::abs(static_cast<int>(x[i]) - static_cast<int>(y[i])));
-  }
-  return largest;
-}
-
 /// The other ray loop's frame against the automatic loop's. The two loops run the same steps in
-/// another order, so the shader compiler may round their arithmetic differently (e.g. fused
-/// multiply-adds): a channel may differ by one level, never more (measured: the same bytes with
-/// Mesa 25; with Mesa 26, RMSE 0.107 for smooth cells in the linear storage). A step missing from
-/// one loop changes whole segments.
+/// another order, and the shader compiler may round their arithmetic differently: where a
+/// rounding moves a sample or a segment boundary, a pixel changes. Measured: the same bytes with
+/// Mesa 25 (LLVM 15) in every test; with Mesa 26 (LLVM 21), smooth cells, 3 of 9,216 pixels (2 by
+/// more than one level, the largest 11), where the flat loop's pixel is the CPU mirror's and the
+/// nested loops' is not. A step missing from one loop changes whole segments, i.e. most pixels.
 struct RayLoopComparison
 {
   double Rmse = 0.0;
-  int LargestDifference = 0; ///< of one 8-bit channel
-  bool Same() const { return this->LargestDifference <= 1; }
+  int LargestDifference = 0;   ///< of one 8-bit channel
+  long long OffPixels = 0;     ///< pixels with a channel more than one level apart
+  long long CoveredPixels = 0; ///< pixels with a channel above 4 in either image
+  /// At most 0.1 % of the covered pixels (at least one) more than one level apart.
+  bool Same() const
+  {
+    return this->CoveredPixels > 0 &&
+      this->OffPixels <= std::max<long long>(1, this->CoveredPixels / 1000);
+  }
   std::string Describe() const
   {
-    return "RMSE " + Fixed(this->Rmse) + ", largest channel difference " +
-      std::to_string(this->LargestDifference) + " (at most 1)";
+    return "RMSE " + Fixed(this->Rmse) + ", " + std::to_string(this->OffPixels) + " of " +
+      std::to_string(this->CoveredPixels) +
+      " covered pixels more than one level apart (at most 0.1 %), largest channel difference " +
+      std::to_string(this->LargestDifference);
   }
 };
 
@@ -196,7 +190,28 @@ inline RayLoopComparison CompareOtherRayLoop(
   double ms = 0.0;
   const amrsp::Image other = gpu.RenderAsIs(ms);
   m->SetRayLoop(Mapper::AUTO_LOOP);
-  return RayLoopComparison{ amrsp::Rmse(other, image), LargestChannelDifference(other, image) };
+  RayLoopComparison c;
+  c.Rmse = amrsp::Rmse(other, image);
+  const std::vector<std::uint8_t> x = other.Rgb8(), y = image.Rgb8();
+  if (x.size() != y.size())
+  {
+    c.LargestDifference = 256;
+    return c;
+  }
+  for (std::size_t i = 0; i + 2 < x.size(); i += 3)
+  {
+    int largest = 0;
+    bool covered = false;
+    for (std::size_t k = i; k < i + 3; ++k)
+    {
+      largest = std::max(largest, std::abs(static_cast<int>(x[k]) - static_cast<int>(y[k])));
+      covered = covered || x[k] > 4 || y[k] > 4;
+    }
+    c.LargestDifference = std::max(c.LargestDifference, largest);
+    c.OffPixels += largest > 1 ? 1 : 0;
+    c.CoveredPixels += covered ? 1 : 0;
+  }
+  return c;
 }
 
 /// A mapper test's main: SKIPPED (or, in CI, FAILED) when the GPU renderers cannot run
