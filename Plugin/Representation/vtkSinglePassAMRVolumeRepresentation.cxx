@@ -721,16 +721,6 @@ const char* vtkSinglePassAMRVolumeRepresentation::GetLastDataStorage()
   return this->LastDataStorage.c_str();
 }
 
-const char* vtkSinglePassAMRVolumeRepresentation::GetLastRayLoop()
-{
-  if (this->Method == METHOD_MULTI_PASS || this->VolumeMapper->GetLastDataStorage() < 0)
-  {
-    return "none";
-  }
-  return this->VolumeMapper->GetLastRayLoop() == vtkSinglePassAMRVolumeMapper::FLAT_LOOP ? "flat"
-                                                                                         : "nested";
-}
-
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)
 {

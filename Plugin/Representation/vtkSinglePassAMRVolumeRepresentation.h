@@ -104,9 +104,6 @@ public:
   bool GetEmptySpaceSkipping();
   void SetCellInterpolation(int mode);
   int GetCellInterpolation();
-  /// The shader's ray loop (vtkSinglePassAMRVolumeMapper::RayLoops; default AUTO_LOOP).
-  void SetRayLoop(int loop);
-  int GetRayLoop();
   ///@}
 
   ///@{
@@ -221,9 +218,6 @@ public:
   /// What rendered the last frame (SinglePassDataStorage): "packing", "bindless (waterfall)",
   /// "bindless (direct)", "multi-pass", or "none" before the first successful frame.
   const char* GetLastDataStorage();
-  /// The ray loop of the last frame (SinglePassRayLoop): "nested" or "flat"; "none" for the
-  /// multi-pass method or before the first successful frame.
-  const char* GetLastRayLoop();
   ///@}
 
 protected:

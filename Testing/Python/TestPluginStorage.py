@@ -143,20 +143,6 @@ def main():
     iso_linear, _, _ = shot("iso-lin")
     display.BlendMode = "Composite"
     display.Shade = 0
-    # the ray loop: Auto takes the nested loops on a CPU driver (the flat loop on a GPU); each
-    # loop gives the packed image, and a change rebuilds nothing
-    display.Method = "Packing"
-    _, _, loop_builds_before = shot("loop-auto")
-    auto_loop = info_property(display, "SinglePassRayLoop")
-    display.RayLoop = "Flat"
-    flat, _, _ = shot("loop-flat")
-    flat_loop = info_property(display, "SinglePassRayLoop")
-    display.RayLoop = "Nested"
-    nested, _, loop_builds = shot("loop-nested")
-    nested_loop = info_property(display, "SinglePassRayLoop")
-    display.RayLoop = "Auto"
-    print("ray loop: auto ran the %s loop(s); forced flat: %s, forced nested: %s"
-          % (auto_loop, flat_loop, nested_loop))
 
     checks = [
         ("bindless ran with the waterfall loop", storage == "bindless (waterfall)"),
@@ -179,11 +165,6 @@ def main():
         ("Method Linear renders with the linear storage", linear_storage == "linear"),
         ("linear gives the packed image", rmse(linear, packed) < SAME_BOUND),
         ("iso-surfaces are the same with linear", rmse(iso_linear, iso) < SAME_BOUND),
-        ("Ray Loop Flat and Nested run those loops, Auto one of them",
-            flat_loop == "flat" and nested_loop == "nested" and auto_loop in ("flat", "nested")),
-        ("both ray loops give the packed image",
-            rmse(flat, packed) < SAME_BOUND and rmse(nested, packed) < SAME_BOUND),
-        ("a ray-loop change rebuilds nothing", loop_builds == loop_builds_before),
     ]
     # each lit or smooth image against its reference, and the image without the feature
     # (nearest cells, unlit, unshadowed, composite) against the same reference
