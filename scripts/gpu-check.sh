@@ -92,12 +92,12 @@ if [ "${1:-}" = profile ]; then
     [ -e "$d" ] && bench "real-$(basename "$d" | cut -d. -f1)" 40 "$d" --methods "$all" \
       "${target[@]}" --counters
   done
-  # the nested loops (RayLoop NESTED_LOOPS) against the flat loop that AUTO_LOOP takes on a GPU
-  # (the cost model favours it there; llvmpipe does not)
-  bench nested-loops-dataset3 70 "$ds3" --methods packing,bindless,linear,multipass \
-    "${target[@]}" --loop nested
-  bench nested-loops-dataset2 60 "$ds2" --methods packing,bindless,linear,multipass \
-    "${target[@]}" --loop nested
+  # the flat loop (RayLoop FLAT_LOOP, which AUTO_LOOP takes on a GPU), which the cost model
+  # favours on a GPU and llvmpipe does not
+  bench flat-loop-dataset3 70 "$ds3" --methods packing,bindless,linear,multipass "${target[@]}" \
+    --loop flat
+  bench flat-loop-dataset2 60 "$ds2" --methods packing,bindless,linear,multipass "${target[@]}" \
+    --loop flat
   # ablations on dataset 3 (the cost of each part): orbits of 4 frames, two rounds
   ablate=(--size "$size" --sample-factor 1 --rounds 2 --frames "$few" --no-compare)
   bench ablation-traversal-only 60 "$ds3" --methods packing,bindless,linear "${ablate[@]}" \

@@ -28,8 +28,8 @@ if run.returncode != 0 or not os.path.exists(out):
 profile = json.load(open(out))
 failures = []
 expected = ["dataset3", "billion", "dataset2", "dataset1", "time-series-dataset2",
-            "nested-loops-dataset3",
-            "nested-loops-dataset2", "ablation-traversal-only",
+            "flat-loop-dataset3",
+            "flat-loop-dataset2", "ablation-traversal-only",
             "ablation-sampling-only", "ablation-no-ropes", "ablation-no-skipping",
             "ablation-no-termination", "ablation-no-ropes-dataset2"]
 if os.path.isdir(os.path.join(data, "enzo_moving7")):

@@ -436,7 +436,7 @@ RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range)
     throw UsageError{ "--ropes must be on or off" };
   }
   s.Ropes = ropes == "on";
-  const std::string loop = a.Get("loop", "auto");
+  const std::string loop = a.Get("loop", "nested");
   if (loop != "auto" && loop != "nested" && loop != "flat")
   {
     throw UsageError{ "--loop must be auto, nested or flat" };

@@ -74,7 +74,7 @@ struct RenderSettings
     Nested, ///< per segment a descent loop, then a sample loop
     Flat    ///< one loop of single descent steps, segment set-ups and samples
   };
-  RayLoop GpuRayLoop = RayLoop::Auto;
+  RayLoop GpuRayLoop = RayLoop::Nested;
   int GpuAblationSamples = 256;
   /// GPU mappers' MaximumAtlasPageBytes (the largest atlas texture; larger atlases are split
   /// into pages); 0 keeps the mapper's default. Not used by the CPU integrators.

@@ -151,7 +151,7 @@ void WithEnzo(Test test)
       (required ? "missing (required here: AMRSP_REQUIRE_GPU=1)" : "missing: left out"));
 }
 
-/// The other ray loop's frame against the automatic loop's. The two loops run the same steps in
+/// The other ray loop's frame against the mapper's own. The two loops run the same steps in
 /// another order, and the shader compiler may round their arithmetic differently: where a
 /// rounding moves a sample or a segment boundary, a pixel changes. Measured: the same bytes with
 /// Mesa 25 (LLVM 15) in every test; with Mesa 26 (LLVM 21), smooth cells, 3 of 9,216 pixels (2 by
@@ -178,18 +178,19 @@ struct RayLoopComparison
   }
 };
 
-/// Renders the frame `gpu` rendered last (`image`, with its automatic loop) again with the other
-/// loop and compares; the mapper is left with AUTO_LOOP.
+/// Renders the frame `gpu` rendered last (`image`) again with the other loop than the one it ran
+/// and compares; the mapper's RayLoop setting is restored.
 inline RayLoopComparison CompareOtherRayLoop(
   amrsp::harness::SinglePassRenderer& gpu, const amrsp::Image& image)
 {
   using Mapper = vtkSinglePassAMRVolumeMapper;
   Mapper* m = gpu.GetMapper();
+  const int setting = m->GetRayLoop();
   m->SetRayLoop(
     m->GetLastRayLoop() == Mapper::FLAT_LOOP ? Mapper::NESTED_LOOPS : Mapper::FLAT_LOOP);
   double ms = 0.0;
   const amrsp::Image other = gpu.RenderAsIs(ms);
-  m->SetRayLoop(Mapper::AUTO_LOOP);
+  m->SetRayLoop(setting);
   RayLoopComparison c;
   c.Rmse = amrsp::Rmse(other, image);
   const std::vector<std::uint8_t> x = other.Rgb8(), y = image.Rgb8();

@@ -117,7 +117,7 @@ void TestDataset(
   const double refBound = referenceBound;
   Check(wVsRef < refBound,
     "waterfall vs CPU reference RMSE " + Fixed(wVsRef) + " < " + Fixed(refBound));
-  // the other ray loop (the automatic one is the nested loops here, the flat loop on a GPU)
+  // the other ray loop (the flat loop; the nested loops are the default)
   const mappertest::RayLoopComparison otherLoop = mappertest::CompareOtherRayLoop(gpu, waterfall);
   Check(otherLoop.Same(),
     "waterfall: the other ray loop renders the same image: " + otherLoop.Describe());

@@ -96,7 +96,7 @@ void TestDataset(const std::string& name, Hierarchy h, double referenceBound, bo
   const double refBound = referenceBound;
   Check(
     lVsRef < refBound, "linear vs CPU reference RMSE " + Fixed(lVsRef) + " < " + Fixed(refBound));
-  // the other ray loop (the automatic one is the nested loops here, the flat loop on a GPU)
+  // the other ray loop (the flat loop; the nested loops are the default)
   const mappertest::RayLoopComparison otherLoop = mappertest::CompareOtherRayLoop(gpu, linear);
   Check(
     otherLoop.Same(), "linear: the other ray loop renders the same image: " + otherLoop.Describe());
