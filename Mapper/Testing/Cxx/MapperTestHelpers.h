@@ -11,6 +11,7 @@
 #include "amrsp/ImageDifference.h"
 #include "amrsp/Render.h"
 
+#include "vtkRenderWindow.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
 
 #include <algorithm>
@@ -149,6 +150,15 @@ void WithEnzo(Test test)
   Check(!required,
     "the Enzo dataset " + enzo + " is " +
       (required ? "missing (required here: AMRSP_REQUIRE_GPU=1)" : "missing: left out"));
+}
+
+/// Whether `window` renders on a CPU driver (Mesa's llvmpipe, softpipe, or zink on lavapipe),
+/// read from its capabilities here, apart from the mapper's own test (AUTO_STORAGE, AUTO_LOOP).
+inline bool IsCpuDriver(vtkRenderWindow* window)
+{
+  const std::string caps = window->ReportCapabilities();
+  return caps.find("llvmpipe") != std::string::npos || caps.find("softpipe") != std::string::npos ||
+    caps.find("lavapipe") != std::string::npos;
 }
 
 /// The other ray loop's frame against the mapper's own. The two loops run the same steps in

@@ -157,9 +157,7 @@ bool CompareLoopCounts(harness::SinglePassRenderer& gpu, const Hierarchy& h,
   const long long samples = compare(M::SAMPLE_COUNT, "samples", total(w.Samples));
   // AUTO_LOOP takes the nested loops on a CPU driver, the flat loop on a GPU
   vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
-  const std::string caps = gpu.GetRenderer()->GetRenderWindow()->ReportCapabilities();
-  const bool cpuDriver = caps.find("llvmpipe") != std::string::npos ||
-    caps.find("softpipe") != std::string::npos || caps.find("lavapipe") != std::string::npos;
+  const bool cpuDriver = mappertest::IsCpuDriver(gpu.GetRenderer()->GetRenderWindow());
   const int expectedLoop = cpuDriver ? M::NESTED_LOOPS : M::FLAT_LOOP;
   mapper->SetRayLoop(M::AUTO_LOOP);
   double ms = 0.0;

@@ -174,14 +174,6 @@ void TestDataset(const std::string& name, Hierarchy h, double referenceBound, bo
   }
 }
 
-/// Whether `window` renders on the CPU, as the mapper's AUTO_STORAGE decides it.
-bool IsCpuDriver(vtkRenderWindow* window)
-{
-  const std::string caps = window->ReportCapabilities();
-  return caps.find("llvmpipe") != std::string::npos || caps.find("softpipe") != std::string::npos ||
-    caps.find("lavapipe") != std::string::npos;
-}
-
 /// AUTO_STORAGE: the atlas below AutoLinearBytes, the linear bricks above it on a CPU driver, and
 /// the linear bricks rather than an error where no atlas fits and bindless cannot run.
 void TestAutomaticChoice()
@@ -194,7 +186,7 @@ void TestAutomaticChoice()
   double ms = 0.0;
   const Image packed = gpu.Render(0.0, ms);
   vtkRenderWindow* window = gpu.GetRenderer()->GetRenderWindow();
-  const bool cpu = IsCpuDriver(window);
+  const bool cpu = mappertest::IsCpuDriver(window);
   const bool bindless = Mapper::IsBindlessSupported(window);
   std::cout << "  info    " << (cpu ? "a CPU driver" : "not a CPU driver") << ", "
             << (bindless ? "bindless textures" : "no bindless textures") << "\n";
