@@ -46,13 +46,46 @@ void vtkSinglePassAMRGridStorage::QueryCapabilities(vtkOpenGLRenderWindow* renWi
   this->HasBindless = vtkSinglePassAMROpenGL::HasExtension("GL_ARB_bindless_texture");
   this->HasNVShader5 = vtkSinglePassAMROpenGL::HasExtension("GL_NV_gpu_shader5");
   this->HasBallot = vtkSinglePassAMROpenGL::HasExtension("GL_ARB_shader_ballot");
+  this->ThreadBuiltins = vtkSinglePassAMROpenGL::HasExtension("GL_NV_shader_thread_builtins");
   const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   const std::string name = renderer ? renderer : "";
   this->MaxBindlessTextures = name.find("zink") != std::string::npos ? 1023 : -1;
   this->ReleasedBindlessTextures = 0;
   this->CpuDriver = name.find("llvmpipe") != std::string::npos ||
     name.find("softpipe") != std::string::npos || name.find("lavapipe") != std::string::npos;
+  // compute shaders: core in OpenGL 4.3, an extension of 4.2 (which has the image stores)
+  GLint major = 0, minor = 0;
+  glGetIntegerv(GL_MAJOR_VERSION, &major);
+  glGetIntegerv(GL_MINOR_VERSION, &minor);
+  const int version = 10 * major + minor;
+  this->ComputeVersion.clear();
+  this->NoCompute.clear();
+  if (version >= 43)
+  {
+    this->ComputeVersion = "#version 430 core\n";
+  }
+  else if (version >= 42 && vtkSinglePassAMROpenGL::HasExtension("GL_ARB_compute_shader"))
+  {
+    this->ComputeVersion = "#version 420 core\n#extension GL_ARB_compute_shader : require\n";
+  }
+  else
+  {
+    this->NoCompute = "the OpenGL context (" + std::to_string(major) + "." + std::to_string(minor) +
+      ") has no compute shaders (OpenGL 4.3, or 4.2 with " + "GL_ARB_compute_shader)";
+  }
   this->CapsContext = renWin;
+}
+
+//------------------------------------------------------------------------------
+vtkSinglePassAMRRayCasterFacts vtkSinglePassAMRGridStorage::RayCasterFacts(
+  vtkOpenGLRenderWindow* renWin)
+{
+  this->QueryCapabilities(renWin);
+  vtkSinglePassAMRRayCasterFacts facts;
+  facts.Compute = !this->ComputeVersion.empty();
+  facts.NoCompute = this->NoCompute;
+  facts.CpuDriver = this->CpuDriver;
+  return facts;
 }
 
 //------------------------------------------------------------------------------

@@ -23,6 +23,7 @@
 
 #include "vtkSinglePassAMRBindlessBricks.h"
 #include "vtkSinglePassAMRLinearBricks.h"
+#include "vtkSinglePassAMRRayCasterChoice.h"
 #include "vtkSinglePassAMRStorageChoice.h"
 
 #include "vtkSmartPointer.h"
@@ -59,6 +60,23 @@ public:
   {
     this->QueryCapabilities(renWin);
     return this->CpuDriver;
+  }
+
+  /// What `renWin` offers the ray casters (compute shaders, a CPU driver).
+  vtkSinglePassAMRRayCasterFacts RayCasterFacts(vtkOpenGLRenderWindow* renWin);
+  /// Whether `renWin` has GL_NV_shader_thread_builtins (gl_SMIDNV, gl_WarpIDNV: the occupancy
+  /// probe).
+  bool HasThreadBuiltins(vtkOpenGLRenderWindow* renWin)
+  {
+    this->QueryCapabilities(renWin);
+    return this->ThreadBuiltins;
+  }
+  /// The compute shader's first lines in `renWin` (#version, and the extension on OpenGL 4.2);
+  /// empty without compute shaders.
+  const std::string& GetComputeVersion(vtkOpenGLRenderWindow* renWin)
+  {
+    this->QueryCapabilities(renWin);
+    return this->ComputeVersion;
   }
 
   /// Whether the textures of `storage` in `renWin` are up to date for the data built last.
@@ -173,6 +191,9 @@ private:
   // a driver that renders on the CPU and keeps its textures linear in host memory (llvmpipe,
   // softpipe, lavapipe under zink)
   bool CpuDriver = false;
+  std::string ComputeVersion;  // the compute shader's #version lines; empty: no compute shaders
+  std::string NoCompute;       // why not
+  bool ThreadBuiltins = false; // GL_NV_shader_thread_builtins
   // bindless textures the driver can hold (-1: no known limit). Mesa's zink crashes when more
   // than 1023 handles are made resident (its bindless descriptor array has 1024 slots); checked
   // with Mesa 25.0.7: 1023 grids render, 1024 crash inside glMakeTextureHandleResidentARB.

@@ -99,6 +99,19 @@ void vtkSinglePassAMROffscreenImage::EndDrawing()
 }
 
 //------------------------------------------------------------------------------
+void vtkSinglePassAMROffscreenImage::BindAsImage(int unit)
+{
+  glBindImageTexture(static_cast<GLuint>(unit), this->Colour->GetHandle(), 0, GL_FALSE, 0,
+    GL_WRITE_ONLY, GL_RGBA32F);
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMROffscreenImage::UnbindImage(int unit)
+{
+  glBindImageTexture(static_cast<GLuint>(unit), 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+}
+
+//------------------------------------------------------------------------------
 bool vtkSinglePassAMROffscreenImage::CompositeOver(
   vtkOpenGLRenderWindow* renWin, std::string& error)
 {

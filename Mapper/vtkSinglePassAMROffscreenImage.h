@@ -50,6 +50,11 @@ public:
   /// when the composite shader does not compile or link.
   bool CompositeOver(vtkOpenGLRenderWindow* renWin, std::string& error);
 
+  /// Binds the image to image unit `unit` for writes of RGBA32F texels (a compute shader's
+  /// `layout(rgba32f) writeonly image2D`); UnbindImage undoes it.
+  void BindAsImage(int unit);
+  void UnbindImage(int unit);
+
   int GetWidth() const { return this->Width; }
   int GetHeight() const { return this->Height; }
 

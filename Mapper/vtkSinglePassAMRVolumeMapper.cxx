@@ -58,6 +58,11 @@ static_assert(
     static_cast<int>(vtkSinglePassAMRRayLoop::Flat) == vtkSinglePassAMRVolumeMapper::FLAT_LOOP &&
     static_cast<int>(vtkSinglePassAMRRayLoop::Auto) == vtkSinglePassAMRVolumeMapper::AUTO_LOOP,
   "RayLoops and vtkSinglePassAMRRayLoop differ");
+static_assert(
+  static_cast<int>(amrsp::RayCaster::Fragment) == vtkSinglePassAMRVolumeMapper::FRAGMENT_CASTER &&
+    static_cast<int>(amrsp::RayCaster::Compute) == vtkSinglePassAMRVolumeMapper::COMPUTE_CASTER &&
+    static_cast<int>(amrsp::RayCaster::Auto) == vtkSinglePassAMRVolumeMapper::AUTO_CASTER,
+  "RayCasters and amrsp::RayCaster differ");
 static_assert(static_cast<int>(vtkSinglePassAMRBindlessAccess::Auto) ==
       vtkSinglePassAMRVolumeMapper::AUTO_ACCESS &&
     static_cast<int>(vtkSinglePassAMRBindlessAccess::Direct) ==
@@ -210,7 +215,9 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   vtkInternals& in = *this->Internals;
   in.LastStorage = vtkSinglePassAMRStorage::None;
   in.LastAccess = vtkSinglePassAMRBindlessAccess::None;
+  in.LastCaster = amrsp::RayCaster::Auto;
   in.StorageNote.clear();
+  in.CasterNote.clear();
   vtkOpenGLRenderWindow* renWin = nullptr;
   vtkOverlappingAMR* amr = this->BeginFrame(ren, renWin);
   if (!amr)
@@ -248,18 +255,24 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     rays.X0 = rays.Y0 = 0;
     vtkSinglePassAMRFrameBudget::ReducedSize(
       view.Width, view.Height, frame.Quality.ImageSampleDistance, rays.Width, rays.Height);
-    if (!in.Budget.Image.Ensure(renWin, rays.Width, rays.Height, true, viewError))
-    {
-      this->ReportError(viewError);
-      return;
-    }
+  }
+  // an offscreen image for the rays: the reduced image (bilinear), or the compute caster's
+  // viewport-sized one (nearest); the fragment caster draws a full frame into the frame itself
+  const bool compute = frame.Caster == amrsp::RayCaster::Compute;
+  const bool offscreen = frame.Reduced() || compute;
+  if (offscreen &&
+    !in.RaysImage(frame.Reduced())
+       .Ensure(renWin, rays.Width, rays.Height, frame.Reduced(), viewError))
+  {
+    this->ReportError(viewError);
+    return;
   }
   vtkShaderProgram* program = in.ReadyShader(renWin, vol, frame);
   if (!program)
   {
     return;
   }
-  if (!in.BindProxyBox(program))
+  if (!compute && !in.BindProxyBox(program))
   {
     return;
   }
@@ -283,14 +296,22 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     in.SetLightingUniforms(program, ren, vol, property, frame);
   }
-  in.Budget.DrawRays(
-    renWin, frame.Reduced(), [&in, renWin, &view] { in.DrawBackFaces(renWin, view); });
+  if (compute)
+  {
+    in.DispatchRays(program, rays, frame.Reduced());
+  }
+  else
+  {
+    in.Budget.DrawRays(
+      renWin, frame.Reduced(), [&in, renWin, &view] { in.DrawBackFaces(renWin, view); });
+  }
   in.DeactivateTextures(frame);
   in.LastStorage = frame.Storage;
   in.LastAccess = frame.Access;
   in.LastRopes = frame.Ropes && this->LODThreshold <= 0.0;
   in.LastFlatLoop = frame.FlatLoop;
-  if (frame.Reduced() && !in.Budget.Image.CompositeOver(renWin, viewError))
+  in.LastCaster = frame.Caster;
+  if (offscreen && !in.RaysImage(frame.Reduced()).CompositeOver(renWin, viewError))
   {
     this->ReportError(viewError);
     return;
@@ -418,6 +439,8 @@ void vtkSinglePassAMRVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
   }
   in.KeptSteps.clear();
   in.Budget.Image.ReleaseGraphicsResources(window);
+  in.ComputeImage.ReleaseGraphicsResources(window);
+  in.FreeComputePrograms(window);
   in.Depth.ReleaseGraphicsResources(window);
   in.Transfer.ReleaseGraphicsResources(window);
   in.BoxBuffer->ReleaseGraphicsResources();
@@ -473,10 +496,14 @@ void vtkSinglePassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "WorkCountersOutput: " << (this->WorkCountersOutput ? "on" : "off") << "\n";
   os << indent << "WorkCountOutput: " << this->WorkCountOutput << "\n";
   os << indent << "Ropes: " << (this->Ropes ? "on" : "off") << "\n";
+  os << indent << "OccupancyProbe: " << (this->OccupancyProbe ? "on" : "off") << "\n";
   os << indent << "RayLoop: "
      << (this->RayLoop == FLAT_LOOP      ? "flat"
             : this->RayLoop == AUTO_LOOP ? "auto"
                                          : "nested")
+     << "\n";
+  os << indent
+     << "RayCaster: " << amrsp::RayCasterName(static_cast<amrsp::RayCaster>(this->RayCaster))
      << "\n";
   os << indent << "DiagnosticAblation: " << this->DiagnosticAblation << " ("
      << this->DiagnosticAblationSamples << " samples)\n";

@@ -3,7 +3,8 @@
  * @class   vtkSinglePassAMRVolumeMapper
  * @brief   single-pass GPU raycaster for vtkOverlappingAMR (Kaehler & Abel 2013)
  *
- * Renders a structured AMR hierarchy at its native resolution in one fragment-shader pass:
+ * Renders a structured AMR hierarchy at its native resolution in one shader pass (a compute
+ * shader, or a fragment shader: SetRayCaster):
  * the hierarchy is decomposed into a kD-tree of non-overlapping same-level blocks, the tree is
  * encoded into two RG32UI 3D textures, every grid's cells become one brick, and per pixel the
  * shader walks the tree with kd-restart, samples each ray segment nearest-cell at the rate of its
@@ -347,6 +348,55 @@ public:
   int GetLastRayLoop();
   ///@}
 
+  /// Which shader stage casts the rays (RayCaster); the values of amrsp::RayCaster.
+  enum RayCasters
+  {
+    FRAGMENT_CASTER = 0, ///< a fragment shader over the proxy box's back faces
+    COMPUTE_CASTER = 1,  ///< a compute shader over the rays' image, then one composite draw
+    AUTO_CASTER = 2      ///< compute on a GPU with compute shaders, fragment on a CPU driver
+  };
+
+  ///@{
+  /**
+   * The shader stage that casts the rays (default AUTO_CASTER). FRAGMENT_CASTER runs the ray of
+   * each pixel the proxy box's back faces cover in a fragment shader and blends it into the
+   * frame. COMPUTE_CASTER runs one compute-shader invocation per pixel of the rays' image, in
+   * work groups of 8 x 4 pixels, writes premultiplied colour to an RGBA32F image and composites
+   * it over the frame with one quad, blended as the fragment caster blends (depth of opaque
+   * geometry, reduced interactive images, every storage and feature alike): the same bytes on the
+   * screen. On a datacenter GPU the compute caster runs on every multiprocessor, where fragments
+   * run only on the few that rasterise (NVIDIA's H100 and H200: 4 of 132 SMs). AUTO_CASTER takes
+   * the compute caster on a GPU with compute shaders and the fragment caster on a CPU driver
+   * (docs/performance.md, "The compute caster"). A context without compute shaders (OpenGL 4.3,
+   * or 4.2 with GL_ARB_compute_shader) renders with the fragment caster and says so once
+   * (GetRayCasterFallbackReason). GetLastRayCaster tells which caster the last frame used.
+   */
+  vtkSetClampMacro(RayCaster, int, FRAGMENT_CASTER, AUTO_CASTER);
+  vtkGetMacro(RayCaster, int);
+  /// (FRAGMENT_CASTER or COMPUTE_CASTER; -1 before the first successful Render)
+  int GetLastRayCaster();
+  /// Why the last frame was cast by the fragment shader although COMPUTE_CASTER or AUTO_CASTER
+  /// was asked for and the context has no compute shaders; empty otherwise.
+  const char* GetRayCasterFallbackReason();
+  /// "fragment", "compute", "auto" (amrsp::RayCasterName), or "none".
+  static const char* GetRayCasterName(int caster);
+  ///@}
+
+  ///@{
+  /**
+   * Diagnostic output (default off), on contexts with GL_NV_shader_thread_builtins (NVIDIA): every
+   * ray that meets the volume writes, opaque and 8-bit exact, where it ran instead of its colour:
+   * red the multiprocessor (gl_SMIDNV), green the warp slot on it (gl_WarpIDNV), blue the chip's
+   * multiprocessor count (gl_SMCountNV). Counting the distinct values over a frame shows how much
+   * of the GPU a caster uses (on an H100 fragments run on the 4 SMs that rasterise). Elsewhere a
+   * frame with the probe is an error naming the missing extension. Takes precedence over the
+   * work-count outputs.
+   */
+  vtkSetMacro(OccupancyProbe, bool);
+  vtkGetMacro(OccupancyProbe, bool);
+  vtkBooleanMacro(OccupancyProbe, bool);
+  ///@}
+
   /// Diagnostic ablations (DiagnosticAblation).
   enum Ablations
   {
@@ -478,6 +528,8 @@ protected:
   vtkIdType LastBorrowedValues = 0;
   vtkIdType LastCopiedValues = 0;
   int RayLoop = NESTED_LOOPS;
+  int RayCaster = AUTO_CASTER;
+  bool OccupancyProbe = false;
   int DiagnosticAblation = NO_ABLATION;
   int DiagnosticAblationSamples = 256;
   int CellInterpolation = NEAREST_CELL;

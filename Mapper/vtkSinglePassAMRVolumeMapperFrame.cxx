@@ -5,6 +5,7 @@
 #include "vtkSinglePassAMRVolumeMapperInternals.h"
 
 #include "vtkSinglePassAMRProxyBox.h"
+#include "vtkSinglePassAMRRayCasterChoice.h"
 #include "vtkSinglePassAMRRayLoopChoice.h"
 #include "vtkSinglePassAMRScopedBlendedDraw.h"
 #include "vtkSinglePassAMRShaderComposer.h"
@@ -32,6 +33,8 @@
 #include "amrsp_RaySteps_glsl.h"
 #include "amrsp_Shading_glsl.h"
 #include "amrsp_SmoothCells_glsl.h"
+#include "amrsp_SinglePassAMRRay_glsl.h"
+#include "amrsp_SinglePassAMR_comp_glsl.h"
 #include "amrsp_SinglePassAMR_frag_glsl.h"
 #include "amrsp_SinglePassAMR_vert_glsl.h"
 
@@ -113,14 +116,28 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareAppearance(
     vtkSinglePassAMRChooseRayLoop(static_cast<vtkSinglePassAMRRayLoop>(self->RayLoop),
       this->Storage->IsCpuDriver(renWin)) == vtkSinglePassAMRRayLoop::Flat;
   frame.UseDepth = self->UseDepthBuffer;
+  if (self->OccupancyProbe && !this->Storage->HasThreadBuiltins(renWin))
+  {
+    self->ReportError("the occupancy probe needs GL_NV_shader_thread_builtins, which the OpenGL "
+                      "context lacks");
+    return false;
+  }
+  const vtkSinglePassAMRRayCasterDecision caster = vtkSinglePassAMRChooseRayCaster(
+    static_cast<amrsp::RayCaster>(self->RayCaster), this->Storage->RayCasterFacts(renWin));
+  frame.Caster = caster.Caster;
+  this->CasterNote = caster.FallbackReason;
+  if (!caster.FallbackReason.empty())
+  {
+    self->WarnOnce(caster.FallbackReason + ": casting the rays with the fragment shader instead");
+  }
   return true;
 }
 
 //------------------------------------------------------------------------------
-vtkShaderProgram* vtkSinglePassAMRVolumeMapper::vtkInternals::ReadyShader(
-  vtkOpenGLRenderWindow* renWin, vtkVolume* vol, const vtkSinglePassAMRFrameSettings& frame)
+std::string vtkSinglePassAMRVolumeMapper::vtkInternals::ShaderDefines(
+  const vtkSinglePassAMRFrameSettings& frame) const
 {
-  vtkSinglePassAMRVolumeMapper* self = this->Self;
+  const vtkSinglePassAMRVolumeMapper* self = this->Self;
   const amrsp::LevelTable& levels = this->Data.Levels;
   std::string defines = "#define AMRSP_LEVEL_COUNT " +
     std::to_string(this->Data.LevelCellSize.size()) + "\n" + this->Storage->GetGridDataDefines() +
@@ -149,24 +166,118 @@ vtkShaderProgram* vtkSinglePassAMRVolumeMapper::vtkInternals::ReadyShader(
     "AMRSP_ABLATION " + std::to_string(self->DiagnosticAblation));
   define(frame.Shade, "AMRSP_SHADE 1");
   define(frame.Shadows, "AMRSP_SHADOWS 1");
-  define(
-    self->WorkCountersOutput && self->WorkCountOutput == NO_WORK_COUNT, "AMRSP_WORK_COUNTERS 1");
-  define(self->WorkCountOutput != NO_WORK_COUNT,
+  const bool probe = self->OccupancyProbe;
+  define(!probe && self->WorkCountersOutput && self->WorkCountOutput == NO_WORK_COUNT,
+    "AMRSP_WORK_COUNTERS 1");
+  define(!probe && self->WorkCountOutput != NO_WORK_COUNT,
     "AMRSP_WORK_COUNT " + std::to_string(self->WorkCountOutput));
-  const std::string fragment =
-    vtkSinglePassAMRShaderComposer::ComposeFragmentShader(amrsp_SinglePassAMR_frag_glsl, defines,
-      { { "KdTreeLayout", amrsp_KdTreeLayout_glsl }, { "RayCommon", amrsp_RayCommon_glsl },
-        { "BrickSample", amrsp_BrickSample_glsl }, { "SmoothCells", amrsp_SmoothCells_glsl },
-        { "Shading", amrsp_Shading_glsl }, { "RaySteps", amrsp_RaySteps_glsl } },
-      vol);
+  define(probe, "AMRSP_OCCUPANCY_PROBE 1");
+  define(frame.Caster == amrsp::RayCaster::Compute,
+    "AMRSP_GROUP_WIDTH " + std::to_string(vtkSinglePassAMRComputeGroup::Width));
+  define(frame.Caster == amrsp::RayCaster::Compute,
+    "AMRSP_GROUP_HEIGHT " + std::to_string(vtkSinglePassAMRComputeGroup::Height));
+  return defines;
+}
+
+//------------------------------------------------------------------------------
+vtkShaderProgram* vtkSinglePassAMRVolumeMapper::vtkInternals::ReadyShader(
+  vtkOpenGLRenderWindow* renWin, vtkVolume* vol, const vtkSinglePassAMRFrameSettings& frame)
+{
+  const bool compute = frame.Caster == amrsp::RayCaster::Compute;
+  const std::string source = vtkSinglePassAMRShaderComposer::ComposeFragmentShader(
+    compute ? amrsp_SinglePassAMR_comp_glsl : amrsp_SinglePassAMR_frag_glsl,
+    this->ShaderDefines(frame),
+    { { "CastRay", amrsp_SinglePassAMRRay_glsl }, { "KdTreeLayout", amrsp_KdTreeLayout_glsl },
+      { "RayCommon", amrsp_RayCommon_glsl }, { "BrickSample", amrsp_BrickSample_glsl },
+      { "SmoothCells", amrsp_SmoothCells_glsl }, { "Shading", amrsp_Shading_glsl },
+      { "RaySteps", amrsp_RaySteps_glsl },
+      { "Version", compute ? this->Storage->GetComputeVersion(renWin).c_str() : "" } },
+    vol);
+  if (compute)
+  {
+    return this->ReadyComputeProgram(renWin, source);
+  }
   std::string error;
   vtkShaderProgram* program = vtkSinglePassAMRShaderComposer::ReadyProgram(renWin,
-    amrsp_SinglePassAMR_vert_glsl, fragment, "single-pass AMR", this->FailedFragmentSource, error);
+    amrsp_SinglePassAMR_vert_glsl, source, "single-pass AMR", this->FailedFragmentSource, error);
   if (!program)
   {
-    self->ReportError(error);
+    this->Self->ReportError(error);
   }
   return program;
+}
+
+//------------------------------------------------------------------------------
+vtkShaderProgram* vtkSinglePassAMRVolumeMapper::vtkInternals::ReadyComputeProgram(
+  vtkOpenGLRenderWindow* renWin, const std::string& source)
+{
+  if (this->ComputeContext != renWin)
+  {
+    this->FreeComputePrograms(this->ComputeContext);
+    this->ComputeContext = renWin;
+  }
+  for (auto it = this->ComputePrograms.begin(); it != this->ComputePrograms.end(); ++it)
+  {
+    if (it->first == source)
+    {
+      this->ComputePrograms.splice(this->ComputePrograms.begin(), this->ComputePrograms, it);
+      it->second->Use(renWin);
+      return it->second;
+    }
+  }
+  if (source == this->FailedComputeSource)
+  {
+    this->Self->ReportError(
+      "the single-pass AMR compute shader failed to compile or link (see the earlier error)");
+    return nullptr;
+  }
+  vtkSmartPointer<vtkSinglePassAMRComputeProgram> program =
+    vtkSmartPointer<vtkSinglePassAMRComputeProgram>::New();
+  std::string error;
+  if (!program->Build(renWin, source, error))
+  {
+    this->FailedComputeSource = source;
+    this->Self->ReportError("the single-pass AMR compute shader failed to " + error);
+    return nullptr;
+  }
+  this->ComputePrograms.emplace_front(source, program);
+  while (this->ComputePrograms.size() > MaxComputePrograms)
+  {
+    this->ComputePrograms.back().second->Free(renWin);
+    this->ComputePrograms.pop_back();
+  }
+  program->Use(renWin);
+  return program;
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeMapper::vtkInternals::FreeComputePrograms(vtkWindow* window)
+{
+  for (auto& entry : this->ComputePrograms)
+  {
+    if (window)
+    {
+      entry.second->Free(window);
+    }
+  }
+  this->ComputePrograms.clear();
+  this->ComputeContext = nullptr;
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeMapper::vtkInternals::DispatchRays(
+  vtkShaderProgram* program, const vtkSinglePassAMRViewGeometry::ViewGeometry& rays, bool reduced)
+{
+  namespace group = vtkSinglePassAMRComputeGroup;
+  vtkSinglePassAMROffscreenImage& image = this->RaysImage(reduced);
+  const int unit = 0;
+  image.BindAsImage(unit);
+  program->SetUniformi("amrspRayImage", unit);
+  auto* compute = static_cast<vtkSinglePassAMRComputeProgram*>(program);
+  compute->Dispatch(
+    group::Count(rays.Width, group::Width), group::Count(rays.Height, group::Height));
+  compute->Unuse();
+  image.UnbindImage(unit);
 }
 
 //------------------------------------------------------------------------------

@@ -11,6 +11,7 @@
 
 #include "vtkSinglePassAMRVolumeMapper.h"
 
+#include "vtkSinglePassAMRComputeProgram.h"
 #include "vtkSinglePassAMRDepthCopy.h"
 #include "vtkSinglePassAMRFrameBudget.h"
 #include "vtkSinglePassAMRGridStorage.h"
@@ -21,12 +22,15 @@
 #include "amrsp/RayCastingData.h"
 
 #include "vtkNew.h"
+#include "vtkSmartPointer.h"
 #include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLVertexArrayObject.h"
 
+#include <cstddef>
 #include <list>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 class vtkOpenGLRenderWindow;
@@ -60,6 +64,7 @@ struct vtkSinglePassAMRFrameSettings
   bool SmoothCells = false; // trilinear cell reconstruction (cell data)
   bool Ropes = false;       // neighbour links (when the build has them)
   bool FlatLoop = false;    // the flat loop (RayLoop, AUTO_LOOP resolved for the context)
+  amrsp::RayCaster Caster = amrsp::RayCaster::Fragment; // RayCaster resolved for the context
   bool UseDepth = false;
   amrsp::FrameQuality Quality; // image sample distance and sample-distance scale
 
@@ -87,9 +92,24 @@ public:
   /// Tabulates the transfer function and resolves blending, shading, shadows and skipping.
   bool PrepareAppearance(vtkOpenGLRenderWindow* renWin, vtkVolumeProperty* property,
     vtkSinglePassAMRFrameSettings& frame);
-  /// The shader variant of `frame`, compiled once per variant by VTK's shader cache.
+  /// The shader variant of `frame` for its caster: the fragment program from VTK's shader
+  /// cache, or the compute program (ComputePrograms), each compiled once per variant.
   vtkShaderProgram* ReadyShader(
     vtkOpenGLRenderWindow* renWin, vtkVolume* vol, const vtkSinglePassAMRFrameSettings& frame);
+  /// The #defines of `frame`'s shader variant (both casters).
+  std::string ShaderDefines(const vtkSinglePassAMRFrameSettings& frame) const;
+  /// The compute caster's program for `source` in `renWin`, compiled on first use.
+  vtkShaderProgram* ReadyComputeProgram(vtkOpenGLRenderWindow* renWin, const std::string& source);
+  /// Casts the rays of `rays` (the viewport, or the reduced image at (0, 0)) with the bound
+  /// compute `program` into RaysImage(reduced), which Render made ready; Render composites it.
+  void DispatchRays(vtkShaderProgram* program,
+    const vtkSinglePassAMRViewGeometry::ViewGeometry& rays, bool reduced);
+  /// The offscreen image a frame's rays go into: the reduced image of an interactive frame
+  /// (bilinear), or the compute caster's viewport-sized one (nearest).
+  vtkSinglePassAMROffscreenImage& RaysImage(bool reduced)
+  {
+    return reduced ? this->Budget.Image : this->ComputeImage;
+  }
   /// Uploads the root box's triangles after a build and binds them to `program`'s vertexMC.
   bool BindProxyBox(vtkShaderProgram* program);
   /// Re-flags the transparent data nodes when the transfer table changed (composite only).
@@ -165,11 +185,22 @@ public:
   vtkMTimeType BoxBufferTime = 0;
 
   std::string FailedFragmentSource; // do not retry a program that failed to compile
+  std::string FailedComputeSource;
+  /// The compute caster's programs of ComputeContext, by source (at most MaxComputePrograms,
+  /// the oldest dropped first), and its full-size rays' image (nearest filtering).
+  std::list<std::pair<std::string, vtkSmartPointer<vtkSinglePassAMRComputeProgram>>>
+    ComputePrograms;
+  static constexpr std::size_t MaxComputePrograms = 16;
+  vtkOpenGLRenderWindow* ComputeContext = nullptr;
+  vtkSinglePassAMROffscreenImage ComputeImage;
+  void FreeComputePrograms(vtkWindow* window);
 
   // what the last frame did
   vtkSinglePassAMRStorage LastStorage = vtkSinglePassAMRStorage::None;
   bool LastRopes = false;
   bool LastFlatLoop = false;
+  amrsp::RayCaster LastCaster = amrsp::RayCaster::Auto; // Auto: no frame yet
+  std::string CasterNote; // why the fragment caster ran where compute was asked for
   vtkSinglePassAMRBindlessAccess LastAccess = vtkSinglePassAMRBindlessAccess::None;
   std::string StorageNote; // why it did not use the bindless storage it was asked for
   long long TransparentDataNodes = 0;

@@ -144,3 +144,24 @@ const char* vtkSinglePassAMRVolumeMapper::GetBindlessAccessName(int access)
 {
   return vtkSinglePassAMRBindlessAccessName(static_cast<vtkSinglePassAMRBindlessAccess>(access));
 }
+
+//------------------------------------------------------------------------------
+int vtkSinglePassAMRVolumeMapper::GetLastRayCaster()
+{
+  const amrsp::RayCaster last = this->Internals->LastCaster;
+  return last == amrsp::RayCaster::Auto ? -1 : static_cast<int>(last);
+}
+
+//------------------------------------------------------------------------------
+const char* vtkSinglePassAMRVolumeMapper::GetRayCasterFallbackReason()
+{
+  return this->Internals->CasterNote.c_str();
+}
+
+//------------------------------------------------------------------------------
+const char* vtkSinglePassAMRVolumeMapper::GetRayCasterName(int caster)
+{
+  return caster >= FRAGMENT_CASTER && caster <= AUTO_CASTER
+    ? amrsp::RayCasterName(static_cast<amrsp::RayCaster>(caster))
+    : "none";
+}

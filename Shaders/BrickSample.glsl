@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Where a sample falls in a brick, and the read from the packed atlas: shared by the single-pass
-// shader (SinglePassAMR.frag.glsl, at //AMRSP::BrickSample) and the multi-pass node shader
+// shader (SinglePassAMRRay.glsl, at //AMRSP::BrickSample) and the multi-pass node shader
 // (MultiPassAMR.frag.glsl), so that both take the same value at the same point.
 //
 // A data node's block covers the cells firstCell..lastCell of its level, whose cells measure
@@ -63,7 +63,7 @@ float amrspReadAtlasPage(uint page, ivec3 texel, vec3 where)
 float amrspReadAtlas(ivec3 texel, vec3 where)
 {
 #ifdef AMRSP_VERTEX_CENTRED
-  return texture(amrspAtlas, where / amrspAtlasSize).r;
+  return textureLod(amrspAtlas, where / amrspAtlasSize, 0.0).r;
 #else
   return texelFetch(amrspAtlas, texel, 0).r;
 #endif

@@ -8,7 +8,7 @@
 // back into a cleared RGBA32F target with (ONE_MINUS_DST_ALPHA, ONE).
 //
 // The segment is [max(tEnter, 0), min(tExit, depth)] of the node box, which the CPU computes in
-// the same float arithmetic as the single-pass traversal (SinglePassAMR.frag.glsl, amrsp::
+// the same float arithmetic as the single-pass traversal (SinglePassAMRRay.glsl, amrsp::
 // TraverseKdTree), and it is sampled by the same rule as amrsp::RenderKdTree (docs/design.md, "Sampling
 // rule"); keep them in sync.
 //
@@ -60,7 +60,7 @@ void main()
 {
   vec3 entry, dirMC;
   float tMax;
-  amrspPixelRay(entry, dirMC, tMax);
+  amrspPixelRay(gl_FragCoord.xy, entry, dirMC, tMax);
 
   // Level-0 index units; t stays the model-space distance along the ray.
   vec3 ro = (entry - amrspOrigin) / amrspSpacing0;

@@ -48,7 +48,8 @@ bool amrspIntersectBox(vec3 lo, vec3 hi, vec3 o, vec3 d, out float tEnter, out f
 // sampled linearly between entry centres and clamped at both ends. With AMRSP_LOG_TRANSFER (a
 // log-scaled colour or opacity function) the table is indexed by log10 of the scalar and its
 // range is in log10 units; a scalar at or below 0 takes the first entry (GLSL's log2 is
-// undefined there).
+// undefined there). Level 0 explicitly: implicit derivatives are undefined in a compute shader
+// and in a fragment shader's non-uniform control flow.
 vec4 amrspTransferFunction(float scalar)
 {
 #ifdef AMRSP_LOG_TRANSFER
@@ -56,16 +57,17 @@ vec4 amrspTransferFunction(float scalar)
 #endif
   float u = clamp((scalar - amrspTransferRange.x) * amrspTransferRange.y, 0.0, 1.0);
   float x = (u * (amrspTransferSize - 1.0) + 0.5) / amrspTransferSize;
-  return texture(amrspTransfer, vec2(x, 0.5));
+  return textureLod(amrspTransfer, vec2(x, 0.5), 0.0);
 }
 
-// The ray through this pixel's centre in model coordinates: `entry` is the eye (perspective, as
-// the CPU integrators' pinhole camera) or the point on the near plane (parallel projection),
-// `dirMC` is unit length, and `tMax` is the model-space distance from `entry` to the opaque
-// geometry already drawn (AMRSP_INF where there is none or without AMRSP_USE_DEPTH).
-void amrspPixelRay(out vec3 entry, out vec3 dirMC, out float tMax)
+// The ray through the pixel centre `pixel` (window coordinates, as gl_FragCoord.xy) in model
+// coordinates: `entry` is the eye (perspective, as the CPU integrators' pinhole camera) or the
+// point on the near plane (parallel projection), `dirMC` is unit length, and `tMax` is the
+// model-space distance from `entry` to the opaque geometry already drawn (AMRSP_INF where there is
+// none or without AMRSP_USE_DEPTH).
+void amrspPixelRay(vec2 pixel, out vec3 entry, out vec3 dirMC, out float tMax)
 {
-  vec2 ndc = 2.0 * (gl_FragCoord.xy - amrspViewport.xy) / amrspViewport.zw - 1.0;
+  vec2 ndc = 2.0 * (pixel - amrspViewport.xy) / amrspViewport.zw - 1.0;
   vec4 nearMC = amrspDCMCMatrix * vec4(ndc, -1.0, 1.0);
   vec4 farMC = amrspDCMCMatrix * vec4(ndc, 1.0, 1.0);
   vec3 nearPoint = nearMC.xyz / nearMC.w;
@@ -74,9 +76,9 @@ void amrspPixelRay(out vec3 entry, out vec3 dirMC, out float tMax)
   tMax = AMRSP_INF;
 #ifdef AMRSP_USE_DEPTH
 #ifdef AMRSP_REDUCED_IMAGE
-  float depth = texelFetch(amrspDepth, ivec2((gl_FragCoord.xy - amrspViewport.xy) * amrspDepthScale), 0).r;
+  float depth = texelFetch(amrspDepth, ivec2((pixel - amrspViewport.xy) * amrspDepthScale), 0).r;
 #else
-  float depth = texelFetch(amrspDepth, ivec2(gl_FragCoord.xy - amrspViewport.xy), 0).r;
+  float depth = texelFetch(amrspDepth, ivec2(pixel - amrspViewport.xy), 0).r;
 #endif
   if (depth < 1.0)
   {

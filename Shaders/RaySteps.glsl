@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The single-pass ray, step by step: its state (globals of the invocation) and the five steps
-// main() drives, either in nested loops (segments, descent, samples) or in one flat loop that
+// amrspCastRay drives, either in nested loops (segments, descent, samples) or in one flat loop that
 // takes one traversal or sample operation per iteration (AMRSP_FLAT_LOOP). Spliced into
-// SinglePassAMR.frag.glsl at //AMRSP::RaySteps, after the traversal, sampling and shading
+// SinglePassAMRRay.glsl at //AMRSP::RaySteps, after the traversal, sampling and shading
 // functions. Mirrors amrsp::TraverseKdTree and amrsp::RenderKdTree (same segments, samples and
-// termination); see the top of SinglePassAMR.frag.glsl for the defines.
+// termination); see the top of SinglePassAMRRay.glsl for the defines.
 
 // ---- The ray (level-0 index units; t is the model-space distance along it)
 vec3 amrspRo;
@@ -90,12 +90,13 @@ int amrspSegK = 0;
 float amrspSegDt;
 float amrspSegExponent;
 
-// Sets up the ray; false when it misses the root box or the clip box.
-bool amrspBeginRay()
+// Sets up the ray through the pixel centre `pixel` (window coordinates); false when it misses the
+// root box or the clip box.
+bool amrspBeginRay(vec2 pixel)
 {
   vec3 entry;
   float tMax;
-  amrspPixelRay(entry, amrspDirMC, tMax);
+  amrspPixelRay(pixel, entry, amrspDirMC, tMax);
   amrspRo = (entry - amrspOrigin) / amrspSpacing0;
   amrspRd = amrspDirMC / amrspSpacing0;
   float tEnter, tExit, clipEnter, clipExit;

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Gradient shading, shadow rays and iso-surfaces: the rules of Core/include/amrsp/Shading.h.
-// Spliced into SinglePassAMR.frag.glsl at //AMRSP::Shading, after the tree traversal, the brick
+// Spliced into SinglePassAMRRay.glsl at //AMRSP::Shading, after the tree traversal, the brick
 // reads and the smooth reconstruction, which the point lookups here use.
 
 #if defined(AMRSP_SHADE) || defined(AMRSP_SHADOWS) || AMRSP_BLEND_MODE == 4

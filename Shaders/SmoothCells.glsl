@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Smooth reconstruction of cell-centred data (AMRSP_SMOOTH_CELLS): trilinear interpolation in
 // the dual cell of the sample's level, its corners found by point location in the kD-tree.
-// Spliced into SinglePassAMR.frag.glsl at //AMRSP::SmoothCells, after the tree traversal
+// Spliced into SinglePassAMRRay.glsl at //AMRSP::SmoothCells, after the tree traversal
 // functions it uses (amrspLocateDataNode, amrspLeafCells) and the brick reads. Mirrors the
 // core's SmoothCornerKdTree and smooth KdTreePointLookup.
 

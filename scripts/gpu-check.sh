@@ -5,14 +5,16 @@
 #
 #   ./gpu-check.sh [quick]        (in the folder scripts/gpu-bundle.sh made; about 5 min, quick 40 s)
 #   ./gpu-check.sh profile [OUT.json]
-#                                 the GPU profile (docs/performance.md, "GPU profile"): the target
-#                                 table at 1024x1024 (every storage, auto-storage and multipass on
-#                                 the paper's datasets 1-3, the real datasets and a billion cells;
-#                                 bench --rounds 3, orbits of 8 frames, GPU time from timer
-#                                 queries, the cost-model counters), a time series of dataset 2
-#                                 (bench --time-series, 512x512) and ablations on dataset 3,
-#                                 in one JSON (default gpu-profile.json); fits 9 minutes
-#                                 (AMRSP_PROFILE_SECONDS, default 500, bounds the whole run)
+#                                 the GPU profile (docs/performance.md, "The GPU profile"): the
+#                                 target table at 1024x1024 (the fragment and the compute caster,
+#                                 each with nested and flat ray loops, against multipass on the
+#                                 paper's datasets 1-3 and a billion cells; bench --rounds 3,
+#                                 orbits of 8 frames, GPU time from timer queries, the cost-model
+#                                 counters and the occupancy probe), the other storages and the
+#                                 automatic choices on dataset 3, a time series of dataset 2
+#                                 (bench --time-series, 512x512), the real datasets and ablations
+#                                 on dataset 3, in one JSON (default gpu-profile.json); fits 9
+#                                 minutes (AMRSP_PROFILE_SECONDS, default 500, bounds the run)
 #
 # Test hooks (Tool.GpuProfile runs the profile's logic on this machine): AMRSP_PROFILE_TOOL runs
 # that amrsp instead of the bundled one (no EGL vendor file needed), AMRSP_PROFILE_DATA is the
@@ -50,14 +52,17 @@ if [ "${1:-}" = profile ]; then
   ds2=synthetic:cosmo:grids=18528,levels=4,cells=33M
   ds3=synthetic:cosmo:grids=39061,levels=13,cells=140M
   billion=synthetic:cosmo:grids=280000,levels=13,cells=1000M
-  size=1024x1024 frames=8 few=4 billionMethods=packing,bindless,linear,multipass seriesSize=512x512
+  size=1024x1024 frames=8 few=4 seriesSize=512x512
   if [ "${AMRSP_PROFILE_SMOKE:-0}" = 1 ]; then
     ds1=synthetic:cosmo:grids=30,levels=3,cells=60k ds2=synthetic:cosmo:grids=40,levels=2,cells=50k
     ds3=synthetic:cosmo:grids=60,levels=5,cells=80k billion=synthetic:cosmo:grids=20,levels=2,cells=20k
-    size=32x32 frames=1 few=1 billionMethods=packing,multipass seriesSize=32x32
+    size=32x32 frames=1 few=1 seriesSize=32x32
   fi
   target=(--size "$size" --sample-factor 1 --rounds 3 --frames "$frames" --no-compare)
-  all=packing,bindless,linear,auto-storage,multipass
+  # the target table: both casters with both ray loops against multipass, the packed atlas
+  casters=packing:fragment-nested,packing:fragment-flat,packing:compute-nested,packing:compute-flat,multipass
+  # the other storages and the automatic choices, with the compute caster
+  storages=bindless:compute-flat,linear:compute-flat,auto-storage:auto-auto,multipass
   # one bench run: NAME LIMIT_S ARGS...; its JSON and log land in $work, the run list in runs.tsv
   bench() {
     local name=$1 limit=$2 left
@@ -77,41 +82,36 @@ if [ "${1:-}" = profile ]; then
     tail -n 3 "$work/$name.log"
   }
   : >"$work/runs.tsv"
-  # the target table, the most important first
-  bench dataset3 120 "$ds3" --methods "$all" "${target[@]}" --counters
-  bench billion 200 "$billion" --methods "$billionMethods" --size "$size" --sample-factor 1 \
-    --rounds 2 --frames "$few" --no-compare --counters
-  bench dataset2 75 "$ds2" --methods "$all" "${target[@]}" --counters
-  bench dataset1 60 "$ds1" --methods "$all" "${target[@]}" --counters
+  # the target table, the most important first: GPU time from timer queries, the cost-model
+  # counters, and the occupancy probe (how many SMs and warps each caster's rays ran on)
+  bench dataset3 110 "$ds3" --methods "$casters" "${target[@]}" --counters --occupancy
+  bench billion 170 "$billion" --methods "$casters" --size "$size" --sample-factor 1 \
+    --rounds 2 --frames "$few" --no-compare --counters --occupancy
+  bench dataset2 60 "$ds2" --methods "$casters" "${target[@]}" --counters --occupancy
+  bench dataset1 45 "$ds1" --methods "$casters" "${target[@]}" --counters --occupancy
+  bench storages-dataset3 70 "$ds3" --methods "$storages" "${target[@]}" --counters
   # time series: a step switch (new values, same hierarchy) against a regrid, dataset 2 at 512x512
   # over 8 steps (the time-series issue's target: step_switch_s <= 0.5 x rebuild_s)
-  bench time-series-dataset2 45 "$ds2,steps=8,regrid=4" --time-series \
-    --methods packing,bindless,linear,multipass --size "$seriesSize"
+  bench time-series-dataset2 40 "$ds2,steps=8,regrid=4" --time-series \
+    --methods packing:auto-auto,bindless:auto-auto,linear:auto-auto,multipass --size "$seriesSize"
   for d in "$enzo" "$data/amrex_plt1_Y" "$data"/vthb_hierarchicalbox/*.vthb \
     "$data"/chombo3d_vtm/chombo3d.vtm; do
-    [ -e "$d" ] && bench "real-$(basename "$d" | cut -d. -f1)" 40 "$d" --methods "$all" \
-      "${target[@]}" --counters
+    [ -e "$d" ] && bench "real-$(basename "$d" | cut -d. -f1)" 25 "$d" \
+      --methods packing:compute-flat,packing:fragment-nested,multipass "${target[@]}"
   done
-  # the flat loop (RayLoop FLAT_LOOP, which AUTO_LOOP takes on a GPU), which the cost model
-  # favours on a GPU and llvmpipe does not
-  bench flat-loop-dataset3 70 "$ds3" --methods packing,bindless,linear,multipass "${target[@]}" \
-    --loop flat
-  bench flat-loop-dataset2 60 "$ds2" --methods packing,bindless,linear,multipass "${target[@]}" \
-    --loop flat
-  # ablations on dataset 3 (the cost of each part): orbits of 4 frames, two rounds
-  ablate=(--size "$size" --sample-factor 1 --rounds 2 --frames "$few" --no-compare)
-  bench ablation-traversal-only 60 "$ds3" --methods packing,bindless,linear "${ablate[@]}" \
-    --ablation traversal-only --counters
-  bench ablation-sampling-only 60 "$ds3" --methods packing,bindless,linear "${ablate[@]}" \
-    --ablation sampling-only:256 --counters
-  bench ablation-no-ropes 60 "$ds3" --methods packing,bindless,linear,multipass "${ablate[@]}" \
-    --ropes off --counters
-  bench ablation-no-skipping 50 "$ds3" --methods packing,bindless,multipass "${ablate[@]}" \
+  # ablations on dataset 3 (the cost of each part) with the compute caster: orbits of 4 frames,
+  # two rounds
+  ablate=(--size "$size" --sample-factor 1 --rounds 2 --frames "$few" --no-compare --caster compute)
+  bench ablation-traversal-only 45 "$ds3" --methods packing,bindless,linear "${ablate[@]}" \
+    --loop flat --ablation traversal-only --counters
+  bench ablation-sampling-only 45 "$ds3" --methods packing,bindless,linear "${ablate[@]}" \
+    --loop flat --ablation sampling-only:256 --counters
+  bench ablation-no-ropes 45 "$ds3" --methods packing:compute-flat,packing:compute-nested,multipass \
+    "${ablate[@]}" --ropes off --counters
+  bench ablation-no-skipping 35 "$ds3" --methods packing:compute-flat,multipass "${ablate[@]}" \
     --empty-space-skipping off
-  bench ablation-no-termination 50 "$ds3" --methods packing,bindless,multipass "${ablate[@]}" \
+  bench ablation-no-termination 35 "$ds3" --methods packing:compute-flat,multipass "${ablate[@]}" \
     --opacity-threshold 1
-  bench ablation-no-ropes-dataset2 45 "$ds2" --methods packing,bindless,multipass "${ablate[@]}" \
-    --ropes off
   driver=$(nvidia-smi --query-gpu=name,driver_version --format=csv,noheader 2>/dev/null | head -n 1)
   python3 - "$work" "$out" "$here/VERSION" "$driver" "$budget" "$((SECONDS - start))" <<'PY'
 import json, os, sys, time
@@ -134,7 +134,66 @@ for line in open(os.path.join(work, "runs.tsv")):
         log = open(os.path.join(work, name + ".log"), errors="replace").read()
         run["error"] = ("timed out" if rc == "124" else "exit " + rc) + ": " + log[-2000:]
     profile["runs"][name] = run
+# The target table (issue "The whole GPU"): per dataset and method the GPU time per frame (the
+# median over the rounds of the timer queries), frames a second from it, the ratio to multipass,
+# the lockstep steps per pixel of the cost model and where the rays ran (the occupancy probe).
+table = {}
+for run in ("dataset3", "billion", "dataset2", "dataset1"):
+    methods = profile["runs"].get(run, {}).get("bench", {}).get("methods", {})
+    rows = {}
+    multipass = methods.get("multipass", {}).get("gpu_ms_rounds_median")
+    for name, m in methods.items():
+        if "error" in m:
+            rows[name] = {"error": m["error"]}
+            continue
+        gpu = m.get("gpu_ms_rounds_median")
+        row = {"caster": m.get("caster"), "loop": m.get("loop"), "gpu_ms": gpu,
+               "fps": 1000.0 / gpu if gpu else None,
+               "vs_multipass": multipass / gpu if gpu and multipass else None,
+               "lockstep_steps_per_pixel": m.get("work", {}).get(
+                   "flat_loop_lockstep_steps_per_pixel" if m.get("loop") == "flat"
+                   else "lockstep_steps_per_pixel")}
+        occupancy = m.get("occupancy")
+        if occupancy:
+            row["sms"] = occupancy.get("sms") if occupancy.get("available") else None
+            row["warps"] = occupancy.get("warps") if occupancy.get("available") else None
+        rows[name] = row
+    table[run] = rows
+profile["target_table"] = table
+
+
+def best(run):
+    rows = [r for n, r in table.get(run, {}).items() if n != "multipass" and r.get("fps")]
+    return max(rows, key=lambda r: r["fps"]) if rows else None
+
+
+targets = {}
+for run, fps in (("dataset3", 60.0), ("billion", 20.0)):
+    b = best(run)
+    targets["%s_fps_at_least_%d" % (run, fps)] = {"met": bool(b and b["fps"] >= fps),
+                                                    "best": b}
+for run in ("dataset1", "dataset2", "dataset3", "billion"):
+    b = best(run)
+    targets["%s_single_pass_3x_multipass" % run] = {
+        "met": bool(b and b.get("vs_multipass") and b["vs_multipass"] >= 3.0),
+        "vs_multipass": b.get("vs_multipass") if b else None}
+compute_sms = [r.get("sms") for rows in table.values() for r in rows.values()
+               if r.get("caster") == "compute" and r.get("sms") is not None]
+targets["compute_on_100_sms"] = {"met": bool(compute_sms and min(compute_sms) >= 100),
+                                 "sms": compute_sms}
+profile["targets"] = targets
 json.dump(profile, open(out, "w"), indent=1)
+for run, rows in table.items():
+    for name, r in rows.items():
+        if "error" in r:
+            print("%-9s %-24s error: %s" % (run, name, r["error"][:80]))
+            continue
+        print("%-9s %-24s gpu %s ms, %s fps, x%s multipass, %s lockstep steps/px, %s SMs, %s warps"
+              % (run, name, r["gpu_ms"], r["fps"] and round(r["fps"], 1),
+                 r["vs_multipass"] and round(r["vs_multipass"], 2),
+                 r["lockstep_steps_per_pixel"], r.get("sms"), r.get("warps")))
+for name, target in targets.items():
+    print("target %-40s %s" % (name, "met" if target["met"] else "NOT met"))
 print("wrote", out)
 PY
   exit 0

@@ -61,10 +61,18 @@ for backend in "${backends[@]}"; do
       *) echo "unknown backend $backend"; exit 2 ;;
     esac
     # where this pass renders, as the tool reports it: the backend must be the one asked for
-    check=$("$build/Tools/amrsp/amrsp" render --size 16x16 --method packing -o "$build/backend-check.png" 2>&1) \
+    # (with the compute caster: where the driver has no compute shaders the tool says so, and the
+    # tests compare the casters only where both run)
+    check=$("$build/Tools/amrsp/amrsp" render --size 16x16 --method packing --caster compute \
+      -o "$build/backend-check.png" 2>&1) \
       || { echo "$check"; echo "FAIL: amrsp render could not render through $backend"; exit 1; }
     seen=$(printf '%s\n' "$check" | sed -n 's/^backend: //p')
     echo "backend check: $seen; $(printf '%s\n' "$check" | grep '^device: ')"
+    if [ "$(printf '%s\n' "$check" | sed -n 's/^caster: //p')" = compute ]; then
+      echo "casters check: fragment and compute"
+    else
+      echo "casters check: fragment only ($(printf '%s\n' "$check" | grep -o 'the OpenGL context[^:]*compute shaders[^:]*' | head -n 1))"
+    fi
     # the plugin tests compare the renderer they rendered with to this pass's (PluginTestKit.py)
     AMRSP_EXPECTED_RENDERER=$(printf '%s\n' "$check" | sed -n 's/^device: //p' | head -n 1)
     export AMRSP_EXPECTED_RENDERER
@@ -89,6 +97,8 @@ for backend in "${backends[@]}"; do
   line="[summary] $config $backend: $passed passed, $failed failed, $skipped skipped of $total tests in $seconds s"
   device=$(sed -n 's/^backend check: //p' "$log" | head -n 1)
   [ -z "$device" ] || line="$line ($device)"
+  casters=$(sed -n 's/^casters check: //p' "$log" | head -n 1)
+  [ -z "$casters" ] || line="$line; casters: $casters"
   if [ "$rc" != 0 ] || [ "$total" = 0 ]; then
     tail -n 60 "$log"
     amrsp_print_failed_output "$build" "$log"

@@ -722,6 +722,16 @@ const char* vtkSinglePassAMRVolumeRepresentation::GetLastDataStorage()
 }
 
 //------------------------------------------------------------------------------
+const char* vtkSinglePassAMRVolumeRepresentation::GetLastRayCaster()
+{
+  if (this->Method == METHOD_MULTI_PASS)
+  {
+    return "none";
+  }
+  return vtkSinglePassAMRVolumeMapper::GetRayCasterName(this->VolumeMapper->GetLastRayCaster());
+}
+
+//------------------------------------------------------------------------------
 void vtkSinglePassAMRVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

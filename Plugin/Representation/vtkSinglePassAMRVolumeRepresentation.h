@@ -104,6 +104,10 @@ public:
   bool GetEmptySpaceSkipping();
   void SetCellInterpolation(int mode);
   int GetCellInterpolation();
+  /// The shader stage that casts the rays (vtkSinglePassAMRVolumeMapper::RayCasters; default
+  /// AUTO_CASTER).
+  void SetRayCaster(int caster);
+  int GetRayCaster();
   ///@}
 
   ///@{
@@ -218,6 +222,9 @@ public:
   /// What rendered the last frame (SinglePassDataStorage): "packing", "bindless (waterfall)",
   /// "bindless (direct)", "multi-pass", or "none" before the first successful frame.
   const char* GetLastDataStorage();
+  /// The caster of the last frame (SinglePassRayCaster): "fragment" or "compute"; "none" for the
+  /// multi-pass method or before the first successful frame.
+  const char* GetLastRayCaster();
   ///@}
 
 protected:

@@ -62,6 +62,18 @@ int vtkSinglePassAMRVolumeRepresentation::GetCellInterpolation()
 }
 
 //------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeRepresentation::SetRayCaster(int caster)
+{
+  this->VolumeMapper->SetRayCaster(caster);
+}
+
+//------------------------------------------------------------------------------
+int vtkSinglePassAMRVolumeRepresentation::GetRayCaster()
+{
+  return this->VolumeMapper->GetRayCaster();
+}
+
+//------------------------------------------------------------------------------
 void vtkSinglePassAMRVolumeRepresentation::SetShade(bool on)
 {
   this->Property->SetShade(on ? 1 : 0);

@@ -366,6 +366,35 @@ def stop_server(server):
         server.kill()
 
 
+def check_other_caster(view, display, mode, ranks, pixels, path):
+    """The same view cast by the compute shader (Ray Caster "Compute"; the default "Auto" takes
+    the fragment shader on these CPU drivers) must give the same bytes: in pvpython, through a
+    pvserver, and composited by IceT from several pvbatch ranks' regions. The caster that ran is
+    read on the client (in remote rendering the client does not render: its answer is "none")."""
+    from paraview import simple
+
+    before = info_property(display, "SinglePassRayCaster")
+    display.RayCaster = "Compute"
+    simple.SaveScreenshot(path, view, ImageResolution=[200, 200], TransparentBackground=0)
+    ran = info_property(display, "SinglePassRayCaster")
+    display.RayCaster = "Auto"
+    simple.Render(view)
+    error = info_property(display, "SinglePassRenderError")
+    if error:
+        fail("the compute caster: the representation reported an error: %s" % error)
+    compute = read_png(path)[2]
+    different = int((abs(compute - pixels).max(axis=1) > 0).sum())
+    print("casters: %s before, compute after (ran: %s); %d pixels differ from the first screenshot"
+          % (before, ran, different))
+    expected = "none" if mode == "cs-remote" else "compute"
+    if ran != expected:
+        fail("Ray Caster Compute: the client's representation says the %s caster ran (expected %s)"
+             % (ran, expected))
+    if different != 0:
+        fail("the compute caster's image differs from the fragment caster's in %d pixels (%s, %d "
+             "rank(s))" % (different, mode, ranks))
+
+
 def main():
     usage = ("usage: TestPluginRepresentation.py PLUGIN AMRSP enzo|enzo-log|amrex OUTDIR "
              "[--parallel-mode regions|gather] [--server PVSERVER [--remote-rendering]]")
@@ -520,6 +549,7 @@ def main():
           % (shot, 100.0 * covered, 100.0 * case["min_coverage"]))
     if covered < case["min_coverage"]:
         fail("the screenshot does not show the volume")
+    check_other_caster(view, display, mode, ranks, pixels, os.path.join(outdir, "%s-compute.png" % label))
 
     # ParaView's camera and transfer functions as they are, for the reference
     cam = view.GetActiveCamera()

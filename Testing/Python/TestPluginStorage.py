@@ -15,7 +15,10 @@
 # - Shade (shared with ParaView's Volume representation), Shadow Rays and the Isosurface blend mode
 #   with Isosurface Values change the image, identically with bindless;
 # - smooth cells, shading, shadow rays and iso-surfaces each match `amrsp reference --view-json`
-#   of the same view (REFERENCE_BOUNDS), and the image without the feature does not.
+#   of the same view (REFERENCE_BOUNDS), and the image without the feature does not;
+# - Ray Caster "Compute" gives the bytes of "Fragment" with packing, linear and bindless (and
+#   SinglePassRayCaster says which ran), "Auto" takes the fragment shader on this CPU driver, and
+#   a caster change rebuilds no texture.
 # Exit codes: 0 pass, 1 fail, 125 skipped (no X display, or an OpenGL without bindless textures).
 import os
 import sys
@@ -143,6 +146,25 @@ def main():
     iso_linear, _, _ = shot("iso-lin")
     display.BlendMode = "Composite"
     display.Shade = 0
+    # the casters (RayCaster): Auto takes the fragment shader on this CPU driver; the compute
+    # shader gives the same bytes with every storage, and a caster change rebuilds nothing
+    auto_caster = info_property(display, "SinglePassRayCaster")
+    casters = {}
+    for method, fragment_image in (("Linear", linear), ("Packing", packed),
+                                   ("Bindless", bindless)):
+        display.Method = method
+        display.RayCaster = "Compute"
+        image, _, before = shot("compute-" + method.lower())
+        ran = info_property(display, "SinglePassRayCaster")
+        display.RayCaster = "Fragment"
+        again, _, after = shot("fragment-" + method.lower())
+        casters[method] = (ran, info_property(display, "SinglePassRayCaster"),
+                           rmse(image, fragment_image), rmse(again, fragment_image), after - before)
+    display.RayCaster = "Auto"
+    for method, (ran, ran_after, difference, difference_after, builds) in casters.items():
+        print("%-8s compute caster (ran %s): rmse %.3f against the fragment caster's image; "
+              "fragment again (ran %s): %.3f; %d texture builds on the caster change"
+              % (method, ran, difference, ran_after, difference_after, builds))
 
     checks = [
         ("bindless ran with the waterfall loop", storage == "bindless (waterfall)"),
@@ -165,7 +187,13 @@ def main():
         ("Method Linear renders with the linear storage", linear_storage == "linear"),
         ("linear gives the packed image", rmse(linear, packed) < SAME_BOUND),
         ("iso-surfaces are the same with linear", rmse(iso_linear, iso) < SAME_BOUND),
+        ("Auto casts with the fragment shader on this CPU driver", auto_caster == "fragment"),
     ]
+    for method, (ran, ran_after, difference, difference_after, builds) in casters.items():
+        checks.append(("%s: the compute caster gives the same bytes" % method,
+                       ran == "compute" and difference == 0.0))
+        checks.append(("%s: the fragment caster again, the same bytes, nothing rebuilt" % method,
+                       ran_after == "fragment" and difference_after == 0.0 and builds == 0))
     # each lit or smooth image against its reference, and the image without the feature
     # (nearest cells, unlit, unshadowed, composite) against the same reference
     without = {"smooth": packed, "shaded": packed, "shadows": shaded, "iso": packed}

@@ -2,8 +2,9 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """The GPU profile command (scripts/gpu-check.sh profile) run here in its smoke size with this
 build's amrsp: every run ends, its JSON merges into one, every method renders except bindless
-where the context lacks the extension, the cost model is there where asked for, and the ablations
-are marked. A profile whose run failed or whose merge lost a run fails here, so the command a
+where the context lacks the extension, the cost model is there where asked for, the ablations
+are marked, the target table's methods ran the caster and loop they name, the occupancy probe
+answers (or says the driver lacks it), and the merged JSON has the target table and targets. A profile whose run failed or whose merge lost a run fails here, so the command a
 lent GPU runs keeps working at every commit.
 
 usage: TestGpuProfile.py AMRSP DATA_DIR SCRIPT WORK_DIR
@@ -27,11 +28,14 @@ if run.returncode != 0 or not os.path.exists(out):
              "its JSON" if os.path.exists(out) else "nothing"))
 profile = json.load(open(out))
 failures = []
-expected = ["dataset3", "billion", "dataset2", "dataset1", "time-series-dataset2",
-            "flat-loop-dataset3",
-            "flat-loop-dataset2", "ablation-traversal-only",
-            "ablation-sampling-only", "ablation-no-ropes", "ablation-no-skipping",
-            "ablation-no-termination", "ablation-no-ropes-dataset2"]
+expected = ["dataset3", "billion", "dataset2", "dataset1", "storages-dataset3",
+            "time-series-dataset2", "ablation-traversal-only", "ablation-sampling-only",
+            "ablation-no-ropes", "ablation-no-skipping", "ablation-no-termination"]
+# the target table's methods: both casters with both loops, and multipass
+TARGET_METHODS = {"packing:fragment-nested": ("fragment", "nested"),
+                  "packing:fragment-flat": ("fragment", "flat"),
+                  "packing:compute-nested": ("compute", "nested"),
+                  "packing:compute-flat": ("compute", "flat"), "multipass": (None, None)}
 if os.path.isdir(os.path.join(data, "enzo_moving7")):
     expected += ["real-moving7_0010", "real-amrex_plt1_Y", "real-HierarchicalBoxDataset",
                  "real-chombo3d"]
@@ -48,7 +52,7 @@ for name in expected:
                 sys.exit("FAIL: required here (AMRSP_REQUIRE_GPU=1) but missing: " + message)
             print("SKIPPED: " + message)
             sys.exit(125)
-        if error and not (method == "bindless" and "not available" in error):
+        if error and not (method.startswith("bindless") and "not available" in error):
             failures.append("%s %s: %s" % (name, method, error))
             continue
         if error:
@@ -63,6 +67,24 @@ for name in expected:
             continue
         if "gpu_ms_rounds_median" not in result:
             failures.append("%s %s: no GPU time per frame" % (name, method))
+        if method in TARGET_METHODS and TARGET_METHODS[method][0]:
+            caster, loop = TARGET_METHODS[method]
+            if (result.get("caster"), result.get("loop")) != (caster, loop):
+                failures.append("%s %s: ran the %s caster and the %s loop" % (
+                    name, method, result.get("caster"), result.get("loop")))
+        if "--occupancy" in r["args"] and method != "multipass":
+            occupancy = result.get("occupancy", {})
+            # where the driver lacks GL_NV_shader_thread_builtins the probe says so; on NVIDIA
+            # it counts the multiprocessors the rays ran on
+            if not (occupancy.get("available") is False and "GL_NV_shader_thread_builtins" in
+                    occupancy.get("why", "")) and not occupancy.get("sms", 0) > 0:
+                failures.append("%s %s: no occupancy: %s" % (name, method, occupancy))
+for run in ("dataset3", "billion", "dataset2", "dataset1"):
+    rows = profile.get("target_table", {}).get(run, {})
+    if set(rows) != set(TARGET_METHODS):
+        failures.append("target table %s: methods %s" % (run, sorted(rows)))
+if "compute_on_100_sms" not in profile.get("targets", {}):
+    failures.append("no targets in the profile: %s" % sorted(profile.get("targets", {})))
 for f in failures:
     print("FAIL: " + f)
 if failures:

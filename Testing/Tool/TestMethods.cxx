@@ -13,10 +13,11 @@ using namespace amrsp::tool;
 TEST(Methods, ListsAsTheCommandsPrintThem)
 {
   EXPECT_EQ(MethodList(RenderCommand),
-    "cpu-kdtree, cpu-packing, packing, bindless, linear, auto-storage, multipass");
+    "cpu-kdtree, cpu-packing, packing[:CASTER[-LOOP]], bindless[:CASTER[-LOOP]], "
+    "linear[:CASTER[-LOOP]], auto-storage[:CASTER[-LOOP]], multipass");
   EXPECT_EQ(MethodList(BenchCommand),
-    "cpu-kdtree, packing, bindless, linear, auto-storage, multipass, uniform-gpu[:LEVEL], "
-    "vtk-amr-resample[:N|:finest]");
+    "cpu-kdtree, packing[:CASTER[-LOOP]], bindless[:CASTER[-LOOP]], linear[:CASTER[-LOOP]], "
+    "auto-storage[:CASTER[-LOOP]], multipass, uniform-gpu[:LEVEL], vtk-amr-resample[:N|:finest]");
   EXPECT_EQ(DefaultBenchMethods(),
     "cpu-kdtree,packing,bindless,linear,multipass,uniform-gpu,vtk-amr-resample,"
     "vtk-amr-resample:finest");

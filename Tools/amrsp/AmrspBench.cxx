@@ -346,6 +346,7 @@ void MapperFields(const Method& m, GpuRenderer& gpu, const Image& first, const B
     r["loop"] = singlePass->GetMapper()->GetLastRayLoop() == vtkSinglePassAMRVolumeMapper::FLAT_LOOP
       ? "flat"
       : "nested";
+    r["caster"] = singlePass->CasterUsed();
     if (c.S.GpuAblation != 0)
     {
       r["ablation"] = c.S.GpuAblation == 1
@@ -411,6 +412,26 @@ void MapperFields(const Method& m, GpuRenderer& gpu, const Image& first, const B
   if (o.Counters && m.IsKdTreeMapper())
   {
     r["work"] = m.Kind == MethodKind::Multipass ? work.Multipass() : work.SinglePass(gpu);
+  }
+  SinglePassRenderer* singlePass = dynamic_cast<SinglePassRenderer*>(&gpu);
+  if (o.Occupancy && singlePass)
+  {
+    const SinglePassRenderer::Occupancy occupancy = singlePass->RenderOccupancy();
+    Json& j = r["occupancy"];
+    j["available"] = occupancy.Available;
+    if (!occupancy.Available)
+    {
+      j["why"] = occupancy.Why;
+    }
+    else
+    {
+      j["caster"] = occupancy.Caster;
+      j["rays"] = occupancy.Rays;
+      j["sms"] = occupancy.Multiprocessors;
+      j["sm_count"] = occupancy.ChipMultiprocessors;
+      j["warps"] = occupancy.Warps;
+      j["most_warps_on_one_sm"] = occupancy.MostWarpsOnOne;
+    }
   }
   if (m.Kind == MethodKind::Packing && o.CompareImages)
   {

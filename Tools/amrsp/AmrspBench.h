@@ -46,6 +46,11 @@ struct BenchOptions
   /// --counters: every GPU method that renders the kD-tree gets a "work" object (the cost model
   /// of amrsp/WorkCounters.h for frame 0, and the shader's own counts: AmrspBenchWork.h).
   bool Counters = false;
+  /// --occupancy: every single-pass method gets an "occupancy" object, where the rays of frame 0
+  /// ran (vtkSinglePassAMRVolumeMapper::OccupancyProbe; NVIDIA's GL_NV_shader_thread_builtins):
+  /// {available, caster, rays, sms, sm_count, warps, most_warps_on_one_sm} or {available: false,
+  /// why}.
+  bool Occupancy = false;
 };
 
 /// Writes `img` as an 8-bit RGB PNG; throws std::runtime_error when it cannot.

@@ -89,7 +89,8 @@ std::string BenchHelp()
   help
     << "usage: amrsp bench [DATASET] [--size WxH] [--frames N] [--methods LIST] [--json FILE]\n"
        "                   [--plot FILE.png [--plot-size WxH]] [--rounds R]\n"
-       "                   [--interactive [--interactive-rate FPS]] [--counters] [--no-compare]\n"
+       "                   [--interactive [--interactive-rate FPS]] [--counters] [--occupancy]\n"
+       "                   [--no-compare]\n"
        "       amrsp bench --scaling [--scaling-sizes G:L:C,...] [--methods LIST] [--size WxH]\n"
        "                   [--frames N] [--json FILE] [--rounds R]\n"
        "       amrsp bench SERIES --time-series [--methods LIST] [--size WxH] [--json FILE]\n"
@@ -117,6 +118,11 @@ std::string BenchHelp()
        "lanes), lockstep_efficiency; multipass also draws and fragments_per_pixel; the\n"
        "single-pass methods also \"gpu\": the shader's own segment, descent and sample totals\n"
        "of the same frame and whether they agree with the mirror's (docs/performance.md).\n"
+       "--occupancy adds to every single-pass method an \"occupancy\" object: where the rays of\n"
+       "frame 0 ran, through NVIDIA's GL_NV_shader_thread_builtins (the mapper's\n"
+       "OccupancyProbe): {available, caster, rays, sms (distinct multiprocessors), sm_count,\n"
+       "warps (distinct multiprocessor and warp-slot pairs), most_warps_on_one_sm}, or\n"
+       "{available: false, why} on other drivers.\n"
        "--no-compare renders no CPU reference image (no rmse or psnr): timings and counters\n"
        "only, for sizes where the reference would take long.\n"
        "--interactive draws, after each single-pass method's orbit, every orbit frame as an\n"
@@ -209,6 +215,11 @@ BenchRequest ParseBenchRequest(const Arguments& a)
     }
   }
   o.Counters = a.Has("counters");
+  o.Occupancy = a.Has("occupancy");
+  if (o.Occupancy && scaling)
+  {
+    throw UsageError{ "--occupancy does not apply to --scaling" };
+  }
   o.CompareImages = !a.Has("no-compare");
   if (a.Has("no-compare") && a.Has("save-images"))
   {
@@ -400,8 +411,8 @@ int RunBench(int argc, char** argv)
       Concat({ DatasetOptions, RenderOptionNames,
         { "frames", "methods", "json", "plot", "plot-size", "scaling-sizes", "seed", "save-images",
           "driver", "backend", "rounds", "interactive-rate" } }),
-      Concat(
-        { DatasetFlags, { "scaling", "interactive", "counters", "no-compare", "time-series" } }));
+      Concat({ DatasetFlags,
+        { "scaling", "interactive", "counters", "occupancy", "no-compare", "time-series" } }));
     if (WantsHelp(a))
     {
       std::cout << BenchHelp() << ViewHelp << DriverHelp << DatasetHelp;

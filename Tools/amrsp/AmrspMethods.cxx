@@ -18,30 +18,63 @@ using namespace harness; // the datasets, renderers and checks the commands use
 namespace
 {
 
-std::unique_ptr<GpuRenderer> MakePacking(const std::string&, const MethodRequest& r)
+/// The settings of a single-pass method `spec` ("name" or "name:CASTER[-LOOP]", e.g.
+/// "packing:compute-flat"): `r`'s, with the parameter's caster and ray loop.
+RenderSettings SinglePassVariant(const std::string& spec, const MethodRequest& r)
 {
-  return std::unique_ptr<GpuRenderer>(
-    new SinglePassRenderer(r.Data, r.Settings, r.View, "packing", r.BindlessAccess));
+  RenderSettings s = r.Settings;
+  const std::size_t colon = spec.find(':');
+  if (colon == std::string::npos)
+  {
+    return s;
+  }
+  const std::string variant = spec.substr(colon + 1);
+  const std::size_t dash = variant.find('-');
+  const std::string caster = variant.substr(0, dash);
+  const std::string loop = dash == std::string::npos ? "" : variant.substr(dash + 1);
+  if (!ParseRayCaster(caster.c_str(), s.GpuRayCaster) ||
+    (dash != std::string::npos && loop != "nested" && loop != "flat" && loop != "auto"))
+  {
+    throw GpuError("'" + spec + "': a single-pass method's parameter is CASTER[-LOOP], CASTER " +
+      "fragment, compute or auto and LOOP nested, flat or auto (e.g. packing:compute-flat)");
+  }
+  if (!loop.empty())
+  {
+    s.GpuRayLoop = loop == "flat" ? RenderSettings::RayLoop::Flat
+      : loop == "nested"          ? RenderSettings::RayLoop::Nested
+                                  : RenderSettings::RayLoop::Auto;
+  }
+  return s;
 }
 
-std::unique_ptr<GpuRenderer> MakeBindless(const std::string&, const MethodRequest& r)
+/// A single-pass method's renderer with data storage `storage` (the mapper's name).
+std::unique_ptr<GpuRenderer> MakeSinglePass(
+  const std::string& spec, const MethodRequest& r, const std::string& storage)
+{
+  return std::unique_ptr<GpuRenderer>(
+    new SinglePassRenderer(r.Data, SinglePassVariant(spec, r), r.View, storage, r.BindlessAccess));
+}
+
+std::unique_ptr<GpuRenderer> MakePacking(const std::string& spec, const MethodRequest& r)
+{
+  return MakeSinglePass(spec, r, "packing");
+}
+
+std::unique_ptr<GpuRenderer> MakeBindless(const std::string& spec, const MethodRequest& r)
 {
   // the mapper falls back to the atlas where bindless cannot run; the commands check
   // SinglePassRenderer::StorageUsed() after a frame
-  return std::unique_ptr<GpuRenderer>(
-    new SinglePassRenderer(r.Data, r.Settings, r.View, "bindless", r.BindlessAccess));
+  return MakeSinglePass(spec, r, "bindless");
 }
 
-std::unique_ptr<GpuRenderer> MakeLinear(const std::string&, const MethodRequest& r)
+std::unique_ptr<GpuRenderer> MakeLinear(const std::string& spec, const MethodRequest& r)
 {
-  return std::unique_ptr<GpuRenderer>(
-    new SinglePassRenderer(r.Data, r.Settings, r.View, "linear", r.BindlessAccess));
+  return MakeSinglePass(spec, r, "linear");
 }
 
-std::unique_ptr<GpuRenderer> MakeAutoStorage(const std::string&, const MethodRequest& r)
+std::unique_ptr<GpuRenderer> MakeAutoStorage(const std::string& spec, const MethodRequest& r)
 {
-  return std::unique_ptr<GpuRenderer>(
-    new SinglePassRenderer(r.Data, r.Settings, r.View, "auto", r.BindlessAccess));
+  return MakeSinglePass(spec, r, "auto");
 }
 
 std::unique_ptr<GpuRenderer> MakeMultipass(const std::string&, const MethodRequest& r)
@@ -139,23 +172,27 @@ const std::vector<Method>& Methods()
         "the same, sampling the packed atlas through the data nodes' offsets, as the packing "
         "shader does" } },
       nullptr },
-    { "packing", "", MethodKind::Packing, true, RenderCommand | BenchCommand,
+    { "packing", ":CASTER[-LOOP]", MethodKind::Packing, true, RenderCommand | BenchCommand,
       { { "packing", "packing",
-        "vtkSinglePassAMRVolumeMapper, packed atlas (the paper's single pass): one R32F atlas, "
-        "offscreen vtkRenderWindow; needs an OpenGL context (under GLX an X display)" } },
+          "vtkSinglePassAMRVolumeMapper, packed atlas (the paper's single pass): one R32F atlas, "
+          "offscreen vtkRenderWindow; needs an OpenGL context (under GLX an X display)" },
+        { "packing:CASTER[-LOOP]", "",
+          "any single-pass method (packing, bindless, linear, auto-storage) with the caster "
+          "fragment, compute or auto and the ray loop nested, flat or auto instead of --caster "
+          "and --loop, e.g. packing:compute-flat: several variants in one bench run" } },
       &MakePacking },
-    { "bindless", "", MethodKind::Bindless, true, RenderCommand | BenchCommand,
+    { "bindless", ":CASTER[-LOOP]", MethodKind::Bindless, true, RenderCommand | BenchCommand,
       { { "bindless", "bindless",
         "vtkSinglePassAMRVolumeMapper, one texture per grid through bindless handles (needs "
         "GL_ARB_bindless_texture: --driver zink on a CPU); where the context lacks the "
         "extension, render uses the atlas and says so, bench reports an error" } },
       &MakeBindless },
-    { "linear", "", MethodKind::Linear, true, RenderCommand | BenchCommand,
+    { "linear", ":CASTER[-LOOP]", MethodKind::Linear, true, RenderCommand | BenchCommand,
       { { "linear", "linear",
         "vtkSinglePassAMRVolumeMapper, the bricks back to back in 2D R32F textures (no packing; "
         "faster on CPU drivers such as llvmpipe); same display needs as packing" } },
       &MakeLinear },
-    { "auto-storage", "", MethodKind::AutoStorage, true, RenderCommand | BenchCommand,
+    { "auto-storage", ":CASTER[-LOOP]", MethodKind::AutoStorage, true, RenderCommand | BenchCommand,
       { { "auto-storage", "", // not in bench's default list: it repeats one of the storages
         "vtkSinglePassAMRVolumeMapper with the data storage its AUTO_STORAGE takes in this "
         "context (the plugin's default Method): bindless where the GPU has it, else packing or, "

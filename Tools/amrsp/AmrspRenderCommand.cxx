@@ -87,7 +87,9 @@ ImageRun RenderGpu(const Method& m, std::string& method, const LoadedDataset& d,
            << (singlePass->GetMapper()->GetLastRayLoop() == vtkSinglePassAMRVolumeMapper::FLAT_LOOP
                   ? "flat"
                   : "nested")
-           << "\n";
+           << "\n"
+           << "caster: " << singlePass->CasterUsed() << "\n";
+    // (a compute caster that fell back: the mapper's one warning says why)
   }
   report << "device: " << r.Device() << "\n"
          << "backend: " << r.Backend() << " (VTK " << VtkVersion() << ", ParaView "

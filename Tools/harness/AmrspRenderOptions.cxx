@@ -24,7 +24,7 @@ using Json = nlohmann::ordered_json;
 const std::vector<std::string> RenderOptionNames = { "size", "azimuth", "elevation", "zoom", "tf",
   "scale", "unit-distance", "sample-factor", "reference-sample-factor", "lod", "threads", "blend",
   "view-json", "opacity-threshold", "empty-space-skipping", "interpolation", "shade", "iso",
-  "shadows", "light", "crop", "ropes", "ablation", "loop" };
+  "shadows", "light", "crop", "ropes", "ablation", "loop", "caster" };
 
 void PrepareScalars(Hierarchy& h, const std::string& scale, double& lo, double& hi)
 {
@@ -444,6 +444,11 @@ RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range)
   s.GpuRayLoop = loop == "flat" ? RenderSettings::RayLoop::Flat
     : loop == "nested"          ? RenderSettings::RayLoop::Nested
                                 : RenderSettings::RayLoop::Auto;
+  const std::string caster = a.Get("caster", "auto");
+  if (!ParseRayCaster(caster.c_str(), s.GpuRayCaster))
+  {
+    throw UsageError{ "--caster must be auto, fragment or compute" };
+  }
   const std::string ablation = a.Get("ablation", "none");
   const std::string samplingOnly = "sampling-only";
   if (ablation == "traversal-only")

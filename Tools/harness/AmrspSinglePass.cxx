@@ -4,7 +4,10 @@
 #include "vtkSinglePassAMRVolumeMapper.h"
 #include "vtkSmartPointer.h"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <set>
 #include <stdexcept>
 #include <string>
 
@@ -64,6 +67,7 @@ SinglePassRenderer::SinglePassRenderer(vtkSinglePassAMRVolumeMapper* mapper, con
       ? vtkSinglePassAMRVolumeMapper::FLAT_LOOP
       : s.GpuRayLoop == RenderSettings::RayLoop::Nested ? vtkSinglePassAMRVolumeMapper::NESTED_LOOPS
                                                         : vtkSinglePassAMRVolumeMapper::AUTO_LOOP);
+  this->Mapper->SetRayCaster(static_cast<int>(s.GpuRayCaster));
   this->Mapper->SetDiagnosticAblation(s.GpuAblation);
   this->Mapper->SetDiagnosticAblationSamples(s.GpuAblationSamples);
   this->Mapper->SetCellInterpolation(s.SmoothCellData ? vtkSinglePassAMRVolumeMapper::SMOOTH_CELL
@@ -81,6 +85,11 @@ std::string SinglePassRenderer::StorageUsed() const
       ")";
   }
   return name;
+}
+
+std::string SinglePassRenderer::CasterUsed() const
+{
+  return vtkSinglePassAMRVolumeMapper::GetRayCasterName(this->Mapper->GetLastRayCaster());
 }
 
 std::string SinglePassRenderer::BindlessFallbackReason() const
@@ -121,6 +130,50 @@ long long SinglePassRenderer::RenderWorkCount(int count)
       65536 * std::lround(p.b * 255.0f);
   }
   return sum;
+}
+
+SinglePassRenderer::Occupancy SinglePassRenderer::RenderOccupancy()
+{
+  Occupancy o;
+  this->Mapper->OccupancyProbeOn();
+  double ms = 0.0;
+  Image probe;
+  try
+  {
+    probe = this->RenderAsIs(ms);
+  }
+  catch (const GpuError& e)
+  {
+    this->Mapper->OccupancyProbeOff();
+    o.Why = e.what();
+    return o;
+  }
+  this->Mapper->OccupancyProbeOff();
+  o.Available = true;
+  o.Caster = this->CasterUsed();
+  // 8-bit exact channels: red the SM, green the warp slot, blue the SM count; alpha 1 marks a ray
+  std::set<long> sms;
+  std::map<long, std::set<long>> warps;
+  for (const glm::vec4& p : probe.Pixels)
+  {
+    if (p.a < 0.5f)
+    {
+      continue;
+    }
+    const long sm = std::lround(p.r * 255.0f), warp = std::lround(p.g * 255.0f);
+    ++o.Rays;
+    sms.insert(sm);
+    warps[sm].insert(warp);
+    o.ChipMultiprocessors =
+      std::max(o.ChipMultiprocessors, static_cast<int>(std::lround(p.b * 255.0f)));
+  }
+  o.Multiprocessors = static_cast<int>(sms.size());
+  for (const auto& w : warps)
+  {
+    o.Warps += static_cast<int>(w.second.size());
+    o.MostWarpsOnOne = std::max(o.MostWarpsOnOne, static_cast<int>(w.second.size()));
+  }
+  return o;
 }
 
 vtkSinglePassAMRVolumeMapper* SinglePassRenderer::GetMapper() const

@@ -33,6 +33,9 @@ public:
   /// What rendered the last frame: "packing", "bindless (waterfall)", "bindless (direct)", or
   /// "none" before the first successful frame.
   std::string StorageUsed() const;
+  /// Which shader stage cast the last frame's rays: "fragment", "compute", or "none" before the
+  /// first successful frame (amrsp::RayCasterName).
+  std::string CasterUsed() const;
   /// Bytes of the data textures each storage needs for the current data (tree included).
   /// Why bindless was asked for but the atlas rendered (empty when it did not fall back).
   std::string BindlessFallbackReason() const;
@@ -43,6 +46,23 @@ public:
   /// `count` (vtkSinglePassAMRVolumeMapper::WorkCounts) and returns the sum of the counts over
   /// the image; the mapper draws colours again afterwards. Throws GpuError as RenderAsIs.
   long long RenderWorkCount(int count);
+
+  /// Where the rays of one frame ran (vtkSinglePassAMRVolumeMapper::OccupancyProbe).
+  struct Occupancy
+  {
+    bool Available = false;
+    std::string Why;             ///< why not (the mapper's error) when not Available
+    std::string Caster;          ///< the caster that ran ("fragment", "compute")
+    long long Rays = 0;          ///< pixels whose ray met the volume
+    int Multiprocessors = 0;     ///< distinct gl_SMIDNV among them
+    int ChipMultiprocessors = 0; ///< gl_SMCountNV
+    int Warps = 0;               ///< distinct (gl_SMIDNV, gl_WarpIDNV) pairs
+    int MostWarpsOnOne = 0;      ///< the most distinct warp slots one multiprocessor used
+  };
+  /// Renders the current camera's frame (RenderAsIs) with the occupancy probe and counts where
+  /// its rays ran; the mapper draws colours again afterwards. Not Available (with the reason)
+  /// where the context lacks GL_NV_shader_thread_builtins.
+  Occupancy RenderOccupancy();
 
 private:
   SinglePassRenderer(vtkSinglePassAMRVolumeMapper* mapper, const Hierarchy& h,

@@ -8,6 +8,7 @@
 #include "amrsp/Camera.h"
 #include "amrsp/Lighting.h"
 #include "amrsp/Progress.h"
+#include "amrsp/RayCaster.h"
 #include "amrsp/TransferFunction.h"
 
 #include <glm/glm.hpp>
@@ -75,6 +76,8 @@ struct RenderSettings
     Flat    ///< one loop of single descent steps, segment set-ups and samples
   };
   RayLoop GpuRayLoop = RayLoop::Nested;
+  /// The single-pass mapper's RayCaster (the image is the same); not used by the CPU integrators.
+  RayCaster GpuRayCaster = RayCaster::Auto;
   int GpuAblationSamples = 256;
   /// GPU mappers' MaximumAtlasPageBytes (the largest atlas texture; larger atlases are split
   /// into pages); 0 keeps the mapper's default. Not used by the CPU integrators.

@@ -4,7 +4,7 @@
 /// Gradient shading, iso-surfaces and shadow rays of the CPU integrators, written against a point
 /// lookup so that the reference (finest grid found from the hierarchy's boxes) and the kD-tree
 /// integrator (descent of the encoded tree, as the shader's amrspSampleAtPoint) share the rules.
-/// The GLSL raycaster (Shaders/SinglePassAMR.frag.glsl) implements the same rules:
+/// The GLSL raycaster (Shaders/SinglePassAMRRay.glsl, in both casters) implements the same rules:
 ///
 /// - Lookup: the scalar at a point p (level-0 index units) and the cell size (level-0 index units)
 ///   of the level it comes from; absent (NaN) outside every grid and outside the root box.

@@ -161,30 +161,65 @@ inline bool IsCpuDriver(vtkRenderWindow* window)
     caps.find("lavapipe") != std::string::npos;
 }
 
+/// Two frames of one scene, 8-bit channel by channel.
+struct FrameComparison
+{
+  double Rmse = 0.0;
+  int LargestDifference = 0;     ///< of one 8-bit channel
+  long long DifferentPixels = 0; ///< pixels with any channel different
+  long long OffPixels = 0;       ///< pixels with a channel more than one level apart
+  long long CoveredPixels = 0;   ///< pixels with a channel above 4 in either image
+  std::string Describe() const
+  {
+    return "RMSE " + Fixed(this->Rmse) + ", " + std::to_string(this->DifferentPixels) +
+      " pixels different, " + std::to_string(this->OffPixels) + " of " +
+      std::to_string(this->CoveredPixels) +
+      " covered pixels more than one level apart, largest channel difference " +
+      std::to_string(this->LargestDifference);
+  }
+};
+
+/// `a` against `b` (FrameComparison); a size mismatch is a difference of 256.
+inline FrameComparison CompareFrames(const amrsp::Image& a, const amrsp::Image& b)
+{
+  FrameComparison c;
+  c.Rmse = amrsp::Rmse(a, b);
+  const std::vector<std::uint8_t> x = a.Rgb8(), y = b.Rgb8();
+  if (x.size() != y.size())
+  {
+    c.LargestDifference = 256;
+    return c;
+  }
+  for (std::size_t i = 0; i + 2 < x.size(); i += 3)
+  {
+    int largest = 0;
+    bool covered = false;
+    for (std::size_t k = i; k < i + 3; ++k)
+    {
+      largest = std::max(largest, std::abs(static_cast<int>(x[k]) - static_cast<int>(y[k])));
+      covered = covered || x[k] > 4 || y[k] > 4;
+    }
+    c.LargestDifference = std::max(c.LargestDifference, largest);
+    c.DifferentPixels += largest > 0 ? 1 : 0;
+    c.OffPixels += largest > 1 ? 1 : 0;
+    c.CoveredPixels += covered ? 1 : 0;
+  }
+  return c;
+}
+
 /// The other ray loop's frame against the mapper's own. The two loops run the same steps in
 /// another order, and the shader compiler may round their arithmetic differently: where a
 /// rounding moves a sample or a segment boundary, a pixel changes. Measured: the same bytes with
 /// Mesa 25 (LLVM 15) in every test; with Mesa 26 (LLVM 21), smooth cells, 3 of 9,216 pixels (2 by
 /// more than one level, the largest 11), where the flat loop's pixel is the CPU mirror's and the
 /// nested loops' is not. A step missing from one loop changes whole segments, i.e. most pixels.
-struct RayLoopComparison
+struct RayLoopComparison : FrameComparison
 {
-  double Rmse = 0.0;
-  int LargestDifference = 0;   ///< of one 8-bit channel
-  long long OffPixels = 0;     ///< pixels with a channel more than one level apart
-  long long CoveredPixels = 0; ///< pixels with a channel above 4 in either image
   /// At most 0.1 % of the covered pixels (at least one) more than one level apart.
   bool Same() const
   {
     return this->CoveredPixels > 0 &&
       this->OffPixels <= std::max<long long>(1, this->CoveredPixels / 1000);
-  }
-  std::string Describe() const
-  {
-    return "RMSE " + Fixed(this->Rmse) + ", " + std::to_string(this->OffPixels) + " of " +
-      std::to_string(this->CoveredPixels) +
-      " covered pixels more than one level apart (at most 0.1 %), largest channel difference " +
-      std::to_string(this->LargestDifference);
   }
 };
 
@@ -202,26 +237,63 @@ inline RayLoopComparison CompareOtherRayLoop(
   const amrsp::Image other = gpu.RenderAsIs(ms);
   m->SetRayLoop(setting);
   RayLoopComparison c;
-  c.Rmse = amrsp::Rmse(other, image);
-  const std::vector<std::uint8_t> x = other.Rgb8(), y = image.Rgb8();
-  if (x.size() != y.size())
+  static_cast<FrameComparison&>(c) = CompareFrames(other, image);
+  return c;
+}
+
+/// The other caster's frame against the mapper's own (vtkSinglePassAMRVolumeMapper::RayCaster).
+/// Both casters run the same ray code on the same pixel centres and blend alike, so the bytes
+/// must be the same: measured so on llvmpipe (Mesa 22.3, 25 and 26) in every test. A caster that
+/// misses pixels, shifts the image or blends otherwise changes most covered pixels.
+/// In a context without compute shaders the compute caster cannot run: the comparison then says
+/// so (NoCompute, the mapper's reason) and holds, as the fallback is the fragment caster itself.
+struct RayCasterComparison : FrameComparison
+{
+  int Caster = -1;       ///< the other caster, as it ran (GetLastRayCaster)
+  int OtherCaster = -1;  ///< the caster it was asked for
+  std::string NoCompute; ///< why compute fell back to fragment (empty: it did not)
+  /// The other caster ran, on a frame with covered pixels, and every pixel is the same; or the
+  /// context has no compute shaders.
+  bool Same() const
   {
-    c.LargestDifference = 256;
-    return c;
-  }
-  for (std::size_t i = 0; i + 2 < x.size(); i += 3)
-  {
-    int largest = 0;
-    bool covered = false;
-    for (std::size_t k = i; k < i + 3; ++k)
+    if (!this->NoCompute.empty())
     {
-      largest = std::max(largest, std::abs(static_cast<int>(x[k]) - static_cast<int>(y[k])));
-      covered = covered || x[k] > 4 || y[k] > 4;
+      return this->Caster == vtkSinglePassAMRVolumeMapper::FRAGMENT_CASTER;
     }
-    c.LargestDifference = std::max(c.LargestDifference, largest);
-    c.OffPixels += largest > 1 ? 1 : 0;
-    c.CoveredPixels += covered ? 1 : 0;
+    return this->Caster == this->OtherCaster && this->CoveredPixels > 0 &&
+      this->DifferentPixels == 0;
   }
+  std::string Describe() const
+  {
+    const std::string other = vtkSinglePassAMRVolumeMapper::GetRayCasterName(this->OtherCaster);
+    if (!this->NoCompute.empty())
+    {
+      return other + " caster: not compared, " + this->NoCompute;
+    }
+    return other + " caster (ran: " + vtkSinglePassAMRVolumeMapper::GetRayCasterName(this->Caster) +
+      "): " + FrameComparison::Describe();
+  }
+};
+
+/// Renders the frame `gpu` rendered last (`image`) again with the other caster than the one it
+/// ran and compares; the mapper's RayCaster setting is restored.
+inline RayCasterComparison CompareOtherRayCaster(
+  amrsp::harness::SinglePassRenderer& gpu, const amrsp::Image& image)
+{
+  using Mapper = vtkSinglePassAMRVolumeMapper;
+  Mapper* m = gpu.GetMapper();
+  const int setting = m->GetRayCaster();
+  const int other = m->GetLastRayCaster() == Mapper::COMPUTE_CASTER ? Mapper::FRAGMENT_CASTER
+                                                                    : Mapper::COMPUTE_CASTER;
+  m->SetRayCaster(other);
+  double ms = 0.0;
+  const amrsp::Image otherImage = gpu.RenderAsIs(ms);
+  RayCasterComparison c;
+  c.OtherCaster = other;
+  c.Caster = m->GetLastRayCaster();
+  c.NoCompute = m->GetRayCasterFallbackReason();
+  m->SetRayCaster(setting);
+  static_cast<FrameComparison&>(c) = CompareFrames(otherImage, image);
   return c;
 }
 

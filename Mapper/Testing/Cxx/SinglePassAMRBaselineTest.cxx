@@ -527,7 +527,12 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
                 << " the same image as the " << (flatUsed ? "flat loop" : "nested loops") << ": "
                 << loops.Describe() << "\n";
       agrees = loops.Same() && agrees;
-      gpu.RenderAsIs(ms); // the window holds the default loop's frame again
+      // the other caster (compute on a CPU driver, where AUTO_CASTER takes the fragment shader)
+      const mappertest::RayCasterComparison casters = mappertest::CompareOtherRayCaster(gpu, image);
+      std::cout << (casters.Same() ? "ok" : "FAILED") << ": the " << casters.Describe()
+                << " renders the same image\n";
+      agrees = casters.Same() && agrees;
+      gpu.RenderAsIs(ms); // the window holds the default loop's and caster's frame again
     }
 
     if (c.CheckWorkCounters)

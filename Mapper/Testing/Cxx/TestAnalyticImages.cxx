@@ -17,7 +17,8 @@
 //   nan         a column of NaN cells through the whole volume shows the background exactly, the
 //               rest of the volume is drawn.
 //
-// Each mode shows in the test that the wrong rule fails its check: the shader with the LOD rule
+// Each mode runs its checks twice, with the fragment and the compute caster (RayCaster), and
+// shows in the test that the wrong rule fails its check: the shader with the LOD rule
 // off by a factor 2 or dropped, one iso-value dropped, NaN samples made opaque (shader
 // replacements, as TestLinearStorage breaks its layer stride).
 
@@ -96,11 +97,31 @@ Camera TopView(bool parallel, double distance = 0.0, double angle = 30.0)
   return c;
 }
 
-/// Renders `h` with `s` (its camera as it is) and returns the frame.
+/// The caster every scene of this run is cast with (each mode runs once per caster).
+RayCaster Caster = RayCaster::Fragment;
+
+/// `s` with this run's caster.
+RenderSettings WithCaster(RenderSettings s)
+{
+  s.GpuRayCaster = Caster;
+  return s;
+}
+
+/// Renders `h` with `s` (its camera as it is) and returns the frame; a frame cast by another
+/// caster than this run's is a failed check.
 Image RenderAsSet(SinglePassRenderer& gpu)
 {
   double ms = 0.0;
-  return gpu.Render(0.0, ms);
+  Image image = gpu.Render(0.0, ms);
+  const int ran = gpu.GetMapper()->GetLastRayCaster();
+  if (ran != static_cast<int>(Caster))
+  {
+    Check(false,
+      std::string("the frame was cast by the ") +
+        vtkSinglePassAMRVolumeMapper::GetRayCasterName(ran) + " caster, not the " +
+        RayCasterName(Caster));
+  }
+  return image;
 }
 
 ViewAngles SettingsCamera()
@@ -198,7 +219,7 @@ void TestLevelOfDetail()
   Hierarchy h = LevelPatch();
   // parallel: 64 px over the unit square, a level-0 cell is 8 px, the patch 32 x 32 = 1024 px
   {
-    RenderSettings s = LevelSettings(64, TopView(true), 0.0f);
+    RenderSettings s = WithCaster(LevelSettings(64, TopView(true), 0.0f));
     SinglePassRenderer gpu(h, s, SettingsCamera());
     vtkSinglePassAMRVolumeMapper* m = gpu.GetMapper();
     const struct
@@ -236,7 +257,7 @@ void TestLevelOfDetail()
   // perspective, 0.35 above the patch, 90 degrees: level 1 where the ray enters the patch before
   // c0 / (10 x pixel size per distance) = 0.4, a disc of about 18 px radius inside its 46 px square
   {
-    RenderSettings s = LevelSettings(64, TopView(false, 0.1, 90.0), 10.0f);
+    RenderSettings s = WithCaster(LevelSettings(64, TopView(false, 0.1, 90.0), 10.0f));
     SinglePassRenderer gpu(h, s, SettingsCamera());
     const Image img = RenderAsSet(gpu);
     const double band = 0.004; // about half a pixel's change of entry distance at the boundary
@@ -287,6 +308,7 @@ void TestIsoSurfaces()
   s.Transfer.Color = { { 0.2, glm::dvec3(1.0, 0.0, 0.0) }, { 0.35, glm::dvec3(0.0, 0.0, 1.0) } };
   s.Transfer.Opacity = { { 0.2, 0.5 }, { 0.35, 0.5 } };
   s.IsoValues = { 0.2, 0.35 };
+  s = WithCaster(s);
   SinglePassRenderer gpu(h, s, SettingsCamera());
   const Image img = RenderAsSet(gpu);
 
@@ -381,6 +403,7 @@ void TestNaN()
   s.Transfer.Opacity = { { 0.0, 0.5 }, { 2.0, 0.5 } };
   s.Transfer.UnitDistance = 0.1;
   s.OpacityThreshold = 0.999;
+  s = WithCaster(s);
   SinglePassRenderer gpu(h, s, SettingsCamera());
   const auto count = [&](const Image& img, std::size_t& columnLit, std::size_t& restDark)
   {
@@ -435,17 +458,23 @@ int main(int argc, char* argv[])
   }
   try
   {
-    if (mode == "lod")
+    // every check with each caster (vtkSinglePassAMRVolumeMapper::RayCaster)
+    for (RayCaster caster : { RayCaster::Fragment, RayCaster::Compute })
     {
-      TestLevelOfDetail();
-    }
-    else if (mode == "iso")
-    {
-      TestIsoSurfaces();
-    }
-    else
-    {
-      TestNaN();
+      Caster = caster;
+      std::cout << "cast by the " << RayCasterName(caster) << " shader\n";
+      if (mode == "lod")
+      {
+        TestLevelOfDetail();
+      }
+      else if (mode == "iso")
+      {
+        TestIsoSurfaces();
+      }
+      else
+      {
+        TestNaN();
+      }
     }
   }
   catch (const std::exception& e)

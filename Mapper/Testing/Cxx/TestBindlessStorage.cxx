@@ -121,6 +121,9 @@ void TestDataset(
   const mappertest::RayLoopComparison otherLoop = mappertest::CompareOtherRayLoop(gpu, waterfall);
   Check(otherLoop.Same(),
     "waterfall: the other ray loop renders the same image: " + otherLoop.Describe());
+  const mappertest::RayCasterComparison otherCaster =
+    mappertest::CompareOtherRayCaster(gpu, waterfall);
+  Check(otherCaster.Same(), "waterfall: the " + otherCaster.Describe() + " renders the same image");
 
   // memory: what was uploaded is what the mapper reports for either storage, and the bindless
   // figure is the tree (and its ropes) plus the bricks plus the handles, computed here

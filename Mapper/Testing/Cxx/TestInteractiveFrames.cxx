@@ -62,6 +62,15 @@ void TestInteractiveFrames()
   window->SetDesiredUpdateRate(InteractiveRate);
   const Image interactive = gpu.RenderAsIs(ms);
   const double rmse = VolumeRmse(interactive, still);
+  // the other caster casts the same reduced image (and composites it the same way)
+  const auto sameByOtherCaster = [&gpu, mapper](const Image& frame, const std::string& what)
+  {
+    const mappertest::RayCasterComparison c = mappertest::CompareOtherRayCaster(gpu, frame);
+    Check(c.Same() && mapper->GetLastImageSampleDistance() == 2.0,
+      what + " by the " + c.Describe() + " (image sample distance " +
+        Fixed(mapper->GetLastImageSampleDistance()) + ")");
+  };
+  sameByOtherCaster(interactive, "the interactive frame");
   Check(mapper->GetLastFrameInteractive() && mapper->GetLastImageSampleDistance() == 2.0 &&
       mapper->GetLastSampleDistanceScale() == 2.0,
     "an interactive frame (" + Fixed(mapper->GetLastFrameBudget()) +
@@ -100,6 +109,7 @@ void TestInteractiveFrames()
   mapper->AutoAdjustSampleDistancesOff();
   mapper->SetImageSampleDistance(2.0f);
   const Image fixed = gpu.RenderAsIs(ms);
+  sameByOtherCaster(fixed, "ImageSampleDistance 2");
   Check(mapper->GetLastImageSampleDistance() == 2.0 &&
       mapper->GetLastSampleDistanceScale() == 1.0 && mapper->GetLastFrameSeconds() == 0.0 &&
       faithful(fixed),
@@ -126,6 +136,7 @@ void TestInteractiveFrames()
   window->SetDesiredUpdateRate(InteractiveRate);
   const Image interactiveSphere = gpu.RenderAsIs(ms);
   const double sphereSampleDistance = mapper->GetLastImageSampleDistance();
+  sameByOtherCaster(interactiveSphere, "the interactive frame with opaque geometry");
   window->SetDesiredUpdateRate(StillRate);
   // without the sphere's depth the volume in front of it and behind it would both show; with the
   // depth read at the reduced image's own pixel (the scale to the viewport ignored) the RMSE

@@ -100,6 +100,9 @@ void TestDataset(const std::string& name, Hierarchy h, double referenceBound, bo
   const mappertest::RayLoopComparison otherLoop = mappertest::CompareOtherRayLoop(gpu, linear);
   Check(
     otherLoop.Same(), "linear: the other ray loop renders the same image: " + otherLoop.Describe());
+  const mappertest::RayCasterComparison otherCaster =
+    mappertest::CompareOtherRayCaster(gpu, linear);
+  Check(otherCaster.Same(), "linear: the " + otherCaster.Describe() + " renders the same image");
 
   // memory: the tree textures, the empty-space flags, the ropes, every cell once (whole rows of
   // the page) and the brick table (RG32UI, laid out like the tree)

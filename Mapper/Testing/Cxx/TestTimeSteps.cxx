@@ -84,51 +84,64 @@ long long DifferingBytes(const Image& a, const Image& b)
   return n;
 }
 
-/// `requireStorage`: the single-pass storage used must be `method` (no fallback).
-void CheckMethod(
-  const std::string& method, std::vector<Hierarchy>& steps, bool requireStorage = false)
+/// `requireStorage`: the single-pass storage used must be `method` (no fallback). The
+/// single-pass methods cast the series' rays with `caster` (their frames must say so).
+void CheckMethod(const std::string& methodName, std::vector<Hierarchy>& steps,
+  bool requireStorage = false, RayCaster caster = RayCaster::Auto)
 {
   Hierarchy first = steps[0]; // shares the values; the settings leave them as they are
-  const RenderSettings s = Settings(first, { "--size", "96x96", "--scale", "linear" });
+  RenderSettings s = Settings(first, { "--size", "96x96", "--scale", "linear" });
+  s.GpuRayCaster = caster;
+  const std::string method = methodName;
+  const std::string label =
+    caster == RayCaster::Auto ? methodName : methodName + " (" + RayCasterName(caster) + " caster)";
   double ms = 0.0;
   std::unique_ptr<GpuRenderer> series = MakeRenderer(method, steps[0], s);
   const Image firstImage = series->Render(0.0, ms);
   const int builds = series->NumberOfBuilds();
   series->SetData(steps[1]);
   const Image refreshed = series->Render(0.0, ms);
-  const SinglePassRenderer* packing = dynamic_cast<const SinglePassRenderer*>(series.get());
+  SinglePassRenderer* packing = dynamic_cast<SinglePassRenderer*>(series.get());
   const std::string storage = packing ? " (" + packing->StorageUsed() + ")" : std::string();
+  if (packing && caster != RayCaster::Auto)
+  {
+    Check(packing->CasterUsed() == RayCasterName(caster),
+      label + ": the refreshed step was cast by the " + packing->CasterUsed() + " shader");
+    const mappertest::RayCasterComparison other =
+      mappertest::CompareOtherRayCaster(*packing, refreshed);
+    Check(other.Same(), label + ": the refreshed step by the " + other.Describe());
+  }
   if (requireStorage)
   {
     Check(packing && packing->StorageUsed().rfind(method, 0) == 0,
-      method + ": the series renders with the " + method + " storage" + storage);
+      label + ": the series renders with the " + method + " storage" + storage);
   }
   Check(series->NumberOfValueRefreshes() == 1 && series->NumberOfBuilds() == builds + 1,
-    method + storage + ": step 1 (same structure) refreshed the values: " +
+    label + storage + ": step 1 (same structure) refreshed the values: " +
       std::to_string(series->NumberOfValueRefreshes()) + " refresh(es), " +
       std::to_string(series->NumberOfBuilds()) + " builds");
   const Image full = MakeRenderer(method, steps[1], s)->Render(0.0, ms);
   const long long differing = DifferingBytes(refreshed, full);
   Check(differing == 0,
-    method + ": step 1 refreshed equals a full build of step 1 byte for byte (" +
+    label + ": step 1 refreshed equals a full build of step 1 byte for byte (" +
       std::to_string(differing) + " bytes differ)");
   const long long moved = DifferingBytes(refreshed, firstImage);
   Check(moved > 100,
-    method + ": step 1's image is not step 0's (" + std::to_string(moved) + " bytes differ)");
+    label + ": step 1's image is not step 0's (" + std::to_string(moved) + " bytes differ)");
   const Image cpu = RenderKdTree(steps[1], EncodeKdTree(steps[1], BuildKdTree(steps[1])), s);
   const double vsCpu = CoveredRmse(refreshed, cpu);
   Check(vsCpu < mappertest::BoundVsKdTree,
-    method + ": step 1 refreshed against the CPU kD-tree image of step 1: RMSE " + Fixed(vsCpu) +
+    label + ": step 1 refreshed against the CPU kD-tree image of step 1: RMSE " + Fixed(vsCpu) +
       " (bound " + Fixed(mappertest::BoundVsKdTree) + ")");
 
   series->SetData(steps[2]);
   const Image regridded = series->Render(0.0, ms);
   Check(series->NumberOfValueRefreshes() == 1,
-    method + ": step 2 (regridded) was built in full (" +
+    label + ": step 2 (regridded) was built in full (" +
       std::to_string(series->NumberOfValueRefreshes()) + " refresh(es))");
   const Image fullRegridded = MakeRenderer(method, steps[2], s)->Render(0.0, ms);
   Check(DifferingBytes(regridded, fullRegridded) == 0,
-    method + ": step 2 after the series equals a fresh build of step 2");
+    label + ": step 2 after the series equals a fresh build of step 2");
 }
 
 /// Steps shown again keep their textures (MaximumKeptStepBytes): going back to steps 1 and 0
@@ -202,7 +215,10 @@ int RunBindless(std::vector<Hierarchy>& steps)
   }
   try
   {
-    CheckMethod("bindless", steps, true);
+    for (RayCaster caster : { RayCaster::Fragment, RayCaster::Compute })
+    {
+      CheckMethod("bindless", steps, true, caster);
+    }
   }
   catch (const std::exception& e)
   {
@@ -236,6 +252,21 @@ int main(int argc, char* argv[])
     catch (const std::exception& e)
     {
       Check(false, std::string(method) + ": " + e.what());
+    }
+  }
+  // the single pass's series again with each caster explicitly (RayCaster)
+  for (const char* method : { "packing", "linear" })
+  {
+    for (RayCaster caster : { RayCaster::Fragment, RayCaster::Compute })
+    {
+      try
+      {
+        CheckMethod(method, steps, false, caster);
+      }
+      catch (const std::exception& e)
+      {
+        Check(false, std::string(method) + " (" + RayCasterName(caster) + "): " + e.what());
+      }
     }
   }
   for (const char* method : { "packing", "linear" })
