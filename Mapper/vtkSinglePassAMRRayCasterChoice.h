@@ -17,8 +17,8 @@
 /// What the context offers the casters.
 struct vtkSinglePassAMRRayCasterFacts
 {
-  bool Compute = false;  ///< compute shaders and image stores (OpenGL 4.3, or 4.2 with the ARB)
-  std::string NoCompute; ///< why not, when Compute is false
+  bool Compute = false;   ///< compute shaders and image stores (OpenGL 4.3, or 4.2 with the ARB)
+  std::string NoCompute;  ///< why not, when Compute is false
   bool CpuDriver = false; ///< Mesa's llvmpipe, softpipe, or zink on lavapipe
 };
 

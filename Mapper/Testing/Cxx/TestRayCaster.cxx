@@ -57,7 +57,8 @@ Image CastBy(SinglePassRenderer& gpu, int caster)
   const int ran = gpu.GetMapper()->GetLastRayCaster();
   if (ran != caster)
   {
-    Check(false, std::string("asked for the ") + Mapper::GetRayCasterName(caster) + " caster, the " +
+    Check(false,
+      std::string("asked for the ") + Mapper::GetRayCasterName(caster) + " caster, the " +
         Mapper::GetRayCasterName(ran) + " caster ran");
   }
   return image;
@@ -86,7 +87,8 @@ void TestCasters()
   gpu.Render(0.0, ms);
   const bool cpuDriver = mappertest::IsCpuDriver(gpu.GetRenderer()->GetRenderWindow());
   const int expected = cpuDriver ? Mapper::FRAGMENT_CASTER : Mapper::COMPUTE_CASTER;
-  Check(mapper->GetLastRayCaster() == expected && std::string(mapper->GetRayCasterFallbackReason()).empty(),
+  Check(mapper->GetLastRayCaster() == expected &&
+      std::string(mapper->GetRayCasterFallbackReason()).empty(),
     std::string("AUTO_CASTER on ") + (cpuDriver ? "a CPU driver" : "a GPU") + " casts with the " +
       Mapper::GetRayCasterName(mapper->GetLastRayCaster()) + " shader");
 
@@ -174,11 +176,12 @@ void TestNoCompute()
   int warnings = 0;
   vtkNew<vtkCallbackCommand> counter;
   counter->SetClientData(&warnings);
-  counter->SetCallback([](vtkObject*, unsigned long, void* count, void*)
-    { ++*static_cast<int*>(count); });
+  counter->SetCallback(
+    [](vtkObject*, unsigned long, void* count, void*) { ++*static_cast<int*>(count); });
   mapper->AddObserver(vtkCommand::WarningEvent, counter);
   const Image fragment = CastBy(gpu, Mapper::FRAGMENT_CASTER);
-  Check(warnings == 0, "the fragment caster asked for: no warning (" + std::to_string(warnings) + ")");
+  Check(
+    warnings == 0, "the fragment caster asked for: no warning (" + std::to_string(warnings) + ")");
   mapper->SetRayCaster(Mapper::COMPUTE_CASTER);
   double first = 0.0;
   gpu.RenderAsIs(first);
