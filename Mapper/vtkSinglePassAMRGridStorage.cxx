@@ -173,19 +173,23 @@ bool vtkSinglePassAMRGridStorage::IsUploaded(
 }
 
 //------------------------------------------------------------------------------
-std::string vtkSinglePassAMRGridStorage::GetGridDataDefines() const
+void vtkSinglePassAMRGridStorage::DescribeGridData(vtkSinglePassAMRShaderVariant& variant) const
 {
   if (this->UploadedStorage == vtkSinglePassAMRStorage::BindlessTextures)
   {
-    return "#define AMRSP_BINDLESS 1\n";
+    variant.Storage = vtkSinglePassAMRShaderStorage::Bindless;
   }
-  if (this->UploadedStorage == vtkSinglePassAMRStorage::LinearBricks)
+  else if (this->UploadedStorage == vtkSinglePassAMRStorage::LinearBricks)
   {
-    return this->Linear.GetShaderDefines();
+    variant.Storage = vtkSinglePassAMRShaderStorage::Linear;
+    variant.LinearPages = this->Linear.GetNumberOfPages();
+    variant.LinearWidthLog2 = this->Linear.GetWidthLog2();
   }
-  return this->AtlasPages.size() > 1 ? "#define AMRSP_PACKING 1\n#define AMRSP_ATLAS_PAGES " +
-      std::to_string(this->AtlasPages.size()) + "\n"
-                                     : std::string("#define AMRSP_PACKING 1\n");
+  else
+  {
+    variant.Storage = vtkSinglePassAMRShaderStorage::Packing;
+    variant.AtlasPages = static_cast<int>(this->AtlasPages.size());
+  }
 }
 
 //------------------------------------------------------------------------------

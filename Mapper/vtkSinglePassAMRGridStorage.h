@@ -24,6 +24,7 @@
 #include "vtkSinglePassAMRBindlessBricks.h"
 #include "vtkSinglePassAMRLinearBricks.h"
 #include "vtkSinglePassAMRRayCasterChoice.h"
+#include "vtkSinglePassAMRShaderVariant.h"
 #include "vtkSinglePassAMRStorageChoice.h"
 
 #include "vtkSmartPointer.h"
@@ -117,9 +118,9 @@ public:
   /// Data nodes flagged transparent by the last UpdateTransparentFlags.
   long long GetFlaggedDataNodes() const { return this->FlaggedDataNodes; }
 
-  /// The single-pass shader's #defines for the grid data of the last upload: AMRSP_PACKING
-  /// (with AMRSP_ATLAS_PAGES for several pages), AMRSP_BINDLESS, or AMRSP_LINEAR's.
-  std::string GetGridDataDefines() const;
+  /// The grid data of the last upload as the single-pass shader reads it: its storage and the
+  /// atlas pages, or the linear pages and rows.
+  void DescribeGridData(vtkSinglePassAMRShaderVariant& variant) const;
   /// Activates the grid data's textures of the last upload and sets their samplers and sizes in
   /// `program` (amrspAtlas.., amrspAtlasSize, amrspAtlasPageSize; amrspHandles; amrspLinear..,
   /// amrspBrickTable); DeactivateGridData undoes it.

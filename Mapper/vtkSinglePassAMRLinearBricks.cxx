@@ -183,20 +183,6 @@ bool vtkSinglePassAMRLinearBricks::Upload(vtkOpenGLRenderWindow* renWin, const a
 }
 
 //------------------------------------------------------------------------------
-std::string vtkSinglePassAMRLinearBricks::GetShaderDefines() const
-{
-  // the table's layout comes from the core, which writes it (amrsp::LinearBrickTable)
-  std::string defines = "#define AMRSP_LINEAR 1\n#define AMRSP_LINEAR_WIDTH_LOG2 " +
-    std::to_string(this->WidthLog2) + "\n#define AMRSP_LINEAR_BASE_BITS " +
-    std::to_string(amrsp::LinearBaseBits) + "\n";
-  if (this->Pages.size() > 1)
-  {
-    defines += "#define AMRSP_LINEAR_PAGES " + std::to_string(this->Pages.size()) + "\n";
-  }
-  return defines;
-}
-
-//------------------------------------------------------------------------------
 void vtkSinglePassAMRLinearBricks::Activate(vtkShaderProgram* program)
 {
   for (std::size_t p = 0; p < this->Pages.size(); ++p)

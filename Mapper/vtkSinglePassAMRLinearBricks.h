@@ -43,9 +43,6 @@ public:
   static bool Fits(vtkOpenGLRenderWindow* renWin, const amrsp::Hierarchy& h, bool vertexCentred,
     long long maxPageBytes);
 
-  /// The shader's #defines: AMRSP_LINEAR, AMRSP_LINEAR_WIDTH_LOG2, AMRSP_LINEAR_BASE_BITS and,
-  /// with several pages, AMRSP_LINEAR_PAGES.
-  std::string GetShaderDefines() const;
   /// Activates the pages and the table and points amrspLinear, amrspLinear1.. and
   /// amrspBrickTable at their units; Deactivate undoes it.
   void Activate(vtkShaderProgram* program);
@@ -54,6 +51,8 @@ public:
   /// Bytes of the pages (whole rows) and the table; 0 when nothing is uploaded.
   long long GetBytes() const { return this->Bytes; }
   int GetNumberOfPages() const { return static_cast<int>(this->Pages.size()); }
+  /// Base-2 logarithm of a page's row length in texels (the shader's AMRSP_LINEAR_WIDTH_LOG2).
+  int GetWidthLog2() const { return this->WidthLog2; }
   bool IsUploaded() const { return !this->Pages.empty(); }
 
   void ReleaseGraphicsResources(vtkWindow* window);

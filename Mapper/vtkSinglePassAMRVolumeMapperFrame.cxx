@@ -9,6 +9,7 @@
 #include "vtkSinglePassAMRRayLoopChoice.h"
 #include "vtkSinglePassAMRScopedBlendedDraw.h"
 #include "vtkSinglePassAMRShaderComposer.h"
+#include "vtkSinglePassAMRShaderVariant.h"
 
 #include "amrsp/SampleStep.h"
 
@@ -134,65 +135,49 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareAppearance(
 }
 
 //------------------------------------------------------------------------------
-std::string vtkSinglePassAMRVolumeMapper::vtkInternals::ShaderDefines(
+vtkSinglePassAMRShaderVariant vtkSinglePassAMRVolumeMapper::vtkInternals::ShaderVariant(
   const vtkSinglePassAMRFrameSettings& frame) const
 {
   const vtkSinglePassAMRVolumeMapper* self = this->Self;
   const amrsp::LevelTable& levels = this->Data.Levels;
-  std::string defines = "#define AMRSP_LEVEL_COUNT " +
-    std::to_string(this->Data.LevelCellSize.size()) + "\n" + this->Storage->GetGridDataDefines() +
-    (this->Data.VertexCentred ? "#define AMRSP_VERTEX_CENTRED 1\n"
-                              : "#define AMRSP_CELL_CENTRED 1\n");
-  const auto define = [&defines](bool on, const std::string& line)
-  {
-    if (on)
-    {
-      defines += "#define " + line + "\n";
-    }
-  };
-  define(frame.Access == vtkSinglePassAMRBindlessAccess::Waterfall, "AMRSP_WATERFALL 1");
-  define(this->Transfer.IsLogarithmic(), "AMRSP_LOG_TRANSFER 1");
-  define(frame.UseDepth, "AMRSP_USE_DEPTH 1");
-  define(frame.UseDepth && frame.Reduced(), "AMRSP_REDUCED_IMAGE 1");
-  define(!levels.LevelToFinestLog2.empty(), "AMRSP_POWER_OF_TWO_REFINEMENT 1");
-  define(levels.UniformRefinementLog2 > 0,
-    "AMRSP_UNIFORM_REFINEMENT_LOG2 " + std::to_string(levels.UniformRefinementLog2));
-  define(true, "AMRSP_BLEND_MODE " + std::to_string(static_cast<int>(frame.Blend)));
-  define(frame.SkipEmpty, "AMRSP_SKIP_EMPTY 1");
-  define(frame.SmoothCells, "AMRSP_SMOOTH_CELLS 1");
-  define(frame.Ropes, "AMRSP_ROPES 1");
-  define(frame.FlatLoop, "AMRSP_FLAT_LOOP 1");
-  define(self->DiagnosticAblation != NO_ABLATION,
-    "AMRSP_ABLATION " + std::to_string(self->DiagnosticAblation));
-  define(frame.Shade, "AMRSP_SHADE 1");
-  define(frame.Shadows, "AMRSP_SHADOWS 1");
-  const bool probe = self->OccupancyProbe;
-  define(!probe && self->WorkCountersOutput && self->WorkCountOutput == NO_WORK_COUNT,
-    "AMRSP_WORK_COUNTERS 1");
-  define(!probe && self->WorkCountOutput != NO_WORK_COUNT,
-    "AMRSP_WORK_COUNT " + std::to_string(self->WorkCountOutput));
-  define(probe, "AMRSP_OCCUPANCY_PROBE 1");
-  define(frame.Caster == amrsp::RayCaster::Compute,
-    "AMRSP_GROUP_WIDTH " + std::to_string(vtkSinglePassAMRComputeGroup::Width));
-  define(frame.Caster == amrsp::RayCaster::Compute,
-    "AMRSP_GROUP_HEIGHT " + std::to_string(vtkSinglePassAMRComputeGroup::Height));
-  return defines;
+  vtkSinglePassAMRShaderVariant v;
+  v.Caster = frame.Caster;
+  this->Storage->DescribeGridData(v);
+  v.Waterfall = frame.Access == vtkSinglePassAMRBindlessAccess::Waterfall;
+  v.LevelCount = static_cast<int>(this->Data.LevelCellSize.size());
+  v.VertexCentred = this->Data.VertexCentred;
+  v.LogTransfer = this->Transfer.IsLogarithmic();
+  v.UseDepth = frame.UseDepth;
+  v.ReducedImage = frame.Reduced();
+  v.PowerOfTwoRefinement = !levels.LevelToFinestLog2.empty();
+  v.UniformRefinementLog2 = levels.UniformRefinementLog2;
+  v.Blend = static_cast<int>(frame.Blend);
+  v.SkipEmpty = frame.SkipEmpty;
+  v.SmoothCells = frame.SmoothCells;
+  v.Ropes = frame.Ropes;
+  v.FlatLoop = frame.FlatLoop;
+  v.Ablation = self->DiagnosticAblation;
+  v.Shade = frame.Shade;
+  v.Shadows = frame.Shadows;
+  v.WorkCounters = self->WorkCountersOutput;
+  v.WorkCount = self->WorkCountOutput;
+  v.OccupancyProbe = self->OccupancyProbe;
+  v.GroupWidth = vtkSinglePassAMRComputeGroup::Width;
+  v.GroupHeight = vtkSinglePassAMRComputeGroup::Height;
+  return v;
 }
 
 //------------------------------------------------------------------------------
 vtkShaderProgram* vtkSinglePassAMRVolumeMapper::vtkInternals::ReadyShader(
   vtkOpenGLRenderWindow* renWin, vtkVolume* vol, const vtkSinglePassAMRFrameSettings& frame)
 {
+  static const vtkSinglePassAMRShaderSources sources{ amrsp_SinglePassAMR_frag_glsl,
+    amrsp_SinglePassAMR_comp_glsl, amrsp_SinglePassAMRRay_glsl, amrsp_KdTreeLayout_glsl,
+    amrsp_RayCommon_glsl, amrsp_BrickSample_glsl, amrsp_SmoothCells_glsl, amrsp_Shading_glsl,
+    amrsp_RaySteps_glsl };
   const bool compute = frame.Caster == amrsp::RayCaster::Compute;
-  const std::string source = vtkSinglePassAMRShaderComposer::ComposeFragmentShader(
-    compute ? amrsp_SinglePassAMR_comp_glsl : amrsp_SinglePassAMR_frag_glsl,
-    this->ShaderDefines(frame),
-    { { "CastRay", amrsp_SinglePassAMRRay_glsl }, { "KdTreeLayout", amrsp_KdTreeLayout_glsl },
-      { "RayCommon", amrsp_RayCommon_glsl }, { "BrickSample", amrsp_BrickSample_glsl },
-      { "SmoothCells", amrsp_SmoothCells_glsl }, { "Shading", amrsp_Shading_glsl },
-      { "RaySteps", amrsp_RaySteps_glsl },
-      { "Version", compute ? this->Storage->GetComputeVersion(renWin).c_str() : "" } },
-    vol);
+  const std::string source = vtkSinglePassAMRComposeShader(this->ShaderVariant(frame), sources,
+    compute ? this->Storage->GetComputeVersion(renWin) : std::string(), vol);
   if (compute)
   {
     return this->ReadyComputeProgram(renWin, source);

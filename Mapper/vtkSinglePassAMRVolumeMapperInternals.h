@@ -15,6 +15,7 @@
 #include "vtkSinglePassAMRDepthCopy.h"
 #include "vtkSinglePassAMRFrameBudget.h"
 #include "vtkSinglePassAMRGridStorage.h"
+#include "vtkSinglePassAMRShaderVariant.h"
 #include "vtkSinglePassAMRStorageChoice.h"
 #include "vtkSinglePassAMRTransferFunctionTable.h"
 #include "vtkSinglePassAMRViewGeometry.h"
@@ -96,8 +97,8 @@ public:
   /// cache, or the compute program (ComputePrograms), each compiled once per variant.
   vtkShaderProgram* ReadyShader(
     vtkOpenGLRenderWindow* renWin, vtkVolume* vol, const vtkSinglePassAMRFrameSettings& frame);
-  /// The #defines of `frame`'s shader variant (both casters).
-  std::string ShaderDefines(const vtkSinglePassAMRFrameSettings& frame) const;
+  /// `frame`'s shader variant (both casters).
+  vtkSinglePassAMRShaderVariant ShaderVariant(const vtkSinglePassAMRFrameSettings& frame) const;
   /// The compute caster's program for `source` in `renWin`, compiled on first use.
   vtkShaderProgram* ReadyComputeProgram(vtkOpenGLRenderWindow* renWin, const std::string& source);
   /// Casts the rays of `rays` (the viewport, or the reduced image at (0, 0)) with the bound

@@ -347,21 +347,22 @@ int amrspCeilDiv(int a, int b)
 // texel + 1 per axis, which the caller keeps inside the brick.
 float amrspReadBrick(uvec2 handle, ivec3 texel, vec3 where)
 {
-  sampler3D brick = sampler3D(handle);
+  // the sampler built in each fetch: a sampler held in a local variable is not accepted by every
+  // compiler (glslang 12), the constructor in an argument is
 #ifdef AMRSP_VERTEX_CENTRED
   vec3 f = where - 0.5 - vec3(texel);
-  float c000 = texelFetch(brick, texel, 0).r;
-  float c100 = texelFetch(brick, texel + ivec3(1, 0, 0), 0).r;
-  float c010 = texelFetch(brick, texel + ivec3(0, 1, 0), 0).r;
-  float c110 = texelFetch(brick, texel + ivec3(1, 1, 0), 0).r;
-  float c001 = texelFetch(brick, texel + ivec3(0, 0, 1), 0).r;
-  float c101 = texelFetch(brick, texel + ivec3(1, 0, 1), 0).r;
-  float c011 = texelFetch(brick, texel + ivec3(0, 1, 1), 0).r;
-  float c111 = texelFetch(brick, texel + ivec3(1, 1, 1), 0).r;
+  float c000 = texelFetch(sampler3D(handle), texel, 0).r;
+  float c100 = texelFetch(sampler3D(handle), texel + ivec3(1, 0, 0), 0).r;
+  float c010 = texelFetch(sampler3D(handle), texel + ivec3(0, 1, 0), 0).r;
+  float c110 = texelFetch(sampler3D(handle), texel + ivec3(1, 1, 0), 0).r;
+  float c001 = texelFetch(sampler3D(handle), texel + ivec3(0, 0, 1), 0).r;
+  float c101 = texelFetch(sampler3D(handle), texel + ivec3(1, 0, 1), 0).r;
+  float c011 = texelFetch(sampler3D(handle), texel + ivec3(0, 1, 1), 0).r;
+  float c111 = texelFetch(sampler3D(handle), texel + ivec3(1, 1, 1), 0).r;
   return mix(mix(mix(c000, c100, f.x), mix(c010, c110, f.x), f.y),
     mix(mix(c001, c101, f.x), mix(c011, c111, f.x), f.y), f.z);
 #else
-  return texelFetch(brick, texel, 0).r;
+  return texelFetch(sampler3D(handle), texel, 0).r;
 #endif
 }
 
@@ -532,8 +533,8 @@ void amrspChildBox(inout vec3 lo, inout vec3 hi, inout ivec3 loF, inout ivec3 hi
   }
 }
 
-#if defined(AMRSP_SMOOTH_CELLS) || defined(AMRSP_SHADE) || defined(AMRSP_SHADOWS) || \
-  AMRSP_BLEND_MODE == 4
+// (one line: GLSL before 4.20 has no line continuation)
+#if defined(AMRSP_SMOOTH_CELLS) || defined(AMRSP_SHADE) || defined(AMRSP_SHADOWS) || AMRSP_BLEND_MODE == 4
 // Point location, as the core's LocateDataNode: from the root to the leaf containing p (level-0
 // index units); a point on a split plane goes to the upper side. Returns the data index (0: empty
 // leaf or outside the root box) and the leaf's box in exact finest-level cells.

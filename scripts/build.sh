@@ -20,6 +20,9 @@ case "$config" in
   forky-vtk)
     args=(-DAMRSP_WITH_PARAVIEW=OFF) ;;  # the system VTK 9.6, which ParaView 6.1 uses too
 esac
+# Mapper.ShaderVariants checks the shader sources, which no VTK version changes: once per CI run,
+# in the Debian 12 ParaView configuration
+[ "$config" = paraview ] && args+=(-DAMRSP_SHADER_VARIANT_TEST=ON) || args+=(-DAMRSP_SHADER_VARIANT_TEST=OFF)
 build="$repo/build/$config"
 mkdir -p "$repo/build"
 echo "[build] $config -> $build"

@@ -27,6 +27,8 @@ T_START=$SECONDS
 # Build and test tools, and the X server used by ParaView builds that render through GLX only.
 PKGS=(cmake g++ make ninja-build pkg-config patchelf file libgtest-dev libgmock-dev libglm-dev
   nlohmann-json3-dev python3-numpy xvfb xauth x11-utils mesa-utils
+  # glslangValidator (Mapper.ShaderVariants)
+  glslang-tools
   # Mesa: llvmpipe through GLX and EGL, zink on lavapipe (bindless textures) through Vulkan
   libgl1-mesa-dri libglx-mesa0 libegl-mesa0 libegl1 libgl-dev libegl-dev libopengl-dev
   mesa-vulkan-drivers

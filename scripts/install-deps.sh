@@ -70,6 +70,8 @@ T_START=$SECONDS
 # ---------------------------------------------------------------------------------------------------- packages
 # Build and test tools.
 PKGS_BUILD=(cmake g++ make ninja-build pkg-config patchelf clang-format libgtest-dev libgmock-dev libglm-dev nlohmann-json3-dev)
+# glslangValidator: Mapper.ShaderVariants checks every single-pass shader variant with it.
+PKGS_BUILD+=(glslang-tools)
 # The Debian 13 and testing roots of scripts/debian-root.sh (configurations trixie-*, forky-*).
 PKGS_BUILD+=(debootstrap)
 # Headless GLX rendering.
