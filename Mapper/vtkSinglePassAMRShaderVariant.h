@@ -48,8 +48,8 @@ struct vtkSinglePassAMRShaderVariant
   int Ablation = 0; ///< 0 none, 1 traversal only, 2 sampling only
   bool Shade = false;
   bool Shadows = false;
-  bool WorkCounters = false;  ///< AMRSP_WORK_COUNTERS (ignored with WorkCount or the probe)
-  int WorkCount = 0;          ///< AMRSP_WORK_COUNT 1..3 (ignored with the probe)
+  bool WorkCounters = false;   ///< AMRSP_WORK_COUNTERS (ignored with WorkCount or the probe)
+  int WorkCount = 0;           ///< AMRSP_WORK_COUNT 1..3 (ignored with the probe)
   bool OccupancyProbe = false; ///< GL_NV_shader_thread_builtins
   int GroupWidth = 8;          ///< compute: work group size
   int GroupHeight = 4;

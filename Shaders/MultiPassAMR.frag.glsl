@@ -78,7 +78,7 @@ void main()
     discard; // the node lies behind the eye or behind opaque geometry on this ray
   }
 
-  // Sampling rule: n = max(1, ceil(length / D)) equal steps, samples at their midpoints.
+  // Sampling rule: n = max(1, ceil(length / D)) equal steps, sample k at (k + SampleOffset) dt.
   float segmentLength = tEnd - t;
   int n = max(1, int(ceil(segmentLength / amrspStep)));
   float dt = segmentLength / float(n);
@@ -87,7 +87,7 @@ void main()
   float alpha = 0.0;
   for (int k = 0; k < n; ++k)
   {
-    float ts = t + (float(k) + 0.5) * dt;
+    float ts = t + (float(k) + 0.4618034) * dt; // amrsp::SampleOffset
     vec3 p = ro + ts * rd;
     ivec3 texel;
     vec3 where;

@@ -77,7 +77,7 @@ float amrspTLeave;
 bool amrspPushDown;
 uvec2 amrspTexel;
 
-// ---- The current segment's sampling: n samples at the midpoints of n equal steps dt
+// ---- The current segment's sampling: n samples, one in each of n equal steps dt
 uvec2 amrspSegDataNode;
 uvec2 amrspSegBrickRef;
 int amrspSegLevel;
@@ -289,7 +289,7 @@ void amrspBeginSegment()
   amrspSegLevel = int(amrspDataLevel(amrspSegDataNode));
   amrspLeafCells(amrspSegLevel, amrspLoF, amrspHiF, amrspSegFirstCell, amrspSegLastCell);
   amrspSegCellSize = amrspCellSize(amrspSegLevel);
-  // Sampling rule: n = max(1, ceil(length / D)) equal steps, samples at their midpoints.
+  // Sampling rule: n = max(1, ceil(length / D)) equal steps, sample k at (k + SampleOffset) dt.
   float segmentLength = amrspTLeave - amrspT;
   amrspSegN = max(1, int(ceil(segmentLength / amrspStep(amrspSegLevel))));
 #if defined(AMRSP_ABLATION) && AMRSP_ABLATION == 1
@@ -312,7 +312,8 @@ bool amrspSampleStep()
 #if AMRSP_WORK_COUNT == 3
   ++amrspWorkCount;
 #endif
-  float ts = amrspT + (float(amrspSegK) + 0.5) * amrspSegDt;
+  // amrsp::SampleOffset: not the midpoint, so that no sample lies exactly on a cell face
+  float ts = amrspT + (float(amrspSegK) + 0.4618034) * amrspSegDt;
   ++amrspSegK;
   vec3 p = amrspRo + ts * amrspRd;
   float scalar = amrspSampleBrick(amrspSegDataNode, amrspSegBrickRef, p, amrspSegCellSize,

@@ -74,9 +74,16 @@ bool amrspSampleNear(vec3 q, out float value)
 }
 
 // Model-space gradient by central differences through the tree (one-sided where a neighbour is
-// absent), as amrsp::Gradient.
+// absent), as amrsp::Gradient: for nearest cells the stencil of p's cell, from its centre (a
+// sample exactly on a cell face, which the sampling rule produces, takes one cell's stencil
+// whatever the last bit of p; amrsp/Shading.h), for a continuous field p's own.
 vec3 amrspGradient(vec3 p, float value, vec3 cellSize)
 {
+#if defined(AMRSP_CELL_CENTRED) && !defined(AMRSP_SMOOTH_CELLS)
+  vec3 b = (floor(p / cellSize) + 0.5) * cellSize;
+#else
+  vec3 b = p;
+#endif
   vec3 g = vec3(0.0);
   for (int a = 0; a < 3; ++a)
   {
@@ -84,12 +91,12 @@ vec3 amrspGradient(vec3 p, float value, vec3 cellSize)
     e[a] = cellSize[a];
     float plus, minus;
     float n = 2.0;
-    if (!amrspSampleNear(p + e, plus))
+    if (!amrspSampleNear(b + e, plus))
     {
       plus = value;
       n -= 1.0;
     }
-    if (!amrspSampleNear(p - e, minus))
+    if (!amrspSampleNear(b - e, minus))
     {
       minus = value;
       n -= 1.0;

@@ -373,7 +373,7 @@ void SampleRayKdTree(const Hierarchy& h, const EncodedKdTree& tree, const glm::d
     const double dt = length / n;
     for (int k = 0; k < n; ++k)
     {
-      const double t = static_cast<double>(s.T0) + (k + 0.5) * dt;
+      const double t = static_cast<double>(s.T0) + (k + static_cast<double>(SampleOffset)) * dt;
       const glm::dvec3 p = o + t * d;
       samples.push_back(TreeSample{ p, g, glm::i64vec3(glm::floor(p * ratio)) });
     }
@@ -412,6 +412,7 @@ KdTreeRays::KdTreeRays(
   {
     Shading.Neighbours = Lookup;
   }
+  Shading.CellStencil = !SmoothCells && !h.VertexCentred;
 }
 
 glm::vec4 KdTreeRays::Pixel(int i, int j, std::vector<RaySegment>& segments, RenderStats& stats,
@@ -496,7 +497,7 @@ glm::vec4 KdTreeRays::Pixel(int i, int j, std::vector<RaySegment>& segments, Ren
     const glm::ivec3 offset = amrspDataOffset(dn);
     for (int k = 0; k < n; ++k)
     {
-      const float t = seg.T0 + (static_cast<float>(k) + 0.5f) * dt;
+      const float t = seg.T0 + (static_cast<float>(k) + SampleOffset) * dt;
       const glm::vec3 p = o + t * d;
       float v = SegmentSample(h, Atlas, g, p, cellSize, first, last, offset);
       if (SmoothCells)

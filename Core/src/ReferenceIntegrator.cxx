@@ -123,6 +123,7 @@ Image RenderReference(const Hierarchy& h, const RenderSettings& s)
   {
     shading.Neighbours = lookup;
   }
+  shading.CellStencil = !smoothCells && !h.VertexCentred;
 
   StatsSink sink;
   sink.Target = s.Stats;

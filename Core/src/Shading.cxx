@@ -35,13 +35,15 @@ glm::dvec3 Gradient(const ShadingContext& c, const PointLookup& f, const glm::dv
   const glm::dvec3& cellSize)
 {
   glm::dvec3 g(0.0);
+  // nearest cells: the stencil of p's cell, from its centre (a sample on a face takes one cell's)
+  const glm::dvec3 b = c.CellStencil ? (glm::floor(p / cellSize) + 0.5) * cellSize : p;
   for (int a = 0; a < 3; ++a)
   {
     glm::dvec3 e(0.0);
     e[a] = cellSize[a];
     glm::dvec3 ignored;
-    double plus = f(p + e, ignored);
-    double minus = f(p - e, ignored);
+    double plus = f(b + e, ignored);
+    double minus = f(b - e, ignored);
     int n = 2;
     if (std::isnan(plus))
     {

@@ -11,7 +11,8 @@
 /// - Sampling rule of the kD-tree integrator (and of the GPU shader): a segment of data level d,
 ///   [t0, t1], is cut into n = max(1, ceil((t1 - t0) / D)) equal steps, D = SampleDistanceFactor
 ///   times the smallest world-space edge of a level-d cell (LevelSampleStep, amrsp/SampleStep.h);
-///   samples sit at the step midpoints. Cell-centred data is sampled nearest-cell.
+///   sample k sits at t0 + (k + SampleOffset) dt, just before the step's midpoint (never exactly
+///   on a cell face: amrsp/SampleStep.h). Cell-centred data is sampled nearest-cell.
 /// - Reference integrator: no kD-tree. It marches the root box with steps of
 ///   ReferenceSampleFactor times the smallest edge of the finest cell at the current point, found
 ///   directly from the hierarchy (finest grid containing the point), and samples step midpoints.

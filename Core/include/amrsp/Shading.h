@@ -9,8 +9,14 @@
 /// - Lookup: the scalar at a point p (level-0 index units) and the cell size (level-0 index units)
 ///   of the level it comes from; absent (NaN) outside every grid and outside the root box.
 /// - Gradient at a sample p of value v whose level has cell size h (index units): per axis a
-///   central difference (f(p + h_a e_a) - f(p - h_a e_a)) / (2 h_a s_a), s = level-0 spacing
-///   (world units per index unit); an absent neighbour is replaced by v and the difference becomes
+///   central difference (f(b + h_a e_a) - f(b - h_a e_a)) / (2 h_a s_a), s = level-0 spacing
+///   (world units per index unit). b is p for a continuous field (vertex data, smooth cells); for
+///   nearest cells (ShadingContext::CellStencil) b is the centre of p's cell, (floor(p / h) +
+///   1/2) h, so the stencil is that cell's neighbours: the sampling rule puts samples exactly on
+///   cell faces (the middle sample of a segment between two faces of one axis), where p's last
+///   bit, which a compiler's contraction or order of operations decides, would otherwise pick the
+///   stencil, and a neighbour one cell inside the domain or outside it. An absent neighbour is
+///   replaced by v and the difference becomes
 ///   one-sided (denominator h_a s_a); both absent gives 0. The neighbours may lie in other grids
 ///   and other levels: the lookup finds them. The neighbour values come from
 ///   ShadingContext::Neighbours when set (the integrators set it to the smooth reconstruction
@@ -74,6 +80,10 @@ struct ShadingContext
   /// The lookup of the gradient's neighbours; empty: the point lookup passed to the rules (which
   /// shadow rays and iso-surface refinement always use).
   PointLookup Neighbours;
+  /// Nearest-cell data: the gradient's stencil is the neighbours of the sample's cell, at their
+  /// centres (see the gradient rule above); false for a continuous field (vertex data, smooth
+  /// cells), where it is p's.
+  bool CellStencil = false;
 };
 
 /// Resolves the light for a camera (position and focal point in world units).

@@ -12,12 +12,11 @@
 // levels) and with a second mix of them; then each caster and grid data with each diagnostic
 // output (the work counters, the three work counts, the two ablations). 644 variants. The
 // composition does not depend on the VTK version: CTest registers this test in the paraview
-// configuration only (scripts/build.sh), once per CI run. Two deviations, both glslang 12's limits and said
-// in the output: the bindless waterfall variants are checked as GLSL 4.50, fragment and compute
-// (glslang declares
-// GL_ARB_shader_ballot's functions from 4.50 only; Mesa and NVIDIA from 1.50, as the spec
-// allows), and the occupancy probe (GL_NV_shader_thread_builtins, unknown to glslang) is not
-// checked here: the GPU profile compiles it on NVIDIA.
+// configuration only (scripts/build.sh), once per CI run. Two deviations, both glslang 12's limits
+// and said in the output: the bindless waterfall variants are checked as GLSL 4.50, fragment and
+// compute (glslang declares GL_ARB_shader_ballot's functions from 4.50 only; Mesa and NVIDIA
+// from 1.50, as the spec allows), and the occupancy probe (GL_NV_shader_thread_builtins, unknown to
+// glslang) is not checked here: the GPU profile compiles it on NVIDIA.
 //
 // A variant that fails prints its defines and glslangValidator's first errors; the test also
 // shows that a broken source is rejected (a type error added to the ray's code).
