@@ -29,9 +29,10 @@ inline double LevelMinEdge(const Hierarchy& h, int level)
 /// faces of one axis and spans an even number of cells along it would put its middle sample
 /// exactly on a cell face, where the last bit of the position (which a compiler's contraction,
 /// order of operations or approximate division decides) would pick the cell, and with it the
-/// value and the gradient's stencil. With this offset (0.5 - 0.0381966, a float of many bits) a
-/// sample lands on a face only where a node spans a multiple of 2^24 cells along the axis, which
-/// no texture allows; near a face it lands as often as any position would. The kD-tree
+/// value and the gradient's stencil. This offset (about 0.5 - 0.0381966) is the float
+/// 15495551 / 2^25: a sample lands on a face only where a node spans a multiple of 2^25 cells
+/// along the axis, which no texture allows (Core.SampleStep.NoSampleSitsExactlyOnACellFace);
+/// near a face it lands as often as any position would. The kD-tree
 /// integrators and both shaders (Shaders/RaySteps.glsl, Shaders/MultiPassAMR.frag.glsl, written
 /// there as the same literal) use it.
 constexpr float SampleOffset = 0.4618034f;
