@@ -722,6 +722,17 @@ const char* vtkSinglePassAMRVolumeRepresentation::GetLastDataStorage()
 }
 
 //------------------------------------------------------------------------------
+const char* vtkSinglePassAMRVolumeRepresentation::GetLastRayLoop()
+{
+  if (this->Method == METHOD_MULTI_PASS || this->VolumeMapper->GetLastDataStorage() < 0)
+  {
+    return "none";
+  }
+  return this->VolumeMapper->GetLastRayLoop() == vtkSinglePassAMRVolumeMapper::FLAT_LOOP ? "flat"
+                                                                                         : "nested";
+}
+
+//------------------------------------------------------------------------------
 const char* vtkSinglePassAMRVolumeRepresentation::GetLastRayCaster()
 {
   if (this->Method == METHOD_MULTI_PASS)

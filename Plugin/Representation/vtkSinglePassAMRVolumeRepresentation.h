@@ -108,6 +108,9 @@ public:
   /// AUTO_CASTER).
   void SetRayCaster(int caster);
   int GetRayCaster();
+  /// The shader's ray loop (vtkSinglePassAMRVolumeMapper::RayLoops; default NESTED_LOOPS).
+  void SetRayLoop(int loop);
+  int GetRayLoop();
   ///@}
 
   ///@{
@@ -225,6 +228,9 @@ public:
   /// The caster of the last frame (SinglePassRayCaster): "fragment" or "compute"; "none" for the
   /// multi-pass method or before the first successful frame.
   const char* GetLastRayCaster();
+  /// The ray loop of the last frame (SinglePassRayLoop): "nested" or "flat"; "none" for the
+  /// multi-pass method or before the first successful frame.
+  const char* GetLastRayLoop();
   ///@}
 
 protected:

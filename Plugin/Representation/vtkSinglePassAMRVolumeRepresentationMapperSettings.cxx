@@ -74,6 +74,18 @@ int vtkSinglePassAMRVolumeRepresentation::GetRayCaster()
 }
 
 //------------------------------------------------------------------------------
+void vtkSinglePassAMRVolumeRepresentation::SetRayLoop(int loop)
+{
+  this->VolumeMapper->SetRayLoop(loop);
+}
+
+//------------------------------------------------------------------------------
+int vtkSinglePassAMRVolumeRepresentation::GetRayLoop()
+{
+  return this->VolumeMapper->GetRayLoop();
+}
+
+//------------------------------------------------------------------------------
 void vtkSinglePassAMRVolumeRepresentation::SetShade(bool on)
 {
   this->Property->SetShade(on ? 1 : 0);
