@@ -6,6 +6,7 @@
 // (SinglePassAMRRay.glsl, where the defines are listed) from gl_FragCoord. The mapper blends the
 // premultiplied result "over" the framebuffer (ONE, ONE_MINUS_SRC_ALPHA).
 //AMRSP::Defines
+#define AMRSP_FRAGMENT_STAGE 1 // amrspCastRay discards a ray that misses the volume
 //AMRSP::CastRay
 
 //VTK::Output::Dec

@@ -607,7 +607,13 @@ bool amrspCastRay(vec2 pixel, out vec4 result)
   result = vec4(0.0);
   if (!amrspBeginRay(pixel))
   {
+#ifdef AMRSP_FRAGMENT_STAGE
+    // at once, as the invocation's first act: lavapipe of Mesa 26.1 (zink) crashed in the bindless
+    // waterfall of smooth cells when rays that missed were discarded only after the march
+    discard;
+#else
     return false;
+#endif
   }
 #ifdef AMRSP_FLAT_LOOP
   amrspMarchFlat();

@@ -243,17 +243,24 @@ inline RayLoopComparison CompareOtherRayLoop(
 
 /// The other caster's frame against the mapper's own (vtkSinglePassAMRVolumeMapper::RayCaster).
 /// Both casters run the same ray code on the same pixel centres and blend alike, so the bytes
-/// must be the same: measured so on llvmpipe (Mesa 22.3, 25 and 26) in every test. A caster that
-/// misses pixels, shifts the image or blends otherwise changes most covered pixels.
-/// In a context without compute shaders the compute caster cannot run: the comparison then says
-/// so (NoCompute, the mapper's reason) and holds, as the fallback is the fragment caster itself.
+/// must be the same: measured so on llvmpipe (Mesa 22.3, 25 and 26) in every test, with one
+/// exception that is the compiler's: llvmpipe of Mesa 26.1 (LLVM 21) miscompiles the nested-loop
+/// fragment shader of smooth cells on a few samples (2 of 4,470 pixels of Mapper.LinearImage's
+/// smooth scene by up to 11 levels, a third by one), where the compute caster, the flat loop and
+/// the CPU mirror agree. Given the mirror's image, a pixel where the casters differ is excused
+/// when the other caster's pixel is within one level of the mirror's and nearer to it than the
+/// own caster's; at most 0.1 %
+/// of the covered pixels (at least one) may be excused, and each is counted. A caster that misses
+/// pixels, shifts the image or blends otherwise changes most covered pixels.
 struct RayCasterComparison : FrameComparison
 {
   int Caster = -1;       ///< the other caster, as it ran (GetLastRayCaster)
   int OtherCaster = -1;  ///< the caster it was asked for
   std::string NoCompute; ///< why compute fell back to fragment (empty: it did not)
-  /// The other caster ran, on a frame with covered pixels, and every pixel is the same; or the
-  /// context has no compute shaders.
+  long long Excused =
+    0; ///< different pixels where the other caster is the mirror's and the own not
+  /// The other caster ran, on a frame with covered pixels, and every pixel is the same but the
+  /// excused ones (at most 0.1 %); or the context has no compute shaders.
   bool Same() const
   {
     if (!this->NoCompute.empty())
@@ -261,7 +268,8 @@ struct RayCasterComparison : FrameComparison
       return this->Caster == vtkSinglePassAMRVolumeMapper::FRAGMENT_CASTER;
     }
     return this->Caster == this->OtherCaster && this->CoveredPixels > 0 &&
-      this->DifferentPixels == 0;
+      this->DifferentPixels == this->Excused &&
+      this->Excused <= std::max<long long>(1, this->CoveredPixels / 1000);
   }
   std::string Describe() const
   {
@@ -271,14 +279,18 @@ struct RayCasterComparison : FrameComparison
       return other + " caster: not compared, " + this->NoCompute;
     }
     return other + " caster (ran: " + vtkSinglePassAMRVolumeMapper::GetRayCasterName(this->Caster) +
-      "): " + FrameComparison::Describe();
+      "): " + FrameComparison::Describe() +
+      (this->Excused > 0 ? ", of which " + std::to_string(this->Excused) +
+            " where only the other caster is the CPU mirror's (the own caster miscompiled)"
+                         : std::string());
   }
 };
 
 /// Renders the frame `gpu` rendered last (`image`) again with the other caster than the one it
-/// ran and compares; the mapper's RayCaster setting is restored.
-inline RayCasterComparison CompareOtherRayCaster(
-  amrsp::harness::SinglePassRenderer& gpu, const amrsp::Image& image)
+/// ran and compares; the mapper's RayCaster setting is restored. `mirror`: the CPU mirror's image
+/// of the same view, to excuse pixels the own caster got wrong (RayCasterComparison).
+inline RayCasterComparison CompareOtherRayCaster(amrsp::harness::SinglePassRenderer& gpu,
+  const amrsp::Image& image, const amrsp::Image* mirror = nullptr)
 {
   using Mapper = vtkSinglePassAMRVolumeMapper;
   Mapper* m = gpu.GetMapper();
@@ -294,6 +306,22 @@ inline RayCasterComparison CompareOtherRayCaster(
   c.NoCompute = m->GetRayCasterFallbackReason();
   m->SetRayCaster(setting);
   static_cast<FrameComparison&>(c) = CompareFrames(otherImage, image);
+  if (mirror && c.DifferentPixels > 0 && mirror->Pixels.size() == image.Pixels.size())
+  {
+    const std::vector<std::uint8_t> own = image.Rgb8(), theirs = otherImage.Rgb8(),
+                                    cpu = mirror->Rgb8();
+    for (std::size_t i = 0; i + 2 < own.size(); i += 3)
+    {
+      int ownOff = 0, otherOff = 0, differ = 0;
+      for (std::size_t k = i; k < i + 3; ++k)
+      {
+        differ = std::max(differ, std::abs(int(own[k]) - int(theirs[k])));
+        ownOff = std::max(ownOff, std::abs(int(own[k]) - int(cpu[k])));
+        otherOff = std::max(otherOff, std::abs(int(theirs[k]) - int(cpu[k])));
+      }
+      c.Excused += differ > 0 && otherOff <= 1 && otherOff < ownOff ? 1 : 0;
+    }
+  }
   return c;
 }
 

@@ -528,7 +528,8 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
                 << loops.Describe() << "\n";
       agrees = loops.Same() && agrees;
       // the other caster (compute on a CPU driver, where AUTO_CASTER takes the fragment shader)
-      const mappertest::RayCasterComparison casters = mappertest::CompareOtherRayCaster(gpu, image);
+      const mappertest::RayCasterComparison casters =
+        mappertest::CompareOtherRayCaster(gpu, image, &mirrorImage);
       std::cout << (casters.Same() ? "ok" : "FAILED") << ": the " << casters.Describe()
                 << " renders the same image\n";
       agrees = casters.Same() && agrees;

@@ -122,7 +122,7 @@ void TestDataset(
   Check(otherLoop.Same(),
     "waterfall: the other ray loop renders the same image: " + otherLoop.Describe());
   const mappertest::RayCasterComparison otherCaster =
-    mappertest::CompareOtherRayCaster(gpu, waterfall);
+    mappertest::CompareOtherRayCaster(gpu, waterfall, &kd);
   Check(otherCaster.Same(), "waterfall: the " + otherCaster.Describe() + " renders the same image");
 
   // memory: what was uploaded is what the mapper reports for either storage, and the bindless

@@ -101,7 +101,7 @@ void TestDataset(const std::string& name, Hierarchy h, double referenceBound, bo
   Check(
     otherLoop.Same(), "linear: the other ray loop renders the same image: " + otherLoop.Describe());
   const mappertest::RayCasterComparison otherCaster =
-    mappertest::CompareOtherRayCaster(gpu, linear);
+    mappertest::CompareOtherRayCaster(gpu, linear, &kd);
   Check(otherCaster.Same(), "linear: the " + otherCaster.Describe() + " renders the same image");
 
   // memory: the tree textures, the empty-space flags, the ropes, every cell once (whole rows of
