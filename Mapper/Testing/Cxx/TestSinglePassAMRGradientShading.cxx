@@ -11,13 +11,14 @@ int TestSinglePassAMRGradientShading(int argc, char* argv[])
   amrsp::test::BaselineCase c;
   c.Dataset = "synthetic:cosmo:grids=60,levels=3,cells=100k,seed=3";
   c.Options = { "--size", "128x128", "--zoom", "1.5", "--unit-distance", "0.005", "--shade", "on" };
-  // covered-pixel bounds close to what llvmpipe (LLVM 15) measures, each wrong image (level 0
-  // alone included) rejected by the reference with at least twice the margin; measured:
-  // reference 2.95, 3.07 % of the pixels off by more than 8 levels, mirror 0.06, stored baseline
-  // 0.00; the reference's two samples per cell (the unshaded view differs by 3.8 in the same way)
+  // covered-pixel bounds close to what llvmpipe (LLVM 15, 19 and 21) measures, each wrong image
+  // (level 0 alone included) rejected by the reference with at least twice the margin; measured:
+  // reference 2.99, 2.93 % of the pixels off by more than 8 levels, mirror 0.02 (0.06 while
+  // samples sat on cell faces: amrsp::SampleOffset), stored baseline 0.00; the reference's two
+  // samples per cell (the unshaded view differs by 3.8 in the same way)
   c.ReferenceBound = 4.5;
   c.ReferenceOffBound = 0.042;
-  c.MirrorBound = 0.3;
+  c.MirrorBound = 0.1;
   c.BaselineBound = 0.3;
   c.WrongImages.push_back(
     { "no shading", [](amrsp::RenderSettings& s) { s.Light.Shade = false; }, nullptr });
