@@ -5,15 +5,11 @@
 #include "AmrspDataset.h"
 #include "AmrspSinglePass.h"
 #include "MapperTestHelpers.h"
+#include "MapperTestScenes.h"
 
-#include "vtkActor.h"
-#include "vtkNew.h"
-#include "vtkPolyDataMapper.h"
-#include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
-#include "vtkSphereSource.h"
 
 #include <algorithm>
 #include <cmath>
@@ -119,19 +115,7 @@ void TestInteractiveFrames()
   mapper->AutoAdjustSampleDistancesOn();
 
   // opaque geometry: the reduced frame reads the viewport-sized depth at its own pixels
-  vtkNew<vtkSphereSource> sphere;
-  const glm::dvec3 lo = h.Origin, hi = h.WorldHi(h.RootCells(), 0);
-  const glm::dvec3 centre = 0.5 * (lo + hi);
-  sphere->SetCenter(centre.x, centre.y, centre.z);
-  sphere->SetRadius(0.3 * (hi.x - lo.x));
-  sphere->SetThetaResolution(48);
-  sphere->SetPhiResolution(48);
-  vtkNew<vtkPolyDataMapper> sphereMapper;
-  sphereMapper->SetInputConnection(sphere->GetOutputPort());
-  vtkNew<vtkActor> actor;
-  actor->SetMapper(sphereMapper);
-  actor->GetProperty()->SetColor(0.2, 0.8, 0.2);
-  gpu.GetRenderer()->AddActor(actor);
+  mappertest::AddCentralSphere(gpu.GetRenderer(), h);
   const Image stillSphere = gpu.RenderAsIs(ms);
   window->SetDesiredUpdateRate(InteractiveRate);
   const Image interactiveSphere = gpu.RenderAsIs(ms);

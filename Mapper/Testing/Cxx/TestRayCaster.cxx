@@ -15,18 +15,15 @@
 //                  (GetRayCasterFallbackReason) with one warning, and render its image.
 #include "AmrspSinglePass.h"
 #include "MapperTestHelpers.h"
+#include "MapperTestScenes.h"
 
-#include "vtkActor.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkNew.h"
 #include "vtkOpenGLShaderProperty.h"
-#include "vtkPolyDataMapper.h"
-#include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
-#include "vtkSphereSource.h"
 #include "vtkVolume.h"
 #include "vtkVolumeCollection.h"
 
@@ -113,17 +110,7 @@ void TestCasters()
   SameBytes(gpu, "a renderer over part of the window");
 
   // opaque geometry cutting the volume: both casters read its depth at their pixels
-  vtkNew<vtkSphereSource> sphere;
-  const glm::dvec3 lo = h.Origin, hi = h.WorldHi(h.RootCells(), 0);
-  const glm::dvec3 centre = 0.5 * (lo + hi);
-  sphere->SetCenter(centre.x, centre.y, centre.z);
-  sphere->SetRadius(0.3 * (hi.x - lo.x));
-  vtkNew<vtkPolyDataMapper> sphereMapper;
-  sphereMapper->SetInputConnection(sphere->GetOutputPort());
-  vtkNew<vtkActor> actor;
-  actor->SetMapper(sphereMapper);
-  actor->GetProperty()->SetColor(0.2, 0.8, 0.2);
-  gpu.GetRenderer()->AddActor(actor);
+  mappertest::AddCentralSphere(gpu.GetRenderer(), h);
   SameBytes(gpu, "opaque geometry inside the volume");
 
   // the comparison rejects a compute caster broken on purpose
