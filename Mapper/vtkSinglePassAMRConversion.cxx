@@ -116,12 +116,28 @@ bool ReadLevels(vtkOverlappingAMR* amr, amrsp::Hierarchy& out, std::string& erro
   const unsigned int levels = amr->GetNumberOfLevels();
   const double* origin = amr->GetOrigin();
   out.Origin = glm::dvec3(origin[0], origin[1], origin[2]);
+  if (!std::isfinite(origin[0]) || !std::isfinite(origin[1]) || !std::isfinite(origin[2]))
+  {
+    std::ostringstream m;
+    m << "the AMR hierarchy's origin (" << origin[0] << ", " << origin[1] << ", " << origin[2]
+      << ") is not finite";
+    error = m.str();
+    return false;
+  }
   std::vector<glm::dvec3> spacing(levels);
   for (unsigned int l = 0; l < levels; ++l)
   {
     double s[3];
     amr->GetSpacing(l, s);
     spacing[l] = glm::dvec3(s[0], s[1], s[2]);
+    if (!std::isfinite(s[0]) || !std::isfinite(s[1]) || !std::isfinite(s[2]))
+    {
+      std::ostringstream m;
+      m << "level " << l << " has a spacing that is not finite (" << s[0] << ", " << s[1] << ", "
+        << s[2] << ")";
+      error = m.str();
+      return false;
+    }
     if (!(s[0] > 0.0 && s[1] > 0.0 && s[2] > 0.0))
     {
       std::ostringstream m;
@@ -145,6 +161,19 @@ bool ReadLevels(vtkOverlappingAMR* amr, amrsp::Hierarchy& out, std::string& erro
         std::ostringstream m;
         m << "unsupported refinement: level " << l << " refines level " << l - 1 << " by " << q
           << " along axis " << a << " (an integer ratio >= 1 is required)";
+        error = m.str();
+        return false;
+      }
+    }
+    // a declared ratio (VTK keeps it apart from the spacings) must be the spacings' ratio
+    if (r.x == r.y && r.y == r.z && model::HasRefinementRatio(amr))
+    {
+      const int declared = amr->GetRefinementRatio(l - 1);
+      if (declared > 0 && declared != r.x)
+      {
+        std::ostringstream m;
+        m << "the AMR hierarchy contradicts itself: level " << l << " refines level " << l - 1
+          << " by " << r.x << " (their spacings), its refinement ratio says " << declared;
         error = m.str();
         return false;
       }
@@ -380,6 +409,14 @@ bool vtkSinglePassAMRConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
         if (hi[a] < lo[a])
         {
           error = BlockName(l, i) + " is flat; volume rendering needs 3D data";
+          return false;
+        }
+        if (std::abs(static_cast<long long>(lo[a])) >= (1LL << 30) ||
+          std::abs(static_cast<long long>(hi[a])) >= (1LL << 30))
+        {
+          error = BlockName(l, i) + " has an AMR box beyond 2^30 cells of its level (" +
+            std::to_string(lo[a]) + " to " + std::to_string(hi[a]) + " on axis " +
+            std::to_string(a) + ")";
           return false;
         }
         g.Cells.Lo[a] = lo[a];

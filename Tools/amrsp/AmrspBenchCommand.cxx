@@ -466,7 +466,7 @@ int RunBench(int argc, char** argv)
   }
   catch (const std::exception& e)
   {
-    return Fail(e.what());
+    return Fail(e);
   }
 }
 

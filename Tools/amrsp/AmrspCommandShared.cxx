@@ -3,6 +3,7 @@
 #include "AmrspCommandShared.h"
 
 #include "AmrspDriver.h"
+#include "AmrspIsolatedRead.h"
 #include "AmrspProgress.h"
 
 #include "vtkImageData.h"
@@ -33,6 +34,13 @@ int Fail(const std::string& message)
 {
   std::cerr << "amrsp: error: " << message << "\n";
   return 1;
+}
+
+int Fail(const std::exception& e)
+{
+  Fail(std::string(e.what()));
+  const ReaderFailure* reader = dynamic_cast<const ReaderFailure*>(&e);
+  return reader ? reader->ExitCode : 1;
 }
 
 const std::vector<std::string> DatasetOptions = { "array", "component", "centering",

@@ -18,6 +18,7 @@
 
 #include <chrono>
 #include <initializer_list>
+#include <exception>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,9 @@ using Clock = std::chrono::steady_clock;
 double Seconds(Clock::time_point since);
 /// Prints "amrsp: error: MESSAGE" and returns the exit code 1.
 int Fail(const std::string& message);
+/// The same for an exception: its message, and the exit code of a reader that crashed (70) or
+/// did not finish in time (75) (ReaderFailure, AmrspIsolatedRead.h), else 1.
+int Fail(const std::exception& e);
 /// Whether --help was given.
 bool WantsHelp(const Arguments& a);
 

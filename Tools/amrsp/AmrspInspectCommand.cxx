@@ -213,7 +213,7 @@ int RunInspect(int argc, char** argv)
   }
   catch (const std::exception& e)
   {
-    return Fail(e.what());
+    return Fail(e);
   }
 }
 } // namespace tool

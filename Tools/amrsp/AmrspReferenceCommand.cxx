@@ -64,7 +64,7 @@ int RunReference(int argc, char** argv)
   }
   catch (const std::exception& e)
   {
-    return Fail(e.what());
+    return Fail(e);
   }
 }
 

@@ -274,7 +274,7 @@ int RunRender(int argc, char** argv)
   }
   catch (const std::exception& e)
   {
-    return Fail(e.what());
+    return Fail(e);
   }
 }
 

@@ -2,6 +2,7 @@
 #include "AmrspDataset.h"
 
 #include "AmrspFileChecks.h"
+#include "AmrspIsolatedRead.h"
 #include "AmrspProgress.h"
 
 #include "amrsp/SyntheticCosmo.h"
@@ -101,17 +102,23 @@ private:
   vtkNew<CollectingOutputWindow> Collector;
 };
 
-/// While alive, the readers' own diagnostics (HDF5's error stack, vtkLogger warnings) written
-/// straight to file descriptor 2 go to a temporary file instead of the user's terminal, a
-/// crash inside a reader ends the process with one line that names the reader and the file
-/// instead of a bare segmentation fault (exit code 70), and a reader still busy after
-/// `timeoutSeconds` ends it with one line too (exit code 75): some of VTK's readers loop forever
-/// on damaged files.
+/// For a read in this process (AMRSP_READ_IN_PROCESS=1; a reading child of ReadInChildProcess
+/// has its parent for this, and the guard stands aside there): while alive, the readers' own
+/// diagnostics (HDF5's error stack, vtkLogger warnings) written straight to file descriptor 2 go
+/// to a temporary file instead of the user's terminal, a crash inside a reader ends the process
+/// with one line that names the reader and the file instead of a bare segmentation fault (exit
+/// code 70), and a reader still busy after `timeoutSeconds` ends it with one line too (exit code
+/// 75): some of VTK's readers loop forever on damaged files.
 class ReaderGuard
 {
 public:
   explicit ReaderGuard(const std::string& what, double timeoutSeconds = 120.0)
   {
+    if (InReadingChild())
+    {
+      return; // the parent process bounds the reading child's time, memory and signals
+    }
+    Active = true;
     std::snprintf(TimeoutMessage, sizeof(TimeoutMessage),
       "amrsp: error: %s did not finish within %g s: VTK's reader is stuck on this file (a "
       "damaged or unusual file the reader loops on; --read-timeout changes the limit)\n",
@@ -149,6 +156,10 @@ public:
   }
   ~ReaderGuard()
   {
+    if (!Active)
+    {
+      return;
+    }
     {
       std::lock_guard<std::mutex> lock(Mutex);
       Done = true;
@@ -193,6 +204,7 @@ private:
   std::condition_variable Finished;
   bool Done = false;
   std::thread Watchdog;
+  bool Active = false;
 };
 char ReaderGuard::Message[1024];
 int ReaderGuard::SavedStderr = -1;
@@ -234,11 +246,18 @@ vtkSmartPointer<vtkOverlappingAMR> ReadHierarchicalBoxV01(const std::string& pat
   for (int i = 0; i < root->GetNumberOfNestedElements(); ++i)
   {
     vtkXMLDataElement* e = root->GetNestedElement(i);
+    const std::string damaged = "the VTK XML AMR file " + path + " is damaged: ";
     if (std::strcmp(e->GetName(), "RefinementRatio") == 0)
     {
       int level = 0, ratio = 2;
       e->GetScalarAttribute("level", level);
       e->GetScalarAttribute("refinement", ratio);
+      if (level < 0 || level >= 64 || ratio < 2 || ratio > 64)
+      {
+        throw DatasetError(damaged + "a RefinementRatio has level=\"" + std::to_string(level) +
+          "\" refinement=\"" + std::to_string(ratio) +
+          "\" (expected a level 0 to 63 and a ratio 2 to 64)");
+      }
       ratioOfLevel[level] = ratio;
     }
     else if (std::strcmp(e->GetName(), "DataSet") == 0)
@@ -249,13 +268,60 @@ vtkSmartPointer<vtkOverlappingAMR> ReadHierarchicalBoxV01(const std::string& pat
       {
         throw DatasetError(path + ": a DataSet element lacks group, dataset, amr_box or file");
       }
+      const std::string block =
+        "block " + std::to_string(b.Index) + " of level " + std::to_string(b.Level);
+      if (b.Level < 0 || b.Level >= 64 || b.Index < 0 || b.Index >= (1 << 20))
+      {
+        throw DatasetError(damaged + "a DataSet has group=\"" + std::to_string(b.Level) +
+          "\" dataset=\"" + std::to_string(b.Index) +
+          "\" (expected a group 0 to 63 and a dataset 0 to 2^20 - 1)");
+      }
+      for (int a = 0; a < 3; ++a)
+      {
+        if (b.Box[2 * a + 1] < b.Box[2 * a] || std::abs(b.Box[2 * a]) >= (1 << 30) ||
+          std::abs(b.Box[2 * a + 1]) >= (1 << 30))
+        {
+          throw DatasetError(damaged + block + " has amr_box=\"" + e->GetAttribute("amr_box") +
+            "\" (expected each upper index not below its lower one)");
+        }
+      }
       b.File = e->GetAttribute("file");
+      for (const Block& other : blocks)
+      {
+        if (other.Level == b.Level && other.Index == b.Index)
+        {
+          throw DatasetError(damaged + "two DataSet elements are " + block);
+        }
+      }
       blocks.push_back(b);
     }
   }
   if (blocks.empty())
   {
     throw DatasetError("the AMR hierarchy has no blocks (" + path + ")");
+  }
+  // every piece before VTK's image reader allocates for it (AmrspFileChecks.h), matching its box
+  for (const Block& b : blocks)
+  {
+    const std::string file = (std::filesystem::path(path).parent_path() / b.File).string();
+    const std::string block =
+      "block " + std::to_string(b.Index) + " of level " + std::to_string(b.Level) + " in " + path;
+    std::error_code ec;
+    if (!std::filesystem::exists(file, ec))
+    {
+      throw DatasetError("the piece file " + file + " of " + block + " is missing");
+    }
+    const std::vector<long long> cells = CheckVTIPiece(file, block);
+    for (int a = 0; a < 3; ++a)
+    {
+      const long long boxCells = b.Box[2 * a + 1] - b.Box[2 * a] + 1;
+      if (cells[a] != boxCells && !(cells[a] == 0 && boxCells == 1))
+      {
+        throw DatasetError("the piece file " + file + " of " + block + " holds " +
+          std::to_string(cells[a]) + " cells on axis " + std::to_string(a) + ", its amr_box " +
+          std::to_string(boxCells) + " (a piece of another block?)");
+      }
+    }
   }
   int levels = 0;
   for (const Block& b : blocks)
@@ -648,41 +714,9 @@ void ReadDatasetFile(const DatasetRequest& request, CaptureVTKMessages& capture,
   }
 }
 
-LoadedDataset LoadStored(const DatasetRequest& request)
+/// The hierarchy of out.Amr with the request's array and component (vtkSinglePassAMRConversion).
+void ConvertSelected(const DatasetRequest& request, LoadedDataset& out)
 {
-  const auto start = std::chrono::steady_clock::now();
-  LoadedDataset out;
-  out.Spec = request.Spec;
-  CaptureVTKMessages capture;
-  const std::string& spec = request.Spec;
-
-  if (spec.rfind("synthetic:cosmo", 0) == 0)
-  {
-    GenerateSyntheticCosmo(request, out);
-    out.LoadSeconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return out;
-  }
-
-  if (spec == "synthetic:pulse")
-  {
-    out.Format = "synthetic:pulse";
-    vtkNew<vtkAMRGaussianPulseSource> pulse;
-    pulse->SetDimension(3);
-    pulse->SetNumberOfLevels(2);
-    pulse->SetRefinementRatio(2);
-    out.Amr = RunAlgorithm(pulse, "vtkAMRGaussianPulseSource", capture);
-  }
-  else if (spec.rfind("synthetic:", 0) == 0)
-  {
-    throw DatasetError("unknown synthetic dataset '" + spec +
-      "' (known: synthetic:pulse, synthetic:cosmo[:grids=N,levels=L,cells=C,seed=S])");
-  }
-  else
-  {
-    ReadDatasetFile(request, capture, out);
-  }
-
   vtkSinglePassAMRConversion::ArraySelection selection;
   selection.Name = request.Array;
   if (selection.Name.empty() && out.Format == "synthetic:pulse")
@@ -694,7 +728,101 @@ LoadedDataset LoadStored(const DatasetRequest& request)
   std::string error;
   if (!vtkSinglePassAMRConversion::FromOverlappingAMR(out.Amr, selection, out.Data, error))
   {
-    throw DatasetError(error + " (" + spec + ")");
+    throw DatasetError(error + " (" + request.Spec + ")");
+  }
+  if (!request.NeedValues)
+  {
+    out.Data.Values.clear();
+  }
+}
+
+/// How messages name the read of the file or folder `spec`.
+std::string ReadingWhat(const std::string& spec)
+{
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const std::string ext = Lower(fs::path(spec).extension().string());
+  if (fs::is_directory(spec, ec))
+  {
+    return "reading the AMReX plotfile " + spec;
+  }
+  if (ext == ".hierarchy")
+  {
+    return "reading the Enzo hierarchy " + spec;
+  }
+  if (ext == ".vthb" || ext == ".vth" || ext == ".vtm")
+  {
+    return "reading the VTK XML AMR file " + spec;
+  }
+  return "reading " + spec;
+}
+
+/// A dataset file or folder read in a child process (AmrspIsolatedRead.h): the file checks, VTK's
+/// reader and the conversion run there; the hierarchy comes back, and out.Amr is made from it
+/// when asked for.
+void ReadIsolated(const DatasetRequest& request, LoadedDataset& out)
+{
+  namespace fs = std::filesystem;
+  const std::string& spec = request.Spec;
+  std::error_code ec;
+  if (!fs::exists(spec, ec))
+  {
+    throw DatasetError("no such file or directory: " + spec);
+  }
+  // the address space the child may use: from the dataset's folder (a hierarchy's grid files, a
+  // plotfile's levels, a .vthb's pieces lie there)
+  const std::string folder =
+    fs::is_directory(spec, ec) ? spec : fs::absolute(spec, ec).parent_path().string();
+  const IsolatedResult r =
+    ReadInChildProcess(ReadingWhat(spec), request.ReadTimeoutSeconds, ReadMemoryLimit({ folder }),
+      [&request]
+      {
+        LoadedDataset child;
+        child.Spec = request.Spec;
+        CaptureVTKMessages capture;
+        ReadDatasetFile(request, capture, child);
+        ConvertSelected(request, child);
+        return IsolatedResult{ std::move(child.Data), child.Format };
+      });
+  out.Data = r.Data;
+  out.Format = r.Format;
+  if (request.NeedVTK)
+  {
+    out.Amr = vtkSmartPointer<vtkOverlappingAMR>::New();
+    vtkSinglePassAMRConversion::ToOverlappingAMR(out.Data, out.Amr);
+  }
+}
+
+LoadedDataset LoadStored(const DatasetRequest& request)
+{
+  const auto start = std::chrono::steady_clock::now();
+  LoadedDataset out;
+  out.Spec = request.Spec;
+  const std::string& spec = request.Spec;
+
+  if (spec.rfind("synthetic:cosmo", 0) == 0)
+  {
+    GenerateSyntheticCosmo(request, out);
+  }
+  else if (spec == "synthetic:pulse")
+  {
+    out.Format = "synthetic:pulse";
+    CaptureVTKMessages capture;
+    vtkNew<vtkAMRGaussianPulseSource> pulse;
+    pulse->SetDimension(3);
+    pulse->SetNumberOfLevels(2);
+    pulse->SetRefinementRatio(2);
+    out.Amr = RunAlgorithm(pulse, "vtkAMRGaussianPulseSource", capture);
+    ConvertSelected(request, out);
+  }
+  else if (spec.rfind("synthetic:", 0) == 0)
+  {
+    throw DatasetError("unknown synthetic dataset '" + spec +
+      "' (known: synthetic:pulse, synthetic:cosmo[:grids=N,levels=L,cells=C,seed=S])");
+  }
+  else
+  {
+    ReadIsolated(request, out);
   }
   out.LoadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

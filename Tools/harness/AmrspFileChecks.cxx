@@ -8,12 +8,14 @@
 #include "vtkXMLDataParser.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
+#include <type_traits>
 
 namespace amrsp
 {
@@ -67,6 +69,8 @@ struct EnzoEntry
   long long Number = 0;
   std::map<std::string, std::string> Values;
   std::vector<long long> Pointers; // grids named by its Pointer: lines (0 = none)
+  long long NextThisLevel = 0;     // its next grid of the same level (0 = none)
+  long long NextNextLevel = 0;     // its first child grid (0 = none)
   int PointerLines = 0;
   std::size_t Offset = 0;
 };
@@ -213,6 +217,14 @@ std::vector<EnzoEntry> ParseEnzoEntries(const std::string& text, const std::stri
       EnzoEntry& owner = entries[static_cast<std::size_t>(grid - 1)];
       ++owner.PointerLines;
       owner.Pointers.push_back(target);
+      if (key.find("NextGridThisLevel") != std::string::npos)
+      {
+        owner.NextThisLevel = target;
+      }
+      else if (key.find("NextGridNextLevel") != std::string::npos)
+      {
+        owner.NextNextLevel = target;
+      }
     }
     else
     {
@@ -266,6 +278,168 @@ void CheckEnzoEntriesComplete(
         throw DatasetError("the Enzo hierarchy " + name + " is truncated or damaged: grid " +
           std::to_string(e.Number) + " points to grid " + std::to_string(p) + ", but the file " +
           "describes " + std::to_string(count) + " grids");
+      }
+    }
+  }
+}
+
+/// `count` numbers of `type` from the Enzo value `text` (extra ones are ignored); false when
+/// there are fewer or one does not parse.
+template <typename T>
+bool EnzoNumbers(const std::string& text, int count, T* out)
+{
+  std::istringstream in(text);
+  for (int i = 0; i < count; ++i)
+  {
+    std::string word;
+    if (!(in >> word))
+    {
+      return false;
+    }
+    std::istringstream number(word);
+    number >> out[i];
+    if (number.fail() || !number.eof())
+    {
+      // "nan" and "inf" are doubles a damaged or diverged run can write: kept, checked below
+      if (std::is_floating_point<T>::value &&
+        (word == "nan" || word == "-nan" || word == "inf" || word == "-inf"))
+      {
+        out[i] = static_cast<T>(word[0] == '-' ? -HUGE_VAL : HUGE_VAL);
+        if (word.find("nan") != std::string::npos)
+        {
+          out[i] = static_cast<T>(NAN);
+        }
+        continue;
+      }
+      return false;
+    }
+  }
+  return true;
+}
+
+/// The fields of every grid entry VTK's reader trusts: the rank, the dimensions, the active
+/// index range inside them, the edges (finite, right above left), the cell width they make
+/// (finite, positive), and the refinement between a grid and its parent (a whole ratio of at
+/// least 2). VTK's reader asserts (an inverted index range), loops (a NaN edge) or divides by
+/// zero on them. Throws DatasetError naming the grid, the field, the value and what was expected.
+void CheckEnzoGridFields(const std::vector<EnzoEntry>& entries, const std::string& name)
+{
+  const auto bad = [&name](const EnzoEntry& e, const std::string& field, const std::string& value,
+                     const std::string& expected)
+  {
+    return DatasetError("the Enzo hierarchy " + name + " is damaged: grid " +
+      std::to_string(e.Number) + " has " + field + " = " + value + " (expected " + expected + ")");
+  };
+  std::vector<double> width(entries.size() * 3, 0.0);
+  std::vector<int> rankOf(entries.size(), 3);
+  for (std::size_t g = 0; g < entries.size(); ++g)
+  {
+    const EnzoEntry& e = entries[g];
+    int rank = 3;
+    const auto r = e.Values.find("GridRank");
+    if (r != e.Values.end() && (!EnzoNumbers(r->second, 1, &rank) || rank < 1 || rank > 3))
+    {
+      throw bad(e, "GridRank", r->second, "1, 2 or 3");
+    }
+    rankOf[g] = rank;
+    long long dim[3], start[3], end[3];
+    double left[3], right[3];
+    const auto get = [&](const char* key, auto* out)
+    {
+      const std::string& value = e.Values.at(key);
+      if (!EnzoNumbers(value, rank, out))
+      {
+        throw bad(e, key, value, std::to_string(rank) + " numbers");
+      }
+    };
+    get("GridDimension", dim);
+    get("GridStartIndex", start);
+    get("GridEndIndex", end);
+    get("GridLeftEdge", left);
+    get("GridRightEdge", right);
+    for (int a = 0; a < rank; ++a)
+    {
+      const std::string axis = " on axis " + std::to_string(a);
+      if (dim[a] < 1 || dim[a] > (1LL << 24))
+      {
+        throw bad(
+          e, "GridDimension", e.Values.at("GridDimension"), "1 to 16777216 cells per axis" + axis);
+      }
+      if (start[a] < 0 || start[a] >= dim[a])
+      {
+        throw bad(
+          e, "GridStartIndex", e.Values.at("GridStartIndex"), "0 to GridDimension - 1" + axis);
+      }
+      if (end[a] < start[a] || end[a] >= dim[a])
+      {
+        throw bad(e, "GridEndIndex", e.Values.at("GridEndIndex"),
+          "GridStartIndex to GridDimension - 1" + axis);
+      }
+      if (!std::isfinite(left[a]) || !std::isfinite(right[a]) || !(right[a] > left[a]))
+      {
+        throw bad(e, "GridLeftEdge, GridRightEdge",
+          e.Values.at("GridLeftEdge") + ", " + e.Values.at("GridRightEdge"),
+          "finite edges, the right one above the left one" + axis);
+      }
+      width[3 * g + a] = (right[a] - left[a]) / static_cast<double>(end[a] - start[a] + 1);
+      if (!std::isfinite(width[3 * g + a]) || !(width[3 * g + a] > 0.0))
+      {
+        throw bad(e, "cell width", std::to_string(width[3 * g + a]), "finite and positive" + axis);
+      }
+    }
+  }
+  // the levels, from grid 1 along the pointers: a grid's first child (NextGridNextLevel) and
+  // that child's siblings (NextGridThisLevel) are one level deeper and refine it by a whole ratio
+  // of at least 2
+  std::vector<int> level(entries.size(), -1);
+  std::vector<std::size_t> parent(entries.size(), 0);
+  std::vector<std::size_t> todo = { 0 };
+  level[0] = 0;
+  while (!todo.empty())
+  {
+    const std::size_t g = todo.back();
+    todo.pop_back();
+    const EnzoEntry& e = entries[g];
+    const auto reach = [&](long long target, int targetLevel, std::size_t targetParent)
+    {
+      if (target <= 0 || target > static_cast<long long>(entries.size()))
+      {
+        return;
+      }
+      const std::size_t t = static_cast<std::size_t>(target - 1);
+      if (level[t] >= 0)
+      {
+        return;
+      }
+      if (targetLevel > 64)
+      {
+        throw DatasetError("the Enzo hierarchy " + name + " is damaged: its grids nest " +
+          std::to_string(targetLevel) + " levels deep (expected at most 64)");
+      }
+      level[t] = targetLevel;
+      parent[t] = targetParent;
+      todo.push_back(t);
+    };
+    reach(e.NextThisLevel, level[g], parent[g]);
+    reach(e.NextNextLevel, level[g] + 1, g);
+  }
+  for (std::size_t c = 0; c < entries.size(); ++c)
+  {
+    if (level[c] <= 0)
+    {
+      continue;
+    }
+    const std::size_t g = parent[c];
+    for (int a = 0; a < std::min(rankOf[g], rankOf[c]); ++a)
+    {
+      const double ratio = width[3 * g + a] / width[3 * c + a];
+      const double whole = std::round(ratio);
+      if (!(whole >= 2.0) || std::abs(ratio - whole) > 1e-3 * whole)
+      {
+        throw bad(entries[c], "a cell width", std::to_string(width[3 * c + a]),
+          "its parent grid " + std::to_string(entries[g].Number) + "'s " +
+            std::to_string(width[3 * g + a]) + " divided by a whole refinement ratio of at " +
+            "least 2 on axis " + std::to_string(a) + "; the ratio is " + std::to_string(ratio));
       }
     }
   }
@@ -333,6 +507,7 @@ ExpectedBlocks CheckEnzoFiles(const std::string& hierarchy)
   }
   const std::vector<EnzoEntry> entries = ParseEnzoEntries(text, name);
   CheckEnzoEntriesComplete(entries, name, text.size());
+  CheckEnzoGridFields(entries, name);
   return EnzoGridFiles(entries, path, name);
 }
 
@@ -387,22 +562,39 @@ public:
     Skip(')', what);
     return v;
   }
-  /// "((lo) (hi) (type))": the number of cells of the box.
-  long long Box(int dim, const std::string& what)
+  /// "((lo) (hi) (type))": the box's cells per axis (upper corner not below the lower one, at
+  /// most 2^31 per axis).
+  std::vector<long long> BoxExtent(
+    int dim, const std::string& what, std::vector<long long>* lower = nullptr)
   {
     Skip('(', what);
     const std::vector<long long> lo = Tuple(dim, what), hi = Tuple(dim, what);
     Tuple(dim, what);
     Skip(')', what);
-    long long cells = 1;
+    std::vector<long long> extent;
     for (int a = 0; a < dim; ++a)
     {
-      if (hi[a] < lo[a])
+      if (hi[a] < lo[a] || hi[a] - lo[a] >= (1LL << 31) || std::llabs(lo[a]) >= (1LL << 40))
       {
-        throw DatasetError("the AMReX file " + File + " is damaged: " + what +
-          " has an upper corner below its lower corner");
+        throw DatasetError("the AMReX file " + File + " is damaged: " + what + " is " +
+          std::to_string(lo[a]) + " to " + std::to_string(hi[a]) + " on axis " + std::to_string(a) +
+          " (expected an upper corner not below the lower one)");
       }
-      cells *= hi[a] - lo[a] + 1;
+      extent.push_back(hi[a] - lo[a] + 1);
+    }
+    if (lower)
+    {
+      *lower = lo;
+    }
+    return extent;
+  }
+  /// The same box's number of cells.
+  long long Box(int dim, const std::string& what)
+  {
+    long long cells = 1;
+    for (long long e : BoxExtent(dim, what))
+    {
+      cells *= e;
     }
     return cells;
   }
@@ -412,16 +604,34 @@ private:
   std::string File;
 };
 
-/// Checks the FAB of `box` at `offset` of `data`: its header line, its real size, and that the
-/// file holds its `components` x `cells` reals.
-void CheckFabOnDisk(
-  const fs::path& data, long long offset, const std::string& box, long long cells, int components)
+/// A multifab box: its lower corner and cells per axis (AMReX's Cell_H).
+struct FabBox
+{
+  std::vector<long long> Lo;
+  std::vector<long long> Extent;
+  long long Cells() const
+  {
+    long long n = 1;
+    for (long long e : this->Extent)
+    {
+      n *= e;
+    }
+    return n;
+  }
+};
+
+/// Checks the FAB of `box` (named `name`) at `offset` of `data`: its header line (the real
+/// format one of IEEE's float or double, the byte order ascending or descending, the box the
+/// multifab header's, its `components`), and that the file holds its components x cells reals. A
+/// garbled format or byte order makes VTK's reader return values such as 4e21 without a word.
+void CheckFabOnDisk(const fs::path& data, long long offset, const std::string& name,
+  const FabBox& box, int components, int dim)
 {
   std::error_code ec;
   const unsigned long long size = FileSize(data);
   if (!fs::exists(data, ec))
   {
-    throw DatasetError("the AMReX data file " + data.string() + " (" + box + ") is missing");
+    throw DatasetError("the AMReX data file " + data.string() + " (" + name + ") is missing");
   }
   // the FAB's own header line at the offset, then components x cells reals
   std::ifstream in(data, std::ios::binary);
@@ -432,26 +642,76 @@ void CheckFabOnDisk(
   {
     throw DatasetError("the AMReX data file " + data.string() +
       " is truncated or damaged: " + "no FAB header at byte " + std::to_string(offset) + " (" +
-      box + "; the file has " + Bytes(size) + ")");
+      name + "; the file has " + Bytes(size) + ")");
   }
+  const std::string damaged = "the AMReX data file " + data.string() +
+    " is damaged: the FAB header of " + name + " ('" + line.substr(0, 120) + "') ";
   HeaderTokens f(line.substr(3), data.string());
-  f.Skip('(', "the FAB header of " + box);
-  f.Skip('(', "the FAB header of " + box);
-  f.Next<int>("the real format of " + box);
-  f.Skip(',', "the real format of " + box);
-  f.Skip('(', "the real format of " + box);
-  const int bits = f.Next<int>("the real size of " + box);
-  if (bits != 32 && bits != 64)
+  const std::string where = "the FAB header of " + name;
+  f.Skip('(', where);
+  f.Skip('(', where);
+  const int bytes = f.Next<int>("the real size of " + name);
+  f.Skip(',', where);
+  f.Skip('(', where);
+  std::vector<long long> format;
+  for (int i = 0; i < 8; ++i)
   {
-    throw DatasetError("the AMReX data file " + data.string() + " is damaged: " + box +
-      " has reals of " + std::to_string(bits) + " bits");
+    format.push_back(f.Next<long long>("the real format of " + name));
+  }
+  f.Skip(')', where);
+  f.Skip(')', where);
+  f.Skip(',', where);
+  f.Skip('(', where);
+  const int orderBytes = f.Next<int>("the byte order of " + name);
+  f.Skip(',', where);
+  f.Skip('(', where);
+  std::vector<int> order;
+  for (int i = 0; i < orderBytes && i < 16; ++i)
+  {
+    order.push_back(f.Next<int>("the byte order of " + name));
+  }
+  f.Skip(')', where);
+  f.Skip(')', where);
+  f.Skip(')', where);
+  const std::vector<long long> ieeeDouble = { 64, 11, 52, 0, 1, 12, 0, 1023 };
+  const std::vector<long long> ieeeFloat = { 32, 8, 23, 0, 1, 9, 0, 127 };
+  if (!((bytes == 8 && format == ieeeDouble) || (bytes == 4 && format == ieeeFloat)))
+  {
+    throw DatasetError(damaged +
+      "names no IEEE float or double format (expected (8, (64 11 52 0 "
+      "1 12 0 1023)) or (4, (32 8 23 0 1 9 0 127)))");
+  }
+  bool ascending = orderBytes == bytes, descending = orderBytes == bytes;
+  for (int i = 0; ascending && i < orderBytes; ++i)
+  {
+    ascending = order[static_cast<std::size_t>(i)] == i + 1;
+  }
+  for (int i = 0; descending && i < orderBytes; ++i)
+  {
+    descending = order[static_cast<std::size_t>(i)] == orderBytes - i;
+  }
+  if (!ascending && !descending)
+  {
+    throw DatasetError(damaged + "has a byte order that is neither big- nor little-endian");
+  }
+  std::vector<long long> lo;
+  const std::vector<long long> extent = f.BoxExtent(dim, where, &lo);
+  const int fabComponents = f.Next<int>("the component count of " + name);
+  if (lo != box.Lo || extent != box.Extent)
+  {
+    throw DatasetError(damaged + "describes another box than the multifab header's");
+  }
+  if (fabComponents != components)
+  {
+    throw DatasetError(damaged + "has " + std::to_string(fabComponents) +
+      " components (the multifab header: " + std::to_string(components) + ")");
   }
   const unsigned long long need = static_cast<unsigned long long>(offset) + line.size() + 1 +
-    static_cast<unsigned long long>(cells) * static_cast<unsigned long long>(components) *
-      static_cast<unsigned>(bits / 8);
+    static_cast<unsigned long long>(box.Cells()) * static_cast<unsigned long long>(components) *
+      static_cast<unsigned>(bytes);
   if (need > size)
   {
-    throw DatasetError("the AMReX data file " + data.string() + " is truncated: " + box +
+    throw DatasetError("the AMReX data file " + data.string() + " is truncated: " + name +
       " needs bytes up to " + std::to_string(need) + ", the file has " + Bytes(size));
   }
 }
@@ -489,10 +749,12 @@ void CheckAMReXMultifab(const fs::path& root, const fs::path& headerPath, const 
       std::to_string(listed) + " boxes, the Header " + headerPath.string() + " " +
       std::to_string(boxes) + " for " + level + "; one of them is damaged");
   }
-  std::vector<long long> cells;
+  std::vector<FabBox> fabBoxes;
   for (long long b = 0; b < boxes; ++b)
   {
-    cells.push_back(c.Box(dim, "box " + std::to_string(b) + " of " + level));
+    FabBox box;
+    box.Extent = c.BoxExtent(dim, "box " + std::to_string(b) + " of " + level, &box.Lo);
+    fabBoxes.push_back(box);
   }
   c.Skip(')', "the end of the box list");
   const long long fabs = c.Next<long long>("the number of FABs on disk");
@@ -507,7 +769,7 @@ void CheckAMReXMultifab(const fs::path& root, const fs::path& headerPath, const 
     c.Next<std::string>("'FabOnDisk:' of " + box);
     const fs::path data = cellH.parent_path() / c.Next<std::string>("the file of " + box);
     const long long offset = c.Next<long long>("the offset of " + box);
-    CheckFabOnDisk(data, offset, box, cells[static_cast<std::size_t>(b)], components);
+    CheckFabOnDisk(data, offset, box, fabBoxes[static_cast<std::size_t>(b)], components, dim);
     expected.Files.push_back(data.string());
   }
 }
@@ -543,25 +805,75 @@ ExpectedBlocks CheckAMReXFiles(const std::string& folder)
     throw DatasetError("the AMReX Header " + headerPath.string() + " is damaged: finest level " +
       std::to_string(finest));
   }
+  const std::string damaged = "the AMReX Header " + headerPath.string() + " is damaged: ";
+  double corner[6];
   for (int i = 0; i < 2 * dim; ++i)
   {
-    h.Next<double>("the problem domain's corners");
+    corner[i] = h.Next<double>("the problem domain's corners");
   }
+  for (int a = 0; a < dim; ++a)
+  {
+    if (!std::isfinite(corner[a]) || !std::isfinite(corner[dim + a]) ||
+      !(corner[dim + a] > corner[a]))
+    {
+      throw DatasetError(damaged + "the problem domain on axis " + std::to_string(a) + " is " +
+        std::to_string(corner[a]) + " to " + std::to_string(corner[dim + a]) +
+        " (expected finite corners, the upper above the lower)");
+    }
+  }
+  std::vector<long long> ratio(static_cast<std::size_t>(finest) + 1, 1);
   for (int l = 0; l < finest; ++l)
   {
-    h.Next<long long>("the refinement ratio of level " + std::to_string(l + 1));
+    ratio[l + 1] = h.Next<long long>("the refinement ratio of level " + std::to_string(l + 1));
+    if (ratio[l + 1] < 2 || ratio[l + 1] > 64)
+    {
+      throw DatasetError(damaged + "the refinement ratio of level " + std::to_string(l + 1) +
+        " is " + std::to_string(ratio[l + 1]) + " (expected 2 to 64)");
+    }
   }
+  std::vector<std::vector<long long>> extent;
   for (int l = 0; l <= finest; ++l)
   {
-    h.Box(dim, "the domain of level " + std::to_string(l));
+    const std::string what = "the domain of level " + std::to_string(l);
+    try
+    {
+      extent.push_back(h.BoxExtent(dim, what));
+    }
+    catch (const DatasetError& e)
+    {
+      // one refinement ratio too many or too few shifts everything after it
+      throw DatasetError(std::string(e.what()) + " (after " + std::to_string(finest) +
+        " refinement ratios for finest level " + std::to_string(finest) +
+        ": one too many or too few shifts what follows)");
+    }
+    for (int a = 0; a < dim && l > 0; ++a)
+    {
+      const long long expected = extent[l - 1][a] * ratio[l];
+      if (extent[l][a] != expected)
+      {
+        throw DatasetError(damaged + what + " is " + std::to_string(extent[l][a]) +
+          " cells on axis " + std::to_string(a) + ", level " + std::to_string(l - 1) +
+          "'s domain refined by " + std::to_string(ratio[l]) + " is " + std::to_string(expected));
+      }
+    }
   }
   for (int l = 0; l <= finest; ++l)
   {
     h.Next<long long>("the step count of level " + std::to_string(l));
   }
-  for (int i = 0; i < (finest + 1) * dim; ++i)
+  for (int l = 0; l <= finest; ++l)
   {
-    h.Next<double>("the cell sizes");
+    for (int a = 0; a < dim; ++a)
+    {
+      const double size = h.Next<double>("the cell sizes");
+      const double expected = (corner[dim + a] - corner[a]) / static_cast<double>(extent[l][a]);
+      if (!std::isfinite(size) || !(size > 0.0) || std::abs(size - expected) > 1e-3 * expected)
+      {
+        throw DatasetError(damaged + "the cell size of level " + std::to_string(l) + " on axis " +
+          std::to_string(a) + " is " + std::to_string(size) +
+          " (expected the domain over its cells, " + std::to_string(expected) + ")");
+      }
+    }
   }
   h.Next<int>("the coordinate system");
   h.Next<int>("the boundary width");
@@ -581,7 +893,12 @@ ExpectedBlocks CheckAMReXFiles(const std::string& folder)
     h.Next<long long>(level + "'s step");
     for (long long b = 0; b < boxes * 2 * dim; ++b)
     {
-      h.Next<double>("the corners of " + level + "'s boxes");
+      const double c = h.Next<double>("the corners of " + level + "'s boxes");
+      if (!std::isfinite(c))
+      {
+        throw DatasetError(damaged + "a corner of " + level + "'s boxes is " + std::to_string(c) +
+          " (expected a finite position)");
+      }
     }
     const std::string prefix = h.Next<std::string>(level + "'s multifab path");
 
@@ -591,6 +908,117 @@ ExpectedBlocks CheckAMReXFiles(const std::string& folder)
 }
 
 // ---- VTK XML AMR -----------------------------------------------------------------------------
+
+namespace
+{
+/// The integer or float values of attribute `name` of the first tag `tag` in `head`; false when
+/// the tag or the attribute is missing.
+bool XMLAttribute(
+  const std::string& head, const std::string& tag, const std::string& name, std::string& value)
+{
+  const std::size_t at = head.find("<" + tag);
+  if (at == std::string::npos)
+  {
+    return false;
+  }
+  const std::size_t end = head.find('>', at);
+  const std::string element =
+    head.substr(at, end == std::string::npos ? std::string::npos : end - at);
+  const std::size_t a = element.find(" " + name + "=\"");
+  if (a == std::string::npos)
+  {
+    return false;
+  }
+  const std::size_t from = a + name.size() + 3;
+  const std::size_t to = element.find('"', from);
+  value = element.substr(from, to == std::string::npos ? std::string::npos : to - from);
+  return true;
+}
+
+/// `count` numbers of `value` (the whole list), false otherwise.
+template <typename T>
+bool Numbers(const std::string& value, std::size_t count, std::vector<T>& out)
+{
+  std::istringstream in(value);
+  out.clear();
+  T v;
+  while (in >> v)
+  {
+    out.push_back(v);
+  }
+  return in.eof() && out.size() == count;
+}
+} // namespace
+
+std::vector<long long> CheckVTIPiece(const std::string& piece, const std::string& role)
+{
+  const unsigned long long size = FileSize(piece);
+  const std::string damaged = "the piece file " + piece + " (" + role + ") is ";
+  if (size == 0)
+  {
+    throw DatasetError(damaged + "empty");
+  }
+  // the XML head, before the data: at most 1 MiB
+  std::ifstream in(piece, std::ios::binary);
+  std::string head(static_cast<std::size_t>(std::min<unsigned long long>(size, 1 << 20)), '\0');
+  in.read(&head[0], static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(std::max<std::streamsize>(in.gcount(), 0)));
+  const std::size_t data = std::min(head.find("<AppendedData"), head.find("</ImageData"));
+  if (data != std::string::npos)
+  {
+    head.resize(data);
+  }
+  std::string value;
+  std::vector<long long> extent;
+  if (!XMLAttribute(head, "ImageData", "WholeExtent", value) || !Numbers(value, 6, extent))
+  {
+    throw DatasetError(damaged +
+      "damaged: no ImageData element with a WholeExtent of six "
+      "integers (truncated, or another kind of file)");
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    if (extent[2 * a + 1] < extent[2 * a] || extent[2 * a + 1] - extent[2 * a] > (1LL << 24) ||
+      std::llabs(extent[2 * a]) > (1LL << 30))
+    {
+      throw DatasetError(damaged + "damaged: WholeExtent " + value +
+        " (expected each upper index not below its lower one, at most 2^24 apart)");
+    }
+  }
+  std::vector<double> spacing, origin;
+  if (XMLAttribute(head, "ImageData", "Spacing", value) &&
+    (!Numbers(value, 3, spacing) ||
+      !std::all_of(
+        spacing.begin(), spacing.end(), [](double s) { return std::isfinite(s) && s > 0.0; })))
+  {
+    throw DatasetError(damaged + "damaged: Spacing " + value +
+      " (expected three finite "
+      "positive numbers)");
+  }
+  if (XMLAttribute(head, "ImageData", "Origin", value) &&
+    (!Numbers(value, 3, origin) ||
+      !std::all_of(origin.begin(), origin.end(), [](double o) { return std::isfinite(o); })))
+  {
+    throw DatasetError(damaged + "damaged: Origin " + value + " (expected three finite numbers)");
+  }
+  // every array's component count: VTK allocates components x tuples before it reads a byte
+  for (std::size_t at = head.find("NumberOfComponents=\""); at != std::string::npos;
+       at = head.find("NumberOfComponents=\"", at + 1))
+  {
+    const std::size_t from = at + 20, to = head.find('"', from);
+    const std::string n = head.substr(from, to == std::string::npos ? 0 : to - from);
+    std::vector<long long> components;
+    if (!Numbers(n, 1, components) || components[0] < 1 || components[0] > 64)
+    {
+      throw DatasetError(damaged + "damaged: NumberOfComponents=\"" + n + "\" (expected 1 to 64)");
+    }
+  }
+  if (head.find("<DataArray") == std::string::npos)
+  {
+    throw DatasetError(damaged + "damaged or empty: it holds no DataArray");
+  }
+  return { extent[1] - extent[0], extent[3] - extent[2], extent[5] - extent[4] };
+}
 
 ExpectedBlocks CheckVTKXMLAMRFiles(const std::string& path)
 {
@@ -613,6 +1041,20 @@ ExpectedBlocks CheckVTKXMLAMRFiles(const std::string& path)
     {
       continue;
     }
+    const std::string damaged = "the VTK XML AMR file " + path + " is damaged: ";
+    if (level < 0 || level >= 64)
+    {
+      throw DatasetError(
+        damaged + "a Block has level=\"" + std::to_string(level) + "\" (expected 0 to 63)");
+    }
+    double spacing[3];
+    if (block->GetAttribute("spacing") &&
+      (block->GetVectorAttribute("spacing", 3, spacing) != 3 ||
+        !std::all_of(spacing, spacing + 3, [](double s) { return std::isfinite(s) && s > 0.0; })))
+    {
+      throw DatasetError(damaged + "level " + std::to_string(level) + " has spacing=\"" +
+        block->GetAttribute("spacing") + "\" (expected three finite positive numbers)");
+    }
     for (int d = 0; d < block->GetNumberOfNestedElements(); ++d)
     {
       vtkXMLDataElement* data = block->GetNestedElement(d);
@@ -622,6 +1064,28 @@ ExpectedBlocks CheckVTKXMLAMRFiles(const std::string& path)
       {
         continue;
       }
+      const std::string block =
+        "block " + std::to_string(index) + " of level " + std::to_string(level);
+      if (index < 0 || index >= (1 << 20))
+      {
+        throw DatasetError(damaged + "a DataSet of level " + std::to_string(level) +
+          " has index=\"" + std::to_string(index) + "\" (expected 0 to 2^20 - 1)");
+      }
+      if (blocks.count({ level, index }))
+      {
+        throw DatasetError(damaged + "two DataSet elements are " + block);
+      }
+      int box[6] = { 0, 0, 0, 0, 0, 0 };
+      const bool hasBox = data->GetAttribute("amr_box") != nullptr;
+      if (hasBox &&
+        (data->GetVectorAttribute("amr_box", 6, box) != 6 || box[1] < box[0] || box[3] < box[2] ||
+          box[5] < box[4] || std::abs(box[0]) >= (1 << 30) || std::abs(box[1]) >= (1 << 30) ||
+          std::abs(box[2]) >= (1 << 30) || std::abs(box[3]) >= (1 << 30) ||
+          std::abs(box[4]) >= (1 << 30) || std::abs(box[5]) >= (1 << 30)))
+      {
+        throw DatasetError(damaged + block + " has amr_box=\"" + data->GetAttribute("amr_box") +
+          "\" (expected six integers, each upper index not below its lower one)");
+      }
       std::string piece;
       if (file)
       {
@@ -629,8 +1093,20 @@ ExpectedBlocks CheckVTKXMLAMRFiles(const std::string& path)
         std::error_code ec;
         if (!fs::exists(piece, ec))
         {
-          throw DatasetError("the piece file " + piece + " of block " + std::to_string(index) +
-            " of level " + std::to_string(level) + " in " + path + " is missing");
+          throw DatasetError(
+            "the piece file " + piece + " of " + block + " in " + path + " is missing");
+        }
+        const std::vector<long long> cells = CheckVTIPiece(piece, block + " in " + path);
+        for (int a = 0; a < 3 && hasBox; ++a)
+        {
+          // a piece's extent counts points: one more than the box's cells (or 0 on a flat axis)
+          const long long boxCells = box[2 * a + 1] - box[2 * a] + 1;
+          if (cells[a] != boxCells && !(cells[a] == 0 && boxCells == 1))
+          {
+            throw DatasetError("the piece file " + piece + " of " + block + " in " + path +
+              " holds " + std::to_string(cells[a]) + " cells on axis " + std::to_string(a) +
+              ", its amr_box " + std::to_string(boxCells) + " (a piece of another block?)");
+          }
         }
       }
       blocks[{ level, index }] = piece;

@@ -39,6 +39,13 @@ ExpectedBlocks CheckAMReXFiles(const std::string& folder);
 /// file exists. The blocks in level, then index, order.
 ExpectedBlocks CheckVTKXMLAMRFiles(const std::string& path);
 
+/// A VTK XML image piece (.vti) of an AMR file, before VTK's reader allocates for it: not empty,
+/// an ImageData with a WholeExtent (each upper index not below its lower one), a finite origin, a
+/// finite positive spacing, every NumberOfComponents 1 to 64, at least one DataArray. `role`
+/// names the piece in messages ("block 3 of level 1 in FILE"). Returns its cells per axis (the
+/// extent's points minus one).
+std::vector<long long> CheckVTIPiece(const std::string& piece, const std::string& role);
+
 /// Whether the file at `path` is an HDF5 file whose length is at least the end-of-file address
 /// its superblock records; `why` says what is wrong otherwise.
 bool CheckHDF5File(const std::string& path, std::string& why);

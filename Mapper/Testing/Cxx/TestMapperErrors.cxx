@@ -546,6 +546,49 @@ void TestDataModel(Scene& scene)
 
 } // namespace
 
+/// Hierarchies whose metadata contradicts itself or its blocks, damaged in memory as any
+/// producer could hand them over: one named error each, nothing drawn, and the good hierarchy
+/// renders again afterwards.
+void TestContradictions(Scene& scene)
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  {
+    vtkSmartPointer<vtkOverlappingAMR> amr = GoodAMR();
+    const double origin[3] = { nan, 0.0, 0.0 };
+    amr->SetOrigin(origin);
+    ExpectError(scene, amr, "origin (nan, 0, 0) is not finite", "a NaN origin");
+  }
+  {
+    vtkSmartPointer<vtkOverlappingAMR> amr = GoodAMR();
+    const double spacing[3] = { inf, 0.0625, 0.0625 };
+    amr->SetSpacing(1, spacing);
+    ExpectError(scene, amr, "level 1 has a spacing that is not finite", "an infinite spacing");
+  }
+  {
+    vtkSmartPointer<vtkOverlappingAMR> amr = GoodAMR();
+    amr->SetRefinementRatio(0, 4);
+    ExpectError(scene, amr, "refines level 0 by 2 (their spacings), its refinement ratio says 4",
+      "a refinement ratio that contradicts the spacings");
+  }
+  {
+    vtkSmartPointer<vtkOverlappingAMR> amr = GoodAMR();
+    const int lo[3] = { 4, 4, 1 << 30 };
+    const int hi[3] = { 7, 7, (1 << 30) + 3 };
+    amr->SetAMRBox(1, 0, vtkAMRBox(lo, hi));
+    ExpectError(
+      scene, amr, "block 0 of level 1 has an AMR box beyond 2^30 cells", "an AMR box at 2^30");
+  }
+  {
+    vtkSmartPointer<vtkOverlappingAMR> amr = GoodAMR();
+    const int lo[3] = { 4, 4, 4 };
+    const int hi[3] = { 13, 11, 11 }; // ten cells per axis; the block holds eight
+    amr->SetAMRBox(1, 0, vtkAMRBox(lo, hi));
+    ExpectError(scene, amr, "block 0 of level 1 has dimensions that do not match its AMR box",
+      "an AMR box larger than its block");
+  }
+}
+
 int main(int argc, char* argv[])
 {
   const bool linear = argc > 1 && std::string(argv[1]) == "linear";
@@ -563,6 +606,7 @@ int main(int argc, char* argv[])
     scene.Mapper->SetDataStorageToLinearBricks();
   }
   TestInputs(scene);
+  TestContradictions(scene);
   TestDataModel(scene);
   TestEncodingLimit(scene);
   TestIsoValues(scene);
