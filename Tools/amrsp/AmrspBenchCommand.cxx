@@ -94,6 +94,7 @@ std::string BenchHelp()
        "       amrsp bench --scaling [--scaling-sizes G:L:C,...] [--methods LIST] [--size WxH]\n"
        "                   [--frames N] [--json FILE] [--rounds R]\n"
        "       amrsp bench SERIES --time-series [--methods LIST] [--size WxH] [--json FILE]\n"
+       "       amrsp bench SERIES --soak N [--methods METHOD] [--size WxH] [--json FILE]\n"
        "Renders an orbit of N frames (default 8; --scaling: 2) per method in one process, after\n"
        "one untimed warm-up frame per method (build, upload, shader compile: first_frame_ms),\n"
        "each frame ending with glFinish before the clock is read. Prints Markdown: Table 1\n"
@@ -138,6 +139,10 @@ std::string BenchHelp()
        "with switch_over_rebuild, still_frame_s, the mapper's own part step_switch_build_upload_s\n"
        "and rebuild_build_upload_s, storage (single pass; bindless that fell back to the atlas\n"
        "gets an error), and per_step {seconds, refreshed, build_s, upload_s}.\n"
+       "--soak N changes the step of SERIES N times (each step read again from its files, as a\n"
+       "reader hands it over) and moves the camera with each, through one renderer of METHOD\n"
+       "(default packing): resident_mib and descriptors {start, after_warm_up, end}, a trace,\n"
+       "value_refreshes, builds, seconds. A dataset without * or ? is a series of one step.\n"
        "--scaling runs synthetic:cosmo at each GRIDS:LEVELS:CELLS of --scaling-sizes (default "
     << DefaultScalingSizes
     << ",\n"
@@ -410,7 +415,7 @@ int RunBench(int argc, char** argv)
     const Arguments a = ParseArguments(argc, argv, 1,
       Concat({ DatasetOptions, RenderOptionNames,
         { "frames", "methods", "json", "plot", "plot-size", "scaling-sizes", "seed", "save-images",
-          "driver", "backend", "rounds", "interactive-rate" } }),
+          "driver", "backend", "rounds", "interactive-rate", "soak" } }),
       Concat({ DatasetFlags,
         { "scaling", "interactive", "counters", "occupancy", "no-compare", "time-series" } }));
     if (WantsHelp(a))
@@ -424,6 +429,10 @@ int RunBench(int argc, char** argv)
     if (a.Has("time-series"))
     {
       return BenchSeries(a);
+    }
+    if (a.Has("soak"))
+    {
+      return SoakSeries(a);
     }
     const BenchRequest r = ParseBenchRequest(a);
     if (!r.Plot.empty() && !std::ofstream(r.Plot, std::ios::app))

@@ -210,7 +210,10 @@ int RunRender(int argc, char** argv)
                    "                              'run/plt*'): render these steps (0-based) in\n"
                    "                              order into numbered images (-o frame_%04d.png);\n"
                    "                              a step with the previous one's hierarchy only\n"
-                   "                              uploads its values\n"
+                   "                              uploads its values; --range says which\n"
+                   "                              values the colours span (default: all\n"
+                   "                              steps', so a frame does not depend on the\n"
+                   "                              steps chosen), --compare compares each step\n"
                 << ImageOptionsHelp(name) << ViewHelp << AtlasHelp << DriverHelp << DatasetHelp;
       return 0;
     }
@@ -246,11 +249,13 @@ int RunRender(int argc, char** argv)
     const Method& m = *FindMethod(method, RenderCommand);
     if (a.Has("time"))
     {
-      if (a.Has("compare") || a.Has("repeat"))
+      if (a.Has("repeat"))
       {
-        throw UsageError{ "--time renders each step once: no --compare or --repeat" };
+        throw UsageError{ "--time renders each step once: no --repeat" };
       }
-      return RenderSeries(m, method, a, bindlessAccess);
+      return RenderSeries(m, method, a, bindlessAccess,
+        [&m, &a](const Image& img, const LoadedDataset& d, const RenderSettings& s)
+        { Compare(m, img, d, s, a); });
     }
     const AtlasRequest atlasRequest = ParseAtlasRequest(a);
     const std::string output = a.Get("output", name + ".png");

@@ -7,6 +7,7 @@
 #include "AmrspDataset.h"
 #include "AmrspDriver.h"
 #include "AmrspGpuRenderer.h"
+#include "AmrspProcessResources.h"
 #include "AmrspProgress.h"
 
 #include "amrsp/KdTree.h"
@@ -85,35 +86,6 @@ double Median(std::vector<double> v)
   std::sort(v.begin(), v.end());
   const std::size_t n = v.size();
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-/// One step's hierarchy, its scalars mapped with `scale` as the series' first step's were.
-Hierarchy LoadStep(const Arguments& a, const std::string& spec, const std::string& scale)
-{
-  LoadedDataset d = Load(a, spec, true, false);
-  double lo = 0.0, hi = 0.0;
-  PrepareScalars(d.Data, scale, lo, hi);
-  return std::move(d.Data);
-}
-
-/// The first selected step: its hierarchy (scalars mapped), the settings of the whole series,
-/// and the scale the later steps use.
-struct SeriesStart
-{
-  Hierarchy Data;
-  RenderSettings Settings;
-  std::string Scale;
-};
-
-SeriesStart StartSeries(const Arguments& a, const std::string& spec)
-{
-  SeriesStart start;
-  LoadedDataset d = Load(a, spec, true, false);
-  const std::string name = d.Data.ArrayName;
-  start.Settings = MakeSettings(d.Data, a);
-  start.Scale = d.Data.ArrayName != name ? "log" : "linear"; // MakeSettings renames log10(...)
-  start.Data = std::move(d.Data);
-  return start;
 }
 
 std::string SeriesArgument(const Arguments& a)
@@ -225,29 +197,49 @@ std::string StepOutputPath(const std::string& pattern, int step)
   return pattern.substr(0, dot) + number + pattern.substr(dot);
 }
 
-int RenderSeries(
-  const Method& m, std::string method, const Arguments& a, const std::string& bindlessAccess)
+namespace
+{
+/// The span of the values of every step of the series (each step read once).
+ScalarSpan SeriesSpan(const Arguments& a, const std::vector<std::string>& specs)
+{
+  ScalarSpan span;
+  for (std::size_t s = 0; s < specs.size(); ++s)
+  {
+    const LoadedDataset d = Load(a, specs[s], true, false);
+    const ScalarSpan step = MeasureScalars(d.Data);
+    span = s == 0 ? step : Union(span, step);
+  }
+  return span;
+}
+} // namespace
+
+int RenderSeries(const Method& m, std::string method, const Arguments& a,
+  const std::string& bindlessAccess, const SeriesCompare& compare)
 {
   const std::vector<std::string> specs = SeriesSteps(SeriesArgument(a));
   const std::vector<int> selected =
     SelectSteps(a.Get("time", "all"), static_cast<int>(specs.size()));
   const std::string pattern = a.Get("output", "render.png");
+  const std::string rangeChoice = a.Get("range", "all");
+  // the values the colours span: all steps' (each read once more first), each step's, or given
+  std::unique_ptr<ScalarSpan> over;
+  if (rangeChoice == "all")
+  {
+    const auto t0 = Clock::now();
+    over.reset(new ScalarSpan(SeriesSpan(a, specs)));
+    std::cout << "range: all " << specs.size() << " steps, [" << over->Lo << ", " << over->Hi
+              << "] (read in " << std::fixed << std::setprecision(3) << Seconds(t0) << " s)"
+              << std::defaultfloat << std::endl;
+  }
   std::unique_ptr<GpuRenderer> gpu;
-  SeriesStart start;
   for (std::size_t k = 0; k < selected.size(); ++k)
   {
     const int step = selected[k];
     const auto t0 = Clock::now();
-    Hierarchy h;
-    if (k == 0)
-    {
-      start = StartSeries(a, specs[static_cast<std::size_t>(step)]);
-      h = start.Data;
-    }
-    else
-    {
-      h = LoadStep(a, specs[static_cast<std::size_t>(step)], start.Scale);
-    }
+    LoadedDataset d = Load(a, specs[static_cast<std::size_t>(step)], true, false);
+    glm::dvec2 range;
+    const RenderSettings settings = MakeSettings(d.Data, a, &range, over.get());
+    const Hierarchy& h = d.Data;
     const double load = Seconds(t0);
     const auto t1 = Clock::now();
     Image img;
@@ -257,10 +249,11 @@ int RenderSeries(
       double ms = 0.0;
       if (!gpu)
       {
-        gpu = m.Make(method, MethodRequest{ h, start.Settings, ViewOf(a), bindlessAccess });
+        gpu = m.Make(method, MethodRequest{ h, settings, ViewOf(a), bindlessAccess });
       }
       else
       {
+        gpu->SetTransferFunction(settings.Transfer);
         gpu->SetData(h);
       }
       const int refreshes = gpu->NumberOfValueRefreshes();
@@ -273,15 +266,20 @@ int RenderSeries(
     }
     else
     {
-      img = RenderKdTree(h, EncodeKdTree(h, BuildKdTree(h)), start.Settings);
+      img = RenderKdTree(h, EncodeKdTree(h, BuildKdTree(h)), settings);
     }
     const double toImage = Seconds(t1);
     const std::string path = StepOutputPath(pattern, step);
     WritePng(img, path);
     std::cout << "step " << step << " (" << k + 1 << " of " << selected.size()
-              << "): " << h.Grids.size() << " grids, " << how << ", load " << std::fixed
-              << std::setprecision(3) << load << " s, to the image " << toImage << " s -> " << path
-              << std::endl;
+              << "): " << h.Grids.size() << " grids, " << h.ArrayName << " ["
+              << std::setprecision(6) << range.x << ", " << range.y << "], " << how << ", load "
+              << std::fixed << std::setprecision(3) << load << " s, to the image " << toImage
+              << " s -> " << path << std::defaultfloat << std::endl;
+    if (a.Has("compare"))
+    {
+      compare(img, d, settings);
+    }
   }
   std::cout << "method: " << method << "\n";
   return 0;
@@ -313,24 +311,46 @@ int BenchSeries(const Arguments& a)
   {
     throw GpuError("--time-series needs an OpenGL context: " + why);
   }
-  // every step in memory first: the timings start from the step's data
-  SeriesStart start = StartSeries(a, specs[0]);
-  std::vector<Hierarchy> steps{ start.Data };
-  for (std::size_t s = 1; s < specs.size(); ++s)
+  // every step in memory first: the timings start from the step's data. The colours span
+  // every step's values (--range all, as render --time).
+  std::vector<LoadedDataset> loaded;
+  ScalarSpan span;
+  for (std::size_t s = 0; s < specs.size(); ++s)
   {
-    steps.push_back(LoadStep(a, specs[s], start.Scale));
+    loaded.push_back(Load(a, specs[s], true, false));
+    const ScalarSpan step = MeasureScalars(loaded.back().Data);
+    span = s == 0 ? step : Union(span, step);
   }
+  const std::string rangeChoice = a.Get("range", "all");
+  if (rangeChoice == "step")
+  {
+    throw UsageError{ "--time-series renders every step with one transfer function: --range all "
+                      "or LO:HI" };
+  }
+  RenderSettings settings;
+  std::vector<Hierarchy> steps;
+  for (std::size_t s = 0; s < loaded.size(); ++s)
+  {
+    const RenderSettings stepSettings =
+      MakeSettings(loaded[s].Data, a, nullptr, rangeChoice == "all" ? &span : nullptr);
+    if (s == 0)
+    {
+      settings = stepSettings;
+    }
+    steps.push_back(std::move(loaded[s].Data));
+  }
+  loaded.clear();
   Json j;
   j["dataset"] = SeriesArgument(a);
   j["steps"] = static_cast<int>(steps.size());
-  j["size"] = std::to_string(start.Settings.Width) + "x" + std::to_string(start.Settings.Height);
+  j["size"] = std::to_string(settings.Width) + "x" + std::to_string(settings.Height);
   j["methods"] = Json::object();
   for (const std::string& name : methods)
   {
     const Method& m = *FindMethod(name, BenchCommand);
     std::string method = name;
     std::unique_ptr<GpuRenderer> gpu =
-      m.Make(method, MethodRequest{ steps[0], start.Settings, ViewOf(a), "auto" });
+      m.Make(method, MethodRequest{ steps[0], settings, ViewOf(a), "auto" });
     double ms = 0.0;
     gpu->Render(0.0, ms); // the first step, the shaders compiled
     gpu->Render(0.0, ms);
@@ -398,6 +418,118 @@ int BenchSeries(const Arguments& a)
   }
   std::cout << "series " << j["dataset"].get<std::string>() << ", " << steps.size() << " steps, "
             << j["size"].get<std::string>() << "\n";
+  return 0;
+}
+
+int SoakSeries(const Arguments& a)
+{
+  const std::vector<std::string> specs = SeriesSteps(SeriesArgument(a));
+  const double requested = a.GetNumber("soak", 1000.0);
+  if (!(requested >= 1.0 && requested <= 1e7))
+  {
+    throw UsageError{ "--soak takes a number of step changes from 1 to 10^7" };
+  }
+  const int changes = static_cast<int>(requested);
+  const std::string method = a.Get("methods", "packing");
+  const Method* m = FindMethod(method, BenchCommand);
+  if (!m || !m->NeedsGpu || !m->IsKdTreeMapper())
+  {
+    throw UsageError{ "--soak runs one GPU mapper (packing, bindless, linear, auto-storage, "
+                      "multipass), not '" +
+      method + "'" };
+  }
+  std::string why;
+  if (!GpuRenderer::Available(why))
+  {
+    throw GpuError("--soak needs an OpenGL context: " + why);
+  }
+  const auto started = Clock::now();
+  const ScalarSpan span = SeriesSpan(a, specs);
+  // a step as a reader hands it over: read again from its files (or generated) at every change
+  const auto readStep = [&a, &specs, &span](int step, RenderSettings* settings)
+  {
+    LoadedDataset d = Load(a, specs[static_cast<std::size_t>(step)], true, false);
+    const RenderSettings s = MakeSettings(d.Data, a, nullptr, &span);
+    if (settings)
+    {
+      *settings = s;
+    }
+    return std::move(d.Data);
+  };
+  RenderSettings settings;
+  const Hierarchy first = readStep(0, &settings);
+  std::string methodName = method;
+  std::unique_ptr<GpuRenderer> gpu =
+    m->Make(methodName, MethodRequest{ first, settings, ViewOf(a), "auto" });
+  double ms = 0.0;
+  gpu->Render(0.0, ms);
+  struct Sample
+  {
+    long long Resident;
+    int Descriptors;
+    int Changes;
+  };
+  const auto sample = [](int done) { return Sample{ ResidentBytes(), OpenDescriptors(), done }; };
+  const Sample start = sample(0);
+  // warm-up: every step seen twice, at least 10 changes (caches, the driver's shader variants)
+  const int warmUp = std::min(changes, std::max(10, 2 * static_cast<int>(specs.size())));
+  Sample warm = start;
+  std::vector<Json> trace;
+  int refreshes = 0, builds = 0;
+  for (int i = 1; i <= changes; ++i)
+  {
+    const int step = i % static_cast<int>(specs.size());
+    gpu->SetData(readStep(step, nullptr));
+    const int before = gpu->NumberOfValueRefreshes(), buildsBefore = gpu->NumberOfBuilds();
+    gpu->Render(3.6 * i, ms); // a camera move with every step change
+    refreshes += gpu->NumberOfValueRefreshes() > before;
+    builds += gpu->NumberOfBuilds() > buildsBefore;
+    if (i == warmUp)
+    {
+      warm = sample(i);
+    }
+    if (i % std::max(1, changes / 20) == 0 || i == changes)
+    {
+      const Sample s = sample(i);
+      trace.push_back({ { "changes", i }, { "resident_mib", s.Resident / 1048576.0 },
+        { "descriptors", s.Descriptors } });
+    }
+  }
+  const Sample end = sample(changes);
+  Json j;
+  j["dataset"] = SeriesArgument(a);
+  j["method"] = method;
+  j["steps"] = static_cast<int>(specs.size());
+  j["step_changes"] = changes;
+  j["camera_moves"] = changes;
+  j["warm_up_changes"] = warmUp;
+  j["size"] = std::to_string(settings.Width) + "x" + std::to_string(settings.Height);
+  j["value_refreshes"] = refreshes;
+  j["builds"] = builds;
+  j["seconds"] = Seconds(started);
+  j["device"] = gpu->Device();
+  j["resident_mib"] = { { "start", start.Resident / 1048576.0 },
+    { "after_warm_up", warm.Resident / 1048576.0 }, { "end", end.Resident / 1048576.0 } };
+  j["descriptors"] = { { "start", start.Descriptors }, { "after_warm_up", warm.Descriptors },
+    { "end", end.Descriptors } };
+  j["trace"] = trace;
+  const std::string json = a.Get("json", "");
+  if (json == "-")
+  {
+    std::cout << j.dump(2) << "\n";
+    return 0;
+  }
+  if (!json.empty())
+  {
+    std::ofstream(json) << j.dump(2) << "\n";
+  }
+  std::cout << std::fixed << std::setprecision(1) << "soak " << j["dataset"].get<std::string>()
+            << " (" << specs.size() << " steps, " << method << ", " << j["size"].get<std::string>()
+            << "): " << changes << " step changes and camera moves in " << Seconds(started)
+            << " s; resident memory " << start.Resident / 1048576.0 << " MiB at the start, "
+            << warm.Resident / 1048576.0 << " after " << warmUp << " changes, "
+            << end.Resident / 1048576.0 << " at the end; open descriptors " << start.Descriptors
+            << ", " << warm.Descriptors << ", " << end.Descriptors << std::defaultfloat << "\n";
   return 0;
 }
 

@@ -184,26 +184,9 @@ GpuRenderer::GpuRenderer(const std::string& method, vtkVolumeMapper* mapper, con
   I->Width = s.Width;
   I->Height = s.Height;
 
-  // the same piecewise-linear functions as amrsp::TransferFunction (clamped beyond the ends)
-  for (const TransferFunction::ColorPoint& p : s.Transfer.Color)
-  {
-    I->Colour->AddRGBPoint(p.X, p.Rgb.r, p.Rgb.g, p.Rgb.b);
-  }
-  for (const TransferFunction::OpacityPoint& p : s.Transfer.Opacity)
-  {
-    I->Opacity->AddPoint(p.X, p.Opacity);
-  }
-  if (s.Transfer.ColorLogScale)
-  {
-    I->Colour->SetScaleToLog10();
-  }
-  I->Opacity->SetUseLogScale(s.Transfer.OpacityLogScale);
-  I->Colour->SetColorSpaceToRGB();
-  I->Colour->ClampingOn();
-  I->Opacity->ClampingOn();
+  SetTransferFunction(s.Transfer);
   I->Property->SetColor(I->Colour);
   I->Property->SetScalarOpacity(I->Opacity);
-  I->Property->SetScalarOpacityUnitDistance(s.Transfer.UnitDistance);
   I->Property->ShadeOff();
   I->Property->SetInterpolationTypeToNearest();
 
@@ -405,12 +388,42 @@ int GpuRenderer::NumberOfValueRefreshes() const
   return I->AmrMapper ? I->AmrMapper->GetNumberOfValueRefreshes() : 0;
 }
 
+void GpuRenderer::SetTransferFunction(const TransferFunction& t)
+{
+  // the same piecewise-linear functions as amrsp::TransferFunction (clamped beyond the ends)
+  I->Colour->RemoveAllPoints();
+  I->Opacity->RemoveAllPoints();
+  for (const TransferFunction::ColorPoint& p : t.Color)
+  {
+    I->Colour->AddRGBPoint(p.X, p.Rgb.r, p.Rgb.g, p.Rgb.b);
+  }
+  for (const TransferFunction::OpacityPoint& p : t.Opacity)
+  {
+    I->Opacity->AddPoint(p.X, p.Opacity);
+  }
+  if (t.ColorLogScale)
+  {
+    I->Colour->SetScaleToLog10();
+  }
+  else
+  {
+    I->Colour->SetScaleToLinear();
+  }
+  I->Opacity->SetUseLogScale(t.OpacityLogScale);
+  I->Colour->SetColorSpaceToRGB();
+  I->Colour->ClampingOn();
+  I->Opacity->ClampingOn();
+  I->Property->SetScalarOpacityUnitDistance(t.UnitDistance);
+}
+
 void GpuRenderer::SetData(const Hierarchy& h, bool blanking)
 {
   // a new data object, as a reader's next time step is: the mapper sees another input
   I->Amr = vtkSmartPointer<vtkOverlappingAMR>::New();
   vtkSinglePassAMRConversion::ToOverlappingAMR(h, I->Amr, blanking);
   I->Mapper->SetInputDataObject(0, I->Amr);
+  // a step may map its values otherwise (log10 or not): its array's name
+  I->Mapper->SelectScalarArray(h.ArrayName.empty() ? "values" : h.ArrayName.c_str());
 }
 
 vtkOverlappingAMR* GpuRenderer::GetData() const

@@ -85,6 +85,9 @@ public:
   /// camera, transfer function and settings; `blanking` as GpuScene::Blanking. Only for
   /// renderers of AMR input (GpuScene::AmrInput).
   void SetData(const Hierarchy& h, bool blanking = false);
+  /// Replaces the volume property's colour and opacity functions and unit distance (a series
+  /// step mapped with its own range).
+  void SetTransferFunction(const TransferFunction& t);
   /// The vtkOverlappingAMR the mapper reads now, and handing it one made before (a step shown
   /// again: the same object, as ParaView's animation cache hands it back).
   vtkOverlappingAMR* GetData() const;

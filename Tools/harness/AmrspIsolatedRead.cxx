@@ -3,6 +3,8 @@
 
 #include "AmrspProgress.h"
 
+#include <fcntl.h>
+#include <poll.h>
 #include <sys/mman.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -21,7 +23,6 @@
 #include <memory>
 #include <new>
 #include <sstream>
-#include <thread>
 #include <vector>
 
 namespace amrsp
@@ -436,43 +437,58 @@ IsolatedResult ReadInChildProcess(const std::string& what, double timeoutSeconds
     close(errorFd);
     close(outputFd);
   };
+  // the child holds the write end of `ended` until it exits: the parent's poll wakes then
+  int ended[2] = { -1, -1 };
+  if (pipe2(ended, O_CLOEXEC) != 0)
+  {
+    closeAll();
+    throw DatasetError(what + ": cannot start a reading process (" + std::strerror(errno) + ")");
+  }
   std::fflush(nullptr);
   const pid_t child = fork();
   if (child < 0)
   {
+    close(ended[0]);
+    close(ended[1]);
     closeAll();
     throw DatasetError(what + ": cannot start a reading process (" + std::strerror(errno) + ")");
   }
   if (child == 0)
   {
+    close(ended[0]);
     RunChild(dataFd, errorFd, outputFd, memoryBytes, read);
   }
+  close(ended[1]);
   // wait, at most timeoutSeconds
   int status = 0;
-  bool timedOut = false;
+  bool timedOut = false, reaped = false;
   const auto start = std::chrono::steady_clock::now();
-  for (int sleepMs = 1;;)
+  for (;;)
   {
-    const pid_t done = waitpid(child, &status, WNOHANG);
-    if (done == child)
-    {
-      break;
-    }
-    if (done < 0 && errno != EINTR)
-    {
-      closeAll();
-      throw DatasetError(what + ": lost the reading process (" + std::strerror(errno) + ")");
-    }
-    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
-      timeoutSeconds)
+    const double left = timeoutSeconds -
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (left <= 0.0)
     {
       kill(child, SIGKILL);
-      waitpid(child, &status, 0);
       timedOut = true;
       break;
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(sleepMs));
-    sleepMs = std::min(sleepMs * 2, 50);
+    pollfd end{ ended[0], POLLIN, 0 };
+    const int waitMs = static_cast<int>(std::min(left * 1000.0 + 1.0, 1000.0));
+    if (poll(&end, 1, waitMs) > 0)
+    {
+      break; // the child exited
+    }
+    // a process the reader started may hold the end still: look at the child itself too
+    if (waitpid(child, &status, WNOHANG) == child)
+    {
+      reaped = true;
+      break;
+    }
+  }
+  close(ended[0]);
+  while (!reaped && waitpid(child, &status, 0) < 0 && errno == EINTR)
+  {
   }
   const std::string said = TellingLine(ReadText(outputFd, 1 << 16));
   std::ostringstream timeout;
@@ -491,8 +507,9 @@ IsolatedResult ReadInChildProcess(const std::string& what, double timeoutSeconds
       const int signal = WTERMSIG(status);
       if (signal == SIGKILL)
       {
-        throw DatasetError(what + ": the reading process was killed (SIGKILL): the system ran "
-                                  "out of memory, or a size in a damaged file is wrong");
+        throw DatasetError(what +
+          ": the reading process was killed (SIGKILL): the system ran "
+          "out of memory, or a size in a damaged file is wrong");
       }
       throw ReaderFailure(what + " crashed inside VTK's reader (" + SignalName(signal) +
           (said.empty() ? std::string() : ": " + said) +

@@ -24,32 +24,76 @@ using Json = nlohmann::ordered_json;
 const std::vector<std::string> RenderOptionNames = { "size", "azimuth", "elevation", "zoom", "tf",
   "scale", "unit-distance", "sample-factor", "reference-sample-factor", "lod", "threads", "blend",
   "view-json", "opacity-threshold", "empty-space-skipping", "interpolation", "shade", "iso",
-  "shadows", "light", "crop", "ropes", "ablation", "loop", "caster" };
+  "shadows", "light", "crop", "ropes", "ablation", "loop", "caster", "range" };
 
-void PrepareScalars(Hierarchy& h, const std::string& scale, double& lo, double& hi)
+ScalarSpan MeasureScalars(const Hierarchy& h)
 {
-  lo = std::numeric_limits<double>::max();
-  hi = -std::numeric_limits<double>::max();
-  double minPositive = std::numeric_limits<double>::max();
+  ScalarSpan span;
+  span.Lo = std::numeric_limits<double>::max();
+  span.Hi = -std::numeric_limits<double>::max();
   for (const GridValues& v : h.Values)
   {
     for (float x : v)
     {
       if (std::isfinite(x))
       {
-        lo = std::min(lo, static_cast<double>(x));
-        hi = std::max(hi, static_cast<double>(x));
+        span.Lo = std::min(span.Lo, static_cast<double>(x));
+        span.Hi = std::max(span.Hi, static_cast<double>(x));
         if (x > 0.0f)
         {
-          minPositive = std::min(minPositive, static_cast<double>(x));
+          span.MinPositive = std::min(span.MinPositive, static_cast<double>(x));
         }
       }
     }
   }
-  if (lo > hi)
+  if (span.Lo > span.Hi)
   {
     throw DatasetError("the array '" + h.ArrayName + "' has no finite value");
   }
+  return span;
+}
+
+ScalarSpan Union(const ScalarSpan& a, const ScalarSpan& b)
+{
+  ScalarSpan u;
+  u.Lo = std::min(a.Lo, b.Lo);
+  u.Hi = std::max(a.Hi, b.Hi);
+  u.MinPositive = std::min(a.MinPositive, b.MinPositive);
+  return u;
+}
+
+ScalarSpan ParseScalarSpan(const std::string& text)
+{
+  const std::size_t colon = text.find(':');
+  ScalarSpan span;
+  bool ok = colon != std::string::npos;
+  try
+  {
+    std::size_t used = 0;
+    span.Lo = ok ? std::stod(text.substr(0, colon), &used) : 0.0;
+    ok = ok && used == colon;
+    span.Hi = ok ? std::stod(text.substr(colon + 1), &used) : 0.0;
+    ok = ok && used == text.size() - colon - 1;
+  }
+  catch (const std::exception&)
+  {
+    ok = false;
+  }
+  if (!ok || !std::isfinite(span.Lo) || !std::isfinite(span.Hi) || !(span.Lo < span.Hi))
+  {
+    throw UsageError{ "--range takes all, step or LO:HI with finite LO < HI, not '" + text + "'" };
+  }
+  span.MinPositive = span.Lo > 0.0 ? span.Lo : std::numeric_limits<double>::max();
+  return span;
+}
+
+void PrepareScalars(
+  Hierarchy& h, const std::string& scale, double& lo, double& hi, const ScalarSpan* over)
+{
+  const ScalarSpan span = over ? *over : MeasureScalars(h);
+  lo = span.Lo;
+  hi = span.Hi;
+  const double minPositive = span.MinPositive;
   bool useLog = scale == "log";
   if (scale == "auto")
   {
@@ -63,7 +107,7 @@ void PrepareScalars(Hierarchy& h, const std::string& scale, double& lo, double& 
   {
     return;
   }
-  if (!(hi > 0.0))
+  if (!(hi > 0.0) || !(minPositive < std::numeric_limits<double>::max()))
   {
     throw DatasetError("--scale log needs positive values in '" + h.ArrayName + "'");
   }
@@ -337,7 +381,8 @@ BlendMode ParseBlendMode(const std::string& blend)
 
 } // namespace
 
-RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range)
+RenderSettings MakeSettings(
+  Hierarchy& h, const Arguments& a, glm::dvec2* range, const ScalarSpan* over)
 {
   ExplicitView explicitView;
   if (a.Has("view-json"))
@@ -374,7 +419,15 @@ RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range)
   }
   double vlo, vhi;
   // an explicit transfer function is written in the data's own values
-  PrepareScalars(h, a.Get("scale", explicitView.HasTransfer ? "linear" : "auto"), vlo, vhi);
+  // --range all and step are a series' choice (AmrspSeries.cxx hands the span over all steps)
+  const std::string given = a.Get("range", "step");
+  ScalarSpan givenSpan;
+  if (!over && given != "all" && given != "step")
+  {
+    givenSpan = ParseScalarSpan(given);
+    over = &givenSpan;
+  }
+  PrepareScalars(h, a.Get("scale", explicitView.HasTransfer ? "linear" : "auto"), vlo, vhi, over);
   if (range)
   {
     *range = glm::dvec2(vlo, vhi);

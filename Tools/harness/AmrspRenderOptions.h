@@ -14,6 +14,7 @@
 
 #include <glm/glm.hpp>
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -25,18 +26,41 @@ namespace harness
 /// The names of the options MakeSettings reads (all take a value).
 extern const std::vector<std::string> RenderOptionNames;
 
+/// The span of an array's finite values, in the data's own units (before any log10).
+struct ScalarSpan
+{
+  double Lo = 0.0;
+  double Hi = 0.0;
+  /// the smallest value > 0; +max when there is none
+  double MinPositive = std::numeric_limits<double>::max();
+};
+
+/// The span of the finite values of `h`'s array. Throws DatasetError when it has none.
+ScalarSpan MeasureScalars(const Hierarchy& h);
+
+/// The span covering both.
+ScalarSpan Union(const ScalarSpan& a, const ScalarSpan& b);
+
+/// A given span, "LO:HI" with LO < HI finite (--range). Throws UsageError otherwise.
+ScalarSpan ParseScalarSpan(const std::string& text);
+
 /// The render settings of the view and transfer-function options. Maps the scalars of `h` as
-/// --scale asks (log10 in place) and returns their display range in `range`. Throws UsageError
-/// for bad options and DatasetError for data the scale cannot map.
-RenderSettings MakeSettings(Hierarchy& h, const Arguments& a, glm::dvec2* range = nullptr);
+/// --scale asks (log10 in place) and returns their display range in `range`. The scale rule and
+/// the transfer function's range follow `over` where it is given (a series' span over all its
+/// steps), else --range LO:HI where it is given, else `h`'s own values. Throws UsageError for bad
+/// options and DatasetError for data the scale cannot map.
+RenderSettings MakeSettings(
+  Hierarchy& h, const Arguments& a, glm::dvec2* range = nullptr, const ScalarSpan* over = nullptr);
 
 /// MakeSettings for a list of option words, e.g. { "--size", "96x96", "--scale", "linear" }.
 RenderSettings MakeSettings(Hierarchy& h, const std::vector<std::string>& optionWords);
 
-/// Maps the scalars for display (--scale `scale`: log10 when "log", or with "auto" for
-/// non-negative data whose positive values span more than 3 decades; zeros map to the smallest
-/// positive value) and returns their range. MakeSettings does this for its hierarchy.
-void PrepareScalars(Hierarchy& h, const std::string& scale, double& lo, double& hi);
+/// Maps the scalars for display (--scale `scale`: log10 when "log", or with "auto" when the
+/// span is non-negative and its positive values cover more than 3 decades; values below the
+/// span's smallest positive value map to it) and returns the span's display range. The span is
+/// `over` where given, else `h`'s own. MakeSettings does this for its hierarchy.
+void PrepareScalars(
+  Hierarchy& h, const std::string& scale, double& lo, double& hi, const ScalarSpan* over = nullptr);
 
 /// The VTK camera operations the view options ask for (--azimuth, --elevation, --zoom).
 ViewAngles ViewOf(const Arguments& a);
