@@ -411,8 +411,8 @@ bool vtkSinglePassAMRConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
           error = BlockName(l, i) + " is flat; volume rendering needs 3D data";
           return false;
         }
-        if (std::abs(static_cast<long long>(lo[a])) >= (1LL << 30) ||
-          std::abs(static_cast<long long>(hi[a])) >= (1LL << 30))
+        if (std::llabs(static_cast<long long>(lo[a])) >= (1LL << 30) ||
+          std::llabs(static_cast<long long>(hi[a])) >= (1LL << 30))
         {
           error = BlockName(l, i) + " has an AMR box beyond 2^30 cells of its level (" +
             std::to_string(lo[a]) + " to " + std::to_string(hi[a]) + " on axis " +

@@ -19,6 +19,11 @@ case "$config" in
     args=(-DAMRSP_WITH_PARAVIEW=OFF "-DVTK_DIR=$prefix/usr/lib/$multiarch/cmake/vtk-9.1") ;;
   forky-vtk)
     args=(-DAMRSP_WITH_PARAVIEW=OFF) ;;  # the system VTK 9.6, which ParaView 6.1 uses too
+  sanitizers)
+    # the vtk configuration with AddressSanitizer and UndefinedBehaviorSanitizer
+    prefix=${AMRSP_VTK91_PREFIX:-/opt/amrsp/vtk-9.1}
+    args=(-DAMRSP_WITH_PARAVIEW=OFF "-DVTK_DIR=$prefix/usr/lib/$multiarch/cmake/vtk-9.1"
+      -DAMRSP_SANITIZE=ON) ;;
 esac
 # Mapper.ShaderVariants checks the shader sources, which no VTK version changes: once per CI run,
 # in the Debian 12 ParaView configuration

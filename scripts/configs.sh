@@ -11,7 +11,7 @@
 # A configuration whose suite is not the running system's is built and tested inside a Debian root
 # of that suite (scripts/debian-root.sh), on a Debian 12 host only.
 
-AMRSP_ALL_CONFIGS="paraview vtk trixie-paraview forky-paraview forky-vtk"
+AMRSP_ALL_CONFIGS="paraview vtk sanitizers trixie-paraview forky-paraview forky-vtk"
 
 # The running system's codename (bookworm, trixie, forky), or what os-release says.
 amrsp_host_suite() {
@@ -27,7 +27,7 @@ amrsp_multiarch() {
 
 amrsp_config_suite() {  # $1 = config
   case "$1" in
-    paraview|vtk) echo bookworm ;;
+    paraview|vtk|sanitizers) echo bookworm ;;
     trixie-*) echo trixie ;;
     forky-*) echo forky ;;
     *) return 1 ;;
@@ -64,6 +64,13 @@ amrsp_config_backends() {  # $1 = config
 # backend of a configuration runs the whole suite; OSMesa (a second way to render with no X server)
 # runs the mapper and baseline-image tests, the tool's render tests and one pvbatch test. Mesa's
 # OSMesa is llvmpipe only: the zink (bindless) tests belong to the EGL pass.
+amrsp_config_labels() {  # $1 = config: the ctest labels its tests are chosen by ("" = all)
+  case "$1" in
+    sanitizers) echo "core|tool" ;;  # the core and tool tests, the fuzzer among them
+    *) echo "" ;;
+  esac
+}
+
 amrsp_backend_tests() {  # $1 = config, $2 = backend
   case "$2" in
     osmesa)

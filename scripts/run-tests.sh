@@ -37,10 +37,17 @@ for backend in "${backends[@]}"; do
     select=(-R "$(IFS='|'; echo "${include[*]}")")
     [ "${#exclude[@]}" = 0 ] || select+=(-E "$(IFS='|'; echo "${exclude[*]}")")
   fi
+  labels=$(amrsp_config_labels "$config")
+  [ -z "$labels" ] || select+=(-L "$labels")
   echo "[test] ctest: $config, backend $backend (log: $log)"
   t0=$SECONDS
   set +e
   (
+    if [ "$config" = sanitizers ]; then
+      # Mesa and VTK keep allocations to the end (no leak checking); any other finding fails
+      export ASAN_OPTIONS=detect_leaks=0:handle_segv=0:handle_sigbus=0:handle_sigfpe=0:handle_abort=0:exitcode=86
+      export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+    fi
     case "$backend" in
       glx)
         unset VTK_DEFAULT_OPENGL_WINDOW

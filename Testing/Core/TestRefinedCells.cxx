@@ -21,6 +21,10 @@ std::vector<unsigned char> BruteForceMask(const Hierarchy& h, std::size_t g)
   const Grid& grid = h.Grids[g];
   const glm::i64vec3 e = grid.Cells.Extent();
   std::vector<unsigned char> mask(static_cast<std::size_t>(grid.Cells.Cells()), 0);
+  if (grid.Level + 1 >= h.NumberOfLevels())
+  {
+    return mask; // the finest level: no next level, no ratio to it
+  }
   for (int64_t k = 0; k < e.z; ++k)
     for (int64_t j = 0; j < e.y; ++j)
       for (int64_t i = 0; i < e.x; ++i)

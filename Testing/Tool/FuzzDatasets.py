@@ -226,8 +226,15 @@ def main():
         print("FAIL: the judge does not reject broken behaviour: " + "; ".join(wrong))
         return 1
     os.makedirs(a.work, exist_ok=True)
-    # the address space of this process and every process it starts (inherited)
-    resource.setrlimit(resource.RLIMIT_AS, (MEMORY_LIMIT, MEMORY_LIMIT))
+    # the address space of this process and every process it starts (inherited); an
+    # AddressSanitizer build reserves terabytes of address space: its peak resident memory is
+    # judged instead
+    linked = subprocess.run(["ldd", a.amrsp], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+                            text=True).stdout
+    if "libasan" in linked:
+        print("AddressSanitizer build: no address-space limit, the peak resident memory is judged")
+    else:
+        resource.setrlimit(resource.RLIMIT_AS, (MEMORY_LIMIT, MEMORY_LIMIT))
     with ThreadPoolExecutor(a.jobs) as pool:
         results = list(pool.map(lambda i: run_variant(a.amrsp, a.data, a.work, a.seed, i),
                                 range(a.variants)))

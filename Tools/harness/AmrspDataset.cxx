@@ -278,11 +278,11 @@ vtkSmartPointer<vtkOverlappingAMR> ReadHierarchicalBoxV01(const std::string& pat
       }
       for (int a = 0; a < 3; ++a)
       {
-        if (b.Box[2 * a + 1] < b.Box[2 * a] || std::abs(b.Box[2 * a]) >= (1 << 30) ||
-          std::abs(b.Box[2 * a + 1]) >= (1 << 30))
+        if (b.Box[2 * a + 1] < b.Box[2 * a] || !WithinIndexRange(b.Box[2 * a]) ||
+          !WithinIndexRange(b.Box[2 * a + 1]))
         {
           throw DatasetError(damaged + block + " has amr_box=\"" + e->GetAttribute("amr_box") +
-            "\" (expected each upper index not below its lower one)");
+            "\" (expected indices within +-2^30, each upper one not below its lower one)");
         }
       }
       b.File = e->GetAttribute("file");
@@ -314,7 +314,7 @@ vtkSmartPointer<vtkOverlappingAMR> ReadHierarchicalBoxV01(const std::string& pat
     const std::vector<long long> cells = CheckVTIPiece(file, block);
     for (int a = 0; a < 3; ++a)
     {
-      const long long boxCells = b.Box[2 * a + 1] - b.Box[2 * a] + 1;
+      const long long boxCells = static_cast<long long>(b.Box[2 * a + 1]) - b.Box[2 * a] + 1;
       if (cells[a] != boxCells && !(cells[a] == 0 && boxCells == 1))
       {
         throw DatasetError("the piece file " + file + " of " + block + " holds " +
@@ -418,8 +418,9 @@ vtkSmartPointer<vtkOverlappingAMR> RunAlgorithm(
 
 /// Enzo and AMReX readers share vtkAMRBaseReader: enable only the requested cell array.
 std::string SelectReaderArray(vtkAMRBaseReader* reader, const DatasetRequest& request,
-  const std::string& what, CaptureVTKMessages& capture, const std::vector<std::string>& listed = {})
+  const std::string& what, CaptureVTKMessages& capture, const ExpectedBlocks& expected)
 {
+  const std::vector<std::string>& listed = expected.Variables;
   reader->SetMaxLevel(1000);
   reader->UpdateInformation();
   const int n = reader->GetNumberOfCellArrays();
@@ -431,8 +432,13 @@ std::string SelectReaderArray(vtkAMRBaseReader* reader, const DatasetRequest& re
     {
       variables += (variables.empty() ? "" : ", ") + v;
     }
+    // the reader takes the array names from the first block's file (Enzo: grid 1's HDF5 file)
+    const std::string first = expected.Files.empty() ? std::string() : expected.Files.front();
+    const std::string where = first.empty() || first == request.Spec
+      ? std::string()
+      : " (VTK's reader looks for them in " + first + ", the first grid's file)";
     throw DatasetError(what +
-      (listed.empty() ? (why.empty() ? std::string(" has no cell arrays") : " failed: " + why)
+      (listed.empty() ? (why.empty() ? " has no cell arrays" + where : " failed: " + why + where)
                       : ": VTK's reader finds no cell arrays although the files list " +
             std::to_string(listed.size()) + " variables (" + variables + ")" +
             (why.empty() ? std::string() : "; the reader said: " + why)));
@@ -636,7 +642,7 @@ void ReadWithAMRReader(vtkAMRBaseReader* reader, const std::string& what,
   CaptureVTKMessages& capture, LoadedDataset& out)
 {
   reader->SetFileName(request.Spec.c_str());
-  const std::string array = SelectReaderArray(reader, request, what, capture, expected.Variables);
+  const std::string array = SelectReaderArray(reader, request, what, capture, expected);
   out.Amr = RunAlgorithm(reader, "reading " + what, capture);
   CheckBlocksRead(
     out.Amr, expected, array, what, capture.First(), request.AllowPartial, inFileOrder);

@@ -1079,12 +1079,10 @@ ExpectedBlocks CheckVTKXMLAMRFiles(const std::string& path)
       const bool hasBox = data->GetAttribute("amr_box") != nullptr;
       if (hasBox &&
         (data->GetVectorAttribute("amr_box", 6, box) != 6 || box[1] < box[0] || box[3] < box[2] ||
-          box[5] < box[4] || std::abs(box[0]) >= (1 << 30) || std::abs(box[1]) >= (1 << 30) ||
-          std::abs(box[2]) >= (1 << 30) || std::abs(box[3]) >= (1 << 30) ||
-          std::abs(box[4]) >= (1 << 30) || std::abs(box[5]) >= (1 << 30)))
+          box[5] < box[4] || !std::all_of(box, box + 6, [](int v) { return WithinIndexRange(v); })))
       {
         throw DatasetError(damaged + block + " has amr_box=\"" + data->GetAttribute("amr_box") +
-          "\" (expected six integers, each upper index not below its lower one)");
+          "\" (expected six integers within +-2^30, each upper index not below its lower one)");
       }
       std::string piece;
       if (file)
@@ -1100,7 +1098,7 @@ ExpectedBlocks CheckVTKXMLAMRFiles(const std::string& path)
         for (int a = 0; a < 3 && hasBox; ++a)
         {
           // a piece's extent counts points: one more than the box's cells (or 0 on a flat axis)
-          const long long boxCells = box[2 * a + 1] - box[2 * a] + 1;
+          const long long boxCells = static_cast<long long>(box[2 * a + 1]) - box[2 * a] + 1;
           if (cells[a] != boxCells && !(cells[a] == 0 && boxCells == 1))
           {
             throw DatasetError("the piece file " + piece + " of " + block + " in " + path +

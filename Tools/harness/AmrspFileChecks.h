@@ -25,6 +25,13 @@ struct ExpectedBlocks
   std::size_t Count() const { return Files.size(); }
 };
 
+/// Whether a box index read from a file lies strictly within +-2^30, so that extents and
+/// indices refined by a few levels stay within int.
+inline bool WithinIndexRange(long long v)
+{
+  return v > -(1LL << 30) && v < (1LL << 30);
+}
+
 /// An Enzo .hierarchy file: every grid entry complete (the file is not cut inside one), every
 /// grid the entries point to described, and each grid's HDF5 file present, an HDF5 file, and as
 /// long as its superblock says.

@@ -325,9 +325,10 @@ std::string SignalName(int signal)
 enum ChildExit : int
 {
   ChildRead = 0,
-  ChildError = 1,       ///< `read` threw: the message is in the error file
-  ChildOutOfMemory = 2, ///< std::bad_alloc
-  ChildNoSpace = 3      ///< the result could not be written
+  // not 1: the sanitizers' and many libraries' own exit code
+  ChildError = 101,       ///< `read` threw: the message is in the error file
+  ChildOutOfMemory = 102, ///< std::bad_alloc
+  ChildNoSpace = 103      ///< the result could not be written
 };
 
 bool ReadingChild = false;
@@ -517,9 +518,10 @@ IsolatedResult ReadInChildProcess(const std::string& what, double timeoutSeconds
         70);
     }
     const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    if (code == ChildError)
+    const std::string thrown = code == ChildError ? ReadText(errorFd, 1 << 16) : std::string();
+    if (code == ChildError && !thrown.empty())
     {
-      throw DatasetError(ReadText(errorFd, 1 << 16));
+      throw DatasetError(thrown);
     }
     if (code == ChildOutOfMemory)
     {
