@@ -27,6 +27,8 @@ import sys
 from concurrent.futures import ThreadPoolExecutor
 
 TIME_LIMIT = 60
+# what AddressSanitizer and UBSan print, and the exit code scripts/run-tests.sh gives ASan
+SANITIZER_MARKS = ["Sanitizer", "runtime error:", "exit code 86"]
 MEMORY_LIMIT = 4 << 30
 BAD_NUMBERS = ["0", "-1", "-2", "1", "2147483647", "-2147483648", "1000000000", "2000000000",
                "nan", "inf", "-inf", "1e300", "0.5", "99999999999999999999"]
@@ -172,6 +174,11 @@ def run_and_judge(command, copy, time_limit):
     err = [l for l in p.stderr.decode(errors="replace").splitlines() if l.strip()]
     if p.returncode < 0:
         return "FAIL", "killed by signal %d: %s" % (-p.returncode, " | ".join(err[-3:]))
+    text = "\n".join(err)
+    if any(mark in text for mark in SANITIZER_MARKS):
+        # a sanitizer's finding, in the tool or in its reading child (whose report the tool
+        # turns into its error line)
+        return "FAIL", "a sanitizer's finding: " + " | ".join(err[:4])
     if p.returncode == 0:
         return "ok", ""
     if len(err) != 1 or not err[0].startswith("amrsp: error: "):
@@ -194,6 +201,9 @@ def judge_rejects_broken_behaviour():
         ("echo 'amrsp: error: vector::_M_default_append' >&2; exit 1", "FAIL"),
         ("echo 'Segmentation fault' >&2; exit 1", "FAIL"),
         ("echo 'amrsp: error: %s/Header: bad' >&2; exit 1" % copy, "error"),
+        ("echo 'amrsp: error: reading %s/x: the reading process ended with exit code 86: "
+         "ERROR: AddressSanitizer: heap-buffer-overflow' >&2; exit 70" % copy, "FAIL"),
+        ("echo 'x.cxx:1:2: runtime error: signed integer overflow' >&2; exit 0", "FAIL"),
         ("exit 0", "ok"),
     ]
     wrong = []

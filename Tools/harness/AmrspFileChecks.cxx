@@ -985,6 +985,22 @@ std::vector<long long> CheckVTIPiece(const std::string& piece, const std::string
         " (expected each upper index not below its lower one, at most 2^24 apart)");
     }
   }
+  // each piece's extent inside the whole extent: VTK's reader allocates a piece's arrays from it
+  for (std::size_t at = head.find("<Piece"); at != std::string::npos;
+       at = head.find("<Piece", at + 1))
+  {
+    std::vector<long long> pieceExtent;
+    std::string pieceValue;
+    if (!XMLAttribute(head.substr(at), "Piece", "Extent", pieceValue) ||
+      !Numbers(pieceValue, 6, pieceExtent) || pieceExtent[0] < extent[0] ||
+      pieceExtent[1] > extent[1] || pieceExtent[2] < extent[2] || pieceExtent[3] > extent[3] ||
+      pieceExtent[4] < extent[4] || pieceExtent[5] > extent[5] || pieceExtent[1] < pieceExtent[0] ||
+      pieceExtent[3] < pieceExtent[2] || pieceExtent[5] < pieceExtent[4])
+    {
+      throw DatasetError(damaged + "damaged: a Piece has Extent=\"" + pieceValue +
+        "\" (expected six integers inside the WholeExtent " + value + ")");
+    }
+  }
   std::vector<double> spacing, origin;
   if (XMLAttribute(head, "ImageData", "Spacing", value) &&
     (!Numbers(value, 3, spacing) ||

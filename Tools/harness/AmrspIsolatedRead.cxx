@@ -270,12 +270,30 @@ std::string ReadText(int fd, std::size_t most)
 
 /// The one line of what a dead reader printed that says most: an assertion's text, else the last
 /// line; empty when it printed nothing.
+/// A line of VTK's log without its terminal colours ("\x1b[31m") and its loguru prefix
+/// ("2026-11-28 03:30:16.051 (   0.069s) [  D6021DC0]  file.txx:389  ERR| ").
+std::string PlainLogLine(std::string line)
+{
+  for (std::size_t e = line.find('\x1b'); e != std::string::npos; e = line.find('\x1b', e))
+  {
+    const std::size_t m = line.find('m', e);
+    line.erase(e, m == std::string::npos ? std::string::npos : m - e + 1);
+  }
+  const std::size_t bar = line.find("| ");
+  if (bar != std::string::npos && bar < 120 && line.find(") [") < bar)
+  {
+    line = line.substr(bar + 2);
+  }
+  return line;
+}
+
 std::string TellingLine(const std::string& output)
 {
   std::istringstream lines(output);
   std::string line, last, assertion;
   while (std::getline(lines, line))
   {
+    line = PlainLogLine(line);
     const std::size_t a = line.find_first_not_of(" \t\r");
     if (a == std::string::npos)
     {
