@@ -8,6 +8,7 @@
 #include "AmrspBenchWork.h"
 #include "AmrspMethods.h"
 #include "AmrspMultipass.h"
+#include "AmrspProcessResources.h"
 #include "AmrspSinglePass.h"
 #include "AmrspProgress.h"
 #include "AmrspUniform.h"
@@ -59,20 +60,6 @@ bool ResetPeakResidentMemory()
 #endif
   std::ofstream clear("/proc/self/clear_refs");
   return static_cast<bool>(clear << "5" << std::flush);
-}
-
-/// This process's peak resident memory in bytes (VmHWM of /proc/self/status), -1 if unknown.
-long long PeakResidentBytes()
-{
-  std::ifstream status("/proc/self/status");
-  for (std::string line; std::getline(status, line);)
-  {
-    if (line.rfind("VmHWM:", 0) == 0)
-    {
-      return 1024LL * std::stoll(line.substr(6)); // "VmHWM:   1234 kB"
-    }
-  }
-  return -1;
 }
 
 double Seconds(Clock::time_point since)

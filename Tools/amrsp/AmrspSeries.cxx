@@ -199,6 +199,22 @@ std::string StepOutputPath(const std::string& pattern, int step)
 
 namespace
 {
+/// --json FILE writes `j` there; --json - prints it, and then true: the table is left out.
+bool WriteJson(const Arguments& a, const Json& j)
+{
+  const std::string json = a.Get("json", "");
+  if (json == "-")
+  {
+    std::cout << j.dump(2) << "\n";
+    return true;
+  }
+  if (!json.empty())
+  {
+    std::ofstream(json) << j.dump(2) << "\n";
+  }
+  return false;
+}
+
 /// The span of the values of every step of the series (each step read once).
 ScalarSpan SeriesSpan(const Arguments& a, const std::vector<std::string>& specs)
 {
@@ -394,15 +410,9 @@ int BenchSeries(const Arguments& a)
     r["per_step"] = perStep;
     j["methods"][name] = r;
   }
-  const std::string json = a.Get("json", "");
-  if (json == "-")
+  if (WriteJson(a, j))
   {
-    std::cout << j.dump(2) << "\n";
     return 0;
-  }
-  if (!json.empty())
-  {
-    std::ofstream(json) << j.dump(2) << "\n";
   }
   std::cout << "| method | step_switch_s | rebuild_s | switch ÷ rebuild | build + upload: switch, "
                "rebuild | still frame s |\n"
@@ -513,15 +523,9 @@ int SoakSeries(const Arguments& a)
   j["descriptors"] = { { "start", start.Descriptors }, { "after_warm_up", warm.Descriptors },
     { "end", end.Descriptors } };
   j["trace"] = trace;
-  const std::string json = a.Get("json", "");
-  if (json == "-")
+  if (WriteJson(a, j))
   {
-    std::cout << j.dump(2) << "\n";
     return 0;
-  }
-  if (!json.empty())
-  {
-    std::ofstream(json) << j.dump(2) << "\n";
   }
   std::cout << std::fixed << std::setprecision(1) << "soak " << j["dataset"].get<std::string>()
             << " (" << specs.size() << " steps, " << method << ", " << j["size"].get<std::string>()

@@ -11,17 +11,31 @@ namespace amrsp
 namespace harness
 {
 
-long long ResidentBytes()
+namespace
+{
+/// A "Field:   1234 kB" line of /proc/self/status in bytes; -1 where unknown.
+long long StatusBytes(const std::string& field)
 {
   std::ifstream status("/proc/self/status");
   for (std::string line; std::getline(status, line);)
   {
-    if (line.rfind("VmRSS:", 0) == 0)
+    if (line.rfind(field + ":", 0) == 0)
     {
-      return 1024LL * std::stoll(line.substr(6)); // "VmRSS:   1234 kB"
+      return 1024LL * std::stoll(line.substr(field.size() + 1));
     }
   }
   return -1;
+}
+} // namespace
+
+long long ResidentBytes()
+{
+  return StatusBytes("VmRSS");
+}
+
+long long PeakResidentBytes()
+{
+  return StatusBytes("VmHWM");
 }
 
 int OpenDescriptors()

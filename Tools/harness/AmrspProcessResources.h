@@ -12,6 +12,9 @@ namespace harness
 /// Resident memory of this process in bytes (VmRSS of /proc/self/status); -1 where unknown.
 long long ResidentBytes();
 
+/// Peak resident memory of this process in bytes (VmHWM of /proc/self/status); -1 where unknown.
+long long PeakResidentBytes();
+
 /// Open file descriptors of this process (entries of /proc/self/fd, less the one that lists
 /// them); -1 where unknown.
 int OpenDescriptors();
