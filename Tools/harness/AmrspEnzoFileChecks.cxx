@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The Enzo checks of AmrspFileChecks.h: the .hierarchy entries, their fields and pointers, the grid files.
+// The Enzo checks of AmrspFileChecks.h: the .hierarchy entries, their fields and pointers, the grid
+// files.
 #include "AmrspFileChecks.h"
 
 #include "AmrspDataset.h"
