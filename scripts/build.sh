@@ -23,7 +23,7 @@ case "$config" in
     # the vtk configuration with AddressSanitizer and UndefinedBehaviorSanitizer
     prefix=${AMRSP_VTK91_PREFIX:-/opt/amrsp/vtk-9.1}
     args=(-DAMRSP_WITH_PARAVIEW=OFF "-DVTK_DIR=$prefix/usr/lib/$multiarch/cmake/vtk-9.1"
-      -DAMRSP_SANITIZE=ON) ;;
+      -DAMRSP_SANITIZE=ON -DAMRSP_MAPPER_TESTS=OFF) ;;  # it runs the core and tool tests
 esac
 # Mapper.ShaderVariants checks the shader sources, which no VTK version changes: once per CI run,
 # in the Debian 12 ParaView configuration
