@@ -102,6 +102,20 @@ CASES = {
         "off_bound": 0.045,
         "baseline": "EnzoLog",
     },
+    # the same dump through the plugin's Checked AMR Reader (every level and array, VTK's reader
+    # in a child process; in parallel the blocks dealt to the ranks by the reader): the same image
+    "enzo-checked": {
+        "reader": "CheckedAMRReader",
+        "reader_properties": {},
+        "selects_levels": False,
+        "path": "enzo_moving7/DD0010/moving7_0010.hierarchy",
+        "array": "Density",
+        "transfer": enzo_transfer,
+        "min_coverage": 0.05,
+        "rmse_bound": 2.7,
+        "off_bound": 0.015,
+        "baseline": "Enzo",
+    },
     "amrex": {
         "reader": "AMReXBoxLibGridReader",
         "reader_properties": {},
@@ -451,9 +465,10 @@ def main():
         label = "%s-%s" % (name, mode)
         print("parallel: %d ranks" % ranks)
 
-    reader = getattr(simple, case["reader"])(FileNames=[path])
-    reader.Level = 30  # all levels (ParaView's AMR readers default to level 0 only)
-    reader.CellArrayStatus = [case["array"]]
+    reader = (globals().get(case["reader"]) or getattr(simple, case["reader"]))(FileNames=[path])
+    if case.get("selects_levels", True):
+        reader.Level = 30  # all levels (ParaView's AMR readers default to level 0 only)
+        reader.CellArrayStatus = [case["array"]]
     for key, value in case["reader_properties"].items():
         setattr(reader, key, value)
     reader.UpdatePipeline()

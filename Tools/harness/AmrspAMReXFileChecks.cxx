@@ -2,7 +2,7 @@
 // The AMReX checks of AmrspFileChecks.h: the Header, each level's Cell_H and every FAB on disk.
 #include "AmrspFileChecks.h"
 
-#include "AmrspDataset.h"
+#include "AmrspDatasetError.h"
 #include "AmrspFileCheckTools.h"
 
 #include <algorithm>

@@ -5,6 +5,8 @@
 /// VTK XML AMR .vthb/.vth/.vtm), `synthetic:pulse`, or
 /// `synthetic:cosmo[:grids=N,levels=L,cells=C,seed=S]`.
 
+#include "AmrspDatasetError.h"
+
 #include "amrsp/Hierarchy.h"
 
 #include "vtkOverlappingAMR.h"
@@ -17,13 +19,6 @@ namespace amrsp
 {
 namespace harness
 {
-
-/// A problem with the dataset argument; what() is one line for the user.
-class DatasetError : public std::runtime_error
-{
-public:
-  using std::runtime_error::runtime_error;
-};
 
 struct DatasetRequest
 {

@@ -3,7 +3,7 @@
 // files.
 #include "AmrspFileChecks.h"
 
-#include "AmrspDataset.h"
+#include "AmrspDatasetError.h"
 #include "AmrspFileCheckTools.h"
 
 #include <algorithm>

@@ -2,7 +2,7 @@
 // The VTK XML AMR checks of AmrspFileChecks.h: the .vthb/.vth/.vtm XML and every .vti piece.
 #include "AmrspFileChecks.h"
 
-#include "AmrspDataset.h"
+#include "AmrspDatasetError.h"
 #include "AmrspFileCheckTools.h"
 
 #include "vtkNew.h"
