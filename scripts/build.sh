@@ -28,6 +28,18 @@ esac
 # Mapper.ShaderVariants checks the shader sources, which no VTK version changes: once per CI run,
 # in the Debian 12 ParaView configuration
 [ "$config" = paraview ] && args+=(-DAMRSP_SHADER_VARIANT_TEST=ON) || args+=(-DAMRSP_SHADER_VARIANT_TEST=OFF)
+# The fuzzer's 300 variants once per VTK version: the vtk configuration has sanitizers' VTK 9.1,
+# forky-paraview forky-vtk's 9.6 (100 variants there)
+case "$config" in
+  vtk|forky-paraview) args+=(-DAMRSP_FUZZ_VARIANTS=100) ;;
+  *) args+=(-DAMRSP_FUZZ_VARIANTS=300) ;;
+esac
+# The GPU profile command's smoke test where the GPU bundle's amrsp comes from (forky-vtk) and in
+# the host's ParaView configuration
+case "$config" in
+  forky-vtk|paraview) args+=(-DAMRSP_GPU_PROFILE_TEST=ON) ;;
+  *) args+=(-DAMRSP_GPU_PROFILE_TEST=OFF) ;;
+esac
 build="$repo/build/$config"
 mkdir -p "$repo/build"
 echo "[build] $config -> $build"
