@@ -23,7 +23,8 @@ namespace vtkSinglePassAMRCheckedReaderTransfer
 namespace
 {
 // Layout: a tag ('R' raw blocks, 'M' the whole AMR marshalled), the marshalled bytes' count
-// (uint64) and bytes, then for 'R' every block in level order: present (uint8); when present
+// (uint64) and bytes, then for 'R' every block in level order: its class (uint8: 0 none, 1
+// vtkImageData, 2 vtkUniformGrid); when present
 // its dimensions (3 x int32), origin and spacing (6 x double), the cell and the point arrays
 // (each: count (uint32), then per array the name's length (uint32) and characters, VTK type,
 // components (2 x int32), tuples (int64) and the values' bytes).
@@ -205,7 +206,8 @@ bool Write(vtkOverlappingAMR* amr, int fd)
     for (unsigned int i = 0; i < vtkSinglePassAMRDataModel::NumberOfBlocks(amr, l); ++i)
     {
       vtkImageData* image = vtkImageData::SafeDownCast(vtkSinglePassAMRDataModel::Block(amr, l, i));
-      out.Value(static_cast<uint8_t>(image ? 1 : 0));
+      // the block's own class, so that the parent's AMR is what VTK's reader made
+      out.Value(static_cast<uint8_t>(!image ? 0 : image->IsA("vtkUniformGrid") ? 2 : 1));
       if (!image)
       {
         continue;
@@ -251,7 +253,8 @@ vtkSmartPointer<vtkOverlappingAMR> Read(const char* data, std::size_t bytes)
   {
     for (unsigned int i = 0; i < vtkSinglePassAMRDataModel::NumberOfBlocks(amr, l); ++i)
     {
-      if (in.Value<uint8_t>() == 0)
+      const uint8_t kind = in.Value<uint8_t>();
+      if (kind == 0)
       {
         continue;
       }
@@ -268,8 +271,12 @@ vtkSmartPointer<vtkOverlappingAMR> Read(const char* data, std::size_t bytes)
       std::memcpy(origin, o, sizeof(origin));
       std::memcpy(spacing, s, sizeof(spacing));
 #ifdef AMRSP_VTK_AMR_DATA_OBJECT
-      vtkNew<vtkImageData> image;
+      // VTK 9.6 takes image data or its subclass vtkUniformGrid, whichever the reader made
+      vtkSmartPointer<vtkImageData> image = kind == 2
+        ? vtkSmartPointer<vtkImageData>(vtkSmartPointer<vtkUniformGrid>::New())
+        : vtkSmartPointer<vtkImageData>::New();
 #else
+      (void)kind; // before 9.6 every AMR block is a vtkUniformGrid
       vtkNew<vtkUniformGrid> image;
 #endif
       image->SetDimensions(dims);

@@ -84,6 +84,21 @@ def main():
     mpiexec, simulation, amrsp, ranks, outdir = sys.argv[1:6]
     ranks = int(ranks)
     require_display()
+    # A rebuild of this tree while the test runs (another build in the same folder) would make
+    # the images and the references come from different code, split at whatever step the relink
+    # fell on: the binaries' identities are recorded and a run whose binaries changed fails
+    # saying so instead of judging the images.
+    def identities():
+        found = {}
+        for path in (simulation, amrsp):
+            try:
+                st = os.stat(path)
+                found[path] = (st.st_ino, st.st_mtime_ns, st.st_size)
+            except OSError:
+                found[path] = None
+        return found
+
+    binaries = identities()
     reference_run = os.path.join(outdir, "np1-data")
     costs, with_records = simulate(mpiexec, simulation, 1, reference_run, True)
     run_dir = reference_run
@@ -129,6 +144,11 @@ def main():
                  str(REFERENCE_SAMPLE_FACTOR), "-o", reference],
                 os.path.join(reference_run, "reference_%04d.log" % step))
         references.append(read_png(reference)[2])
+    changed = [path for path, identity in identities().items() if identity != binaries[path]]
+    if changed:
+        fail("%s changed while the test ran (a rebuild of this tree): the images and the "
+             "references may come from different code; run the test again on a quiet tree"
+             % ", ".join(changed))
     for step in range(STEPS):
         image = read_png(os.path.join(run_dir, "step_%04d.png" % step))[2]
         share = float((image.max(axis=1) > 2).mean())
