@@ -48,6 +48,7 @@ struct Dataset
   Format Kind;
   std::string Path; ///< Enzo: the .hierarchy; AMReX: the plotfile folder; VTK XML: the file
   std::string What; ///< how messages name the read
+  bool ConvertToCGS = false; ///< Enzo: values in CGS units instead of the code's units
 };
 
 std::string Lower(std::string s)
@@ -168,6 +169,7 @@ vtkSmartPointer<vtkOverlappingAMR> CheckAndRead(const Dataset& d)
     {
       expected = FileChecksOn() ? amrsp::harness::CheckEnzoFiles(d.Path) : expected;
       auto enzo = vtkSmartPointer<vtkAMREnzoReader>::New();
+      enzo->SetConvertToCGS(d.ConvertToCGS ? 1 : 0);
       SelectEverything(enzo, d);
       reader = enzo;
       break;
@@ -293,7 +295,8 @@ int vtkSinglePassAMRCheckedReader::RequestData(
     {
       throw DatasetError("no file name set");
     }
-    const Dataset d = Identify(this->FileName);
+    Dataset d = Identify(this->FileName);
+    d.ConvertToCGS = this->ConvertToCGS;
     if (this->ReadInChildProcess)
     {
       ReadInChild(d, this->ReadTimeout, output);
@@ -344,5 +347,6 @@ void vtkSinglePassAMRCheckedReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
   os << indent << "ReadTimeout: " << this->ReadTimeout << "\n";
   os << indent << "ReadInChildProcess: " << this->ReadInChildProcess << "\n";
+  os << indent << "ConvertToCGS: " << this->ConvertToCGS << "\n";
   os << indent << "LastError: " << this->LastError << "\n";
 }

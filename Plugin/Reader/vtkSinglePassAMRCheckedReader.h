@@ -65,6 +65,14 @@ public:
   vtkBooleanMacro(ReadInChildProcess, bool);
   ///@}
 
+  ///@{
+  /// Enzo: values in CGS units (on) or in the simulation's code units (off, the default, as
+  /// ParaView's own Enzo reader; VTK's vtkAMREnzoReader and amrsp convert by default).
+  vtkSetMacro(ConvertToCGS, bool);
+  vtkGetMacro(ConvertToCGS, bool);
+  vtkBooleanMacro(ConvertToCGS, bool);
+  ///@}
+
   /// The one-line message of the last read that failed; empty after a read that succeeded.
   const char* GetLastError() const { return this->LastError.c_str(); }
 
@@ -80,6 +88,7 @@ protected:
   char* FileName = nullptr;
   double ReadTimeout = 120.0;
   bool ReadInChildProcess = true;
+  bool ConvertToCGS = false;
   std::string LastError;
 
 private:

@@ -120,7 +120,8 @@ def unchecked_in_process(plugin, path):
     from paraview import simple
 
     simple.LoadPlugin(plugin, remote=False, ns=globals())
-    reader = CheckedAMRReader(FileNames=[path], ReadInChildProcess=0)  # noqa: F821
+    reader = CheckedAMRReader(FileNames=[path], ReadInChildProcess=0,  # noqa: F821
+                              ConvertToCGS=1)
     reader.UpdatePipeline()
     print("IN-PROCESS read returned")
     leave(0)
@@ -148,11 +149,13 @@ def own_reader_image(plugin, path, png):
     leave(0)
 
 
-def direct_read(path):
-    """A fresh vtkAMREnzoReader of one file: every level and cell array."""
+def direct_read(path, cgs=False):
+    """A fresh vtkAMREnzoReader of one file: every level and cell array, in code units as
+    ParaView's Enzo reader and the checked reader give them by default (or CGS)."""
     from vtkmodules.vtkIOAMR import vtkAMREnzoReader
 
     reader = vtkAMREnzoReader()
+    reader.SetConvertToCGS(1 if cgs else 0)
     reader.SetFileName(path)
     reader.SetMaxLevel(1000)
     reader.UpdateInformation()
@@ -304,6 +307,18 @@ def main():
 
     other_formats(data)
 
+    # ConvertToCGS: off by default (ParaView's Enzo reader's units), on as VTK's reader's default
+    reader = CheckedAMRReader(FileNames=[deep], ConvertToCGS=1)  # noqa: F821
+    reader.UpdatePipeline()
+    got = summary(reader.GetClientSideObject().GetOutputDataObject(0))
+    want = summary(direct_read(deep, cgs=True))
+    print("ConvertToCGS on: Density sum %g (VTK's reader in CGS: %g; in code units: %g)"
+          % (got[2], want[2], expected[deep][2]))
+    if abs(got[2] - want[2]) > 1e-9 * abs(want[2]) or abs(got[2] - expected[deep][2]) < \
+            1e-3 * abs(expected[deep][2]):
+        fail("ConvertToCGS on gave a Density sum of %g, VTK's reader in CGS %g" % (got[2], want[2]))
+    simple.Delete(reader)
+
     # loading the plugin leaves the reader File > Open and OpenDataFile pick as it was
     for path in (deep, os.path.join(data, "vthb_hierarchicalbox",
                                     "HierarchicalBoxDataset.v1.1.vthb")):
@@ -351,6 +366,7 @@ def main():
     # 3. the checks off: the reading child still keeps this process alive
     os.environ["AMRSP_SKIP_FILE_CHECKS"] = "1"
     reader.ReadTimeout = 3
+    reader.ConvertToCGS = 1  # VTK's reader aborts on start-past-end while converting to CGS
     # the abort's message carries the assertion's text, which names VTK's Enzo reader
     for name, wants in (("start-past-end", ("crashed inside VTK's reader (SIGABRT",
                                             "vtkAMREnzoReader")),
@@ -364,6 +380,7 @@ def main():
             fail("%s with the checks off: expected %s, got %r" % (name, wants, message))
     del os.environ["AMRSP_SKIP_FILE_CHECKS"]
     reader.ReadTimeout = 120
+    reader.ConvertToCGS = 0
     rc, output = run_pvpython("--unchecked-in-process", plugin, cases["start-past-end"][0])
     print("start-past-end, unchecked, in pvpython's own process: %s" % (
         "killed by signal %d" % -rc if rc < 0 else "exit code %d" % rc))

@@ -106,7 +106,7 @@ CASES = {
     # in a child process; in parallel the blocks dealt to the ranks by the reader): the same image
     "enzo-checked": {
         "reader": "CheckedAMRReader",
-        "reader_properties": {},
+        "reader_properties": {"ConvertToCGS": 1},
         "selects_levels": False,
         "path": "enzo_moving7/DD0010/moving7_0010.hierarchy",
         "array": "Density",
