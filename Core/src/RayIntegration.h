@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
-/// What the two CPU integrators (the kD-tree integrator, KdTreeIntegrator.cxx, and the
-/// reference, ReferenceIntegrator.cxx) share: the row scheduler, the front-to-back accumulator of
-/// every blend mode, grid sampling, the dual-cell interpolation of smooth cells and the work
-/// counters. Internal to the core library.
+/// The kD-tree integrator's (KdTreeIntegrator.cxx, the shader's CPU mirror) row scheduler,
+/// front-to-back accumulator of every blend mode, grid sampling, dual-cell interpolation of smooth
+/// cells and work counters. Internal to the core library. The independent reference
+/// (src/reference/) has its own and may not include this header (Core.ReferenceIndependence).
 
 #include "amrsp/FinestCellLocator.h"
 #include "amrsp/Hierarchy.h"

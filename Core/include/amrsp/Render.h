@@ -13,15 +13,17 @@
 ///   times the smallest world-space edge of a level-d cell (LevelSampleStep, amrsp/SampleStep.h);
 ///   sample k sits at t0 + (k + SampleOffset) dt, just before the step's midpoint (never exactly
 ///   on a cell face: amrsp/SampleStep.h). Cell-centred data is sampled nearest-cell.
-/// - Reference integrator: no kD-tree. It marches the root box with steps of
-///   ReferenceSampleFactor times the smallest edge of the finest cell at the current point, found
-///   directly from the hierarchy (finest grid containing the point), and samples step midpoints.
+/// - Reference integrator (amrsp/ReferenceRender.h): no kD-tree and none of the kD-tree
+///   integrator's rule code. It marches the root box with steps of ReferenceSampleFactor times
+///   the smallest edge of the finest cell at the current point, found directly from the hierarchy
+///   (finest grid containing the point), and samples step midpoints.
 
 #include "amrsp/BrickAtlas.h"
 #include "amrsp/FinestCellLocator.h"
 #include "amrsp/Hierarchy.h"
 #include "amrsp/Image.h"
 #include "amrsp/KdTreeEncoding.h"
+#include "amrsp/ReferenceRender.h"
 #include "amrsp/RenderSettings.h"
 #include "amrsp/Shading.h"
 
@@ -51,12 +53,6 @@ double SampleKdTreeAtPoint(
 PointLookup KdTreePointLookup(
   const Hierarchy& h, const EncodedKdTree& tree, bool smooth, const BrickAtlas* atlas = nullptr);
 
-/// The reference's point lookup: the finest grid containing the point, found by `locator` (no
-/// kD-tree); NaN outside the root box and every grid; cellSize: that grid's cell size. `smooth`
-/// (cell-centred data only): the reference's smooth reconstruction at the finest level there.
-/// Refers to h and locator, which must outlive it.
-PointLookup ReferencePointLookup(const Hierarchy& h, const FinestCellLocator& locator, bool smooth);
-
 /// Renders with the CPU kD-tree integrator over the encoded textures. Without `atlas`, samples
 /// come from the grid named by each data node; with it, from the packed atlas through the data
 /// nodes' atlas offsets, exactly as the packing shader addresses it (the tree must then have been
@@ -68,9 +64,6 @@ Image RenderKdTree(const Hierarchy& h, const EncodedKdTree& tree, const RenderSe
 /// outside every grid.
 float SampleKdTreePoint(
   const Hierarchy& h, const EncodedKdTree& tree, const glm::vec3& p, bool smooth);
-
-/// Renders the independent reference (no kD-tree).
-Image RenderReference(const Hierarchy& h, const RenderSettings& s);
 
 /// The samples the kD-tree integrator takes along one world-space ray: position in level-0
 /// index units (double, computed from the float segment bounds), the grid sampled and its cell.

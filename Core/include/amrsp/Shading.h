@@ -45,6 +45,7 @@
 ///   data between two samples (absent sample or empty space) breaks the pairing.
 
 #include "amrsp/Lighting.h"
+#include "amrsp/PointLookup.h"
 
 #include <glm/glm.hpp>
 
@@ -60,10 +61,6 @@ constexpr int ShadowMaxSteps = 4096;
 constexpr double ShadowMinTransmittance = 1e-3;
 constexpr int IsoRefineSteps = 8;
 constexpr int MaxIsoValues = 8;
-
-/// Scalar at p (level-0 index units), NaN when absent; sets cellSize (level-0 index units) of the
-/// level the value comes from.
-using PointLookup = std::function<double(const glm::dvec3& p, glm::dvec3& cellSize)>;
 
 /// Per-render constants of the shading rules.
 struct ShadingContext
