@@ -210,8 +210,18 @@ std::vector<Crossing> FindCrossings(const Field& field, const std::vector<double
     const glm::dvec3 hit = pa + t1 * (pb - pa);
     crossings.push_back(Crossing{ glm::length(hit - pa), c, hit });
   }
-  std::stable_sort(crossings.begin(), crossings.end(),
-    [](const Crossing& x, const Crossing& y) { return x.Distance < y.Distance; });
+  // in the order the ray meets them; crossings located at one point (a jump of nearest cells
+  // between the samples) in the order the values pass from va to vb
+  const bool rising = vb > va;
+  std::sort(crossings.begin(), crossings.end(),
+    [rising](const Crossing& x, const Crossing& y)
+    {
+      if (x.Distance != y.Distance)
+      {
+        return x.Distance < y.Distance;
+      }
+      return rising ? x.IsoValue < y.IsoValue : x.IsoValue > y.IsoValue;
+    });
   return crossings;
 }
 

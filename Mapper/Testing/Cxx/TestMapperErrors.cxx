@@ -265,7 +265,8 @@ void TestInputs(Scene& scene)
     "holds no finite value", "Density NaN everywhere");
   ExpectError(scene, MakeAMR(8, { 1, 2 }, two, [inf](double, double, double) { return inf; }),
     "holds no finite value", "Density +Inf everywhere");
-  // NaN and Inf in some cells: transparent there, the rest rendered with the finite range
+  // NaN and Inf in some cells: NaN transparent, +-Inf the transfer function's ends, the rest
+  // rendered with the finite range (Mapper.Analytic.nan checks the rule pixel by pixel)
   ExpectImage(scene,
     MakeAMR(8, { 1, 2 }, two,
       [nan, inf](double x, double y, double z)
