@@ -4,8 +4,28 @@
 # the skipping test gone it must pass with 0 skipped; a test that prints SKIPPED: and FAIL: and
 # exits 1 is a failure, not a skip.
 #   TestSkipBackstop.sh REPO CONFIG BACKEND
+# CONFIG is the build folder's name; a folder the scripts did not name (a user's own
+# `cmake -B build-vtk`) checks the backstop under a configuration of this system's Debian release
+# (the fake suite below needs nothing of the build), or says SKIPPED where none is (exit 125).
 set -uo pipefail
 repo=$1 config=$2 backend=$3
+. "$repo/scripts/configs.sh"
+if ! amrsp_config_suite "$config" >/dev/null; then
+  host=$(amrsp_host_suite) chosen=
+  for c in $AMRSP_ALL_CONFIGS; do
+    [ "$(amrsp_config_suite "$c")" = "$host" ] && { chosen=$c; break; }
+  done
+  if [ -z "$chosen" ] && [ "${AMRSP_REQUIRE_GPU:-0}" = 1 ]; then
+    echo "FAIL: required here (AMRSP_REQUIRE_GPU=1): scripts/run-tests.sh runs on Debian 12, 13 or testing; this system is '$host'"
+    exit 1
+  elif [ -z "$chosen" ]; then
+    echo "SKIPPED: scripts/run-tests.sh runs on Debian 12, 13 or testing; this system is '$host'"
+    exit 125
+  fi
+  echo "the build folder '$config' is none of the scripts' configurations: checking the backstop as '$chosen' ($host)"
+  config=$chosen
+  case "$config" in forky-*) backend=egl ;; *) backend=glx ;; esac
+fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 mkdir -p "$work/Tools/amrsp"
