@@ -13,7 +13,7 @@ int TestSinglePassAMRAMReX(int argc, char* argv[])
   // one sample per cell against the reference's two
   c.ReferenceBound = 3.7;
   c.ReferenceOffBound = 0.032;
-  c.MirrorBound = 0.5;
+  c.MirrorBound = 0.3;
   c.BaselineBound = 0.3;
   return amrsp::test::RunBaselineTest(argc, argv, c);
 }

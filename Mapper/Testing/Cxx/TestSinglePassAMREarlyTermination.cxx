@@ -27,7 +27,7 @@ int TestSinglePassAMREarlyTermination(int argc, char* argv[])
   // the pixels off by more than 8 levels, mirror 0.32, stored baseline 0.04
   c.ReferenceBound = 4.2;
   c.ReferenceOffBound = 0.039;
-  c.MirrorBound = 0.7;
+  c.MirrorBound = 0.3;
   c.BaselineBound = 0.3;
   c.WrongImages.push_back({ "rays stopped at opacity 0.5",
     [](amrsp::RenderSettings& s) { s.OpacityThreshold = 0.5; }, nullptr });

@@ -13,7 +13,7 @@ int TestSinglePassAMREnzo(int argc, char* argv[])
   // 0.60; one sample per cell against the reference's two
   c.ReferenceBound = 5.2;
   c.ReferenceOffBound = 0.16;
-  c.MirrorBound = 2.2;
+  c.MirrorBound = 0.3;
   c.BaselineBound = 1.2;
   return amrsp::test::RunBaselineTest(argc, argv, c);
 }

@@ -14,7 +14,7 @@ int TestSinglePassAMRLevelOfDetail(int argc, char* argv[])
   // the reference shows the finest level everywhere; the mirror has the same LOD
   c.ReferenceBound = 11.5;
   c.ReferenceOffBound = 0.879;
-  c.MirrorBound = 0.8;
+  c.MirrorBound = 0.3;
   c.BaselineBound = 0.4;
   // the reference shows the finest level, as the image without level of detail does: only the
   // mirror tells them apart here; Mapper.Analytic.lod checks the level-selection rule itself

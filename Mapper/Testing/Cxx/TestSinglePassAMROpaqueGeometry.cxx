@@ -14,7 +14,7 @@ int TestSinglePassAMROpaqueGeometry(int argc, char* argv[])
   // 0.02; square edges rasterized on the GPU, intersected exactly on the CPU
   c.ReferenceBound = 2.0;
   c.ReferenceOffBound = 0.009;
-  c.MirrorBound = 0.6;
+  c.MirrorBound = 0.5;
   c.BaselineBound = 0.3;
   c.Squares.push_back(
     { glm::dvec3(0.5, 0.5, 0.5), glm::dvec3(0.3, 0.2, 1.0), glm::dvec3(0.0, 1.0, 0.0), 0.3, 1.0 });
