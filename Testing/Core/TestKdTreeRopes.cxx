@@ -225,3 +225,65 @@ TEST(Ropes, ShortenTheDescentsOnADeepHierarchy)
 }
 
 } // namespace
+
+TEST(Ropes, AFiniteRayEndClampsTheSegmentItFallsIn)
+{
+  // The expectation comes from the unbounded traversal alone: the segments of [tMin, tMax] are
+  // those of [0, inf) that overlap it, cut to it. A rope-entered segment that the end falls in
+  // must end exactly at tMax (the clamp), and no segment may begin at or after it.
+  std::mt19937_64 rng(61);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::size_t clampedRopeSegments = 0, rays = 0, unclampedRejected = 0;
+  for (int trial = 0; trial < 40; ++trial)
+  {
+    const Hierarchy h = RandomHierarchy(rng);
+    const EncodedKdTree enc = EncodeKdTree(h, BuildKdTree(h));
+    for (int r = 0; r < 200; ++r)
+    {
+      glm::dvec3 o, d;
+      RandomRay(rng, h, o, d);
+      const glm::vec3 oi((o - h.Origin) / h.Spacing0), di(d / h.Spacing0);
+      std::vector<RaySegment> full;
+      TraverseKdTree(enc, oi, di, 0.0f, 1e30f, LevelOfDetail(), full);
+      if (full.size() < 3)
+      {
+        continue;
+      }
+      // the end strictly inside a segment after the second, so that ropes led to it
+      const std::size_t k = 2 + static_cast<std::size_t>(unit(rng) * (full.size() - 2));
+      const RaySegment& last = full[std::min(k, full.size() - 1)];
+      const float tMax = last.T0 + (0.25f + 0.5f * unit(rng)) * (last.T1 - last.T0);
+      if (!(tMax > last.T0 && tMax < last.T1))
+      {
+        continue;
+      }
+      std::vector<RaySegment> bounded;
+      TraverseKdTree(enc, oi, di, 0.0f, tMax, LevelOfDetail(), bounded);
+      std::vector<RaySegment> expected;
+      for (const RaySegment& s : full)
+      {
+        if (s.T0 < tMax)
+        {
+          expected.push_back(s);
+          expected.back().T1 = std::min(s.T1, tMax);
+        }
+      }
+      ++rays;
+      ASSERT_EQ(bounded.size(), expected.size()) << "trial " << trial << " ray " << r;
+      for (std::size_t i = 0; i < bounded.size(); ++i)
+      {
+        ASSERT_EQ(bounded[i].Node, expected[i].Node) << "segment " << i;
+        ASSERT_EQ(bounded[i].T0, expected[i].T0) << "segment " << i;
+        ASSERT_EQ(bounded[i].T1, expected[i].T1) << "segment " << i;
+      }
+      ASSERT_EQ(bounded.back().T1, tMax);
+      clampedRopeSegments += bounded.back().FromRope ? 1 : 0;
+      // the unclamped last segment (what a rope-entered segment without the clamp would give)
+      // fails the same comparison
+      unclampedRejected += last.T1 != expected.back().T1 ? 1 : 0;
+    }
+  }
+  EXPECT_GT(rays, 2000u);
+  EXPECT_GT(clampedRopeSegments, rays / 3) << "the end must fall in rope-entered segments";
+  EXPECT_EQ(unclampedRejected, rays);
+}
