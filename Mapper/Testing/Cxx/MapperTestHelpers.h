@@ -11,7 +11,11 @@
 #include "amrsp/ImageDifference.h"
 #include "amrsp/Render.h"
 
+#include "vtkOpenGLShaderProperty.h"
 #include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkVolume.h"
+#include "vtkVolumeCollection.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
 
 #include <algorithm>
@@ -50,6 +54,16 @@ constexpr double RefSmooth = 0.55;
 inline double CoveredRmse(const amrsp::Image& a, const amrsp::Image& b)
 {
   return amrsp::Compare(a, b).Rmse;
+}
+
+/// The shader property of the renderer's volume, where the tests put the replacements that break
+/// a rule of the shader (to show that a check rejects the image the broken rule draws).
+inline vtkOpenGLShaderProperty* ShaderProperty(amrsp::harness::GpuRenderer& gpu)
+{
+  vtkVolumeCollection* volumes = gpu.GetRenderer()->GetVolumes();
+  volumes->InitTraversal();
+  vtkVolume* volume = volumes->GetNextVolume();
+  return volume ? vtkOpenGLShaderProperty::SafeDownCast(volume->GetShaderProperty()) : nullptr;
 }
 
 /// Whether everything a test needs must be here (AMRSP_REQUIRE_GPU=1, set in CI).

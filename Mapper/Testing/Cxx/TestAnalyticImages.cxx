@@ -58,14 +58,7 @@ using namespace amrsp::harness;
 using mappertest::Check;
 using mappertest::Failures;
 using mappertest::Fixed;
-
-vtkOpenGLShaderProperty* ShaderProperty(SinglePassRenderer& gpu)
-{
-  vtkVolumeCollection* volumes = gpu.GetRenderer()->GetVolumes();
-  volumes->InitTraversal();
-  vtkVolume* volume = volumes->GetNextVolume();
-  return volume ? vtkOpenGLShaderProperty::SafeDownCast(volume->GetShaderProperty()) : nullptr;
-}
+using mappertest::ShaderProperty;
 
 /// A grid of `level` over `cells` whose every cell holds value(its centre, world units).
 void AddGrid(

@@ -47,6 +47,7 @@ using mappertest::Failures;
 using mappertest::Fixed;
 using mappertest::LoadHierarchy;
 using mappertest::Settings;
+using mappertest::ShaderProperty;
 using Mapper = vtkSinglePassAMRVolumeMapper;
 
 constexpr double BoundVsPackingVertices = 0.05;
@@ -54,14 +55,6 @@ constexpr double BoundVsPackingVertices = 0.05;
 std::string StorageName(Mapper* m)
 {
   return Mapper::GetDataStorageName(m->GetLastDataStorage());
-}
-
-vtkOpenGLShaderProperty* ShaderProperty(SinglePassRenderer& gpu)
-{
-  vtkVolumeCollection* volumes = gpu.GetRenderer()->GetVolumes();
-  volumes->InitTraversal();
-  vtkVolume* volume = volumes->GetNextVolume();
-  return volume ? vtkOpenGLShaderProperty::SafeDownCast(volume->GetShaderProperty()) : nullptr;
 }
 
 /// Renders `h` with packing and with the linear storage (one page, then several) and compares.

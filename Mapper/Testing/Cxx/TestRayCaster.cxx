@@ -35,15 +35,8 @@ namespace
 using namespace amrsp;
 using namespace amrsp::harness;
 using mappertest::Check;
+using mappertest::ShaderProperty;
 using Mapper = vtkSinglePassAMRVolumeMapper;
-
-vtkOpenGLShaderProperty* ShaderProperty(SinglePassRenderer& gpu)
-{
-  vtkVolumeCollection* volumes = gpu.GetRenderer()->GetVolumes();
-  volumes->InitTraversal();
-  vtkVolume* volume = volumes->GetNextVolume();
-  return volume ? vtkOpenGLShaderProperty::SafeDownCast(volume->GetShaderProperty()) : nullptr;
-}
 
 /// The frame cast by `caster`, with a failed check when another caster ran.
 Image CastBy(SinglePassRenderer& gpu, int caster)
