@@ -22,6 +22,13 @@
 
 #include "vtkSinglePassAMRVolumeMapper.h"
 
+#include "vtkAlgorithm.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCellData.h"
+#include "vtkCommand.h"
+#include "vtkCompositeDataIterator.h"
+#include "vtkDataArray.h"
+#include "vtkDataSet.h"
 #include "vtkNew.h"
 #include "vtkOverlappingAMR.h"
 #include "vtkRenderWindow.h"
@@ -29,8 +36,10 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <iostream>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -144,9 +153,59 @@ void CheckMethod(const std::string& methodName, std::vector<Hierarchy>& steps,
     label + ": step 2 after the series equals a fresh build of step 2");
 }
 
-/// Steps shown again keep their textures (MaximumKeptStepBytes): going back to steps 1 and 0
-/// shows them without a build or an upload, byte for byte as before; a budget of one step's
-/// textures keeps the last one only.
+/// The progress events of the mapper's build and upload phases while `render` runs: none when
+/// nothing is built or uploaded. Each phase names itself (vtkAlgorithm::SetProgressText) before
+/// its first event; the pipeline's own events around the mapper's update (0 and 1, no text after
+/// the text is cleared here) are not counted.
+int ProgressEventsDuring(vtkSinglePassAMRVolumeMapper* mapper, const std::function<void()>& render)
+{
+  int events = 0;
+  vtkNew<vtkCallbackCommand> count;
+  count->SetClientData(&events);
+  count->SetCallback(
+    [](vtkObject* caller, unsigned long, void* client, void*)
+    {
+      const char* text = static_cast<vtkAlgorithm*>(caller)->GetProgressText();
+      *static_cast<int*>(client) += text && *text ? 1 : 0;
+    });
+  mapper->SetProgressText(nullptr);
+  const unsigned long tag = mapper->AddObserver(vtkCommand::ProgressEvent, count);
+  render();
+  mapper->RemoveObserver(tag);
+  return events;
+}
+
+/// Multiplies the named cell array of every block of `amr` by `factor` in place and marks the
+/// data object modified (what a filter or a user changing a step in place does).
+void ScaleInPlace(vtkOverlappingAMR* amr, const std::string& array, double factor)
+{
+  vtkSmartPointer<vtkCompositeDataIterator> it;
+  it.TakeReference(amr->NewIterator());
+  for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+  {
+    vtkDataSet* block = vtkDataSet::SafeDownCast(it->GetCurrentDataObject());
+    vtkDataArray* values = block ? block->GetCellData()->GetArray(array.c_str()) : nullptr;
+    if (!values)
+    {
+      throw std::runtime_error("a block without the array '" + array + "'");
+    }
+    for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
+    {
+      values->SetTuple1(i, factor * values->GetTuple1(i));
+    }
+    values->Modified();
+  }
+  amr->Modified();
+}
+
+/// Steps shown again keep their textures (MaximumKeptStepBytes), most recently used first, keyed
+/// by the input object and its modification time:
+/// - going back to steps 1 and 0 shows them byte for byte as before, with no build or upload (no
+///   progress event: counted by an observer, not by the mapper's own counters);
+/// - a kept step changed in place (its values scaled, Modified()) is built again and drawn as a
+///   fresh mapper draws it, not as kept;
+/// - a budget of the largest step's textures keeps exactly one step, the most recently used: it
+///   is a hit, the least recently used one is built again.
 void CheckKeptSteps(const std::string& method, std::vector<Hierarchy>& steps)
 {
   Hierarchy first = steps[0];
@@ -156,44 +215,83 @@ void CheckKeptSteps(const std::string& method, std::vector<Hierarchy>& steps)
   vtkSinglePassAMRVolumeMapper* mapper = series.GetMapper();
   mapper->SetMaximumKeptStepBytes(vtkIdType(1) << 30);
   std::vector<Image> shown{ series.Render(0.0, ms) };
+  std::vector<long long> bytes{ series.TextureBytes() };
   std::vector<vtkSmartPointer<vtkOverlappingAMR>> objects{ series.GetData() };
   for (std::size_t k = 1; k < steps.size(); ++k)
   {
     series.SetData(steps[k]);
     objects.push_back(series.GetData());
     shown.push_back(series.Render(0.0, ms));
+    bytes.push_back(series.TextureBytes());
   }
-  const long long oneStep = series.TextureBytes();
   Check(mapper->GetNumberOfKeptSteps() == 2 && mapper->GetNumberOfKeptStepHits() == 0,
     method + ": after three steps two are kept (" + std::to_string(mapper->GetNumberOfKeptSteps()) +
       ")");
+  // show `k` again; returns whether it was a hit with no build or upload
+  const auto showAgain = [&](int k, Image& image, int& events)
+  {
+    const int hits = mapper->GetNumberOfKeptStepHits();
+    series.SetDataObject(objects[static_cast<std::size_t>(k)]);
+    events = ProgressEventsDuring(mapper, [&] { image = series.Render(0.0, ms); });
+    return mapper->GetNumberOfKeptStepHits() == hits + 1 && events == 0;
+  };
   for (int k : { 1, 0 })
   {
-    const int builds = series.NumberOfBuilds(), hits = mapper->GetNumberOfKeptStepHits();
-    series.SetDataObject(objects[static_cast<std::size_t>(k)]);
-    const Image again = series.Render(0.0, ms);
+    Image again;
+    int events = 0;
+    const bool hit = showAgain(k, again, events);
     const long long differing = DifferingBytes(again, shown[static_cast<std::size_t>(k)]);
-    Check(mapper->GetNumberOfKeptStepHits() == hits + 1 && differing == 0,
+    Check(hit && differing == 0,
       method + ": step " + std::to_string(k) + " shown again from its kept textures (" +
-        std::to_string(mapper->GetNumberOfKeptStepHits() - hits) + " hit, " +
-        std::to_string(series.NumberOfBuilds() - builds) + " build call, " +
-        std::to_string(differing) + " bytes differ from its first image)");
+        std::to_string(events) + " build/upload progress events, " + std::to_string(differing) +
+        " bytes differ from its first image)");
   }
-  // a budget of one step: the older steps are dropped, and showing one again builds it
-  mapper->SetMaximumKeptStepBytes(static_cast<vtkIdType>(oneStep));
-  series.SetDataObject(objects[2]);
-  series.Render(0.0, ms);
-  Check(mapper->GetNumberOfKeptSteps() <= 1 &&
-      mapper->GetKeptStepBytes() <= static_cast<vtkIdType>(oneStep),
-    method + ": a budget of one step's " + std::to_string(oneStep) + " bytes keeps " +
-      std::to_string(mapper->GetNumberOfKeptSteps()) + " step(s), " +
-      std::to_string(mapper->GetKeptStepBytes()) + " bytes");
-  const int hits = mapper->GetNumberOfKeptStepHits();
-  series.SetDataObject(objects[1]);
-  const Image rebuilt = series.Render(0.0, ms);
-  Check(DifferingBytes(rebuilt, shown[1]) == 0,
-    method + ": a dropped step is built again, the same image (" +
-      std::to_string(mapper->GetNumberOfKeptStepHits() - hits) + " hit(s))");
+  // kept now, most recent first: 1, 2 (0 is shown). Step 1 changed in place: not a hit
+  ScaleInPlace(objects[1], steps[1].ArrayName, 0.5);
+  {
+    Image changed;
+    int events = 0;
+    const bool hit = showAgain(1, changed, events);
+    SinglePassRenderer fresh(steps[1], s, ViewAngles(), method);
+    fresh.SetDataObject(objects[1]);
+    const Image expected = fresh.Render(0.0, ms);
+    const long long stale = DifferingBytes(changed, shown[1]);
+    const long long differing = DifferingBytes(changed, expected);
+    Check(!hit && events > 0 && differing == 0 && stale > 0,
+      method + ": step 1 changed in place is built again (" + std::to_string(events) +
+        " progress events), " + std::to_string(differing) + " bytes differ from a fresh mapper's " +
+        "image, " + std::to_string(stale) + " from the kept one");
+    shown[1] = expected;
+  }
+  // kept: 0, 2 (1 is shown). A budget of the largest step: showing 2 (a hit) keeps 1 only
+  const long long budget = *std::max_element(bytes.begin(), bytes.end());
+  mapper->SetMaximumKeptStepBytes(static_cast<vtkIdType>(budget));
+  {
+    Image image;
+    int events = 0;
+    const bool hit = showAgain(2, image, events);
+    Check(hit && mapper->GetNumberOfKeptSteps() == 1 && mapper->GetKeptStepBytes() > 0 &&
+        mapper->GetKeptStepBytes() <= static_cast<vtkIdType>(budget),
+      method + ": with a budget of " + std::to_string(budget) + " bytes step 2 is a hit and " +
+        std::to_string(mapper->GetNumberOfKeptSteps()) + " step is kept (" +
+        std::to_string(mapper->GetKeptStepBytes()) + " bytes)");
+  }
+  {
+    Image image;
+    int events = 0;
+    const bool hit = showAgain(1, image, events);
+    Check(hit && DifferingBytes(image, shown[1]) == 0,
+      method + ": the most recently used step (1) was kept: a hit, " + std::to_string(events) +
+        " progress events");
+  }
+  {
+    Image image;
+    int events = 0;
+    const bool hit = showAgain(0, image, events);
+    Check(!hit && events > 0 && DifferingBytes(image, shown[0]) == 0,
+      method + ": the least recently used step (0) was dropped: built again (" +
+        std::to_string(events) + " progress events), the same image");
+  }
 }
 
 } // namespace
