@@ -229,6 +229,8 @@ inline FrameComparison CompareFrames(const amrsp::Image& a, const amrsp::Image& 
 /// nested loops' is not. A step missing from one loop changes whole segments, i.e. most pixels.
 struct RayLoopComparison : FrameComparison
 {
+  /// The other loop's frame (checked against the CPU reference on its own by the baseline tests).
+  amrsp::Image Other;
   /// At most 0.1 % of the covered pixels (at least one) more than one level apart.
   bool Same() const
   {
@@ -252,6 +254,7 @@ inline RayLoopComparison CompareOtherRayLoop(
   m->SetRayLoop(setting);
   RayLoopComparison c;
   static_cast<FrameComparison&>(c) = CompareFrames(other, image);
+  c.Other = other;
   return c;
 }
 

@@ -527,6 +527,13 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
                 << " the same image as the " << (flatUsed ? "flat loop" : "nested loops") << ": "
                 << loops.Describe() << "\n";
       agrees = loops.Same() && agrees;
+      // and on its own against the CPU reference, under the test's bounds (not only through the
+      // default loop's image)
+      agrees =
+        Report(std::cout,
+          std::string(flatUsed ? "nested loops'" : "flat loop's") + " image vs CPU reference",
+          Compare(loops.Other, reference), c) &&
+        agrees;
       // the other caster (compute on a CPU driver, where AUTO_CASTER takes the fragment shader)
       const mappertest::RayCasterComparison casters =
         mappertest::CompareOtherRayCaster(gpu, image, &mirrorImage);
