@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+class vtkDataObject;
 class vtkOverlappingAMR;
 
 namespace insitu
@@ -46,17 +47,22 @@ public:
     bool Processed = false; ///< false when no pipeline asked for this step
     double DescribeSeconds = 0.0;
     double CoProcessSeconds = 0.0;
-    long long BorrowedValues = 0; ///< values handed over without a copy
+    /// Values of the object Catalyst received whose arrays are the simulation's own memory (read
+    /// back from that object and compared with the blocks' addresses: a copy anywhere between
+    /// the simulation and Catalyst is not counted).
+    long long BorrowedValues = 0;
   };
 
   /// Hands the simulation's current step to Catalyst where a pipeline wants it.
   StepCost CoProcess(BlobSimulation& simulation);
 
   /// The simulation's current step as a vtkOverlappingAMR: every block's box, and image data
-  /// for the blocks this rank owns, whose cell array "density" borrows the simulation's values
-  /// (`borrowed`: their count).
-  static vtkSmartPointer<vtkOverlappingAMR> Describe(
-    BlobSimulation& simulation, long long& borrowed);
+  /// for the blocks this rank owns, whose cell array "density" borrows the simulation's values.
+  static vtkSmartPointer<vtkOverlappingAMR> Describe(BlobSimulation& simulation);
+
+  /// The values of `handed`'s "density" arrays that are exactly one of the simulation's blocks'
+  /// memory (same address and length).
+  static long long CountSimulationValues(vtkDataObject* handed, const BlobSimulation& simulation);
 
 private:
   struct Internals;

@@ -13,10 +13,7 @@
 // script's view as DIR/view.json, for `amrsp reference --view-json`.
 #include "BlobSimulation.h"
 #include "CatalystAdaptor.h"
-
-#include "vtkNew.h"
-#include "vtkOverlappingAMR.h"
-#include "vtkXMLUniformGridAMRWriter.h"
+#include "ReferenceHierarchy.h"
 
 #include <mpi.h>
 
@@ -192,11 +189,8 @@ int main(int argc, char* argv[])
       insitu::CatalystAdaptor::StepCost cost = catalyst.CoProcess(simulation);
       if (o.WriteData)
       {
-        long long unused = 0;
-        vtkNew<vtkXMLUniformGridAMRWriter> writer;
-        writer->SetInputData(insitu::CatalystAdaptor::Describe(simulation, unused));
-        writer->SetFileName(StepFile(o.Output, step, "vthb").c_str());
-        writer->Write();
+        // the test's reference data, written apart from the adaptor (ReferenceHierarchy.h)
+        insitu::WriteReferenceHierarchy(simulation, StepFile(o.Output, step, "vthb"));
       }
       double local[3] = { simulate, cost.DescribeSeconds, cost.CoProcessSeconds };
       double slowest[3];

@@ -4,11 +4,15 @@
 #   - every step gave an image and a cost record, without a render error;
 #   - each image agrees with the CPU reference of the same step (`amrsp reference --view-json`
 #     on the hierarchy a one-rank run wrote, with the script's view), over the pixels the volume
-#     covers, and the same bounds reject the reference of the next step (the field moves);
+#     covers, and the same bounds reject the reference of the next step (the field moves). That
+#     hierarchy is written apart from the Catalyst adaptor (Examples/InSitu/ReferenceHierarchy.h:
+#     the block list and the analytic field), so a defect in the adaptor reaches the image only;
 #   - the simulation regridded (the block count changed) and the images followed;
-#   - no copy of the simulation's arrays: every value reached Catalyst borrowed, the mappers'
-#     conversion read every value in place, and on one rank the mappers read the simulation's
-#     memory itself (on two, the region split copies the blocks its boundary cuts);
+#   - no copy of the simulation's arrays: every value of the object Catalyst holds is the
+#     simulation's own memory (the adaptor reads the arrays back from that object and compares
+#     their addresses with the blocks'), the mappers' conversion read every value in place, and
+#     on one rank the mappers read their input without a copy (on two, the region split copies
+#     the blocks its boundary cuts);
 #   - the representation's textures were built once per step (one data change each).
 #
 #   pvpython TestInSitu.py MPIEXEC SIMULATION AMRSP RANKS OUTDIR
