@@ -510,6 +510,40 @@ void TestIsoLayers()
     Check(off > 4.0 * bound,
       std::string("the shader with ") + wrong.What + ": " + Fixed(off) + " levels off (rejected)");
   }
+
+  // seen from below (+z) the ray meets the same layers in ascending value
+  RenderSettings up = s;
+  up.View.Position = glm::dvec3(0.5, 0.5, -4.0);
+  const glm::dvec3 rising = CompositeLayers(layers);
+  SinglePassRenderer below(h, up, SettingsCamera());
+  const double onGpuBelow = LargestDifference(RenderAsSet(below), rising);
+  Check(onGpuBelow <= bound && 255.0 * glm::length(rising - expected) > 4.0 * bound,
+    "GPU from below: every pixel within " + Fixed(onGpuBelow) +
+      " of the composite in ascending value (bound " + Fixed(bound) + "; " +
+      Fixed(255.0 * glm::length(rising - expected)) + " levels from the view from above)");
+  if (Caster == RayCaster::Fragment)
+  {
+    const double reference = LargestDifference(RenderReference(h, up), rising);
+    const double mirror =
+      LargestDifference(RenderKdTree(h, EncodeKdTree(h, BuildKdTree(h)), up), rising);
+    Check(reference <= bound && mirror <= bound,
+      "from below: CPU reference " + Fixed(reference) + ", CPU mirror " + Fixed(mirror) +
+        " from the same composite (bound " + Fixed(bound) + ")");
+  }
+  if (vtkOpenGLShaderProperty* belowShader = ShaderProperty(below))
+  {
+    belowShader->AddFragmentShaderReplacement("amrspIsoValues[rising ? i : amrspIsoCount - 1 - i]",
+      false, "amrspIsoValues[amrspIsoCount - 1 - i]", false);
+    const double off = LargestDifference(RenderAsSet(below), rising);
+    belowShader->ClearAllFragmentShaderReplacements();
+    Check(off > 4.0 * bound,
+      "the shader with the crossings of a rising pair in descending value: " + Fixed(off) +
+        " levels off (rejected)");
+  }
+  else
+  {
+    Check(false, "the volume has a vtkOpenGLShaderProperty");
+  }
 }
 
 // ---- NaN --------------------------------------------------------------------------------
