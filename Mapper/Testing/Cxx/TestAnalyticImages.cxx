@@ -728,6 +728,123 @@ void TestMissingAndInfiniteSlabs()
   }
 }
 
+void TestMissingDataInOtherModes()
+{
+  std::cout << "NaN slab with iso-surfaces and maximum intensity\n";
+  // f = z on 16^3 cells, a NaN slab one cell thick at z in [1/2, 9/16) where x in [1/4, 1/2),
+  // y < 1/2 (the slab region); parallel view down -z, 64 px.
+  Hierarchy h;
+  h.Spacing0 = glm::dvec3(1.0 / 16.0);
+  h.ArrayName = "height";
+  const auto inRegion = [](double x, double y) { return x > 0.25 && x < 0.5 && y < 0.5; };
+  AddGrid(h, 0, Cube(0, 16),
+    [&](const glm::dvec3& p)
+    {
+      return p.z > 0.5 && p.z < 0.5625 && inRegion(p.x, p.y)
+        ? std::numeric_limits<float>::quiet_NaN()
+        : static_cast<float>(p.z);
+    });
+  const auto worst = [&](const Image& img, const glm::dvec3& slab, const glm::dvec3& elsewhere)
+  {
+    double w = 0.0;
+    for (int j = 0; j < img.Height; ++j)
+    {
+      for (int i = 0; i < img.Width; ++i)
+      {
+        const glm::vec4& p = img.Pixels[static_cast<std::size_t>(j) * img.Width + i];
+        const bool region = inRegion((i + 0.5) / img.Width, (j + 0.5) / img.Height);
+        const glm::dvec3 e = region ? slab : elsewhere;
+        for (int c = 0; c < 3; ++c)
+        {
+          w = std::max(w, 255.0 * std::abs(static_cast<double>(p[c]) - e[c]));
+        }
+      }
+    }
+    return w;
+  };
+  const double bound = 1.0;
+
+  // iso-surfaces at 0.3 (red) and 0.53 (green), each half opaque: the pair of samples around the
+  // slab (0.594 and 0.469, the NaN cell between them) is broken, so 0.53 is not drawn through the
+  // slab region; 0.3 is drawn everywhere. Down -z the ray meets 0.53 first.
+  RenderSettings iso;
+  iso.Width = iso.Height = 64;
+  iso.View = TopView(true);
+  iso.Blend = BlendMode::IsoSurface;
+  iso.IsoValues = { 0.3, 0.53 };
+  iso.Transfer.Color = { { 0.295, { 1.0, 0.0, 0.0 } }, { 0.305, { 1.0, 0.0, 0.0 } },
+    { 0.525, { 0.0, 1.0, 0.0 } }, { 0.535, { 0.0, 1.0, 0.0 } } };
+  iso.Transfer.Opacity = { { 0.295, 0.5 }, { 0.535, 0.5 } };
+  iso = WithCaster(iso);
+  const glm::dvec3 red(1.0, 0.0, 0.0), green(0.0, 1.0, 0.0);
+  const glm::dvec3 redOnly = 0.5 * red, both = 0.5 * green + 0.25 * red;
+  SinglePassRenderer isoGpu(h, iso, SettingsCamera());
+  const double isoOff = worst(RenderAsSet(isoGpu), redOnly, both);
+  Check(isoOff <= bound,
+    "iso-surfaces: the crossing across the NaN slab is not drawn, the others are: every pixel "
+    "within " +
+      Fixed(isoOff) + " levels (bound " + Fixed(bound) + ")");
+  if (Caster == RayCaster::Fragment)
+  {
+    const double reference = worst(RenderReference(h, iso), redOnly, both);
+    const double mirror =
+      worst(RenderKdTree(h, EncodeKdTree(h, BuildKdTree(h)), iso), redOnly, both);
+    Check(reference <= bound && mirror <= bound,
+      "iso-surfaces: CPU reference " + Fixed(reference) + ", CPU mirror " + Fixed(mirror) +
+        " levels (bound " + Fixed(bound) + ")");
+  }
+  if (vtkOpenGLShaderProperty* shader = ShaderProperty(isoGpu))
+  {
+    // the wrong rule: a NaN sample leaves the pairing as it was
+    shader->AddFragmentShaderReplacement("    amrspHavePrevious = false;\n#endif\n    return true;",
+      false, "#endif\n    return true;", false);
+    const double off = worst(RenderAsSet(isoGpu), redOnly, both);
+    shader->ClearAllFragmentShaderReplacements();
+    Check(off > 4.0 * bound,
+      "the shader pairing samples across NaN: " + Fixed(off) + " levels off (rejected)");
+  }
+  else
+  {
+    Check(false, "the volume has a vtkOpenGLShaderProperty");
+  }
+
+  // maximum intensity seen from below, grey levels 0 to 1 at opacity 1: the maximum along every
+  // ray is the top cell's 31/32, the NaN samples skipped on the way (the slab region the same)
+  RenderSettings mip = iso;
+  mip.View.Position = glm::dvec3(0.5, 0.5, -4.0);
+  mip.Blend = BlendMode::Maximum;
+  mip.IsoValues.clear();
+  mip.Transfer.Color = { { 0.0, glm::dvec3(0.0) }, { 1.0, glm::dvec3(1.0) } };
+  mip.Transfer.Opacity = { { 0.0, 1.0 }, { 1.0, 1.0 } };
+  const glm::dvec3 top(31.0 / 32.0);
+  SinglePassRenderer mipGpu(h, mip, SettingsCamera());
+  const double mipOff = worst(RenderAsSet(mipGpu), top, top);
+  Check(mipOff <= bound,
+    "maximum intensity with NaN samples: every pixel within " + Fixed(mipOff) + " levels of " +
+      "the top cell's value (bound " + Fixed(bound) + ")");
+  if (Caster == RayCaster::Fragment)
+  {
+    const double reference = worst(RenderReference(h, mip), top, top);
+    const double mirror = worst(RenderKdTree(h, EncodeKdTree(h, BuildKdTree(h)), mip), top, top);
+    Check(reference <= bound && mirror <= bound,
+      "maximum intensity: CPU reference " + Fixed(reference) + ", CPU mirror " + Fixed(mirror) +
+        " levels (bound " + Fixed(bound) + ")");
+  }
+  if (vtkOpenGLShaderProperty* shader = ShaderProperty(mipGpu))
+  {
+    shader->AddFragmentShaderReplacement(
+      "return true; // missing data is transparent", false, "return false;", false);
+    const double off = worst(RenderAsSet(mipGpu), top, top);
+    shader->ClearAllFragmentShaderReplacements();
+    Check(off > 4.0 * bound,
+      "the shader ending the ray at a NaN sample: " + Fixed(off) + " levels off (rejected)");
+  }
+  else
+  {
+    Check(false, "the volume has a vtkOpenGLShaderProperty");
+  }
+}
+
 } // namespace
 
 int main(int argc, char* argv[])
@@ -763,6 +880,7 @@ int main(int argc, char* argv[])
       {
         TestNaN();
         TestMissingAndInfiniteSlabs();
+        TestMissingDataInOtherModes();
       }
     }
   }
