@@ -96,9 +96,9 @@ void WriteReferenceHierarchy(const BlobSimulation& simulation, const std::string
         {
           for (int i = 0; i < b->Cells[0]; ++i)
           {
-            density->SetValue(n++, static_cast<float>(simulation.Field(
-                                     corner[0] + (i + 0.5) * h, corner[1] + (j + 0.5) * h,
-                                     corner[2] + (k + 0.5) * h)));
+            density->SetValue(n++,
+              static_cast<float>(simulation.Field(
+                corner[0] + (i + 0.5) * h, corner[1] + (j + 0.5) * h, corner[2] + (k + 0.5) * h)));
           }
         }
       }
