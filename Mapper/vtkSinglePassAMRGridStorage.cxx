@@ -89,10 +89,10 @@ vtkSinglePassAMRRayCasterFacts vtkSinglePassAMRGridStorage::RayCasterFacts(
 }
 
 //------------------------------------------------------------------------------
-vtkSinglePassAMRBindlessAccess vtkSinglePassAMRGridStorage::ResolveAccess(
-  vtkOpenGLRenderWindow* renWin, vtkSinglePassAMRBindlessAccess access, std::string& why)
+amrsp::BindlessAccess vtkSinglePassAMRGridStorage::ResolveAccess(
+  vtkOpenGLRenderWindow* renWin, amrsp::BindlessAccess access, std::string& why)
 {
-  using Access = vtkSinglePassAMRBindlessAccess;
+  using Access = amrsp::BindlessAccess;
   this->QueryCapabilities(renWin);
   if (!this->HasBindless)
   {
@@ -120,18 +120,17 @@ vtkSinglePassAMRStorageChoice vtkSinglePassAMRGridStorage::Choose(vtkOpenGLRende
 {
   vtkSinglePassAMRStorageFacts facts;
   facts.Bindless = this->ResolveAccess(renWin, request.Access, facts.NoBindless);
-  if (facts.Bindless != vtkSinglePassAMRBindlessAccess::None && this->MaxBindlessTextures >= 0 &&
+  if (facts.Bindless != amrsp::BindlessAccess::None && this->MaxBindlessTextures >= 0 &&
     data.Grids > this->MaxBindlessTextures)
   {
     facts.NoBindless = "this driver (Mesa's zink) holds at most " +
       std::to_string(this->MaxBindlessTextures) + " bindless textures and the hierarchy has " +
       std::to_string(data.Grids) + " grids";
-    facts.Bindless = vtkSinglePassAMRBindlessAccess::None;
+    facts.Bindless = amrsp::BindlessAccess::None;
   }
-  else if (facts.Bindless != vtkSinglePassAMRBindlessAccess::None &&
-    this->MaxBindlessTextures >= 0 &&
-    !(this->UploadedStorage == vtkSinglePassAMRStorage::BindlessTextures &&
-      this->Context == renWin && !request.NewTextures))
+  else if (facts.Bindless != amrsp::BindlessAccess::None && this->MaxBindlessTextures >= 0 &&
+    !(this->UploadedStorage == amrsp::DataStorage::BindlessTextures && this->Context == renWin &&
+      !request.NewTextures))
   {
     // the set in use is released before the new one is made, but its slots come back later
     const long long earlier = std::max(this->ReleasedBindlessTextures,
@@ -143,7 +142,7 @@ vtkSinglePassAMRStorageChoice vtkSinglePassAMRGridStorage::Choose(vtkOpenGLRende
         " bindless textures and frees those of an earlier set only later: " +
         std::to_string(data.Grids) + " grids now and " + std::to_string(earlier) +
         " of an earlier set in this context";
-      facts.Bindless = vtkSinglePassAMRBindlessAccess::None;
+      facts.Bindless = amrsp::BindlessAccess::None;
     }
   }
   facts.NoAtlas = data.PackingError;
@@ -166,7 +165,7 @@ vtkSinglePassAMRStorageChoice vtkSinglePassAMRGridStorage::Choose(vtkOpenGLRende
 
 //------------------------------------------------------------------------------
 bool vtkSinglePassAMRGridStorage::IsUploaded(
-  vtkOpenGLRenderWindow* renWin, vtkSinglePassAMRStorage storage, int atlasLimit) const
+  vtkOpenGLRenderWindow* renWin, amrsp::DataStorage storage, int atlasLimit) const
 {
   return this->UploadedStorage == storage && this->Context == renWin &&
     this->UploadLimit == atlasLimit;
@@ -175,19 +174,19 @@ bool vtkSinglePassAMRGridStorage::IsUploaded(
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRGridStorage::DescribeGridData(vtkSinglePassAMRShaderVariant& variant) const
 {
-  if (this->UploadedStorage == vtkSinglePassAMRStorage::BindlessTextures)
+  if (this->UploadedStorage == amrsp::DataStorage::BindlessTextures)
   {
-    variant.Storage = vtkSinglePassAMRShaderStorage::Bindless;
+    variant.Storage = amrsp::DataStorage::BindlessTextures;
   }
-  else if (this->UploadedStorage == vtkSinglePassAMRStorage::LinearBricks)
+  else if (this->UploadedStorage == amrsp::DataStorage::LinearBricks)
   {
-    variant.Storage = vtkSinglePassAMRShaderStorage::Linear;
+    variant.Storage = amrsp::DataStorage::LinearBricks;
     variant.LinearPages = this->Linear.GetNumberOfPages();
     variant.LinearWidthLog2 = this->Linear.GetWidthLog2();
   }
   else
   {
-    variant.Storage = vtkSinglePassAMRShaderStorage::Packing;
+    variant.Storage = amrsp::DataStorage::PackedAtlas;
     variant.AtlasPages = static_cast<int>(this->AtlasPages.size());
   }
 }
@@ -195,13 +194,13 @@ void vtkSinglePassAMRGridStorage::DescribeGridData(vtkSinglePassAMRShaderVariant
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRGridStorage::ActivateGridData(vtkShaderProgram* program)
 {
-  if (this->UploadedStorage == vtkSinglePassAMRStorage::BindlessTextures)
+  if (this->UploadedStorage == amrsp::DataStorage::BindlessTextures)
   {
     this->HandlesTexture->Activate();
     program->SetUniformi("amrspHandles", this->HandlesTexture->GetTextureUnit());
     return;
   }
-  if (this->UploadedStorage == vtkSinglePassAMRStorage::LinearBricks)
+  if (this->UploadedStorage == amrsp::DataStorage::LinearBricks)
   {
     this->Linear.Activate(program);
     return;
@@ -229,11 +228,11 @@ void vtkSinglePassAMRGridStorage::ActivateGridData(vtkShaderProgram* program)
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRGridStorage::DeactivateGridData()
 {
-  if (this->UploadedStorage == vtkSinglePassAMRStorage::BindlessTextures)
+  if (this->UploadedStorage == amrsp::DataStorage::BindlessTextures)
   {
     this->HandlesTexture->Deactivate();
   }
-  else if (this->UploadedStorage == vtkSinglePassAMRStorage::LinearBricks)
+  else if (this->UploadedStorage == amrsp::DataStorage::LinearBricks)
   {
     this->Linear.Deactivate();
   }
@@ -244,13 +243,13 @@ void vtkSinglePassAMRGridStorage::DeactivateGridData()
 }
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin,
-  vtkSinglePassAMRStorage storage, int atlasLimit, const amrsp::RayCastingData& data,
-  std::string& error, const std::function<void(double)>& progress)
+bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, amrsp::DataStorage storage,
+  int atlasLimit, const amrsp::RayCastingData& data, std::string& error,
+  const std::function<void(double)>& progress)
 {
   this->UploadLimit = atlasLimit;
-  const bool bindless = storage == vtkSinglePassAMRStorage::BindlessTextures;
-  const bool linear = storage == vtkSinglePassAMRStorage::LinearBricks;
+  const bool bindless = storage == amrsp::DataStorage::BindlessTextures;
+  const bool linear = storage == amrsp::DataStorage::LinearBricks;
   // bindless and linear bricks: each data node holds its offset inside its own brick
   const amrsp::UIntTexture3D& dataNodes =
     bindless || linear ? data.BindlessDataNodeTexels : data.PackedDataNodeTexels;
@@ -272,7 +271,7 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin,
   this->AtlasPages.clear();
   this->Linear.Clear();
   this->TransparentFlags = nullptr; // the data nodes may have changed: flagged again per frame
-  this->UploadedStorage = vtkSinglePassAMRStorage::None;
+  this->UploadedStorage = amrsp::DataStorage::None;
   while (glGetError() != GL_NO_ERROR)
   {
   }
@@ -351,13 +350,13 @@ bool vtkSinglePassAMRGridStorage::UploadValues(vtkOpenGLRenderWindow* renWin,
   const amrsp::RayCastingData& data, std::string& error,
   const std::function<void(double)>& progress)
 {
-  const vtkSinglePassAMRStorage storage = this->UploadedStorage;
+  const amrsp::DataStorage storage = this->UploadedStorage;
   this->TransparentFlags = nullptr; // the node ranges are the new step's
   while (glGetError() != GL_NO_ERROR)
   {
   }
   bool ok = false;
-  if (storage == vtkSinglePassAMRStorage::BindlessTextures)
+  if (storage == amrsp::DataStorage::BindlessTextures)
   {
     // the same bricks: new texels into the resident textures, the handle table unchanged
     ok = this->HandlesTexture &&
@@ -370,7 +369,7 @@ bool vtkSinglePassAMRGridStorage::UploadValues(vtkOpenGLRenderWindow* renWin,
       ok = this->UploadBindless(renWin, data, error);
     }
   }
-  else if (storage == vtkSinglePassAMRStorage::LinearBricks)
+  else if (storage == amrsp::DataStorage::LinearBricks)
   {
     ok = this->Linear.Upload(
       renWin, data.Data, data.VertexCentred, this->LinearPageBytes, error, progress);
@@ -387,13 +386,13 @@ bool vtkSinglePassAMRGridStorage::UploadValues(vtkOpenGLRenderWindow* renWin,
     if (error.empty())
     {
       error = UploadFailure(std::string("the new time step's ") +
-          (storage == vtkSinglePassAMRStorage::LinearBricks ? "linear" : "atlas"),
+          (storage == amrsp::DataStorage::LinearBricks ? "linear" : "atlas"),
         data.PackedBytes, glError);
     }
     this->ReleaseBindless(renWin);
     this->AtlasPages.clear();
     this->Linear.Clear();
-    this->UploadedStorage = vtkSinglePassAMRStorage::None;
+    this->UploadedStorage = amrsp::DataStorage::None;
     return false;
   }
   return true;
@@ -402,8 +401,8 @@ bool vtkSinglePassAMRGridStorage::UploadValues(vtkOpenGLRenderWindow* renWin,
 //------------------------------------------------------------------------------
 std::unique_ptr<vtkSinglePassAMRGridStorage> vtkSinglePassAMRGridStorage::ShareStructure() const
 {
-  if (this->UploadedStorage == vtkSinglePassAMRStorage::None ||
-    this->UploadedStorage == vtkSinglePassAMRStorage::BindlessTextures)
+  if (this->UploadedStorage == amrsp::DataStorage::None ||
+    this->UploadedStorage == amrsp::DataStorage::BindlessTextures)
   {
     return nullptr;
   }
@@ -555,7 +554,7 @@ void vtkSinglePassAMRGridStorage::ReleaseGraphicsResources(vtkWindow* window)
   {
     this->ReleaseBindless(window);
   }
-  this->UploadedStorage = vtkSinglePassAMRStorage::None;
+  this->UploadedStorage = amrsp::DataStorage::None;
   for (vtkSmartPointer<vtkTextureObject>& page : this->AtlasPages)
   {
     page->ReleaseGraphicsResources(window);

@@ -53,8 +53,8 @@ public:
 
   /// The bindless access `access` resolves to in `renWin` (Auto: direct with GL_NV_gpu_shader5,
   /// else waterfall), or None with `why`.
-  vtkSinglePassAMRBindlessAccess ResolveAccess(
-    vtkOpenGLRenderWindow* renWin, vtkSinglePassAMRBindlessAccess access, std::string& why);
+  amrsp::BindlessAccess ResolveAccess(
+    vtkOpenGLRenderWindow* renWin, amrsp::BindlessAccess access, std::string& why);
 
   /// Whether `renWin` renders on a CPU driver (Mesa's llvmpipe, softpipe, or zink on lavapipe).
   bool IsCpuDriver(vtkOpenGLRenderWindow* renWin)
@@ -81,16 +81,15 @@ public:
   }
 
   /// Whether the textures of `storage` in `renWin` are up to date for the data built last.
-  bool IsUploaded(
-    vtkOpenGLRenderWindow* renWin, vtkSinglePassAMRStorage storage, int atlasLimit) const;
+  bool IsUploaded(vtkOpenGLRenderWindow* renWin, amrsp::DataStorage storage, int atlasLimit) const;
   /// Whether anything is uploaded (a storage and a context).
-  bool HasUpload() const { return this->UploadedStorage != vtkSinglePassAMRStorage::None; }
+  bool HasUpload() const { return this->UploadedStorage != amrsp::DataStorage::None; }
 
   /// Uploads the tree and the grid data of `data` in `storage`; the previous textures are freed
   /// first. Returns false with a one-line `error` (a texture over GL_MAX_3D_TEXTURE_SIZE, the
   /// driver refusing an allocation); the caller keeps `data` to try again.
   /// `progress` gets the fraction of the grid data uploaded (0 to 1).
-  bool Upload(vtkOpenGLRenderWindow* renWin, vtkSinglePassAMRStorage storage, int atlasLimit,
+  bool Upload(vtkOpenGLRenderWindow* renWin, amrsp::DataStorage storage, int atlasLimit,
     const amrsp::RayCastingData& data, std::string& error,
     const std::function<void(double)>& progress = nullptr);
 
@@ -145,7 +144,7 @@ public:
   /// or + linear pages + brick table).
   long long GetTextureBytes() const { return this->TextureBytes; }
   /// The storage of the last upload, None when none is on the GPU.
-  vtkSinglePassAMRStorage GetUploadedStorage() const { return this->UploadedStorage; }
+  amrsp::DataStorage GetUploadedStorage() const { return this->UploadedStorage; }
 
   /// The largest linear page the next uploads make, in bytes (the mapper's MaximumAtlasPageBytes;
   /// 0: as large as the context allows).
@@ -179,7 +178,7 @@ private:
   vtkMTimeType FlagsTableTime = 0;
   long long FlaggedDataNodes = 0;
   long long TextureBytes = 0;
-  vtkSinglePassAMRStorage UploadedStorage = vtkSinglePassAMRStorage::None;
+  amrsp::DataStorage UploadedStorage = amrsp::DataStorage::None;
   int UploadLimit = 0; // atlasLimit of the last upload
   long long LinearPageBytes = 0;
   vtkOpenGLRenderWindow* Context = nullptr;

@@ -4,18 +4,13 @@
  * @brief   which loop structure the single-pass shader marches its rays with
  *
  * Private to the module; no OpenGL, no VTK, so that the rule is tested on its own
- * (Mapper.RayLoopChoice.*). The public RayLoops values of vtkSinglePassAMRVolumeMapper are these
- * enumerators' values (a static_assert in the mapper ties them).
+ * (Mapper.RayLoopChoice.*). The setting's values and names are amrsp::RayLoop's (amrsp/RayLoop.h);
+ * vtkSinglePassAMRVolumeMapper::RayLoops has the same values (a static_assert in the mapper).
  */
 #ifndef vtkSinglePassAMRRayLoopChoice_h
 #define vtkSinglePassAMRRayLoopChoice_h
 
-enum class vtkSinglePassAMRRayLoop
-{
-  Nested = 0, ///< per segment a descent loop, then a sample loop
-  Flat = 1,   ///< one loop of single descent steps, segment set-ups and samples
-  Auto = 2    ///< the rule below
-};
+#include "amrsp/RayLoop.h"
 
 /**
  * The loop a frame uses. Auto: the flat loop on a GPU, the nested loops on a CPU driver (Mesa's
@@ -25,14 +20,13 @@ enum class vtkSinglePassAMRRayLoop
  * lockstep groups of that width, and there the flat loop measured 30-42 % slower
  * (docs/performance.md, "The flat loop"). The image is the same either way.
  */
-inline vtkSinglePassAMRRayLoop vtkSinglePassAMRChooseRayLoop(
-  vtkSinglePassAMRRayLoop requested, bool cpuDriver)
+inline amrsp::RayLoop vtkSinglePassAMRChooseRayLoop(amrsp::RayLoop requested, bool cpuDriver)
 {
-  if (requested != vtkSinglePassAMRRayLoop::Auto)
+  if (requested != amrsp::RayLoop::Auto)
   {
     return requested;
   }
-  return cpuDriver ? vtkSinglePassAMRRayLoop::Nested : vtkSinglePassAMRRayLoop::Flat;
+  return cpuDriver ? amrsp::RayLoop::Nested : amrsp::RayLoop::Flat;
 }
 
 #endif

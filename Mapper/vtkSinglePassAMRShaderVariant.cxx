@@ -19,18 +19,18 @@ std::string vtkSinglePassAMRShaderVariant::Defines() const
   define(true, "AMRSP_LEVEL_COUNT " + std::to_string(this->LevelCount));
   switch (this->Storage)
   {
-    case vtkSinglePassAMRShaderStorage::Bindless:
+    case amrsp::DataStorage::BindlessTextures:
       define(true, "AMRSP_BINDLESS 1");
       define(this->Waterfall, "AMRSP_WATERFALL 1");
       break;
-    case vtkSinglePassAMRShaderStorage::Linear:
+    case amrsp::DataStorage::LinearBricks:
       // the table's layout comes from the core, which writes it (amrsp::LinearBrickTable)
       define(true, "AMRSP_LINEAR 1");
       define(true, "AMRSP_LINEAR_WIDTH_LOG2 " + std::to_string(this->LinearWidthLog2));
       define(true, "AMRSP_LINEAR_BASE_BITS " + std::to_string(amrsp::LinearBaseBits));
       define(this->LinearPages > 1, "AMRSP_LINEAR_PAGES " + std::to_string(this->LinearPages));
       break;
-    case vtkSinglePassAMRShaderStorage::Packing:
+    default: // PackedAtlas
       define(true, "AMRSP_PACKING 1");
       define(this->AtlasPages > 1, "AMRSP_ATLAS_PAGES " + std::to_string(this->AtlasPages));
       break;
@@ -42,7 +42,7 @@ std::string vtkSinglePassAMRShaderVariant::Defines() const
   define(this->PowerOfTwoRefinement, "AMRSP_POWER_OF_TWO_REFINEMENT 1");
   define(this->UniformRefinementLog2 > 0,
     "AMRSP_UNIFORM_REFINEMENT_LOG2 " + std::to_string(this->UniformRefinementLog2));
-  define(true, "AMRSP_BLEND_MODE " + std::to_string(this->Blend));
+  define(true, "AMRSP_BLEND_MODE " + std::to_string(static_cast<int>(this->Blend)));
   define(this->SkipEmpty, "AMRSP_SKIP_EMPTY 1");
   define(this->SmoothCells, "AMRSP_SMOOTH_CELLS 1");
   define(this->Ropes, "AMRSP_ROPES 1");

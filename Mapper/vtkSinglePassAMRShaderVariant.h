@@ -11,24 +11,19 @@
 #ifndef vtkSinglePassAMRShaderVariant_h
 #define vtkSinglePassAMRShaderVariant_h
 
+#include "amrsp/BlendMode.h"
+#include "amrsp/DataStorage.h"
 #include "amrsp/RayCaster.h"
 
 #include <string>
 
 class vtkVolume;
 
-/// The grid data's storage as the shader reads it.
-enum class vtkSinglePassAMRShaderStorage
-{
-  Packing,  ///< one packed atlas, or AtlasPages of them
-  Bindless, ///< one texture per brick through bindless handles
-  Linear    ///< the bricks back to back in LinearPages 2D textures
-};
-
 struct vtkSinglePassAMRShaderVariant
 {
   amrsp::RayCaster Caster = amrsp::RayCaster::Fragment; ///< Fragment or Compute
-  vtkSinglePassAMRShaderStorage Storage = vtkSinglePassAMRShaderStorage::Packing;
+  /// PackedAtlas, BindlessTextures or LinearBricks (as uploaded)
+  amrsp::DataStorage Storage = amrsp::DataStorage::PackedAtlas;
   int AtlasPages = 1;       ///< packing: 1 to 4
   int LinearPages = 1;      ///< linear: 1 to 4
   int LinearWidthLog2 = 12; ///< linear: 2^this texels per row
@@ -40,7 +35,7 @@ struct vtkSinglePassAMRShaderVariant
   bool ReducedImage = false; ///< with UseDepth: the rays' image is smaller than the viewport
   bool PowerOfTwoRefinement = false;
   int UniformRefinementLog2 = 0; ///< > 0: every level refines the one above by 2^this
-  int Blend = 0;                 ///< AMRSP_BLEND_MODE: 0 composite .. 4 iso-surfaces
+  amrsp::BlendMode Blend = amrsp::BlendMode::Composite; ///< AMRSP_BLEND_MODE is its value
   bool SkipEmpty = false;
   bool SmoothCells = false;
   bool Ropes = false;

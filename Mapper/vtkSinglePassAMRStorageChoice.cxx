@@ -2,47 +2,13 @@
 #include "vtkSinglePassAMRStorageChoice.h"
 
 //------------------------------------------------------------------------------
-const char* vtkSinglePassAMRStorageName(vtkSinglePassAMRStorage storage)
-{
-  switch (storage)
-  {
-    case vtkSinglePassAMRStorage::PackedAtlas:
-      return "packing";
-    case vtkSinglePassAMRStorage::BindlessTextures:
-      return "bindless";
-    case vtkSinglePassAMRStorage::LinearBricks:
-      return "linear";
-    case vtkSinglePassAMRStorage::Auto:
-      return "auto";
-    default:
-      return "none";
-  }
-}
-
-//------------------------------------------------------------------------------
-const char* vtkSinglePassAMRBindlessAccessName(vtkSinglePassAMRBindlessAccess access)
-{
-  switch (access)
-  {
-    case vtkSinglePassAMRBindlessAccess::Direct:
-      return "direct";
-    case vtkSinglePassAMRBindlessAccess::Waterfall:
-      return "waterfall";
-    case vtkSinglePassAMRBindlessAccess::Auto:
-      return "auto";
-    default:
-      return "none";
-  }
-}
-
-//------------------------------------------------------------------------------
 vtkSinglePassAMRStorageChoice vtkSinglePassAMRStorageChoice::Choose(
   const vtkSinglePassAMRStorageRequest& request, const vtkSinglePassAMRStorageFacts& facts)
 {
-  using Storage = vtkSinglePassAMRStorage;
+  using Storage = amrsp::DataStorage;
   vtkSinglePassAMRStorageChoice c;
   const Storage requested = request.Storage;
-  const bool bindlessRuns = facts.Bindless != vtkSinglePassAMRBindlessAccess::None;
+  const bool bindlessRuns = facts.Bindless != amrsp::BindlessAccess::None;
   if (requested == Storage::LinearBricks)
   {
     c.Storage = requested;
@@ -83,7 +49,6 @@ vtkSinglePassAMRStorageChoice vtkSinglePassAMRStorageChoice::Choose(
     return c;
   }
   c.Storage = storage;
-  c.Access =
-    storage == Storage::BindlessTextures ? facts.Bindless : vtkSinglePassAMRBindlessAccess::None;
+  c.Access = storage == Storage::BindlessTextures ? facts.Bindless : amrsp::BindlessAccess::None;
   return c;
 }

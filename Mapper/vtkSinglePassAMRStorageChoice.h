@@ -4,46 +4,25 @@
  * @brief   the single pass's grid-data storages and the one rule that picks one (private)
  *
  * The storages of the paper (section 5) and ours: the packed atlas, bindless textures, linear
- * bricks. The mapper's public DataStorageMode and BindlessAccessMode have the same values
- * (checked in vtkSinglePassAMRVolumeMapper.cxx). vtkSinglePassAMRGridStorage gathers the facts
+ * bricks (amrsp::DataStorage and amrsp::BindlessAccess, amrsp/DataStorage.h). The mapper's public
+ * DataStorageMode and BindlessAccessMode have the same values (checked in
+ * vtkSinglePassAMRVolumeMapper.cxx). vtkSinglePassAMRGridStorage gathers the facts
  * from the OpenGL context and the build; vtkSinglePassAMRStorageChoice::Choose decides, with no
  * OpenGL of its own, so the rule lives in this one place.
  */
 #ifndef vtkSinglePassAMRStorageChoice_h
 #define vtkSinglePassAMRStorageChoice_h
 
+#include "amrsp/DataStorage.h"
+
 #include <functional>
 #include <string>
-
-/// Where the grid values live on the GPU. None: nothing can render, or nothing uploaded yet.
-enum class vtkSinglePassAMRStorage : int
-{
-  None = -1,
-  Auto = 0,
-  PackedAtlas = 1,
-  BindlessTextures = 2,
-  LinearBricks = 3
-};
-
-/// How the bindless shader reads a brick whose handle may differ between invocations.
-enum class vtkSinglePassAMRBindlessAccess : int
-{
-  None = -1,
-  Auto = 0,      ///< direct with GL_NV_gpu_shader5, else waterfall with GL_ARB_shader_ballot
-  Direct = 1,    ///< sampler3D(handle) as is
-  Waterfall = 2, ///< one distinct handle per loop iteration (GL_ARB_shader_ballot)
-};
-
-/// "packing", "bindless", "linear", "auto" or "none" (what the tool and the plugin print).
-const char* vtkSinglePassAMRStorageName(vtkSinglePassAMRStorage storage);
-/// "direct", "waterfall", "auto" or "none".
-const char* vtkSinglePassAMRBindlessAccessName(vtkSinglePassAMRBindlessAccess access);
 
 /// What the mapper asks for: its DataStorage and BindlessAccess, and the Auto rule's thresholds.
 struct vtkSinglePassAMRStorageRequest
 {
-  vtkSinglePassAMRStorage Storage = vtkSinglePassAMRStorage::Auto;
-  vtkSinglePassAMRBindlessAccess Access = vtkSinglePassAMRBindlessAccess::Auto;
+  amrsp::DataStorage Storage = amrsp::DataStorage::Auto;
+  amrsp::BindlessAccess Access = amrsp::BindlessAccess::Auto;
   /// Auto takes bindless when the atlas would leave more than this fraction of its texels empty.
   double AutoBindlessWaste = 0.25;
   /// Auto takes the linear bricks on a CPU driver from this many bytes of grid data.
@@ -57,7 +36,7 @@ struct vtkSinglePassAMRStorageRequest
 struct vtkSinglePassAMRStorageFacts
 {
   /// The bindless access that runs here, or None with the reason in NoBindless.
-  vtkSinglePassAMRBindlessAccess Bindless = vtkSinglePassAMRBindlessAccess::None;
+  amrsp::BindlessAccess Bindless = amrsp::BindlessAccess::None;
   std::string NoBindless;
   /// Whether the packed atlas was built and fits the context, else why not.
   bool AtlasFits = false;
@@ -72,8 +51,8 @@ struct vtkSinglePassAMRStorageFacts
 /// The storage a frame renders with, and why the requested one was not used.
 struct vtkSinglePassAMRStorageChoice
 {
-  vtkSinglePassAMRStorage Storage = vtkSinglePassAMRStorage::None; ///< None: nothing can render
-  vtkSinglePassAMRBindlessAccess Access = vtkSinglePassAMRBindlessAccess::None; ///< bindless only
+  amrsp::DataStorage Storage = amrsp::DataStorage::None;      ///< None: nothing can render
+  amrsp::BindlessAccess Access = amrsp::BindlessAccess::None; ///< bindless only
   /// Why bindless was not used although it was requested (the frame falls back to the atlas).
   std::string FallbackReason;
   /// Why nothing can render (Storage None).

@@ -45,31 +45,31 @@
 
 // The public modes are the private storage enums' values.
 static_assert(
-  static_cast<int>(vtkSinglePassAMRStorage::Auto) == vtkSinglePassAMRVolumeMapper::AUTO_STORAGE &&
-    static_cast<int>(vtkSinglePassAMRStorage::PackedAtlas) ==
+  static_cast<int>(amrsp::DataStorage::Auto) == vtkSinglePassAMRVolumeMapper::AUTO_STORAGE &&
+    static_cast<int>(amrsp::DataStorage::PackedAtlas) ==
       vtkSinglePassAMRVolumeMapper::PACKED_ATLAS &&
-    static_cast<int>(vtkSinglePassAMRStorage::BindlessTextures) ==
+    static_cast<int>(amrsp::DataStorage::BindlessTextures) ==
       vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES &&
-    static_cast<int>(vtkSinglePassAMRStorage::LinearBricks) ==
+    static_cast<int>(amrsp::DataStorage::LinearBricks) ==
       vtkSinglePassAMRVolumeMapper::LINEAR_BRICKS,
-  "DataStorageMode and vtkSinglePassAMRStorage differ");
+  "DataStorageMode and amrsp::DataStorage differ");
 static_assert(
-  static_cast<int>(vtkSinglePassAMRRayLoop::Nested) == vtkSinglePassAMRVolumeMapper::NESTED_LOOPS &&
-    static_cast<int>(vtkSinglePassAMRRayLoop::Flat) == vtkSinglePassAMRVolumeMapper::FLAT_LOOP &&
-    static_cast<int>(vtkSinglePassAMRRayLoop::Auto) == vtkSinglePassAMRVolumeMapper::AUTO_LOOP,
-  "RayLoops and vtkSinglePassAMRRayLoop differ");
+  static_cast<int>(amrsp::RayLoop::Nested) == vtkSinglePassAMRVolumeMapper::NESTED_LOOPS &&
+    static_cast<int>(amrsp::RayLoop::Flat) == vtkSinglePassAMRVolumeMapper::FLAT_LOOP &&
+    static_cast<int>(amrsp::RayLoop::Auto) == vtkSinglePassAMRVolumeMapper::AUTO_LOOP,
+  "RayLoops and amrsp::RayLoop differ");
 static_assert(
   static_cast<int>(amrsp::RayCaster::Fragment) == vtkSinglePassAMRVolumeMapper::FRAGMENT_CASTER &&
     static_cast<int>(amrsp::RayCaster::Compute) == vtkSinglePassAMRVolumeMapper::COMPUTE_CASTER &&
     static_cast<int>(amrsp::RayCaster::Auto) == vtkSinglePassAMRVolumeMapper::AUTO_CASTER,
   "RayCasters and amrsp::RayCaster differ");
-static_assert(static_cast<int>(vtkSinglePassAMRBindlessAccess::Auto) ==
-      vtkSinglePassAMRVolumeMapper::AUTO_ACCESS &&
-    static_cast<int>(vtkSinglePassAMRBindlessAccess::Direct) ==
+static_assert(
+  static_cast<int>(amrsp::BindlessAccess::Auto) == vtkSinglePassAMRVolumeMapper::AUTO_ACCESS &&
+    static_cast<int>(amrsp::BindlessAccess::Direct) ==
       vtkSinglePassAMRVolumeMapper::DIRECT_ACCESS &&
-    static_cast<int>(vtkSinglePassAMRBindlessAccess::Waterfall) ==
+    static_cast<int>(amrsp::BindlessAccess::Waterfall) ==
       vtkSinglePassAMRVolumeMapper::WATERFALL_ACCESS,
-  "BindlessAccessMode and vtkSinglePassAMRBindlessAccess differ");
+  "BindlessAccessMode and amrsp::BindlessAccess differ");
 
 //------------------------------------------------------------------------------
 vtkStandardNewMacro(vtkSinglePassAMRVolumeMapper);
@@ -213,8 +213,8 @@ void vtkSinglePassAMRVolumeMapper::GetBuiltBounds(double bounds[6])
 void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 {
   vtkInternals& in = *this->Internals;
-  in.LastStorage = vtkSinglePassAMRStorage::None;
-  in.LastAccess = vtkSinglePassAMRBindlessAccess::None;
+  in.LastStorage = amrsp::DataStorage::None;
+  in.LastAccess = amrsp::BindlessAccess::None;
   in.LastCaster = amrsp::RayCaster::Auto;
   in.StorageNote.clear();
   in.CasterNote.clear();
@@ -292,7 +292,7 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       static_cast<float>(view.Height) / static_cast<float>(rays.Height) };
     program->SetUniform2f("amrspDepthScale", scale);
   }
-  if (frame.Shade || frame.Shadows || frame.Blend == vtkSinglePassAMRShaderBlend::Isosurface)
+  if (frame.Shade || frame.Shadows || frame.Blend == amrsp::BlendMode::IsoSurface)
   {
     in.SetLightingUniforms(program, ren, vol, property, frame);
   }
@@ -328,8 +328,8 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareStorage(
   this->TrimKeptSteps(static_cast<long long>(self->MaximumKeptStepBytes));
   this->Storage->SetLinearPageBytes(self->MaximumAtlasPageBytes);
   vtkSinglePassAMRStorageRequest request;
-  request.Storage = static_cast<vtkSinglePassAMRStorage>(self->DataStorage);
-  request.Access = static_cast<vtkSinglePassAMRBindlessAccess>(self->BindlessAccess);
+  request.Storage = static_cast<amrsp::DataStorage>(self->DataStorage);
+  request.Access = static_cast<amrsp::BindlessAccess>(self->BindlessAccess);
   request.AutoBindlessWaste = self->AutoBindlessWaste;
   request.AutoLinearBytes = self->AutoLinearBytes;
   request.NewTextures = this->PendingUpload;
@@ -341,7 +341,7 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareStorage(
     self->WarnOnce("bindless textures requested, but " + choice.FallbackReason +
       ": rendering with the packed atlas instead");
   }
-  if (choice.Storage == vtkSinglePassAMRStorage::None)
+  if (choice.Storage == amrsp::DataStorage::None)
   {
     self->ReportError(choice.Error);
     return false;
@@ -462,9 +462,8 @@ bool vtkSinglePassAMRVolumeMapper::IsBindlessSupported(vtkRenderWindow* window, 
   if (supported)
   {
     vtkSinglePassAMRGridStorage capabilities;
-    supported =
-      capabilities.ResolveAccess(vtkOpenGLRenderWindow::SafeDownCast(window),
-        vtkSinglePassAMRBindlessAccess::Auto, reason) != vtkSinglePassAMRBindlessAccess::None;
+    supported = capabilities.ResolveAccess(vtkOpenGLRenderWindow::SafeDownCast(window),
+                  amrsp::BindlessAccess::Auto, reason) != amrsp::BindlessAccess::None;
   }
   if (!supported && why)
   {
@@ -489,18 +488,15 @@ void vtkSinglePassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BindlessAccess: " << GetBindlessAccessName(this->BindlessAccess) << "\n";
   os << indent << "AutoBindlessWaste: " << this->AutoBindlessWaste << "\n";
   os << indent << "AutoLinearBytes: " << this->AutoLinearBytes << "\n";
-  os << indent << "LastDataStorage: " << vtkSinglePassAMRStorageName(in.LastStorage)
-     << ", LastBindlessAccess: " << vtkSinglePassAMRBindlessAccessName(in.LastAccess) << "\n";
+  os << indent << "LastDataStorage: " << amrsp::DataStorageName(in.LastStorage)
+     << ", LastBindlessAccess: " << amrsp::BindlessAccessName(in.LastAccess) << "\n";
   os << indent << "OpacityThreshold: " << this->OpacityThreshold << "\n";
   os << indent << "EmptySpaceSkipping: " << (this->EmptySpaceSkipping ? "on" : "off") << "\n";
   os << indent << "WorkCountersOutput: " << (this->WorkCountersOutput ? "on" : "off") << "\n";
   os << indent << "WorkCountOutput: " << this->WorkCountOutput << "\n";
   os << indent << "Ropes: " << (this->Ropes ? "on" : "off") << "\n";
   os << indent << "OccupancyProbe: " << (this->OccupancyProbe ? "on" : "off") << "\n";
-  os << indent << "RayLoop: "
-     << (this->RayLoop == FLAT_LOOP      ? "flat"
-            : this->RayLoop == AUTO_LOOP ? "auto"
-                                         : "nested")
+  os << indent << "RayLoop: " << amrsp::RayLoopName(static_cast<amrsp::RayLoop>(this->RayLoop))
      << "\n";
   os << indent
      << "RayCaster: " << amrsp::RayCasterName(static_cast<amrsp::RayCaster>(this->RayCaster))

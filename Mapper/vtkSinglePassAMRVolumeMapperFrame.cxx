@@ -66,26 +66,26 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareAppearance(
   switch (self->GetBlendMode())
   {
     case vtkVolumeMapper::COMPOSITE_BLEND:
-      frame.Blend = vtkSinglePassAMRShaderBlend::Composite;
+      frame.Blend = amrsp::BlendMode::Composite;
       break;
     case vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND:
-      frame.Blend = vtkSinglePassAMRShaderBlend::Maximum;
+      frame.Blend = amrsp::BlendMode::Maximum;
       break;
     case vtkVolumeMapper::MINIMUM_INTENSITY_BLEND:
-      frame.Blend = vtkSinglePassAMRShaderBlend::Minimum;
+      frame.Blend = amrsp::BlendMode::Minimum;
       break;
     case vtkVolumeMapper::AVERAGE_INTENSITY_BLEND:
-      frame.Blend = vtkSinglePassAMRShaderBlend::Average;
+      frame.Blend = amrsp::BlendMode::Average;
       break;
     case vtkVolumeMapper::ISOSURFACE_BLEND:
-      frame.Blend = vtkSinglePassAMRShaderBlend::Isosurface;
+      frame.Blend = amrsp::BlendMode::IsoSurface;
       break;
     default:
       self->ReportError("blend mode " + std::to_string(self->GetBlendMode()) +
         " is not supported (composite, maximum, minimum, average intensity and iso-surface are)");
       return false;
   }
-  if (frame.Blend == vtkSinglePassAMRShaderBlend::Isosurface)
+  if (frame.Blend == amrsp::BlendMode::IsoSurface)
   {
     vtkContourValues* values = property->GetIsoSurfaceValues();
     const int count = values ? values->GetNumberOfContours() : 0;
@@ -105,17 +105,15 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareAppearance(
     frame.IsoCount = count;
   }
   // shading and shadows apply to composite and iso-surface blending only
-  const bool lit = frame.Blend == vtkSinglePassAMRShaderBlend::Composite ||
-    frame.Blend == vtkSinglePassAMRShaderBlend::Isosurface;
+  const bool lit =
+    frame.Blend == amrsp::BlendMode::Composite || frame.Blend == amrsp::BlendMode::IsoSurface;
   frame.Shade = lit && property->GetShade(0) != 0;
   frame.Shadows = lit && self->Shadows;
-  frame.SkipEmpty =
-    self->EmptySpaceSkipping && frame.Blend == vtkSinglePassAMRShaderBlend::Composite;
+  frame.SkipEmpty = self->EmptySpaceSkipping && frame.Blend == amrsp::BlendMode::Composite;
   frame.SmoothCells = self->CellInterpolation == SMOOTH_CELL && !this->Data.VertexCentred;
   frame.Ropes = self->Ropes && this->Storage->GetRopes() != nullptr;
-  frame.FlatLoop =
-    vtkSinglePassAMRChooseRayLoop(static_cast<vtkSinglePassAMRRayLoop>(self->RayLoop),
-      this->Storage->IsCpuDriver(renWin)) == vtkSinglePassAMRRayLoop::Flat;
+  frame.FlatLoop = vtkSinglePassAMRChooseRayLoop(static_cast<amrsp::RayLoop>(self->RayLoop),
+                     this->Storage->IsCpuDriver(renWin)) == amrsp::RayLoop::Flat;
   frame.UseDepth = self->UseDepthBuffer;
   if (self->OccupancyProbe && !this->Storage->HasThreadBuiltins(renWin))
   {
@@ -143,7 +141,7 @@ vtkSinglePassAMRShaderVariant vtkSinglePassAMRVolumeMapper::vtkInternals::Shader
   vtkSinglePassAMRShaderVariant v;
   v.Caster = frame.Caster;
   this->Storage->DescribeGridData(v);
-  v.Waterfall = frame.Access == vtkSinglePassAMRBindlessAccess::Waterfall;
+  v.Waterfall = frame.Access == amrsp::BindlessAccess::Waterfall;
   v.LevelCount = static_cast<int>(this->Data.LevelCellSize.size());
   v.VertexCentred = this->Data.VertexCentred;
   v.LogTransfer = this->Transfer.IsLogarithmic();
@@ -151,7 +149,7 @@ vtkSinglePassAMRShaderVariant vtkSinglePassAMRVolumeMapper::vtkInternals::Shader
   v.ReducedImage = frame.Reduced();
   v.PowerOfTwoRefinement = !levels.LevelToFinestLog2.empty();
   v.UniformRefinementLog2 = levels.UniformRefinementLog2;
-  v.Blend = static_cast<int>(frame.Blend);
+  v.Blend = frame.Blend;
   v.SkipEmpty = frame.SkipEmpty;
   v.SmoothCells = frame.SmoothCells;
   v.Ropes = frame.Ropes;

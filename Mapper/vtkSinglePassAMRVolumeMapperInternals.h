@@ -40,23 +40,13 @@ class vtkShaderProgram;
 class vtkVolume;
 class vtkVolumeProperty;
 
-/// The shader's AMRSP_BLEND_MODE values (Shaders/RaySteps.glsl).
-enum class vtkSinglePassAMRShaderBlend : int
-{
-  Composite = 0,
-  Maximum = 1,
-  Minimum = 2,
-  Average = 3,
-  Isosurface = 4
-};
-
 /// What one frame renders, resolved from the mapper's settings, the volume property and what
 /// the context offers. The shader variant depends on these and on the data only.
 struct vtkSinglePassAMRFrameSettings
 {
-  vtkSinglePassAMRStorage Storage = vtkSinglePassAMRStorage::None;
-  vtkSinglePassAMRBindlessAccess Access = vtkSinglePassAMRBindlessAccess::None; // bindless only
-  vtkSinglePassAMRShaderBlend Blend = vtkSinglePassAMRShaderBlend::Composite;
+  amrsp::DataStorage Storage = amrsp::DataStorage::None;
+  amrsp::BindlessAccess Access = amrsp::BindlessAccess::None; // bindless only
+  amrsp::BlendMode Blend = amrsp::BlendMode::Composite;
   std::vector<float> IsoValues; // sorted, padded to 8 (iso-surface blending only)
   int IsoCount = 0;
   bool Shade = false;       // gradient shading (composite and iso-surface blending)
@@ -197,12 +187,12 @@ public:
   void FreeComputePrograms(vtkWindow* window);
 
   // what the last frame did
-  vtkSinglePassAMRStorage LastStorage = vtkSinglePassAMRStorage::None;
+  amrsp::DataStorage LastStorage = amrsp::DataStorage::None;
   bool LastRopes = false;
   bool LastFlatLoop = false;
   amrsp::RayCaster LastCaster = amrsp::RayCaster::Auto; // Auto: no frame yet
   std::string CasterNote; // why the fragment caster ran where compute was asked for
-  vtkSinglePassAMRBindlessAccess LastAccess = vtkSinglePassAMRBindlessAccess::None;
+  amrsp::BindlessAccess LastAccess = amrsp::BindlessAccess::None;
   std::string StorageNote; // why it did not use the bindless storage it was asked for
   long long TransparentDataNodes = 0;
 };

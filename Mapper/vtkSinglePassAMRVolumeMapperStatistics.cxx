@@ -83,7 +83,7 @@ double vtkSinglePassAMRVolumeMapper::GetLastFrameBudget()
 int vtkSinglePassAMRVolumeMapper::GetNumberOfAtlasPages()
 {
   const vtkSinglePassAMRGridStorage& s = *this->Internals->Storage;
-  return s.GetUploadedStorage() == vtkSinglePassAMRStorage::LinearBricks
+  return s.GetUploadedStorage() == amrsp::DataStorage::LinearBricks
     ? s.GetNumberOfLinearPages()
     : static_cast<int>(this->Internals->Data.PageDims.size());
 }
@@ -136,13 +136,13 @@ int vtkSinglePassAMRVolumeMapper::GetLastBindlessAccess()
 //------------------------------------------------------------------------------
 const char* vtkSinglePassAMRVolumeMapper::GetDataStorageName(int storage)
 {
-  return vtkSinglePassAMRStorageName(static_cast<vtkSinglePassAMRStorage>(storage));
+  return amrsp::DataStorageName(static_cast<amrsp::DataStorage>(storage));
 }
 
 //------------------------------------------------------------------------------
 const char* vtkSinglePassAMRVolumeMapper::GetBindlessAccessName(int access)
 {
-  return vtkSinglePassAMRBindlessAccessName(static_cast<vtkSinglePassAMRBindlessAccess>(access));
+  return amrsp::BindlessAccessName(static_cast<amrsp::BindlessAccess>(access));
 }
 
 //------------------------------------------------------------------------------

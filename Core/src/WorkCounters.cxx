@@ -140,9 +140,9 @@ WorkTally ForEachTile(const RenderSettings& s, const Tile& tile)
 
 long long RayTexelFetches(const std::vector<SegmentWork>& segments, const FetchModel& m)
 {
-  const bool brickLookup = m.Storage != FetchStorage::Packing;
+  const bool brickLookup = m.Storage != DataStorage::PackedAtlas;
   const long long dataReads =
-    m.VertexCentred && m.Storage != FetchStorage::Packing ? 8 : 1; // packing: hardware trilinear
+    m.VertexCentred && m.Storage != DataStorage::PackedAtlas ? 8 : 1; // packing: hardware trilinear
   const long long perSample =
     dataReads + (m.TransferPerSample ? 1 : 0) + (brickLookup && !m.BrickLookupPerSegment ? 1 : 0);
   long long fetches = 1; // the root node

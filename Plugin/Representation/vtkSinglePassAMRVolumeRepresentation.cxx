@@ -36,11 +36,16 @@
 #include "vtkUniformGrid.h"
 #include "vtkVolumeProperty.h"
 
+#include "amrsp/DataStorage.h"
+#include "amrsp/RayCaster.h"
+#include "amrsp/RayLoop.h"
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <string>
+#include <utility>
 
 namespace model = vtkSinglePassAMRDataModel;
 
@@ -589,25 +594,22 @@ void vtkSinglePassAMRVolumeRepresentation::SetMethod(int method)
 
 void vtkSinglePassAMRVolumeRepresentation::UpdateMethod()
 {
-  // every method but multi-pass is a data storage of the single-pass mapper
-  vtkVolumeMapper* mapper = this->VolumeMapper;
-  switch (this->Method)
+  // every method but multi-pass is a data storage of the single-pass mapper (the property's
+  // values are kept for saved states, so they are mapped here, in this one table)
+  static const std::pair<int, amrsp::DataStorage> storageOfMethod[] = {
+    { METHOD_AUTO, amrsp::DataStorage::Auto },
+    { METHOD_PACKING, amrsp::DataStorage::PackedAtlas },
+    { METHOD_BINDLESS, amrsp::DataStorage::BindlessTextures },
+    { METHOD_LINEAR, amrsp::DataStorage::LinearBricks },
+  };
+  vtkVolumeMapper* mapper = this->MultiPassMapper;
+  for (const auto& row : storageOfMethod)
   {
-    case METHOD_MULTI_PASS:
-      mapper = this->MultiPassMapper;
-      break;
-    case METHOD_PACKING:
-      this->VolumeMapper->SetDataStorageToPackedAtlas();
-      break;
-    case METHOD_BINDLESS:
-      this->VolumeMapper->SetDataStorageToBindlessTextures();
-      break;
-    case METHOD_LINEAR:
-      this->VolumeMapper->SetDataStorageToLinearBricks();
-      break;
-    default:
-      this->VolumeMapper->SetDataStorageToAuto();
-      break;
+    if (row.first == this->Method)
+    {
+      this->VolumeMapper->SetDataStorage(static_cast<int>(row.second));
+      mapper = this->VolumeMapper;
+    }
   }
   if (this->Actor->GetMapper() != mapper)
   {
@@ -708,15 +710,10 @@ const char* vtkSinglePassAMRVolumeRepresentation::GetLastDataStorage()
   }
   else
   {
-    const int storage = this->VolumeMapper->GetLastDataStorage();
-    this->LastDataStorage = vtkSinglePassAMRVolumeMapper::GetDataStorageName(storage);
-    if (storage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES)
-    {
-      this->LastDataStorage += std::string(" (") +
-        vtkSinglePassAMRVolumeMapper::GetBindlessAccessName(
-          this->VolumeMapper->GetLastBindlessAccess()) +
-        ")";
-    }
+    // the mapper's public modes have the values of the core's enumerations
+    this->LastDataStorage = amrsp::StorageInWords(
+      static_cast<amrsp::DataStorage>(this->VolumeMapper->GetLastDataStorage()),
+      static_cast<amrsp::BindlessAccess>(this->VolumeMapper->GetLastBindlessAccess()));
   }
   return this->LastDataStorage.c_str();
 }
@@ -728,8 +725,7 @@ const char* vtkSinglePassAMRVolumeRepresentation::GetLastRayLoop()
   {
     return "none";
   }
-  return this->VolumeMapper->GetLastRayLoop() == vtkSinglePassAMRVolumeMapper::FLAT_LOOP ? "flat"
-                                                                                         : "nested";
+  return amrsp::RayLoopName(static_cast<amrsp::RayLoop>(this->VolumeMapper->GetLastRayLoop()));
 }
 
 //------------------------------------------------------------------------------
@@ -739,7 +735,8 @@ const char* vtkSinglePassAMRVolumeRepresentation::GetLastRayCaster()
   {
     return "none";
   }
-  return vtkSinglePassAMRVolumeMapper::GetRayCasterName(this->VolumeMapper->GetLastRayCaster());
+  return amrsp::RayCasterName(
+    static_cast<amrsp::RayCaster>(this->VolumeMapper->GetLastRayCaster()));
 }
 
 //------------------------------------------------------------------------------

@@ -61,14 +61,14 @@ TEST(WorkCounters, TexelFetchesPerStorage)
   m.SkipFlags = true; // two data segments read their flag
   EXPECT_EQ(RayTexelFetches(ray, m), 13 + 2);
   m.SkipFlags = false;
-  m.Storage = FetchStorage::Bindless; // + one handle per sampled segment
+  m.Storage = DataStorage::BindlessTextures; // + one handle per sampled segment
   EXPECT_EQ(RayTexelFetches(ray, m), 14);
   m.BrickLookupPerSegment = false; // + one handle per sample instead
   EXPECT_EQ(RayTexelFetches(ray, m), 16);
   m.BrickLookupPerSegment = true;
   m.VertexCentred = true; // eight texels per sample instead of one
   EXPECT_EQ(RayTexelFetches(ray, m), 14 + 3 * 7);
-  m.Storage = FetchStorage::Packing; // one hardware-filtered read
+  m.Storage = DataStorage::PackedAtlas; // one hardware-filtered read
   EXPECT_EQ(RayTexelFetches(ray, m), 13);
 }
 

@@ -328,12 +328,10 @@ void MapperFields(const Method& m, GpuRenderer& gpu, const Image& first, const B
 {
   if (SinglePassRenderer* singlePass = dynamic_cast<SinglePassRenderer*>(&gpu))
   {
-    r["storage"] = singlePass->StorageUsed();
+    r["storage"] = singlePass->StorageUsedInWords();
     r["ropes"] = singlePass->GetMapper()->GetLastRopes();
-    r["loop"] = singlePass->GetMapper()->GetLastRayLoop() == vtkSinglePassAMRVolumeMapper::FLAT_LOOP
-      ? "flat"
-      : "nested";
-    r["caster"] = singlePass->CasterUsed();
+    r["loop"] = RayLoopName(singlePass->LoopUsed());
+    r["caster"] = RayCasterName(singlePass->CasterUsed());
     if (c.S.GpuAblation != 0)
     {
       r["ablation"] = c.S.GpuAblation == 1
@@ -342,7 +340,8 @@ void MapperFields(const Method& m, GpuRenderer& gpu, const Image& first, const B
     }
     r["gpu_bytes_packing"] = singlePass->PackedBytes();
     r["gpu_bytes_bindless"] = singlePass->BindlessBytes();
-    if (m.Kind == MethodKind::Bindless && singlePass->StorageUsed().rfind("bindless", 0) != 0)
+    if (m.Kind == MethodKind::Bindless &&
+      singlePass->StorageUsed() != DataStorage::BindlessTextures)
     {
       throw GpuError("bindless textures are not available: " +
         singlePass->BindlessFallbackReason() + " (on a CPU run with --driver zink)");
@@ -366,9 +365,10 @@ void MapperFields(const Method& m, GpuRenderer& gpu, const Image& first, const B
   r["backend"] = gpu.Backend();
   if (m.IsKdTreeMapper())
   {
-    const std::string storage = r.value("storage", std::string());
-    const bool bindless = storage.rfind("bindless", 0) == 0;
-    const bool linear = storage.rfind("linear", 0) == 0;
+    const SinglePassRenderer* singlePass = dynamic_cast<SinglePassRenderer*>(&gpu);
+    const DataStorage storage = singlePass ? singlePass->StorageUsed() : DataStorage::PackedAtlas;
+    const bool bindless = storage == DataStorage::BindlessTextures;
+    const bool linear = storage == DataStorage::LinearBricks;
     r["atlas"] = bindless ? std::string("none (one texture per grid)")
       : linear            ? std::string("none (bricks back to back)")
                           : gpu.AtlasDimensions();
@@ -412,7 +412,7 @@ void MapperFields(const Method& m, GpuRenderer& gpu, const Image& first, const B
     }
     else
     {
-      j["caster"] = occupancy.Caster;
+      j["caster"] = RayCasterName(occupancy.Caster);
       j["rays"] = occupancy.Rays;
       j["sms"] = occupancy.Multiprocessors;
       j["sm_count"] = occupancy.ChipMultiprocessors;

@@ -70,14 +70,11 @@ const EncodedKdTree& BenchWork::Tree()
 
 namespace
 {
-/// The fetch model of the storage a single-pass renderer reports ("packing", "bindless
-/// (direct)", "linear", ...).
-FetchModel FetchModelOf(const std::string& storage, const Hierarchy& h, const RenderSettings& s)
+/// The fetch model of the storage a single-pass renderer used.
+FetchModel FetchModelOf(DataStorage storage, const Hierarchy& h, const RenderSettings& s)
 {
   FetchModel m;
-  m.Storage = storage.rfind("bindless", 0) == 0 ? FetchStorage::Bindless
-    : storage.rfind("linear", 0) == 0           ? FetchStorage::Linear
-                                                : FetchStorage::Packing;
+  m.Storage = storage;
   m.VertexCentred = h.VertexCentred;
   m.SkipFlags = s.SkipEmptySpace && s.Blend == BlendMode::Composite;
   m.TransferPerSample = s.Blend == BlendMode::Composite || s.Blend == BlendMode::IsoSurface;
@@ -98,7 +95,7 @@ nlohmann::ordered_json BenchWork::SinglePass(GpuRenderer& gpu)
   {
     return { { "error", "not a single-pass renderer" } };
   }
-  const std::string storage = singlePass->StorageUsed();
+  const DataStorage storage = singlePass->StorageUsed();
   auto found = SinglePassByStorage.find(storage);
   if (found == SinglePassByStorage.end())
   {
@@ -110,7 +107,7 @@ nlohmann::ordered_json BenchWork::SinglePass(GpuRenderer& gpu)
   }
   const WorkSummary& w = found->second;
   Json j = WorkJson(w);
-  j["storage"] = storage;
+  j["storage"] = singlePass->StorageUsedInWords();
   using M = vtkSinglePassAMRVolumeMapper;
   double ms = 0.0;
   singlePass->Render(0.0, ms); // frame 0's camera, which the mirror counted

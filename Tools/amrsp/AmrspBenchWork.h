@@ -45,7 +45,7 @@ private:
   const Hierarchy& H;
   RenderSettings S;
   std::unique_ptr<EncodedKdTree> Encoded;
-  std::map<std::string, WorkSummary> SinglePassByStorage; // the mirror's, per storage name
+  std::map<DataStorage, WorkSummary> SinglePassByStorage; // the mirror's, per storage
 };
 
 /// A WorkSummary as the JSON fields of a "work" object.

@@ -32,49 +32,44 @@ RenderSettings SinglePassVariant(const std::string& spec, const MethodRequest& r
   const std::size_t dash = variant.find('-');
   const std::string caster = variant.substr(0, dash);
   const std::string loop = dash == std::string::npos ? "" : variant.substr(dash + 1);
-  if (!ParseRayCaster(caster.c_str(), s.GpuRayCaster) ||
-    (dash != std::string::npos && loop != "nested" && loop != "flat" && loop != "auto"))
+  if (!ParseIn(RayCasterNames, caster.c_str(), s.GpuRayCaster) ||
+    (dash != std::string::npos && !ParseIn(RayLoopNames, loop.c_str(), s.GpuRayLoop)))
   {
     throw GpuError("'" + spec + "': a single-pass method's parameter is CASTER[-LOOP], CASTER " +
-      "fragment, compute or auto and LOOP nested, flat or auto (e.g. packing:compute-flat)");
-  }
-  if (!loop.empty())
-  {
-    s.GpuRayLoop = loop == "flat" ? RenderSettings::RayLoop::Flat
-      : loop == "nested"          ? RenderSettings::RayLoop::Nested
-                                  : RenderSettings::RayLoop::Auto;
+      WordsOf(RayCasterNames) + " and LOOP " + WordsOf(RayLoopNames) +
+      " (e.g. packing:compute-flat)");
   }
   return s;
 }
 
-/// A single-pass method's renderer with data storage `storage` (the mapper's name).
+/// A single-pass method's renderer with data storage `storage`.
 std::unique_ptr<GpuRenderer> MakeSinglePass(
-  const std::string& spec, const MethodRequest& r, const std::string& storage)
+  const std::string& spec, const MethodRequest& r, DataStorage storage)
 {
   return std::unique_ptr<GpuRenderer>(
-    new SinglePassRenderer(r.Data, SinglePassVariant(spec, r), r.View, storage, r.BindlessAccess));
+    new SinglePassRenderer(r.Data, SinglePassVariant(spec, r), r.View, storage, r.Access));
 }
 
 std::unique_ptr<GpuRenderer> MakePacking(const std::string& spec, const MethodRequest& r)
 {
-  return MakeSinglePass(spec, r, "packing");
+  return MakeSinglePass(spec, r, DataStorage::PackedAtlas);
 }
 
 std::unique_ptr<GpuRenderer> MakeBindless(const std::string& spec, const MethodRequest& r)
 {
   // the mapper falls back to the atlas where bindless cannot run; the commands check
   // SinglePassRenderer::StorageUsed() after a frame
-  return MakeSinglePass(spec, r, "bindless");
+  return MakeSinglePass(spec, r, DataStorage::BindlessTextures);
 }
 
 std::unique_ptr<GpuRenderer> MakeLinear(const std::string& spec, const MethodRequest& r)
 {
-  return MakeSinglePass(spec, r, "linear");
+  return MakeSinglePass(spec, r, DataStorage::LinearBricks);
 }
 
 std::unique_ptr<GpuRenderer> MakeAutoStorage(const std::string& spec, const MethodRequest& r)
 {
-  return MakeSinglePass(spec, r, "auto");
+  return MakeSinglePass(spec, r, DataStorage::Auto);
 }
 
 std::unique_ptr<GpuRenderer> MakeMultipass(const std::string&, const MethodRequest& r)

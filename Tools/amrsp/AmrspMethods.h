@@ -11,6 +11,8 @@
 #include "amrsp/Hierarchy.h"
 #include "amrsp/RenderSettings.h"
 
+#include "amrsp/DataStorage.h"
+
 #include <iosfwd>
 #include <memory>
 #include <string>
@@ -49,8 +51,8 @@ struct MethodRequest
   const Hierarchy& Data;
   const RenderSettings& Settings;
   ViewAngles View;
-  /// vtkSinglePassAMRVolumeMapper's bindless access: "auto", "direct" or "waterfall".
-  std::string BindlessAccess = "auto";
+  /// vtkSinglePassAMRVolumeMapper's bindless access.
+  amrsp::BindlessAccess Access = amrsp::BindlessAccess::Auto;
 };
 
 /// One line of a method's help: how it is written and what it does.

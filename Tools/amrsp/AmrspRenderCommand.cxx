@@ -41,7 +41,7 @@ const char* const RenderIntro =
 /// The GPU methods: a warm-up frame (conversion, build, packing, upload, shader compile), then
 /// `repeat` timed frames; `method` becomes "packing" where bindless fell back to the atlas.
 ImageRun RenderGpu(const Method& m, std::string& method, const LoadedDataset& d,
-  const RenderSettings& s, const Arguments& a, const std::string& bindlessAccess, int repeat)
+  const RenderSettings& s, const Arguments& a, BindlessAccess bindlessAccess, int repeat)
 {
   ImageRun run;
   std::unique_ptr<GpuRenderer> gpu =
@@ -69,8 +69,8 @@ ImageRun RenderGpu(const Method& m, std::string& method, const LoadedDataset& d,
   const double cameraDifference = CameraDifference(r.LastCamera(), s.View);
   if (singlePass)
   {
-    const std::string used = singlePass->StorageUsed();
-    if (m.Kind == MethodKind::Bindless && used.rfind("bindless", 0) != 0)
+    if (m.Kind == MethodKind::Bindless &&
+      singlePass->StorageUsed() != DataStorage::BindlessTextures)
     {
       std::cerr << "amrsp: note: bindless textures cannot be used here ("
                 << singlePass->BindlessFallbackReason()
@@ -78,17 +78,13 @@ ImageRun RenderGpu(const Method& m, std::string& method, const LoadedDataset& d,
       method = "packing";
     }
     // the linear storage's build does not pack: no atlas figure then
-    report << "storage: " << used << "; textures for packing "
+    report << "storage: " << singlePass->StorageUsedInWords() << "; textures for packing "
            << (singlePass->PackedBytes() > 0
                   ? std::to_string(singlePass->PackedBytes() / (1024.0 * 1024.0)) + " MiB"
                   : std::string("not built"))
            << ", for bindless " << singlePass->BindlessBytes() / (1024.0 * 1024.0) << " MiB\n"
-           << "ray loop: "
-           << (singlePass->GetMapper()->GetLastRayLoop() == vtkSinglePassAMRVolumeMapper::FLAT_LOOP
-                  ? "flat"
-                  : "nested")
-           << "\n"
-           << "caster: " << singlePass->CasterUsed() << "\n";
+           << "ray loop: " << RayLoopName(singlePass->LoopUsed()) << "\n"
+           << "caster: " << RayCasterName(singlePass->CasterUsed()) << "\n";
     // (a compute caster that fell back: the mapper's one warning says why)
   }
   report << "device: " << r.Device() << "\n"
@@ -227,11 +223,12 @@ int RunRender(int argc, char** argv)
       throw UsageError{ "unknown --method '" + method + "' (available in this build: auto, " +
         MethodList(RenderCommand) + ")" };
     }
-    const std::string bindlessAccess = a.Get("bindless-access", "auto");
-    if (bindlessAccess != "auto" && bindlessAccess != "direct" && bindlessAccess != "waterfall")
+    BindlessAccess bindlessAccess = BindlessAccess::Auto;
+    const std::string access = a.Get("bindless-access", "auto");
+    if (!ParseIn(BindlessAccessNames, access.c_str(), bindlessAccess))
     {
-      throw UsageError{ "unknown --bindless-access '" + bindlessAccess +
-        "' (auto, direct or waterfall)" };
+      throw UsageError{ "unknown --bindless-access '" + access + "' (" +
+        WordsOf(BindlessAccessNames) + ")" };
     }
     SelectDriver(a.Get("driver", "default"));
     SelectBackend(a.Get("backend", "auto"));

@@ -230,7 +230,7 @@ ScalarSpan SeriesSpan(const Arguments& a, const std::vector<std::string>& specs)
 } // namespace
 
 int RenderSeries(const Method& m, std::string method, const Arguments& a,
-  const std::string& bindlessAccess, const SeriesCompare& compare)
+  BindlessAccess bindlessAccess, const SeriesCompare& compare)
 {
   const std::vector<std::string> specs = SeriesSteps(SeriesArgument(a));
   const std::vector<int> selected =
@@ -366,7 +366,7 @@ int BenchSeries(const Arguments& a)
     const Method& m = *FindMethod(name, BenchCommand);
     std::string method = name;
     std::unique_ptr<GpuRenderer> gpu =
-      m.Make(method, MethodRequest{ steps[0], settings, ViewOf(a), "auto" });
+      m.Make(method, MethodRequest{ steps[0], settings, ViewOf(a) });
     double ms = 0.0;
     gpu->Render(0.0, ms); // the first step, the shaders compiled
     gpu->Render(0.0, ms);
@@ -398,8 +398,9 @@ int BenchSeries(const Arguments& a)
     r["device"] = gpu->Device();
     if (SinglePassRenderer* singlePass = dynamic_cast<SinglePassRenderer*>(gpu.get()))
     {
-      r["storage"] = singlePass->StorageUsed();
-      if (m.Kind == MethodKind::Bindless && singlePass->StorageUsed().rfind("bindless", 0) != 0)
+      r["storage"] = singlePass->StorageUsedInWords();
+      if (m.Kind == MethodKind::Bindless &&
+        singlePass->StorageUsed() != DataStorage::BindlessTextures)
       {
         // its figures are the atlas's under bindless's name
         r["error"] =
@@ -470,7 +471,7 @@ int SoakSeries(const Arguments& a)
   const Hierarchy first = readStep(0, &settings);
   std::string methodName = method;
   std::unique_ptr<GpuRenderer> gpu =
-    m->Make(methodName, MethodRequest{ first, settings, ViewOf(a), "auto" });
+    m->Make(methodName, MethodRequest{ first, settings, ViewOf(a) });
   double ms = 0.0;
   gpu->Render(0.0, ms);
   struct Sample

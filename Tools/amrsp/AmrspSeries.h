@@ -50,7 +50,7 @@ using SeriesCompare =
 /// camera is the first selected step's (ResetCamera to its domain). With --compare, `compare`
 /// runs on each step's image.
 int RenderSeries(const Method& m, std::string method, const Arguments& a,
-  const std::string& bindlessAccess, const SeriesCompare& compare);
+  BindlessAccess bindlessAccess, const SeriesCompare& compare);
 
 /// `amrsp bench SERIES --time-series [--methods ...]`: per GPU method, every step after the
 /// first rendered by one renderer; step_switch_s is the median time from the step's data in

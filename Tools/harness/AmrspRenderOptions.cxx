@@ -356,27 +356,12 @@ void ParseImageSize(const std::string& size, RenderSettings& s)
 /// --blend's name as a BlendMode.
 BlendMode ParseBlendMode(const std::string& blend)
 {
-  if (blend == "composite")
+  BlendMode mode = BlendMode::Composite;
+  if (!ParseIn(BlendModeNames, blend.c_str(), mode))
   {
-    return BlendMode::Composite;
+    throw UsageError{ "--blend must be " + WordsOf(BlendModeNames) };
   }
-  if (blend == "maximum")
-  {
-    return BlendMode::Maximum;
-  }
-  if (blend == "minimum")
-  {
-    return BlendMode::Minimum;
-  }
-  if (blend == "average")
-  {
-    return BlendMode::Average;
-  }
-  if (blend == "iso")
-  {
-    return BlendMode::IsoSurface;
-  }
-  throw UsageError{ "--blend must be composite, maximum, minimum, average or iso" };
+  return mode;
 }
 
 } // namespace
@@ -489,18 +474,13 @@ RenderSettings MakeSettings(
     throw UsageError{ "--ropes must be on or off" };
   }
   s.Ropes = ropes == "on";
-  const std::string loop = a.Get("loop", "nested");
-  if (loop != "auto" && loop != "nested" && loop != "flat")
+  if (!ParseIn(RayLoopNames, a.Get("loop", "nested").c_str(), s.GpuRayLoop))
   {
-    throw UsageError{ "--loop must be auto, nested or flat" };
+    throw UsageError{ "--loop must be " + WordsOf(RayLoopNames) };
   }
-  s.GpuRayLoop = loop == "flat" ? RenderSettings::RayLoop::Flat
-    : loop == "nested"          ? RenderSettings::RayLoop::Nested
-                                : RenderSettings::RayLoop::Auto;
-  const std::string caster = a.Get("caster", "auto");
-  if (!ParseRayCaster(caster.c_str(), s.GpuRayCaster))
+  if (!ParseIn(RayCasterNames, a.Get("caster", "auto").c_str(), s.GpuRayCaster))
   {
-    throw UsageError{ "--caster must be auto, fragment or compute" };
+    throw UsageError{ "--caster must be " + WordsOf(RayCasterNames) };
   }
   const std::string ablation = a.Get("ablation", "none");
   const std::string samplingOnly = "sampling-only";

@@ -25,35 +25,23 @@ vtkSmartPointer<vtkSinglePassAMRVolumeMapper> NewMapper()
 } // namespace
 
 SinglePassRenderer::SinglePassRenderer(const Hierarchy& h, const RenderSettings& s,
-  const ViewAngles& view, const std::string& storage, const std::string& bindlessAccess)
-  : SinglePassRenderer(NewMapper(), h, s, view, storage, bindlessAccess)
+  const ViewAngles& view, DataStorage storage, BindlessAccess access)
+  : SinglePassRenderer(NewMapper(), h, s, view, storage, access)
 {
 }
 
 SinglePassRenderer::SinglePassRenderer(vtkSinglePassAMRVolumeMapper* mapper, const Hierarchy& h,
-  const RenderSettings& s, const ViewAngles& view, const std::string& storage,
-  const std::string& bindlessAccess)
-  : GpuRenderer(storage, mapper, h, s, view)
+  const RenderSettings& s, const ViewAngles& view, DataStorage storage, BindlessAccess access)
+  : GpuRenderer(DataStorageName(storage), mapper, h, s, view)
   , Mapper(mapper)
 {
-  using M = vtkSinglePassAMRVolumeMapper;
-  if (storage != "packing" && storage != "bindless" && storage != "linear" && storage != "auto")
+  if (storage == DataStorage::None || access == BindlessAccess::None)
   {
-    throw std::invalid_argument(
-      "unknown data storage '" + storage + "' (packing, bindless, linear or auto)");
+    throw std::invalid_argument("a single-pass renderer needs a data storage and an access");
   }
-  if (bindlessAccess != "auto" && bindlessAccess != "direct" && bindlessAccess != "waterfall")
-  {
-    throw std::invalid_argument(
-      "unknown bindless access '" + bindlessAccess + "' (auto, direct or waterfall)");
-  }
-  this->Mapper->SetDataStorage(storage == "packing" ? M::PACKED_ATLAS
-      : storage == "bindless"                       ? M::BINDLESS_TEXTURES
-      : storage == "linear"                         ? M::LINEAR_BRICKS
-                                                    : M::AUTO_STORAGE);
-  this->Mapper->SetBindlessAccess(bindlessAccess == "direct" ? M::DIRECT_ACCESS
-      : bindlessAccess == "waterfall"                        ? M::WATERFALL_ACCESS
-                                                             : M::AUTO_ACCESS);
+  // the mapper's public modes have the values of amrsp::DataStorage and amrsp::BindlessAccess
+  this->Mapper->SetDataStorage(static_cast<int>(storage));
+  this->Mapper->SetBindlessAccess(static_cast<int>(access));
   this->Mapper->SetSampleDistanceFactor(s.SampleDistanceFactor);
   if (s.AtlasPageBytes > 0)
   {
@@ -63,10 +51,7 @@ SinglePassRenderer::SinglePassRenderer(vtkSinglePassAMRVolumeMapper* mapper, con
   this->Mapper->SetOpacityThreshold(s.OpacityThreshold);
   this->Mapper->SetEmptySpaceSkipping(s.SkipEmptySpace);
   this->Mapper->SetRopes(s.Ropes);
-  this->Mapper->SetRayLoop(s.GpuRayLoop == RenderSettings::RayLoop::Flat
-      ? vtkSinglePassAMRVolumeMapper::FLAT_LOOP
-      : s.GpuRayLoop == RenderSettings::RayLoop::Nested ? vtkSinglePassAMRVolumeMapper::NESTED_LOOPS
-                                                        : vtkSinglePassAMRVolumeMapper::AUTO_LOOP);
+  this->Mapper->SetRayLoop(static_cast<int>(s.GpuRayLoop));
   this->Mapper->SetRayCaster(static_cast<int>(s.GpuRayCaster));
   this->Mapper->SetDiagnosticAblation(s.GpuAblation);
   this->Mapper->SetDiagnosticAblationSamples(s.GpuAblationSamples);
@@ -74,22 +59,29 @@ SinglePassRenderer::SinglePassRenderer(vtkSinglePassAMRVolumeMapper* mapper, con
                                                       : vtkSinglePassAMRVolumeMapper::NEAREST_CELL);
 }
 
-std::string SinglePassRenderer::StorageUsed() const
+DataStorage SinglePassRenderer::StorageUsed() const
 {
-  const int storage = this->Mapper->GetLastDataStorage();
-  std::string name = vtkSinglePassAMRVolumeMapper::GetDataStorageName(storage);
-  if (storage == vtkSinglePassAMRVolumeMapper::BINDLESS_TEXTURES)
-  {
-    name += std::string(" (") +
-      vtkSinglePassAMRVolumeMapper::GetBindlessAccessName(this->Mapper->GetLastBindlessAccess()) +
-      ")";
-  }
-  return name;
+  return static_cast<DataStorage>(this->Mapper->GetLastDataStorage());
 }
 
-std::string SinglePassRenderer::CasterUsed() const
+BindlessAccess SinglePassRenderer::AccessUsed() const
 {
-  return vtkSinglePassAMRVolumeMapper::GetRayCasterName(this->Mapper->GetLastRayCaster());
+  return static_cast<BindlessAccess>(this->Mapper->GetLastBindlessAccess());
+}
+
+RayLoop SinglePassRenderer::LoopUsed() const
+{
+  return static_cast<RayLoop>(this->Mapper->GetLastRayLoop());
+}
+
+RayCaster SinglePassRenderer::CasterUsed() const
+{
+  return static_cast<RayCaster>(this->Mapper->GetLastRayCaster());
+}
+
+std::string SinglePassRenderer::StorageUsedInWords() const
+{
+  return StorageInWords(this->StorageUsed(), this->AccessUsed());
 }
 
 std::string SinglePassRenderer::BindlessFallbackReason() const

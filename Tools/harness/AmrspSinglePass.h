@@ -8,6 +8,10 @@
 
 #include "AmrspGpuRenderer.h"
 
+#include "amrsp/DataStorage.h"
+#include "amrsp/RayCaster.h"
+#include "amrsp/RayLoop.h"
+
 #include <string>
 
 class vtkSinglePassAMRVolumeMapper;
@@ -22,20 +26,21 @@ class SinglePassRenderer : public GpuRenderer
 public:
   /// `h` holds the scalars as they are displayed (after --scale); `s` gives the image size, the
   /// transfer function, its unit distance, the sample factor and the LOD threshold. `storage` is
-  /// the tool's method name of the mapper's data storage: "packing" (the packed atlas, default),
-  /// "bindless" (one texture per brick; the mapper falls back to the atlas where it cannot) or
-  /// "auto"; `bindlessAccess` is "auto", "direct" or "waterfall". Nothing is rendered yet.
+  /// the mapper's data storage (bindless falls back to the atlas where it cannot run), its name
+  /// the renderer's; `access` the bindless access. Nothing is rendered yet.
   SinglePassRenderer(const Hierarchy& h, const RenderSettings& s, const ViewAngles& view,
-    const std::string& storage = "packing", const std::string& bindlessAccess = "auto");
+    DataStorage storage = DataStorage::PackedAtlas, BindlessAccess access = BindlessAccess::Auto);
 
   vtkSinglePassAMRVolumeMapper* GetMapper() const;
 
-  /// What rendered the last frame: "packing", "bindless (waterfall)", "bindless (direct)", or
-  /// "none" before the first successful frame.
-  std::string StorageUsed() const;
-  /// Which shader stage cast the last frame's rays: "fragment", "compute", or "none" before the
-  /// first successful frame (amrsp::RayCasterName).
-  std::string CasterUsed() const;
+  /// What rendered the last frame (None before the first successful one): the storage, its
+  /// bindless access (None unless bindless), the ray loop and the caster.
+  DataStorage StorageUsed() const;
+  BindlessAccess AccessUsed() const;
+  RayLoop LoopUsed() const;
+  RayCaster CasterUsed() const;
+  /// StorageUsed and AccessUsed in words ("bindless (direct)", amrsp::StorageInWords).
+  std::string StorageUsedInWords() const;
   /// Bytes of the data textures each storage needs for the current data (tree included).
   /// Why bindless was asked for but the atlas rendered (empty when it did not fall back).
   std::string BindlessFallbackReason() const;
@@ -51,13 +56,13 @@ public:
   struct Occupancy
   {
     bool Available = false;
-    std::string Why;             ///< why not (the mapper's error) when not Available
-    std::string Caster;          ///< the caster that ran ("fragment", "compute")
-    long long Rays = 0;          ///< pixels whose ray met the volume
-    int Multiprocessors = 0;     ///< distinct gl_SMIDNV among them
-    int ChipMultiprocessors = 0; ///< gl_SMCountNV
-    int Warps = 0;               ///< distinct (gl_SMIDNV, gl_WarpIDNV) pairs
-    int MostWarpsOnOne = 0;      ///< the most distinct warp slots one multiprocessor used
+    std::string Why;                        ///< why not (the mapper's error) when not Available
+    RayCaster Caster = RayCaster::Fragment; ///< the caster that ran
+    long long Rays = 0;                     ///< pixels whose ray met the volume
+    int Multiprocessors = 0;                ///< distinct gl_SMIDNV among them
+    int ChipMultiprocessors = 0;            ///< gl_SMCountNV
+    int Warps = 0;                          ///< distinct (gl_SMIDNV, gl_WarpIDNV) pairs
+    int MostWarpsOnOne = 0; ///< the most distinct warp slots one multiprocessor used
   };
   /// Renders the current camera's frame (RenderAsIs) with the occupancy probe and counts where
   /// its rays ran; the mapper draws colours again afterwards. Not Available (with the reason)
@@ -66,8 +71,7 @@ public:
 
 private:
   SinglePassRenderer(vtkSinglePassAMRVolumeMapper* mapper, const Hierarchy& h,
-    const RenderSettings& s, const ViewAngles& view, const std::string& storage,
-    const std::string& bindlessAccess);
+    const RenderSettings& s, const ViewAngles& view, DataStorage storage, BindlessAccess access);
   vtkSinglePassAMRVolumeMapper* Mapper; // held by the base (its volume's mapper)
 };
 

@@ -6,8 +6,7 @@
 /// the ParaView plugin, the amrsp tool (--caster) and its bench ("caster"). The images are the
 /// same; the rule that resolves Auto is the mapper's (vtkSinglePassAMRRayCasterChoice.h).
 
-#include <cstring>
-#include <initializer_list>
+#include "amrsp/SettingNames.h"
 
 namespace amrsp
 {
@@ -19,33 +18,22 @@ enum class RayCaster : int
   Auto = 2      ///< the mapper's rule
 };
 
-/// "fragment", "compute" or "auto" (the tool's and the bench's words).
+constexpr SettingName<RayCaster> RayCasterNames[] = {
+  { RayCaster::Auto, "auto" },
+  { RayCaster::Fragment, "fragment" },
+  { RayCaster::Compute, "compute" },
+};
+
+/// "fragment", "compute", "auto", or "none" (the tool's and the bench's words).
 inline const char* RayCasterName(RayCaster caster)
 {
-  switch (caster)
-  {
-    case RayCaster::Fragment:
-      return "fragment";
-    case RayCaster::Compute:
-      return "compute";
-    case RayCaster::Auto:
-      return "auto";
-  }
-  return "none";
+  return NameIn(RayCasterNames, caster);
 }
 
 /// The caster named `name` (RayCasterName's words); false for any other word.
 inline bool ParseRayCaster(const char* name, RayCaster& caster)
 {
-  for (RayCaster c : { RayCaster::Fragment, RayCaster::Compute, RayCaster::Auto })
-  {
-    if (name && std::strcmp(name, RayCasterName(c)) == 0)
-    {
-      caster = c;
-      return true;
-    }
-  }
-  return false;
+  return ParseIn(RayCasterNames, name, caster);
 }
 
 } // namespace amrsp

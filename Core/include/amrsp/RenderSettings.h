@@ -5,10 +5,12 @@
 /// function, blending, sampling factors, shading, clipping) and the work counters it reports.
 /// The integrators that read them are declared in amrsp/Render.h.
 
+#include "amrsp/BlendMode.h"
 #include "amrsp/Camera.h"
 #include "amrsp/Lighting.h"
 #include "amrsp/Progress.h"
 #include "amrsp/RayCaster.h"
+#include "amrsp/RayLoop.h"
 #include "amrsp/TransferFunction.h"
 
 #include <glm/glm.hpp>
@@ -18,19 +20,6 @@
 
 namespace amrsp
 {
-
-/// vtkVolumeMapper's blend modes. Maximum/Minimum keep the extreme scalar along the ray,
-/// Average its length-weighted mean; the pixel is then the transfer function's colour and
-/// (uncorrected) opacity of that scalar over the background. IsoSurface composites the crossings
-/// of RenderSettings::IsoValues (rules in amrsp/Shading.h).
-enum class BlendMode
-{
-  Composite,
-  Maximum,
-  Minimum,
-  Average,
-  IsoSurface
-};
 
 /// Work counters of one render (summed over all rays), to show what the accelerations did.
 struct RenderStats
@@ -69,12 +58,6 @@ struct RenderSettings
   /// and DiagnosticAblationSamples; not used by the CPU integrators.
   int GpuAblation = 0;
   /// The single-pass mapper's RayLoop (the image is the same); not used by the CPU integrators.
-  enum class RayLoop
-  {
-    Auto,   ///< the mapper's rule: the flat loop on a GPU, the nested loops on a CPU driver
-    Nested, ///< per segment a descent loop, then a sample loop
-    Flat    ///< one loop of single descent steps, segment set-ups and samples
-  };
   RayLoop GpuRayLoop = RayLoop::Nested;
   /// The single-pass mapper's RayCaster (the image is the same); not used by the CPU integrators.
   RayCaster GpuRayCaster = RayCaster::Auto;

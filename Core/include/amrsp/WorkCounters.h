@@ -35,6 +35,7 @@
 ///   its leaf's draw (no early termination, no skipping); a fragment's steps are 1 + its samples;
 ///   a draw's lockstep steps in a tile are 1 + the largest sample count of its fragments there.
 
+#include "amrsp/DataStorage.h"
 #include "amrsp/BrickAtlas.h"
 #include "amrsp/Hierarchy.h"
 #include "amrsp/KdTreeEncoding.h"
@@ -60,18 +61,13 @@ struct SegmentWork
   bool Skipped = false; ///< ... which empty-space skipping did not sample
 };
 
-/// Where the grid data lives, which decides the texel fetches of a sample.
-enum class FetchStorage
-{
-  Packing,  ///< one atlas texel (cells) or one hardware-filtered read (vertices) per sample
-  Bindless, ///< the brick's handle, then one texel (cells) or eight (vertices) per sample
-  Linear    ///< the brick-table entry, then one texel (cells) or eight (vertices) per sample
-};
-
 /// What the shader variant reads, to count texel fetches.
 struct FetchModel
 {
-  FetchStorage Storage = FetchStorage::Packing;
+  /// Where the grid data lives, which decides the texel fetches of a sample: PackedAtlas one
+  /// atlas texel (cells) or one hardware-filtered read (vertices) per sample; BindlessTextures
+  /// the brick's handle, LinearBricks its table entry, then one texel (cells) or eight (vertices).
+  DataStorage Storage = DataStorage::PackedAtlas;
   bool VertexCentred = false;
   /// The brick's handle or table entry is read once per sampled segment instead of per sample.
   bool BrickLookupPerSegment = true;

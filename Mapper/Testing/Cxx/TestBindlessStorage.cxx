@@ -204,7 +204,7 @@ void TestAutomaticChoice()
   std::cout << "automatic storage choice\n";
   Hierarchy h = LoadHierarchy("synthetic:cosmo:grids=30,levels=3,cells=60k,seed=5");
   const RenderSettings s = Settings(h, { "--size", "64x64" });
-  SinglePassRenderer gpu(h, s, ViewAngles(), "auto");
+  SinglePassRenderer gpu(h, s, ViewAngles(), DataStorage::Auto);
   Mapper* m = gpu.GetMapper();
   double ms = 0.0;
   m->SetAutoBindlessWaste(1.0);
@@ -259,7 +259,7 @@ void TestDriverLimit()
   std::cout << "more grids than zink's 1023 bindless textures\n";
   Hierarchy h = LoadHierarchy("synthetic:cosmo:grids=1100,levels=3,cells=200k,seed=5");
   const RenderSettings s = Settings(h, { "--size", "32x32" });
-  SinglePassRenderer gpu(h, s, ViewAngles(), "packing");
+  SinglePassRenderer gpu(h, s, ViewAngles(), DataStorage::PackedAtlas);
   Mapper* m = gpu.GetMapper();
   double ms = 0.0;
   const Image packed = gpu.Render(0.0, ms);
@@ -294,7 +294,7 @@ void TestRegridOnZink()
   Hierarchy after = GenerateCosmoStep(p, 2);
   Settings(after, { "--scale", "log" }); // log10 of the density in both steps
   const RenderSettings s = Settings(before, { "--size", "32x32", "--scale", "log" });
-  SinglePassRenderer gpu(before, s, ViewAngles(), "bindless");
+  SinglePassRenderer gpu(before, s, ViewAngles(), DataStorage::BindlessTextures);
   Mapper* m = gpu.GetMapper();
   double ms = 0.0;
   gpu.Render(0.0, ms);
@@ -307,7 +307,8 @@ void TestRegridOnZink()
   WarningCounter warnings(m);
   gpu.SetData(after);
   const Image img = gpu.Render(0.0, ms);
-  const Image packed = SinglePassRenderer(after, s, ViewAngles(), "packing").Render(0.0, ms);
+  const Image packed =
+    SinglePassRenderer(after, s, ViewAngles(), DataStorage::PackedAtlas).Render(0.0, ms);
   if (!zink)
   {
     Check(

@@ -39,7 +39,7 @@ void TestInteractiveFrames()
 {
   Hierarchy h = mappertest::LoadHierarchy("synthetic:cosmo:grids=200,levels=4,cells=2M,seed=5");
   const RenderSettings s = mappertest::Settings(h, { "--size", "128x128" });
-  SinglePassRenderer gpu(h, s, ViewAngles(), "packing");
+  SinglePassRenderer gpu(h, s, ViewAngles(), DataStorage::PackedAtlas);
   vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
   vtkRenderWindow* window = gpu.GetRenderer()->GetRenderWindow();
   double ms = 0.0;

@@ -69,7 +69,7 @@ void TestDataset(const std::string& name, Hierarchy h, double referenceBound, bo
   const double vsPackingBound = h.VertexCentred ? BoundVsPackingVertices : 0.0;
   double ms = 0.0;
 
-  SinglePassRenderer gpu(h, s, ViewAngles(), "packing");
+  SinglePassRenderer gpu(h, s, ViewAngles(), DataStorage::PackedAtlas);
   Mapper* m = gpu.GetMapper();
   const Image packed = gpu.Render(0.0, ms);
   Check(m->GetLastDataStorage() == Mapper::PACKED_ATLAS, "packing rendered: " + StorageName(m));
@@ -177,7 +177,7 @@ void TestAutomaticChoice()
   std::cout << "automatic storage choice\n";
   Hierarchy h = LoadHierarchy("synthetic:cosmo:grids=30,levels=3,cells=60k,seed=5");
   const RenderSettings s = Settings(h, { "--size", "64x64" });
-  SinglePassRenderer gpu(h, s, ViewAngles(), "packing");
+  SinglePassRenderer gpu(h, s, ViewAngles(), DataStorage::PackedAtlas);
   Mapper* m = gpu.GetMapper();
   double ms = 0.0;
   const Image packed = gpu.Render(0.0, ms);
@@ -208,7 +208,7 @@ void TestAutomaticChoice()
     Check(vtkSinglePassAMRLinearBricks::Fits(gl, big, false, 0) &&
         !vtkSinglePassAMRLinearBricks::Fits(gl, big, false, 4),
       "100k cells fit linear pages of 1 GiB, not pages of one row");
-    SinglePassRenderer tight(big, s, ViewAngles(), "linear");
+    SinglePassRenderer tight(big, s, ViewAngles(), DataStorage::LinearBricks);
     tight.GetMapper()->SetMaximumAtlasPageBytes(4);
     std::string error;
     try

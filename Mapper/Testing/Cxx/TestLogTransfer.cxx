@@ -82,9 +82,9 @@ void TestLogTransfer()
   const Image ref = RenderReference(h, s);
   const Image spacedRef = RenderReference(h, spaced);
   double ms = 0.0;
-  SinglePassRenderer packing(h, s, ViewAngles(), "packing");
+  SinglePassRenderer packing(h, s, ViewAngles(), DataStorage::PackedAtlas);
   const Image gpu = packing.Render(0.0, ms);
-  SinglePassRenderer packingLinear(h, linear, ViewAngles(), "packing");
+  SinglePassRenderer packingLinear(h, linear, ViewAngles(), DataStorage::PackedAtlas);
   const Image gpuLinear = packingLinear.Render(0.0, ms);
   MultipassRenderer multipass(h, s, ViewAngles());
   const Image multi = multipass.Render(0.0, ms);
@@ -138,8 +138,8 @@ void TestLogTransfer()
       }
     }
   }
-  SinglePassRenderer positiveGpu(h, firstOpaque, ViewAngles(), "packing");
-  SinglePassRenderer signsGpu(signs, firstOpaque, ViewAngles(), "packing");
+  SinglePassRenderer positiveGpu(h, firstOpaque, ViewAngles(), DataStorage::PackedAtlas);
+  SinglePassRenderer signsGpu(signs, firstOpaque, ViewAngles(), DataStorage::PackedAtlas);
   const Image positive = positiveGpu.Render(0.0, ms);
   const Image withSigns = signsGpu.Render(0.0, ms);
   const double signsVsRef = CoveredRmse(withSigns, RenderReference(signs, firstOpaque));
@@ -166,7 +166,7 @@ void TestLogTransfer()
   // below 30 many nodes are skipped, and the image is exact
   RenderSettings sparse = s;
   sparse.Transfer.Opacity = { { 1.0, 0.0 }, { 30.0, 0.0 }, { 1e3, 0.9 } };
-  SinglePassRenderer sparseGpu(h, sparse, ViewAngles(), "packing");
+  SinglePassRenderer sparseGpu(h, sparse, ViewAngles(), DataStorage::PackedAtlas);
   sparseGpu.GetMapper()->SetEmptySpaceSkipping(true);
   const Image skipped = sparseGpu.Render(0.0, ms);
   const long long flagged = sparseGpu.GetMapper()->GetNumberOfTransparentDataNodes();
@@ -194,8 +194,8 @@ void TestLogTransfer()
   zero.Transfer.Opacity.front().X = 0.0;
   RenderSettings zeroLinear = zero;
   zeroLinear.Transfer.ColorLogScale = zeroLinear.Transfer.OpacityLogScale = false;
-  SinglePassRenderer zeroGpu(h, zero, ViewAngles(), "packing");
-  SinglePassRenderer zeroLinearGpu(h, zeroLinear, ViewAngles(), "packing");
+  SinglePassRenderer zeroGpu(h, zero, ViewAngles(), DataStorage::PackedAtlas);
+  SinglePassRenderer zeroLinearGpu(h, zeroLinear, ViewAngles(), DataStorage::PackedAtlas);
   std::string warnings;
   vtkNew<vtkCallbackCommand> collect;
   collect->SetClientData(&warnings);

@@ -68,7 +68,7 @@ void TestCasters()
 {
   Hierarchy h = mappertest::LoadHierarchy("synthetic:cosmo:grids=120,levels=3,cells=500k,seed=3");
   const RenderSettings s = mappertest::Settings(h, { "--size", "120x96", "--shade", "on" });
-  SinglePassRenderer gpu(h, s, ViewAngles(), "packing");
+  SinglePassRenderer gpu(h, s, ViewAngles(), DataStorage::PackedAtlas);
   Mapper* mapper = gpu.GetMapper();
   double ms = 0.0;
 
@@ -151,7 +151,7 @@ void TestNoCompute()
 {
   Hierarchy h = mappertest::LoadHierarchy("synthetic:cosmo:grids=60,levels=3,cells=200k,seed=2");
   const RenderSettings s = mappertest::Settings(h, { "--size", "96x96" });
-  SinglePassRenderer gpu(h, s, ViewAngles(), "packing");
+  SinglePassRenderer gpu(h, s, ViewAngles(), DataStorage::PackedAtlas);
   Mapper* mapper = gpu.GetMapper();
   int warnings = 0;
   vtkNew<vtkCallbackCommand> counter;

@@ -7,7 +7,7 @@
 
 namespace
 {
-using Loop = vtkSinglePassAMRRayLoop;
+using Loop = amrsp::RayLoop;
 
 TEST(RayLoopChoice, AutoTakesTheFlatLoopOnAGpu)
 {

@@ -42,7 +42,7 @@
 
 namespace
 {
-using Storage = vtkSinglePassAMRShaderStorage;
+using Storage = amrsp::DataStorage;
 
 std::string ReadFile(const std::string& path)
 {
@@ -84,13 +84,13 @@ std::string StageSource(const vtkSinglePassAMRShaderVariant& v, const std::strin
   std::string source = composed;
   if (v.Caster == amrsp::RayCaster::Fragment)
   {
-    const bool waterfall = v.Storage == Storage::Bindless && v.Waterfall;
+    const bool waterfall = v.Storage == Storage::BindlessTextures && v.Waterfall;
     vtkShaderProgram::Substitute(
       source, "//VTK::System::Dec", waterfall ? "#version 450 core" : "#version 150");
     vtkShaderProgram::Substitute(source, "//VTK::Output::Dec", "out vec4 fragOutput0;");
     vtkShaderProgram::Substitute(source, "gl_FragData[0]", "fragOutput0");
   }
-  else if (v.Storage == Storage::Bindless && v.Waterfall)
+  else if (v.Storage == Storage::BindlessTextures && v.Waterfall)
   {
     vtkShaderProgram::Substitute(source, "#version 430 core", "#version 450 core");
   }
@@ -128,18 +128,18 @@ std::vector<vtkSinglePassAMRShaderVariant> Variants()
       vtkSinglePassAMRShaderVariant v;
       v.Caster = caster;
       v.Storage = storage;
-      v.AtlasPages = storage == Storage::Packing ? pages : 1;
-      v.LinearPages = storage == Storage::Linear ? pages : 1;
+      v.AtlasPages = storage == Storage::PackedAtlas ? pages : 1;
+      v.LinearPages = storage == Storage::LinearBricks ? pages : 1;
       v.Waterfall = waterfall;
       grid.push_back(v);
     };
-    add(Storage::Packing, 1, false);
-    add(Storage::Packing, 2, false);
-    add(Storage::Packing, 4, false);
-    add(Storage::Bindless, 1, false);
-    add(Storage::Bindless, 1, true);
-    add(Storage::Linear, 1, false);
-    add(Storage::Linear, 4, false);
+    add(Storage::PackedAtlas, 1, false);
+    add(Storage::PackedAtlas, 2, false);
+    add(Storage::PackedAtlas, 4, false);
+    add(Storage::BindlessTextures, 1, false);
+    add(Storage::BindlessTextures, 1, true);
+    add(Storage::LinearBricks, 1, false);
+    add(Storage::LinearBricks, 4, false);
   }
   std::vector<vtkSinglePassAMRShaderVariant> all;
   for (const vtkSinglePassAMRShaderVariant& base : grid)
@@ -153,7 +153,7 @@ std::vector<vtkSinglePassAMRShaderVariant> Variants()
         {
           vtkSinglePassAMRShaderVariant v = base;
           v.VertexCentred = vertex;
-          v.Blend = blend;
+          v.Blend = static_cast<amrsp::BlendMode>(blend);
           v.FlatLoop = flat;
           v.LevelCount = 3;
           all.push_back(v); // no feature

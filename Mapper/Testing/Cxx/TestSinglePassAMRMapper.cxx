@@ -426,9 +426,9 @@ void TestAtlasPages()
         continue; // the smooth reconstruction is for cell data
       }
       double ms = 0.0;
-      SinglePassRenderer one(h, s, ViewAngles(), "packing");
+      SinglePassRenderer one(h, s, ViewAngles(), DataStorage::PackedAtlas);
       const Image single = one.Render(0.0, ms);
-      SinglePassRenderer paged(h, s, ViewAngles(), "packing");
+      SinglePassRenderer paged(h, s, ViewAngles(), DataStorage::PackedAtlas);
       paged.GetMapper()->SetMaximumAtlasPageBytes(one.GetMapper()->GetTextureBytes() / 2);
       const Image pages = paged.Render(0.0, ms);
       const int count = paged.GetMapper()->GetNumberOfAtlasPages();
@@ -521,7 +521,7 @@ void TestProgressEvents()
   };
   double ms = 0.0;
   std::vector<Event> single, multi;
-  SinglePassRenderer packing(h, s, ViewAngles(), "packing");
+  SinglePassRenderer packing(h, s, ViewAngles(), DataStorage::PackedAtlas);
   watch(packing.GetMapper(), single);
   packing.Render(0.0, ms);
   check(single, "single-pass", { "converting", "kD-tree", "packing the bricks", "uploading" });

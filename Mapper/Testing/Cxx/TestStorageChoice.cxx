@@ -10,8 +10,8 @@
 
 namespace
 {
-using Storage = vtkSinglePassAMRStorage;
-using Access = vtkSinglePassAMRBindlessAccess;
+using Storage = amrsp::DataStorage;
+using Access = amrsp::BindlessAccess;
 
 /// A GPU context where everything runs: bindless (direct), the atlas fits and wastes 10 %.
 vtkSinglePassAMRStorageFacts Everything(int* linearAsked = nullptr)
@@ -49,7 +49,7 @@ TEST(StorageChoice, AnExplicitStorageIsTaken)
   {
     const vtkSinglePassAMRStorageChoice c =
       vtkSinglePassAMRStorageChoice::Choose(Asking(s), Everything());
-    EXPECT_EQ(c.Storage, s) << vtkSinglePassAMRStorageName(s);
+    EXPECT_EQ(c.Storage, s) << amrsp::DataStorageName(s);
     EXPECT_TRUE(c.FallbackReason.empty());
     EXPECT_TRUE(c.Error.empty());
     // the access is the resolved one for bindless only
@@ -136,10 +136,10 @@ TEST(StorageChoice, AutoOnACpuDriverTakesLinearFromItsThreshold)
 
 TEST(StorageChoice, NamesAreThoseTheToolAndPluginPrint)
 {
-  EXPECT_STREQ(vtkSinglePassAMRStorageName(Storage::PackedAtlas), "packing");
-  EXPECT_STREQ(vtkSinglePassAMRStorageName(Storage::BindlessTextures), "bindless");
-  EXPECT_STREQ(vtkSinglePassAMRStorageName(Storage::LinearBricks), "linear");
-  EXPECT_STREQ(vtkSinglePassAMRStorageName(Storage::Auto), "auto");
-  EXPECT_STREQ(vtkSinglePassAMRStorageName(Storage::None), "none");
-  EXPECT_STREQ(vtkSinglePassAMRBindlessAccessName(Access::Waterfall), "waterfall");
+  EXPECT_STREQ(amrsp::DataStorageName(Storage::PackedAtlas), "packing");
+  EXPECT_STREQ(amrsp::DataStorageName(Storage::BindlessTextures), "bindless");
+  EXPECT_STREQ(amrsp::DataStorageName(Storage::LinearBricks), "linear");
+  EXPECT_STREQ(amrsp::DataStorageName(Storage::Auto), "auto");
+  EXPECT_STREQ(amrsp::DataStorageName(Storage::None), "none");
+  EXPECT_STREQ(amrsp::BindlessAccessName(Access::Waterfall), "waterfall");
 }

@@ -67,6 +67,17 @@ std::vector<Hierarchy> Steps()
   return steps;
 }
 
+/// The single-pass storage named `method` ("packing", ...: amrsp::DataStorageNames).
+DataStorage StorageNamed(const std::string& method)
+{
+  DataStorage storage = DataStorage::None;
+  if (!ParseIn(DataStorageNames, method.c_str(), storage))
+  {
+    throw std::invalid_argument("no single-pass storage is called " + method);
+  }
+  return storage;
+}
+
 std::unique_ptr<GpuRenderer> MakeRenderer(
   const std::string& method, const Hierarchy& h, const RenderSettings& s)
 {
@@ -74,7 +85,8 @@ std::unique_ptr<GpuRenderer> MakeRenderer(
   {
     return std::unique_ptr<GpuRenderer>(new MultipassRenderer(h, s, ViewAngles()));
   }
-  return std::unique_ptr<GpuRenderer>(new SinglePassRenderer(h, s, ViewAngles(), method));
+  return std::unique_ptr<GpuRenderer>(
+    new SinglePassRenderer(h, s, ViewAngles(), StorageNamed(method)));
 }
 
 /// Bytes of the 8-bit RGB frames that differ (all of them when the sizes differ).
@@ -111,18 +123,19 @@ void CheckMethod(const std::string& methodName, std::vector<Hierarchy>& steps,
   series->SetData(steps[1]);
   const Image refreshed = series->Render(0.0, ms);
   SinglePassRenderer* packing = dynamic_cast<SinglePassRenderer*>(series.get());
-  const std::string storage = packing ? " (" + packing->StorageUsed() + ")" : std::string();
+  const std::string storage = packing ? " (" + packing->StorageUsedInWords() + ")" : std::string();
   if (packing && caster != RayCaster::Auto)
   {
-    Check(packing->CasterUsed() == RayCasterName(caster),
-      label + ": the refreshed step was cast by the " + packing->CasterUsed() + " shader");
+    Check(packing->CasterUsed() == caster,
+      label + ": the refreshed step was cast by the " + RayCasterName(packing->CasterUsed()) +
+        " shader");
     const mappertest::RayCasterComparison other =
       mappertest::CompareOtherRayCaster(*packing, refreshed);
     Check(other.Same(), label + ": the refreshed step by the " + other.Describe());
   }
   if (requireStorage)
   {
-    Check(packing && packing->StorageUsed().rfind(method, 0) == 0,
+    Check(packing && method == DataStorageName(packing->StorageUsed()),
       label + ": the series renders with the " + method + " storage" + storage);
   }
   Check(series->NumberOfValueRefreshes() == 1 && series->NumberOfBuilds() == builds + 1,
@@ -211,7 +224,7 @@ void CheckKeptSteps(const std::string& method, std::vector<Hierarchy>& steps)
   Hierarchy first = steps[0];
   const RenderSettings s = Settings(first, { "--size", "96x96", "--scale", "linear" });
   double ms = 0.0;
-  SinglePassRenderer series(steps[0], s, ViewAngles(), method);
+  SinglePassRenderer series(steps[0], s, ViewAngles(), StorageNamed(method));
   vtkSinglePassAMRVolumeMapper* mapper = series.GetMapper();
   mapper->SetMaximumKeptStepBytes(vtkIdType(1) << 30);
   std::vector<Image> shown{ series.Render(0.0, ms) };
@@ -252,7 +265,7 @@ void CheckKeptSteps(const std::string& method, std::vector<Hierarchy>& steps)
     Image changed;
     int events = 0;
     const bool hit = showAgain(1, changed, events);
-    SinglePassRenderer fresh(steps[1], s, ViewAngles(), method);
+    SinglePassRenderer fresh(steps[1], s, ViewAngles(), StorageNamed(method));
     fresh.SetDataObject(objects[1]);
     const Image expected = fresh.Render(0.0, ms);
     const long long stale = DifferingBytes(changed, shown[1]);
