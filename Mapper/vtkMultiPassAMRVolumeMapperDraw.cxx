@@ -36,6 +36,7 @@
 #include "amrsp_MultiPassAMR_frag_glsl.h"
 #include "amrsp_MultiPassAMR_vert_glsl.h"
 #include "amrsp_BrickSample_glsl.h"
+#include "amrsp_StoragePackedAtlas_glsl.h"
 #include "amrsp_RayCommon_glsl.h"
 #include <algorithm>
 #include <chrono>
@@ -182,7 +183,9 @@ vtkShaderProgram* vtkMultiPassAMRVolumeMapper::vtkInternals::ReadyShaders(
   }
   const std::string fragment =
     vtkSinglePassAMRShaderComposer::ComposeFragmentShader(amrsp_MultiPassAMR_frag_glsl, defines,
-      { { "RayCommon", amrsp_RayCommon_glsl }, { "BrickSample", amrsp_BrickSample_glsl } }, vol);
+      { { "RayCommon", amrsp_RayCommon_glsl }, { "BrickSample", amrsp_BrickSample_glsl },
+        { "GridStorage", amrsp_StoragePackedAtlas_glsl } },
+      vol);
   std::string error;
   vtkShaderProgram* program = vtkSinglePassAMRShaderComposer::ReadyProgram(renWin,
     amrsp_MultiPassAMR_vert_glsl, fragment, "multi-pass AMR", this->FailedFragmentSource, error);

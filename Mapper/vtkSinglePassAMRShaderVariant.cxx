@@ -65,11 +65,16 @@ std::string vtkSinglePassAMRComposeShader(const vtkSinglePassAMRShaderVariant& v
   const vtkSinglePassAMRShaderSources& sources, const std::string& computeVersion, vtkVolume* vol)
 {
   const bool compute = variant.Caster == amrsp::RayCaster::Compute;
+  const char* storage = variant.Storage == amrsp::DataStorage::BindlessTextures
+    ? sources.BindlessStorage
+    : variant.Storage == amrsp::DataStorage::LinearBricks ? sources.LinearBricksStorage
+                                                          : sources.PackedAtlasStorage;
   // CastRay first: the ray's source holds the other pieces' markers
   return vtkSinglePassAMRShaderComposer::ComposeFragmentShader(
     compute ? sources.Compute : sources.Fragment, variant.Defines(),
     { { "CastRay", sources.Ray }, { "KdTreeLayout", sources.KdTreeLayout },
-      { "RayCommon", sources.RayCommon }, { "BrickSample", sources.BrickSample },
+      { "RayCommon", sources.RayCommon }, { "GridStorage", storage },
+      { "BrickSample", sources.BrickSample },
       { "SmoothCells", sources.SmoothCells }, { "Shading", sources.Shading },
       { "RaySteps", sources.RaySteps }, { "Version", compute ? computeVersion.c_str() : "" } },
     vol);

@@ -62,6 +62,10 @@ struct vtkSinglePassAMRShaderSources
   const char* KdTreeLayout; ///< KdTreeLayout.glsl
   const char* RayCommon;    ///< RayCommon.glsl
   const char* BrickSample;  ///< BrickSample.glsl
+  /// The storages' pieces (amrspBrickRef, amrspReadStorage), one spliced per variant.
+  const char* PackedAtlasStorage;  ///< StoragePackedAtlas.glsl
+  const char* BindlessStorage;     ///< StorageBindless.glsl
+  const char* LinearBricksStorage; ///< StorageLinearBricks.glsl
   const char* SmoothCells;  ///< SmoothCells.glsl
   const char* Shading;      ///< Shading.glsl
   const char* RaySteps;     ///< RaySteps.glsl

@@ -34,6 +34,9 @@
 #include "amrsp_RaySteps_glsl.h"
 #include "amrsp_Shading_glsl.h"
 #include "amrsp_SmoothCells_glsl.h"
+#include "amrsp_StorageBindless_glsl.h"
+#include "amrsp_StorageLinearBricks_glsl.h"
+#include "amrsp_StoragePackedAtlas_glsl.h"
 #include "amrsp_SinglePassAMRRay_glsl.h"
 #include "amrsp_SinglePassAMR_comp_glsl.h"
 #include "amrsp_SinglePassAMR_frag_glsl.h"
@@ -171,8 +174,9 @@ vtkShaderProgram* vtkSinglePassAMRVolumeMapper::vtkInternals::ReadyShader(
 {
   static const vtkSinglePassAMRShaderSources sources{ amrsp_SinglePassAMR_frag_glsl,
     amrsp_SinglePassAMR_comp_glsl, amrsp_SinglePassAMRRay_glsl, amrsp_KdTreeLayout_glsl,
-    amrsp_RayCommon_glsl, amrsp_BrickSample_glsl, amrsp_SmoothCells_glsl, amrsp_Shading_glsl,
-    amrsp_RaySteps_glsl };
+    amrsp_RayCommon_glsl, amrsp_BrickSample_glsl, amrsp_StoragePackedAtlas_glsl,
+    amrsp_StorageBindless_glsl, amrsp_StorageLinearBricks_glsl, amrsp_SmoothCells_glsl,
+    amrsp_Shading_glsl, amrsp_RaySteps_glsl };
   const bool compute = frame.Caster == amrsp::RayCaster::Compute;
   const std::string source = vtkSinglePassAMRComposeShader(this->ShaderVariant(frame), sources,
     compute ? this->Storage->GetComputeVersion(renWin) : std::string(), vol);

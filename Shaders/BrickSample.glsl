@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Where a sample falls in a brick, and the read from the packed atlas: shared by the single-pass
-// shader (SinglePassAMRRay.glsl, at //AMRSP::BrickSample) and the multi-pass node shader
-// (MultiPassAMR.frag.glsl), so that both take the same value at the same point.
+// Where a sample falls in a brick: shared by the single-pass shader (SinglePassAMRRay.glsl, at
+// //AMRSP::BrickSample) and the multi-pass node shader (MultiPassAMR.frag.glsl), so that both take
+// the same value at the same point. The reads are the storage's (Storage*.glsl).
 //
 // A data node's block covers the cells firstCell..lastCell of its level, whose cells measure
 // cellSize (level-0 index units); `offset` is the texel of the block's lower-corner cell (in the
@@ -25,47 +25,3 @@ void amrspBrickPosition(vec3 p, vec3 cellSize, ivec3 firstCell, ivec3 lastCell, 
   where = vec3(0.0);
 #endif
 }
-
-#if !defined(AMRSP_BINDLESS) && !defined(AMRSP_LINEAR) && defined(AMRSP_ATLAS_PAGES)
-// amrspReadAtlas from atlas page `page`. The page varies from ray to ray, so each page's texture
-// has a branch of its own (a sampler cannot be chosen by a non-uniform index in GLSL 1.50).
-float amrspReadAtlasPage(uint page, ivec3 texel, vec3 where)
-{
-#ifdef AMRSP_VERTEX_CENTRED
-  vec3 t = where / amrspAtlasPageSize[page];
-#define AMRSP_READ_PAGE(atlas) textureLod(atlas, t, 0.0).r
-#else
-#define AMRSP_READ_PAGE(atlas) texelFetch(atlas, texel, 0).r
-#endif
-  if (page == 0u)
-  {
-    return AMRSP_READ_PAGE(amrspAtlas);
-  }
-#if AMRSP_ATLAS_PAGES > 2
-  if (page == 2u)
-  {
-    return AMRSP_READ_PAGE(amrspAtlas2);
-  }
-#endif
-#if AMRSP_ATLAS_PAGES > 3
-  if (page == 3u)
-  {
-    return AMRSP_READ_PAGE(amrspAtlas3);
-  }
-#endif
-  return AMRSP_READ_PAGE(amrspAtlas1);
-#undef AMRSP_READ_PAGE
-}
-#endif
-
-#if !defined(AMRSP_BINDLESS) && !defined(AMRSP_LINEAR)
-// The packed atlas's value at amrspBrickPosition's texel (cells) or where (vertices).
-float amrspReadAtlas(ivec3 texel, vec3 where)
-{
-#ifdef AMRSP_VERTEX_CENTRED
-  return textureLod(amrspAtlas, where / amrspAtlasSize, 0.0).r;
-#else
-  return texelFetch(amrspAtlas, texel, 0).r;
-#endif
-}
-#endif

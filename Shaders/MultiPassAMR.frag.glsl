@@ -25,7 +25,6 @@
 
 //VTK::Output::Dec
 
-uniform sampler3D amrspAtlas;    // R32F, one brick per grid
 uniform sampler2D amrspTransfer; // RGBA32F, 1 row: colour and unit-distance opacity
 #ifdef AMRSP_USE_DEPTH
 uniform sampler2D amrspDepth; // depth of the opaque geometry, viewport-sized
@@ -40,7 +39,6 @@ uniform vec3 amrspSpacing0;   // model size of a level-0 cell
 uniform vec2 amrspTransferRange; // scalar at the first table entry, 1 / (last - first)
 uniform float amrspTransferSize; // number of table entries
 uniform float amrspUnitDistance; // vtkVolumeProperty::ScalarOpacityUnitDistance
-uniform vec3 amrspAtlasSize;     // atlas dimensions, texels
 
 // ---- per node (one draw)
 uniform vec3 amrspNodeLo;       // the node's box, level-0 index units
@@ -55,6 +53,9 @@ uniform ivec3 amrspAtlasOffset; // atlas texel of amrspFirstCell
 // (Shaders/RayCommon.glsl).
 //AMRSP::RayCommon
 //AMRSP::BrickSample
+// The packed atlas (amrspAtlas, amrspAtlasSize) and its read amrspReadAtlas, as the single pass
+// reads it (Shaders/StoragePackedAtlas.glsl).
+//AMRSP::GridStorage
 
 void main()
 {

@@ -96,37 +96,6 @@ uniform usampler3D amrspDataNodes; // RG32UI, one texel per data node (texel 0 u
 uniform usampler3D amrspRopes;   // RGBA32UI, three texels per kD node: box and ropes
 uniform vec3 amrspRopeCellSize;  // a finest-level cell, level-0 index units (exact power of two)
 #endif
-#ifdef AMRSP_PACKING
-uniform sampler3D amrspAtlas;      // R32F, one brick per grid (nearest filtering)
-uniform vec3 amrspAtlasSize;       // atlas dimensions, texels
-#ifdef AMRSP_ATLAS_PAGES
-// the bricks fill several atlas textures (pages); amrspAtlas is page 0
-uniform sampler3D amrspAtlas1;
-#if AMRSP_ATLAS_PAGES > 2
-uniform sampler3D amrspAtlas2;
-#endif
-#if AMRSP_ATLAS_PAGES > 3
-uniform sampler3D amrspAtlas3;
-#endif
-uniform vec3 amrspAtlasPageSize[AMRSP_ATLAS_PAGES]; // every page's dimensions, texels
-#endif
-#elif defined(AMRSP_LINEAR)
-uniform sampler2D amrspLinear;     // R32F, the bricks back to back (page 0)
-#ifdef AMRSP_LINEAR_PAGES
-uniform sampler2D amrspLinear1;
-#if AMRSP_LINEAR_PAGES > 2
-uniform sampler2D amrspLinear2;
-#endif
-#if AMRSP_LINEAR_PAGES > 3
-uniform sampler2D amrspLinear3;
-#endif
-#endif
-// RG32UI, one texel per brick: its first texel | page << AMRSP_LINEAR_BASE_BITS, and its
-// x | y sizes << 16
-uniform usampler3D amrspBrickTable;
-#else
-uniform usampler3D amrspHandles;   // RG32UI, one texel per brick: its 64-bit handle (low, high)
-#endif
 uniform sampler2D amrspTransfer;   // RGBA32F, 1 row: colour and unit-distance opacity
 #ifdef AMRSP_SMOOTH_CELLS
 // RG32UI, three texels per brick (3 b + axis): its grid's cells lo, hi (exclusive) on that axis,
@@ -341,141 +310,14 @@ int amrspCeilDiv(int a, int b)
   return -amrspFloorDiv(-a, b);
 }
 
-#ifdef AMRSP_BINDLESS
-// Reads brick `handle` at texel `texel` (cells), or interpolates it trilinearly at the texel-space
-// position `where` (vertices: texel centres at integer + 0.5) from the texels texel and
-// texel + 1 per axis, which the caller keeps inside the brick.
-float amrspReadBrick(uvec2 handle, ivec3 texel, vec3 where)
-{
-  // the sampler built in each fetch: a sampler held in a local variable is not accepted by every
-  // compiler (glslang 12), the constructor in an argument is
-#ifdef AMRSP_VERTEX_CENTRED
-  vec3 f = where - 0.5 - vec3(texel);
-  float c000 = texelFetch(sampler3D(handle), texel, 0).r;
-  float c100 = texelFetch(sampler3D(handle), texel + ivec3(1, 0, 0), 0).r;
-  float c010 = texelFetch(sampler3D(handle), texel + ivec3(0, 1, 0), 0).r;
-  float c110 = texelFetch(sampler3D(handle), texel + ivec3(1, 1, 0), 0).r;
-  float c001 = texelFetch(sampler3D(handle), texel + ivec3(0, 0, 1), 0).r;
-  float c101 = texelFetch(sampler3D(handle), texel + ivec3(1, 0, 1), 0).r;
-  float c011 = texelFetch(sampler3D(handle), texel + ivec3(0, 1, 1), 0).r;
-  float c111 = texelFetch(sampler3D(handle), texel + ivec3(1, 1, 1), 0).r;
-  return mix(mix(mix(c000, c100, f.x), mix(c010, c110, f.x), f.y),
-    mix(mix(c001, c101, f.x), mix(c011, c111, f.x), f.y), f.z);
-#else
-  return texelFetch(sampler3D(handle), texel, 0).r;
-#endif
-}
-
-// What locates the brick of data node `dataNode`: its bindless handle, from amrspHandles. A
-// segment reads it once for all its samples.
-uvec2 amrspBrickRef(uvec2 dataNode)
-{
-  return texelFetch(amrspHandles, amrspTexelOf(amrspDataBrick(dataNode)), 0).rg;
-}
-
-// amrspReadBrick on the brick whose handle is `handle` (amrspBrickRef).
-float amrspReadBrickRef(uvec2 handle, ivec3 texel, vec3 where)
-{
-#ifdef AMRSP_WATERFALL
-  // Each pass serves the invocations holding the first active invocation's handle, which is
-  // dynamically uniform among them; the others loop again (at most one pass per distinct handle).
-  float value = 0.0;
-  for (;;)
-  {
-    uvec2 first = readFirstInvocationARB(handle);
-    if (first == handle)
-    {
-      value = amrspReadBrick(first, texel, where);
-      break;
-    }
-  }
-  return value;
-#else
-  return amrspReadBrick(handle, texel, where);
-#endif
-}
-#elif defined(AMRSP_LINEAR)
-// Texel `index` of linear page `page`: row index >> AMRSP_LINEAR_WIDTH_LOG2. The page varies
-// from ray to ray, so each page's texture has a branch of its own.
-float amrspReadLinear(uint page, int index)
-{
-  ivec2 t = ivec2(index & ((1 << AMRSP_LINEAR_WIDTH_LOG2) - 1), index >> AMRSP_LINEAR_WIDTH_LOG2);
-#ifdef AMRSP_LINEAR_PAGES
-  if (page == 1u)
-  {
-    return texelFetch(amrspLinear1, t, 0).r;
-  }
-#if AMRSP_LINEAR_PAGES > 2
-  if (page == 2u)
-  {
-    return texelFetch(amrspLinear2, t, 0).r;
-  }
-#endif
-#if AMRSP_LINEAR_PAGES > 3
-  if (page == 3u)
-  {
-    return texelFetch(amrspLinear3, t, 0).r;
-  }
-#endif
-#endif
-  return texelFetch(amrspLinear, t, 0).r;
-}
-
-// What locates the brick of data node `dataNode`: its entry of amrspBrickTable. A segment reads
-// it once for all its samples.
-uvec2 amrspBrickRef(uvec2 dataNode)
-{
-  return texelFetch(amrspBrickTable, amrspTexelOf(amrspDataBrick(dataNode)), 0).rg;
-}
-
-// The brick whose table entry is `entry` (amrspBrickRef) at texel `texel` of the brick (cells),
-// or trilinear at `where` from the texels texel and texel + 1 per axis (vertices), as
-// amrspReadBrick.
-float amrspReadBrickRef(uvec2 entry, ivec3 texel, vec3 where)
-{
-  uint page = entry.x >> uint(AMRSP_LINEAR_BASE_BITS);
-  int nx = int(entry.y & 0xffffu);
-  int nxy = nx * int(entry.y >> 16u);
-  int base = int(entry.x & ((1u << uint(AMRSP_LINEAR_BASE_BITS)) - 1u));
-  int i = base + texel.x + nx * texel.y + nxy * texel.z;
-#ifdef AMRSP_VERTEX_CENTRED
-  vec3 f = where - 0.5 - vec3(texel);
-  float c000 = amrspReadLinear(page, i);
-  float c100 = amrspReadLinear(page, i + 1);
-  float c010 = amrspReadLinear(page, i + nx);
-  float c110 = amrspReadLinear(page, i + nx + 1);
-  float c001 = amrspReadLinear(page, i + nxy);
-  float c101 = amrspReadLinear(page, i + nxy + 1);
-  float c011 = amrspReadLinear(page, i + nxy + nx);
-  float c111 = amrspReadLinear(page, i + nxy + nx + 1);
-  return mix(mix(mix(c000, c100, f.x), mix(c010, c110, f.x), f.y),
-    mix(mix(c001, c101, f.x), mix(c011, c111, f.x), f.y), f.z);
-#else
-  return amrspReadLinear(page, i);
-#endif
-}
-#endif
-
-#if defined(AMRSP_PACKING)
-// The packed atlas needs nothing beyond the data node to find a brick.
-uvec2 amrspBrickRef(uvec2 dataNode)
-{
-  return uvec2(0u);
-}
-#else
-// The brick of data node `dataNode` (bindless or linear), its reference read here.
-float amrspReadDataNodeBrick(uvec2 dataNode, ivec3 texel, vec3 where)
-{
-  return amrspReadBrickRef(amrspBrickRef(dataNode), texel, where);
-}
-#endif
+//AMRSP::GridStorage
 
 //AMRSP::BrickSample
 
 // The scalar at point p (level-0 index units) inside the kD node whose data node is `dataNode`
 // and whose brick reference is brickRef (amrspBrickRef(dataNode)): the node's block covers the
 // cells firstCell..lastCell of the node's data level, whose cells measure cellSize (level-0 index
-// units). Only this function knows how the bricks are stored.
+// units). How the bricks are stored is the storage piece's (amrspReadStorage).
 float amrspSampleBrick(uvec2 dataNode, uvec2 brickRef, vec3 p, vec3 cellSize, ivec3 firstCell,
   ivec3 lastCell)
 {
@@ -483,13 +325,7 @@ float amrspSampleBrick(uvec2 dataNode, uvec2 brickRef, vec3 p, vec3 cellSize, iv
   ivec3 texel;
   vec3 where;
   amrspBrickPosition(p, cellSize, firstCell, lastCell, amrspDataOffset(dataNode), texel, where);
-#if defined(AMRSP_PACKING) && defined(AMRSP_ATLAS_PAGES)
-  return amrspReadAtlasPage(amrspDataPage(dataNode), texel, where);
-#elif defined(AMRSP_PACKING)
-  return amrspReadAtlas(texel, where);
-#else
-  return amrspReadBrickRef(brickRef, texel, where);
-#endif
+  return amrspReadStorage(dataNode, brickRef, texel, where);
 }
 
 // amrspSampleBrick for a point lookup, which reads the brick reference itself.

@@ -11,13 +11,7 @@
 float amrspFetchGridCell(uvec2 dataNode, ivec3 cell, ivec3 firstCell)
 {
   ivec3 texel = amrspDataOffset(dataNode) + (cell - firstCell);
-#if defined(AMRSP_PACKING) && defined(AMRSP_ATLAS_PAGES)
-  return amrspReadAtlasPage(amrspDataPage(dataNode), texel, vec3(0.0));
-#elif defined(AMRSP_PACKING)
-  return texelFetch(amrspAtlas, texel, 0).r;
-#else
-  return amrspReadDataNodeBrick(dataNode, texel, vec3(0.0));
-#endif
+  return amrspReadStorage(dataNode, amrspBrickRef(dataNode), texel, vec3(0.0));
 }
 
 // Whether `cell` (cells of the grid's level) is a cell of the data node's grid.

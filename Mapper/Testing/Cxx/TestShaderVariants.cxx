@@ -69,12 +69,14 @@ struct Sources
   vtkSinglePassAMRShaderSources Get() const
   {
     return { Text[0].c_str(), Text[1].c_str(), Text[2].c_str(), Text[3].c_str(), Text[4].c_str(),
-      Text[5].c_str(), Text[6].c_str(), Text[7].c_str(), Text[8].c_str() };
+      Text[5].c_str(), Text[6].c_str(), Text[7].c_str(), Text[8].c_str(), Text[9].c_str(),
+      Text[10].c_str(), Text[11].c_str() };
   }
-  static constexpr std::array<const char*, 9> Names = { "SinglePassAMR.frag.glsl",
+  static constexpr std::array<const char*, 12> Names = { "SinglePassAMR.frag.glsl",
     "SinglePassAMR.comp.glsl", "SinglePassAMRRay.glsl", "KdTreeLayout.glsl", "RayCommon.glsl",
-    "BrickSample.glsl", "SmoothCells.glsl", "Shading.glsl", "RaySteps.glsl" };
-  std::array<std::string, 9> Text;
+    "BrickSample.glsl", "StoragePackedAtlas.glsl", "StorageBindless.glsl",
+    "StorageLinearBricks.glsl", "SmoothCells.glsl", "Shading.glsl", "RaySteps.glsl" };
+  std::array<std::string, 12> Text;
 };
 
 /// The source glslangValidator reads: the fragment stage's markers as VTK's shader cache fills
