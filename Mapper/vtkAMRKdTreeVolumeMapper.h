@@ -6,7 +6,7 @@
  * Abstract base of vtkSinglePassAMRVolumeMapper (the paper's single-pass ray caster) and
  * vtkMultiPassAMRVolumeMapper (its multi-pass baseline), which both render through the
  * hierarchy's kD-tree of same-level blocks, as vtkGPUVolumeRayCastMapper holds the API of VTK's
- * OpenGL ray caster. C++ code may still name it vtkSinglePassAMRMapperBase (an alias). It owns
+ * OpenGL ray caster. It owns
  * - the input: one vtkOverlappingAMR port (the vtkDataSet overloads of vtkVolumeMapper are
  *   rejected with an error) and the bounds of its root box;
  * - the array selection: vtkAbstractVolumeMapper's SelectScalarArray, and ArrayComponent;
@@ -225,8 +225,5 @@ private:
   std::string PreviousError;    // the last frame's error, not reported again
   std::set<std::string> Warned; // warnings already given
 };
-
-/// For code that names the base by its other name.
-using vtkSinglePassAMRMapperBase = vtkAMRKdTreeVolumeMapper;
 
 #endif

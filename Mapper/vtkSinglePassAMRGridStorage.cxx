@@ -252,7 +252,7 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, amrsp::D
   const bool linear = storage == amrsp::DataStorage::LinearBricks;
   // bindless and linear bricks: each data node holds its offset inside its own brick
   const amrsp::UIntTexture3D& dataNodes =
-    bindless || linear ? data.BindlessDataNodeTexels : data.PackedDataNodeTexels;
+    bindless || linear ? data.BrickLocalDataNodeTexels : data.PackedDataNodeTexels;
   const int max3D = vtkTextureObject::GetMaximumTextureSize3D(renWin);
   for (const glm::ivec3& dims : { data.TreeTexels.Dims, dataNodes.Dims, data.RopeTexels.Dims })
   {
@@ -291,9 +291,7 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, amrsp::D
   {
     ok = this->Linear.Upload(
       renWin, data.Data, data.VertexCentred, this->LinearPageBytes, error, progress);
-    // the tree textures of the bindless figure, and the pages and table instead of its bricks
-    bytes = data.BindlessBytes + this->Linear.GetBytes() - data.BrickBytes -
-      static_cast<long long>(amrsp::HandleTextureBytes(data.Data.Grids.size()));
+    bytes = data.TreeBytes + this->Linear.GetBytes();
   }
   else if (ok)
   {

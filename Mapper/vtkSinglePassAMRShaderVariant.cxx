@@ -51,8 +51,8 @@ std::string vtkSinglePassAMRShaderVariant::Defines() const
   define(this->Shade, "AMRSP_SHADE 1");
   define(this->Shadows, "AMRSP_SHADOWS 1");
   const bool probe = this->OccupancyProbe;
-  define(!probe && this->WorkCounters && this->WorkCount == 0, "AMRSP_WORK_COUNTERS 1");
-  define(!probe && this->WorkCount != 0, "AMRSP_WORK_COUNT " + std::to_string(this->WorkCount));
+  define(!probe && this->AccelerationCounts && this->LoopCount == 0, "AMRSP_ACCELERATION_COUNTS 1");
+  define(!probe && this->LoopCount != 0, "AMRSP_LOOP_COUNT " + std::to_string(this->LoopCount));
   define(probe, "AMRSP_OCCUPANCY_PROBE 1");
   const bool compute = this->Caster == amrsp::RayCaster::Compute;
   define(compute, "AMRSP_GROUP_WIDTH " + std::to_string(this->GroupWidth));
@@ -74,8 +74,8 @@ std::string vtkSinglePassAMRComposeShader(const vtkSinglePassAMRShaderVariant& v
     compute ? sources.Compute : sources.Fragment, variant.Defines(),
     { { "CastRay", sources.Ray }, { "KdTreeLayout", sources.KdTreeLayout },
       { "RayCommon", sources.RayCommon }, { "GridStorage", storage },
-      { "BrickSample", sources.BrickSample },
-      { "SmoothCells", sources.SmoothCells }, { "Shading", sources.Shading },
-      { "RaySteps", sources.RaySteps }, { "Version", compute ? computeVersion.c_str() : "" } },
+      { "BrickSample", sources.BrickSample }, { "SmoothCells", sources.SmoothCells },
+      { "Shading", sources.Shading }, { "RaySteps", sources.RaySteps },
+      { "Version", compute ? computeVersion.c_str() : "" } },
     vol);
 }

@@ -43,8 +43,9 @@ struct vtkSinglePassAMRShaderVariant
   int Ablation = 0; ///< 0 none, 1 traversal only, 2 sampling only
   bool Shade = false;
   bool Shadows = false;
-  bool WorkCounters = false;   ///< AMRSP_WORK_COUNTERS (ignored with WorkCount or the probe)
-  int WorkCount = 0;           ///< AMRSP_WORK_COUNT 1..3 (ignored with the probe)
+  bool AccelerationCounts =
+    false;                     ///< AMRSP_ACCELERATION_COUNTS (ignored with LoopCount or the probe)
+  int LoopCount = 0;           ///< AMRSP_LOOP_COUNT 1..3 (ignored with the probe)
   bool OccupancyProbe = false; ///< GL_NV_shader_thread_builtins
   int GroupWidth = 8;          ///< compute: work group size
   int GroupHeight = 4;
@@ -66,9 +67,9 @@ struct vtkSinglePassAMRShaderSources
   const char* PackedAtlasStorage;  ///< StoragePackedAtlas.glsl
   const char* BindlessStorage;     ///< StorageBindless.glsl
   const char* LinearBricksStorage; ///< StorageLinearBricks.glsl
-  const char* SmoothCells;  ///< SmoothCells.glsl
-  const char* Shading;      ///< Shading.glsl
-  const char* RaySteps;     ///< RaySteps.glsl
+  const char* SmoothCells;         ///< SmoothCells.glsl
+  const char* Shading;             ///< Shading.glsl
+  const char* RaySteps;            ///< RaySteps.glsl
 };
 
 /**

@@ -13,6 +13,7 @@
 
 #include "amrsp/BrickAtlas.h"
 #include "amrsp/RayCastingData.h"
+#include "amrsp/RayLoop.h"
 #include "amrsp/SampleStep.h"
 
 #include "vtkCamera.h"
@@ -492,8 +493,9 @@ void vtkSinglePassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
      << ", LastBindlessAccess: " << amrsp::BindlessAccessName(in.LastAccess) << "\n";
   os << indent << "OpacityThreshold: " << this->OpacityThreshold << "\n";
   os << indent << "EmptySpaceSkipping: " << (this->EmptySpaceSkipping ? "on" : "off") << "\n";
-  os << indent << "WorkCountersOutput: " << (this->WorkCountersOutput ? "on" : "off") << "\n";
-  os << indent << "WorkCountOutput: " << this->WorkCountOutput << "\n";
+  os << indent << "AccelerationCountsOutput: " << (this->AccelerationCountsOutput ? "on" : "off")
+     << "\n";
+  os << indent << "LoopCountOutput: " << this->LoopCountOutput << "\n";
   os << indent << "Ropes: " << (this->Ropes ? "on" : "off") << "\n";
   os << indent << "OccupancyProbe: " << (this->OccupancyProbe ? "on" : "off") << "\n";
   os << indent << "RayLoop: " << amrsp::RayLoopName(static_cast<amrsp::RayLoop>(this->RayLoop))

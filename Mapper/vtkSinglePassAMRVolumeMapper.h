@@ -173,9 +173,11 @@ public:
   long long GetBindlessTextureBytes();
   /// Fraction of the packed atlas's texels that hold no brick (0 when no atlas).
   double GetAtlasWaste();
-  /// Atlas textures (pages) of the packed storage (MaximumAtlasPageBytes); 0 before a build. When
-  /// the linear storage rendered last: its textures (pages).
+  /// Atlas textures (pages) of the packed storage (MaximumAtlasPageBytes); 0 before a build and
+  /// when the build packs no atlas (LINEAR_BRICKS).
   int GetNumberOfAtlasPages();
+  /// 2D textures (pages) of the linear storage; 0 unless it rendered last.
+  int GetNumberOfLinearPages();
   /// kD-tree nodes and data nodes of the current hierarchy.
   long long GetNumberOfKdNodes() override;
   long long GetNumberOfDataNodes() override;
@@ -302,9 +304,9 @@ public:
    * show that the accelerations really happen on the GPU. Pixels the volume does not cover keep
    * the background.
    */
-  vtkSetMacro(WorkCountersOutput, bool);
-  vtkGetMacro(WorkCountersOutput, bool);
-  vtkBooleanMacro(WorkCountersOutput, bool);
+  vtkSetMacro(AccelerationCountsOutput, bool);
+  vtkGetMacro(AccelerationCountsOutput, bool);
+  vtkBooleanMacro(AccelerationCountsOutput, bool);
   ///@}
 
   ///@{
@@ -338,14 +340,15 @@ public:
    * branches where lanes disagree. The images and counts are the same. AUTO_LOOP takes the flat
    * loop on a GPU, where the work counters predict fewer lockstep steps (amrsp/WorkCounters.h),
    * and the nested loops on a CPU driver (Mesa's llvmpipe, softpipe, zink on lavapipe), where the
-   * flat loop measured slower (docs/performance.md, "The flat loop"). It is not the default until
-   * a GPU run confirms the counters: inside ParaView 6.1 on Mesa 26 the flat loop with the packed
-   * atlas and empty-space skipping rendered 3 % of the pixels differently (not understood yet).
-   * GetLastRayLoop tells which loop the last frame used (NESTED_LOOPS or FLAT_LOOP).
+   * flat loop measured slower (docs/performance.md, "The flat loop", which also says why it is not
+   * the default yet). GetLastRayLoop tells which loop the last frame used (NESTED_LOOPS or
+   * FLAT_LOOP; GetRayLoopName gives its word).
    */
   vtkSetClampMacro(RayLoop, int, NESTED_LOOPS, AUTO_LOOP);
   vtkGetMacro(RayLoop, int);
   int GetLastRayLoop();
+  /// "nested", "flat", "auto" (amrsp::RayLoopName), or "none".
+  static const char* GetRayLoopName(int loop);
   ///@}
 
   /// Which shader stage casts the rays (RayCaster); the values of amrsp::RayCaster.
@@ -412,7 +415,7 @@ public:
    * constant per data segment instead of its samples (no brick or transfer-function reads).
    * SAMPLING_ONLY descends once to the ray's first leaf with data and samples that brick
    * DiagnosticAblationSamples times over the rest of the ray (clamped into the brick), with
-   * compositing and early termination as usual, and no further traversal. WorkCountOutput
+   * compositing and early termination as usual, and no further traversal. LoopCountOutput
    * counts what an ablated frame did.
    */
   vtkSetClampMacro(DiagnosticAblation, int, NO_ABLATION, SAMPLING_ONLY);
@@ -421,10 +424,10 @@ public:
   vtkGetMacro(DiagnosticAblationSamples, int);
   ///@}
 
-  /// What WorkCountOutput writes.
-  enum WorkCounts
+  /// What LoopCountOutput writes.
+  enum LoopCounts
   {
-    NO_WORK_COUNT = 0,      ///< colours (the default)
+    NO_LOOP_COUNT = 0,      ///< colours (the default)
     SEGMENT_COUNT = 1,      ///< iterations of the segment loop (one per kd-restart)
     DESCENT_STEP_COUNT = 2, ///< iterations of the descent loop (tree levels descended)
     SAMPLE_COUNT = 3        ///< iterations of the sample loop
@@ -432,15 +435,15 @@ public:
 
   ///@{
   /**
-   * Diagnostic output (default NO_WORK_COUNT): instead of colours, every pixel of the volume is
+   * Diagnostic output (default NO_LOOP_COUNT): instead of colours, every pixel of the volume is
    * written opaque with one count of its ray's loops as an exact 24-bit integer, red the low
    * byte, green the middle and blue the high one. Summed over the image they equal the segments,
    * descent steps and samples of amrsp::MeasureSinglePassWork for the same view (the CPU mirror
    * of the shader), which is how the cost model of amrsp/WorkCounters.h is tied to the GPU. Takes
-   * precedence over WorkCountersOutput.
+   * precedence over AccelerationCountsOutput.
    */
-  vtkSetClampMacro(WorkCountOutput, int, NO_WORK_COUNT, SAMPLE_COUNT);
-  vtkGetMacro(WorkCountOutput, int);
+  vtkSetClampMacro(LoopCountOutput, int, NO_LOOP_COUNT, SAMPLE_COUNT);
+  vtkGetMacro(LoopCountOutput, int);
   ///@}
 
   ///@{
@@ -521,8 +524,8 @@ protected:
   vtkIdType AutoLinearBytes = vtkIdType(64) << 20;
   double OpacityThreshold = 0.999;
   bool EmptySpaceSkipping = true;
-  bool WorkCountersOutput = false;
-  int WorkCountOutput = NO_WORK_COUNT;
+  bool AccelerationCountsOutput = false;
+  int LoopCountOutput = NO_LOOP_COUNT;
   bool Ropes = true;
   vtkIdType MaximumKeptStepBytes = 0;
   vtkIdType LastBorrowedValues = 0;

@@ -160,8 +160,8 @@ vtkSinglePassAMRShaderVariant vtkSinglePassAMRVolumeMapper::vtkInternals::Shader
   v.Ablation = self->DiagnosticAblation;
   v.Shade = frame.Shade;
   v.Shadows = frame.Shadows;
-  v.WorkCounters = self->WorkCountersOutput;
-  v.WorkCount = self->WorkCountOutput;
+  v.AccelerationCounts = self->AccelerationCountsOutput;
+  v.LoopCount = self->LoopCountOutput;
   v.OccupancyProbe = self->OccupancyProbe;
   v.GroupWidth = vtkSinglePassAMRComputeGroup::Width;
   v.GroupHeight = vtkSinglePassAMRComputeGroup::Height;

@@ -8,6 +8,10 @@
 
 #include "vtkSinglePassAMRGridStorage.h"
 
+#include "amrsp/DataStorage.h"
+#include "amrsp/RayCaster.h"
+#include "amrsp/RayLoop.h"
+
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRVolumeMapper::GetAtlasDimensions(int dims[3])
 {
@@ -82,10 +86,12 @@ double vtkSinglePassAMRVolumeMapper::GetLastFrameBudget()
 
 int vtkSinglePassAMRVolumeMapper::GetNumberOfAtlasPages()
 {
-  const vtkSinglePassAMRGridStorage& s = *this->Internals->Storage;
-  return s.GetUploadedStorage() == amrsp::DataStorage::LinearBricks
-    ? s.GetNumberOfLinearPages()
-    : static_cast<int>(this->Internals->Data.PageDims.size());
+  return static_cast<int>(this->Internals->Data.PageDims.size());
+}
+
+int vtkSinglePassAMRVolumeMapper::GetNumberOfLinearPages()
+{
+  return this->Internals->Storage->GetNumberOfLinearPages();
 }
 
 double vtkSinglePassAMRVolumeMapper::GetAtlasWaste()
@@ -126,6 +132,11 @@ const char* vtkSinglePassAMRVolumeMapper::GetBindlessFallbackReason()
 int vtkSinglePassAMRVolumeMapper::GetLastRayLoop()
 {
   return this->Internals->LastFlatLoop ? FLAT_LOOP : NESTED_LOOPS;
+}
+
+const char* vtkSinglePassAMRVolumeMapper::GetRayLoopName(int loop)
+{
+  return amrsp::RayLoopName(static_cast<amrsp::RayLoop>(loop));
 }
 
 int vtkSinglePassAMRVolumeMapper::GetLastBindlessAccess()

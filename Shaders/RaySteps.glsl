@@ -26,12 +26,12 @@ bool amrspHavePrevious = false; // iso-surfaces: the previous present sample alo
 vec3 amrspPreviousP = vec3(0.0);
 float amrspPreviousValue = 0.0;
 #endif
-#ifdef AMRSP_WORK_COUNTERS
+#ifdef AMRSP_ACCELERATION_COUNTS
 int amrspWorkDataSegments = 0;    // data segments reached (skipped ones included)
 int amrspWorkSampledSegments = 0; // of which sampled (the others were skipped as empty space)
 #endif
-#ifdef AMRSP_WORK_COUNT
-int amrspWorkCount = 0; // the loop iterations AMRSP_WORK_COUNT selects
+#ifdef AMRSP_LOOP_COUNT
+int amrspWorkCount = 0; // the loop iterations AMRSP_LOOP_COUNT selects
 #endif
 int amrspSegments = 0;     // segments begun (a guard against corrupt textures)
 bool amrspStopped = false; // the ray reached the opacity threshold
@@ -131,7 +131,7 @@ bool amrspRayGoesOn()
 void amrspBeginDescent()
 {
   ++amrspSegments;
-#if AMRSP_WORK_COUNT == 1
+#if AMRSP_LOOP_COUNT == 1
   ++amrspWorkCount;
 #endif
   bool fromRope = amrspHaveRope;
@@ -241,7 +241,7 @@ bool amrspDescentStep()
   amrspChildBox(amrspLo, amrspHi, amrspLoF, amrspHiF, axis, plane, planeF, lower);
   amrspNode = lower ? child : child + 1u;
   amrspTexel = amrspFetchNode(amrspNode);
-#if AMRSP_WORK_COUNT == 2
+#if AMRSP_LOOP_COUNT == 2
   ++amrspWorkCount;
 #endif
   if (amrspPushDown)
@@ -264,7 +264,7 @@ void amrspBeginSegment()
   amrspSegK = 0;
   amrspSegSampled = false;
   uint data = amrspNodeData(amrspTexel);
-#ifdef AMRSP_WORK_COUNTERS
+#ifdef AMRSP_ACCELERATION_COUNTS
   amrspWorkDataSegments += data != 0u ? 1 : 0;
 #endif
 #ifdef AMRSP_SKIP_EMPTY
@@ -280,7 +280,7 @@ void amrspBeginSegment()
 #endif
     return;
   }
-#ifdef AMRSP_WORK_COUNTERS
+#ifdef AMRSP_ACCELERATION_COUNTS
   ++amrspWorkSampledSegments; // skipped = reached - sampled: counted where sampling starts
 #endif
   amrspSegSampled = true;
@@ -309,7 +309,7 @@ void amrspBeginSegment()
 // opaque enough.
 bool amrspSampleStep()
 {
-#if AMRSP_WORK_COUNT == 3
+#if AMRSP_LOOP_COUNT == 3
   ++amrspWorkCount;
 #endif
   // amrsp::SampleOffset: not the midpoint, so that no sample lies exactly on a cell face

@@ -54,10 +54,10 @@
 //                       only (every data segment adds a constant instead of being sampled), 2
 //                       sampling only (the first data segment's brick is sampled
 //                       amrspAblationSamples times over the rest of the ray, no further traversal)
-//   AMRSP_WORK_COUNTERS diagnostic output: the ray's work counts instead of its colour (opaque,
+//   AMRSP_ACCELERATION_COUNTS diagnostic output: the ray's work counts instead of its colour (opaque,
 //                       8-bit exact): red skipped data segments, green 1 when the ray stopped
 //                       early, blue data segments reached; counted as amrsp::RenderStats counts
-//   AMRSP_WORK_COUNT    diagnostic output: one count of the ray's loops instead of its colour,
+//   AMRSP_LOOP_COUNT    diagnostic output: one count of the ray's loops instead of its colour,
 //                       as a 24-bit integer (red the low byte, opaque): 1 segment-loop
 //                       iterations, 2 descent steps, 3 samples (amrsp/WorkCounters.h)
 //   AMRSP_OCCUPANCY_PROBE diagnostic output (GL_NV_shader_thread_builtins): where the ray ran
@@ -437,7 +437,7 @@ bool amrspDataNodeTransparent(uint dataIndex)
 // The ray through the pixel centre `pixel` (window coordinates of the rays' image, as
 // gl_FragCoord.xy): false where it leaves the pixel as it is (it misses the box, or has nothing to
 // show); else `result`, its premultiplied colour and opacity (blended "over" with ONE,
-// ONE_MINUS_SRC_ALPHA), or with AMRSP_WORK_COUNTERS / AMRSP_WORK_COUNT its opaque work counts.
+// ONE_MINUS_SRC_ALPHA), or with AMRSP_ACCELERATION_COUNTS / AMRSP_LOOP_COUNT its opaque work counts.
 bool amrspCastRay(vec2 pixel, out vec4 result)
 {
   result = vec4(0.0);
@@ -472,7 +472,7 @@ bool amrspCastRay(vec2 pixel, out vec4 result)
   alpha = min(keptTF.a, 1.0);
   colour = keptTF.rgb * alpha;
 #endif
-#ifdef AMRSP_WORK_COUNTERS
+#ifdef AMRSP_ACCELERATION_COUNTS
   // as amrsp::RenderStats: a ray terminated early is a composite ray that reached a threshold < 1
   bool workTerminated = AMRSP_BLEND_MODE == 0 && amrspOpacityThreshold < 1.0 &&
     alpha >= amrspOpacityThreshold;
@@ -486,7 +486,7 @@ bool amrspCastRay(vec2 pixel, out vec4 result)
              float(min(gl_SMCountNV, 255u)), 255.0) / 255.0;
   return true;
 #endif
-#ifdef AMRSP_WORK_COUNT
+#ifdef AMRSP_LOOP_COUNT
   int c = min(amrspWorkCount, 0xffffff);
   result = vec4(float(c & 255), float((c >> 8) & 255), float(c >> 16), 255.0) / 255.0;
   return true;

@@ -152,7 +152,7 @@ void RayCastingData::FreeUploadData()
   this->Data.Values = std::vector<GridValues>();
   this->TreeTexels = UIntTexture3D();
   this->PackedDataNodeTexels = UIntTexture3D();
-  this->BindlessDataNodeTexels = UIntTexture3D();
+  this->BrickLocalDataNodeTexels = UIntTexture3D();
   this->RopeTexels = UInt4Texture3D();
 }
 
@@ -223,7 +223,7 @@ RayCastingData PrepareRayCasting(Hierarchy h, int packLimit, int64_t maxPageTexe
     out.NodeBlocks = std::make_shared<const std::vector<DataNodeBlock>>(DataNodeBlocks(h, enc));
     out.NodeRanges = ComputeDataNodeRanges(h, *out.NodeBlocks, enc.DataNodeCount);
   }
-  out.BindlessDataNodeTexels = std::move(enc.DataNodes);
+  out.BrickLocalDataNodeTexels = std::move(enc.DataNodes);
   // packing: one brick per grid (cells, or vertices one texel larger), within the per-axis limit
   // the data-node offsets can address and packLimit when set
   try
@@ -269,9 +269,10 @@ RayCastingData PrepareRayCasting(Hierarchy h, int packLimit, int64_t maxPageTexe
     throw std::runtime_error("the array '" + h.ArrayName +
       "' holds no finite value (NaN or +-Inf in every cell): nothing to render");
   }
-  const long long treeBytes =
-    static_cast<long long>(KdTreeTextureBytes(enc.Tree, out.BindlessDataNodeTexels)) +
+  out.TreeBytes =
+    static_cast<long long>(KdTreeTextureBytes(enc.Tree, out.BrickLocalDataNodeTexels)) +
     static_cast<long long>(out.RopeTexels.Bytes());
+  const long long treeBytes = out.TreeBytes;
   out.BrickBytes = static_cast<long long>(SeparateBrickBytes(h));
   out.BindlessBytes =
     treeBytes + out.BrickBytes + static_cast<long long>(HandleTextureBytes(h.Grids.size()));

@@ -116,12 +116,19 @@ TEST(RayCastingData, BothEncodingsAndTheFigures)
   EXPECT_GT(d.DataNodes, 0);
   EXPECT_GE(d.KdNodes, d.DataNodes);
   EXPECT_EQ(d.NodeRanges.size(), static_cast<std::size_t>(d.DataNodes) + 1); // texel 0 unused
-  EXPECT_EQ(d.PackedDataNodeTexels.Dims, d.BindlessDataNodeTexels.Dims);
-  EXPECT_NE(d.PackedDataNodeTexels.Texels, d.BindlessDataNodeTexels.Texels); // offsets differ
+  EXPECT_EQ(d.PackedDataNodeTexels.Dims, d.BrickLocalDataNodeTexels.Dims);
+  EXPECT_NE(d.PackedDataNodeTexels.Texels, d.BrickLocalDataNodeTexels.Texels); // offsets differ
   ASSERT_EQ(d.Atlas.Pages.size(), 1u); // one page without a page budget
   EXPECT_GT(d.Atlas.Pages[0].Dims.x, 0);
   EXPECT_GT(d.PackedBytes, 0);
   EXPECT_GT(d.BindlessBytes, 0);
+  // the tree textures are in every storage's figure: an atlas of float texels, or the bricks and
+  // one 8-byte handle texel each (padded to the handles texture's rows)
+  const AtlasLayout& atlas = d.Atlas.Pages[0];
+  EXPECT_EQ(d.PackedBytes,
+    d.TreeBytes + static_cast<long long>(atlas.Dims.x) * atlas.Dims.y * atlas.Dims.z * 4);
+  EXPECT_EQ(
+    d.BindlessBytes, d.TreeBytes + d.BrickBytes + static_cast<long long>(HandleTextureBytes(6)));
   double range[2];
   ASSERT_TRUE(FiniteValueRange(h, range));
   EXPECT_EQ(d.ScalarRange[0], range[0]);
@@ -170,7 +177,7 @@ TEST(RayCastingData, UnpackableBricksLeaveTheBindlessEncoding)
   EXPECT_EQ(d.AtlasDims, glm::ivec3(0));
   EXPECT_TRUE(d.PackedDataNodeTexels.Texels.empty());
   EXPECT_EQ(d.PackedBytes, 0);
-  EXPECT_FALSE(d.BindlessDataNodeTexels.Texels.empty());
+  EXPECT_FALSE(d.BrickLocalDataNodeTexels.Texels.empty());
 }
 
 TEST(RayCastingData, APageBudgetSpreadsTheBricksOverPagesThatEncodeTheirPage)

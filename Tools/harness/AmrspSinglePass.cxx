@@ -101,7 +101,7 @@ long long SinglePassRenderer::BindlessBytes() const
 
 long long SinglePassRenderer::RenderWorkCount(int count)
 {
-  this->Mapper->SetWorkCountOutput(count);
+  this->Mapper->SetLoopCountOutput(count);
   double ms = 0.0;
   Image counts;
   try
@@ -110,10 +110,10 @@ long long SinglePassRenderer::RenderWorkCount(int count)
   }
   catch (...)
   {
-    this->Mapper->SetWorkCountOutput(vtkSinglePassAMRVolumeMapper::NO_WORK_COUNT);
+    this->Mapper->SetLoopCountOutput(vtkSinglePassAMRVolumeMapper::NO_LOOP_COUNT);
     throw;
   }
-  this->Mapper->SetWorkCountOutput(vtkSinglePassAMRVolumeMapper::NO_WORK_COUNT);
+  this->Mapper->SetLoopCountOutput(vtkSinglePassAMRVolumeMapper::NO_LOOP_COUNT);
   long long sum = 0;
   for (const glm::vec4& p : counts.Pixels)
   {

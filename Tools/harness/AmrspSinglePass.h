@@ -47,8 +47,8 @@ public:
   long long PackedBytes() const;
   long long BindlessBytes() const;
 
-  /// Renders the current camera's frame (RenderAsIs) with the mapper's WorkCountOutput set to
-  /// `count` (vtkSinglePassAMRVolumeMapper::WorkCounts) and returns the sum of the counts over
+  /// Renders the current camera's frame (RenderAsIs) with the mapper's LoopCountOutput set to
+  /// `count` (vtkSinglePassAMRVolumeMapper::LoopCounts) and returns the sum of the counts over
   /// the image; the mapper draws colours again afterwards. Throws GpuError as RenderAsIs.
   long long RenderWorkCount(int count);
 

@@ -71,8 +71,12 @@ struct RayCastingData
   /// The converted hierarchy; its Values are the bricks (FreeBricks drops them after upload).
   Hierarchy Data;
   UIntTexture3D TreeTexels;
-  UIntTexture3D PackedDataNodeTexels; ///< empty when the bricks could not be packed
-  UIntTexture3D BindlessDataNodeTexels;
+  /// The data nodes with their block's texel in the packed atlas (and its page); empty when the
+  /// bricks could not be packed.
+  UIntTexture3D PackedDataNodeTexels;
+  /// The data nodes with their block's texel inside its grid's own brick (the bindless and the
+  /// linear storages).
+  UIntTexture3D BrickLocalDataNodeTexels;
   /// The tree's neighbour links and node boxes (amrsp/KdTreeRopes.h); empty where not encoded.
   UInt4Texture3D RopeTexels;
   glm::vec3 RopeCellSize{ 0.0f }; ///< a finest-level cell, level-0 index units
@@ -103,8 +107,10 @@ struct RayCastingData
   long long KdNodes = 0;
   long long DataNodes = 0;
   long long Grids = 0;
-  /// GPU bytes of each storage: tree + data nodes + atlas (0 without an atlas), or tree + data
-  /// nodes + separate bricks + handles.
+  /// GPU bytes of the tree textures any storage uploads: the tree, its data nodes and its ropes.
+  long long TreeBytes = 0;
+  /// GPU bytes of the packed and the bindless storages: TreeBytes + the atlas (0 without an
+  /// atlas), or TreeBytes + the separate bricks + their handles.
   long long PackedBytes = 0;
   long long BindlessBytes = 0;
   /// Bytes of the grid data, one brick per grid (SeparateBrickBytes); kept after FreeUploadData.

@@ -99,23 +99,23 @@ bool HitSquares(const std::vector<BaselineCase::Square>& squares, const glm::dve
 
 namespace
 {
-/// The shader's work counts summed over a frame rendered with WorkCountersOutput (exact 8-bit
+/// The shader's work counts summed over a frame rendered with AccelerationCountsOutput (exact 8-bit
 /// channels: red skipped segments, green 255 per terminated ray, blue data segments).
-struct WorkCounts
+struct AccelerationCounts
 {
   long long Skipped = 0;
   long long Terminated = 0;
   long long DataSegments = 0;
 };
 
-WorkCounts RenderWorkCounts(harness::SinglePassRenderer& gpu)
+AccelerationCounts RenderAccelerationCounts(harness::SinglePassRenderer& gpu)
 {
   vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
-  mapper->WorkCountersOutputOn();
+  mapper->AccelerationCountsOutputOn();
   double ms = 0.0;
   const Image counts = gpu.RenderAsIs(ms);
-  mapper->WorkCountersOutputOff();
-  WorkCounts w;
+  mapper->AccelerationCountsOutputOff();
+  AccelerationCounts w;
   for (const glm::vec4& p : counts.Pixels)
   {
     w.Skipped += std::lround(p.r * 255.0f);
@@ -130,7 +130,7 @@ bool Agree(long long gpu, long long cpu)
   return std::llabs(gpu - cpu) <= 2 + cpu / 100;
 }
 
-/// The shader's own counts of its loops (WorkCountOutput) against the cost model's CPU mirror
+/// The shader's own counts of its loops (LoopCountOutput) against the cost model's CPU mirror
 /// of the same frame (amrsp::MeasureSinglePassWork), and that the comparison rejects the counts
 /// of another sampling distance.
 bool CompareLoopCounts(harness::SinglePassRenderer& gpu, const Hierarchy& h,
@@ -212,7 +212,7 @@ bool CompareWorkCounters(harness::SinglePassRenderer& gpu, const RenderStats& cp
   std::ostream& log)
 {
   vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
-  const WorkCounts w = RenderWorkCounts(gpu);
+  const AccelerationCounts w = RenderAccelerationCounts(gpu);
   bool ok = true;
   auto report = [&](bool pass, const std::string& what)
   {
@@ -232,7 +232,7 @@ bool CompareWorkCounters(harness::SinglePassRenderer& gpu, const RenderStats& cp
   {
     report(w.Skipped > 0, "the shader skips segments (" + std::to_string(w.Skipped) + ")");
     mapper->EmptySpaceSkippingOff();
-    const WorkCounts off = RenderWorkCounts(gpu);
+    const AccelerationCounts off = RenderAccelerationCounts(gpu);
     mapper->EmptySpaceSkippingOn();
     report(off.Skipped == 0 && off.DataSegments == w.DataSegments,
       "with skipping off the shader skips " + std::to_string(off.Skipped) +
@@ -243,7 +243,7 @@ bool CompareWorkCounters(harness::SinglePassRenderer& gpu, const RenderStats& cp
     report(w.Terminated > 0, "the shader stops rays early (" + std::to_string(w.Terminated) + ")");
     const double threshold = mapper->GetOpacityThreshold();
     mapper->SetOpacityThreshold(1.0);
-    const WorkCounts off = RenderWorkCounts(gpu);
+    const AccelerationCounts off = RenderAccelerationCounts(gpu);
     mapper->SetOpacityThreshold(threshold);
     report(off.Terminated == 0 && off.DataSegments >= w.DataSegments,
       "with threshold 1 the shader stops " + std::to_string(off.Terminated) +

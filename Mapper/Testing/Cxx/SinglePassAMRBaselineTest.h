@@ -91,7 +91,7 @@ struct BaselineCase
     const RenderSettings& settings, std::ostream& log)>
     Check;
 
-  /// Compare the shader's own work counts (vtkSinglePassAMRVolumeMapper::WorkCountersOutput,
+  /// Compare the shader's own work counts (vtkSinglePassAMRVolumeMapper::AccelerationCountsOutput,
   /// summed over the frame) with the CPU kD-tree integrator's RenderStats of the same view: data
   /// segments reached, segments skipped as empty space, rays terminated early. Each must agree to
   /// within 1 % (+ 2). With ExpectSkipped / ExpectTerminated that count must also be positive, and

@@ -77,9 +77,9 @@ void TestDataset(const std::string& name, Hierarchy h, double referenceBound, bo
   m->SetDataStorageToLinearBricks();
   const int builds = m->GetNumberOfBuilds();
   const Image linear = gpu.Render(0.0, ms);
-  Check(m->GetLastDataStorage() == Mapper::LINEAR_BRICKS && m->GetNumberOfAtlasPages() == 1,
+  Check(m->GetLastDataStorage() == Mapper::LINEAR_BRICKS && m->GetNumberOfLinearPages() == 1,
     "the linear storage rendered, one page: " + StorageName(m) + ", " +
-      std::to_string(m->GetNumberOfAtlasPages()) + " pages");
+      std::to_string(m->GetNumberOfLinearPages()) + " pages");
   const double lVsP = Rmse(linear, packed), lVsKd = CoveredRmse(linear, kd),
                lVsRef = CoveredRmse(linear, ref);
   Check(lVsP <= vsPackingBound,
@@ -122,7 +122,7 @@ void TestDataset(const std::string& name, Hierarchy h, double referenceBound, bo
     const vtkIdType pageBytes = static_cast<vtkIdType>((page + row - 1) / row * row);
     m->SetMaximumAtlasPageBytes(pageBytes);
     const Image paged = gpu.Render(0.0, ms);
-    const int pages = m->GetNumberOfAtlasPages();
+    const int pages = m->GetNumberOfLinearPages();
     Check(m->GetLastDataStorage() == Mapper::LINEAR_BRICKS && pages >= 2 && pages <= 4 &&
         Rmse(paged, linear) == 0.0,
       "linear pages of " + std::to_string(pageBytes) + " bytes: " + std::to_string(pages) +

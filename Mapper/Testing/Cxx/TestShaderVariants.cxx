@@ -196,8 +196,8 @@ std::vector<vtkSinglePassAMRShaderVariant> Variants()
       v.UniformRefinementLog2 = 1;
       v.Ropes = true;
       v.SkipEmpty = true;
-      v.WorkCounters = diagnostic == 0;
-      v.WorkCount = diagnostic >= 1 && diagnostic <= 3 ? diagnostic : 0;
+      v.AccelerationCounts = diagnostic == 0;
+      v.LoopCount = diagnostic >= 1 && diagnostic <= 3 ? diagnostic : 0;
       v.Ablation = diagnostic >= 4 ? diagnostic - 3 : 0;
       all.push_back(v);
     }
