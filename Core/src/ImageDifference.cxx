@@ -22,6 +22,32 @@ std::string ImageDifference::Describe() const
   return text;
 }
 
+bool IsCovered(const std::uint8_t* rgb, const std::uint8_t* background)
+{
+  static const std::uint8_t black[3] = { 0, 0, 0 };
+  const std::uint8_t* bg = background ? background : black;
+  for (int c = 0; c < 3; ++c)
+  {
+    if (std::abs(static_cast<int>(rgb[c]) - static_cast<int>(bg[c])) >
+      ImageDifference::BackgroundLevel)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+double CoveredShare(const std::vector<std::uint8_t>& rgb8, const std::uint8_t* background)
+{
+  std::size_t covered = 0;
+  for (std::size_t i = 0; i + 2 < rgb8.size(); i += 3)
+  {
+    covered += IsCovered(&rgb8[i], background) ? 1 : 0;
+  }
+  return rgb8.size() < 3 ? 0.0
+                         : static_cast<double>(covered) / static_cast<double>(rgb8.size() / 3);
+}
+
 ImageDifference CompareRgb8(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b,
   const std::uint8_t background[3])
 {
@@ -29,20 +55,7 @@ ImageDifference CompareRgb8(const std::vector<std::uint8_t>& a, const std::vecto
   {
     throw std::invalid_argument("images of different sizes cannot be compared");
   }
-  static const std::uint8_t black[3] = { 0, 0, 0 };
-  const std::uint8_t* bg = background ? background : black;
-  auto isBackground = [bg](const std::uint8_t* p)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      if (std::abs(static_cast<int>(p[c]) - static_cast<int>(bg[c])) >
-        ImageDifference::BackgroundLevel)
-      {
-        return false;
-      }
-    }
-    return true;
-  };
+  auto isBackground = [background](const std::uint8_t* p) { return !IsCovered(p, background); };
   ImageDifference d;
   d.Pixels = a.size() / 3;
   double sum = 0.0;

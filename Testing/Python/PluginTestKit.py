@@ -164,6 +164,11 @@ def covered(a, b):
     return (a.max(axis=1) > BACKGROUND_LEVEL) | (b.max(axis=1) > BACKGROUND_LEVEL)
 
 
+def coverage(pixels):
+    """Share of the pixels the volume covers (any channel above BACKGROUND_LEVEL on black)."""
+    return float((pixels.max(axis=1) > BACKGROUND_LEVEL).mean())
+
+
 def rmse(a, b):
     """RMSE of the RGB channels (0-255) over the covered pixels; 0 when none is covered."""
     import numpy
@@ -204,3 +209,49 @@ def distributed_bounds(dataset, split):
     if key not in DISTRIBUTED_BOUNDS:
         fail("no distributed-rendering bounds for %s (%s)" % key)
     return DISTRIBUTED_BOUNDS[key]
+
+
+def read_png(path):
+    from vtkmodules.vtkIOImage import vtkPNGReader
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    image = reader.GetOutput()
+    dims = image.GetDimensions()
+    pixels = vtk_to_numpy(image.GetPointData().GetScalars())
+    return dims[0], dims[1], pixels[:, :3].astype("float64")
+
+
+def require_display():
+    """ParaView builds on VTK < 9.4 render through GLX only and abort the process when no X
+    display answers: probe first. CTest sets AMRSP_GLX_ONLY=0 for ParaView on VTK >= 9.4, which
+    renders through EGL or OSMesa when there is no X server and needs nothing here."""
+    import ctypes
+    import ctypes.util
+
+    if os.environ.get("AMRSP_GLX_ONLY", "1") == "0":
+        return
+    if not os.environ.get("DISPLAY"):
+        skip("no X display (DISPLAY is unset); start one with scripts/start-xvfb.sh")
+    library = ctypes.util.find_library("X11")
+    if not library:
+        return  # cannot probe; let VTK try
+    x11 = ctypes.cdll.LoadLibrary(library)
+    x11.XOpenDisplay.restype = ctypes.c_void_p
+    x11.XOpenDisplay.argtypes = [ctypes.c_char_p]
+    x11.XCloseDisplay.argtypes = [ctypes.c_void_p]
+    display = x11.XOpenDisplay(None)
+    if not display:
+        skip("the X display %s does not answer" % os.environ["DISPLAY"])
+    x11.XCloseDisplay(display)
+
+
+def info_property(display, name):
+    """An information-only property of the representation, fetched from where it renders."""
+    display.SMProxy.UpdatePropertyInformation()
+    prop = display.SMProxy.GetProperty(name)
+    if prop is None:
+        fail("the representation has no property %s" % name)
+    return prop.GetElement(0) if prop.GetNumberOfElements() > 0 else None

@@ -23,9 +23,9 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from PluginTestKit import fail, off_share, rmse, skip  # noqa: E402
+from PluginTestKit import (coverage, fail, off_share, read_png, require_display, rmse,  # noqa: E402
+                           skip)
 from TestPluginParallel import clean_environment  # noqa: E402
-from TestPluginRepresentation import read_png, require_display  # noqa: E402
 
 STEPS = 5
 REGRID = 2  # steps 2 and 4 regrid
@@ -155,7 +155,7 @@ def main():
              % ", ".join(changed))
     for step in range(STEPS):
         image = read_png(os.path.join(run_dir, "step_%04d.png" % step))[2]
-        share = float((image.max(axis=1) > 2).mean())
+        share = coverage(image)
         difference, off = rmse(image, references[step]), off_share(image, references[step])
         check(difference <= RMSE_BOUND[ranks] and off <= OFF_BOUND[ranks] and share > 0.1,
               "step %d against its CPU reference: the volume on %.1f %% of the pixels, rmse %.2f "

@@ -247,7 +247,7 @@ def main():
     source = os.path.join(data, ENZO)
     if not os.path.isfile(os.path.join(source, STEM + ".hierarchy")):
         skip("the Enzo sample %s is missing (AMRSP_DATA_DIR=%r)" % (source, data))
-    from TestPluginRepresentation import coverage, read_png, require_display, rmse
+    from PluginTestKit import coverage, read_png, require_display, rmse
 
     require_display()
     shutil.rmtree(outdir, ignore_errors=True)

@@ -23,7 +23,7 @@ MULTIPASS_RMSE_BOUND = 1.0
 
 def main():
     plugin, outdir = sys.argv[1:3]
-    from TestPluginRepresentation import coverage, info_property, read_png, require_display, rmse
+    from PluginTestKit import coverage, info_property, read_png, require_display, rmse
 
     require_display()
     os.makedirs(outdir, exist_ok=True)

@@ -125,7 +125,8 @@ class Session:
         """Renders the view (the amrsp camera directions), returns the share of pixels that show
         the volume; fails on a render error."""
         from paraview import simple
-        from TestPluginRepresentation import coverage, info_property, read_png, server_died
+        from PluginTestKit import coverage, info_property, read_png
+        from TestPluginRepresentation import server_died
 
         simple.Render(view)
         # ResetCamera keeps the view direction: start each shot from the same one
@@ -356,7 +357,8 @@ def main():
     enzo_path = os.path.join(data_dir, ENZO)
     if not os.path.exists(enzo_path):
         skip("dataset not found: %s" % enzo_path)
-    from TestPluginRepresentation import require_display, start_server, stop_server
+    from PluginTestKit import require_display
+    from TestPluginRepresentation import start_server, stop_server
 
     require_display()
     os.makedirs(outdir, exist_ok=True)

@@ -28,7 +28,7 @@ def run_one(plugin):
     """One pvbatch run: prints the result line."""
     from PluginTestKit import fail, skip
     from TestPluginDefaults import array_statistics
-    from TestPluginRepresentation import require_display
+    from PluginTestKit import require_display
 
     path = os.path.join(os.environ.get("AMRSP_DATA_DIR", "../shared/data"), ENZO)
     if not os.path.exists(path):

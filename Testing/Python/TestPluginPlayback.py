@@ -30,7 +30,7 @@ SIZE = 96
 
 def main():
     plugin, outdir = sys.argv[1:3]
-    from TestPluginRepresentation import info_property, read_png, require_display
+    from PluginTestKit import info_property, read_png, require_display
 
     require_display()
     os.makedirs(outdir, exist_ok=True)

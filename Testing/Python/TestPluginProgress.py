@@ -48,7 +48,7 @@ def run_problem(events):
 
 def main():
     plugin = sys.argv[1]
-    from TestPluginRepresentation import info_property, require_display
+    from PluginTestKit import info_property, require_display
 
     require_display()
     from paraview import servermanager, simple

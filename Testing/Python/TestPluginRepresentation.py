@@ -29,8 +29,9 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from PluginTestKit import (BEFORE_FAIL, BEFORE_LEAVE, check_render_error, check_window, distributed_bounds, fail, leave, off_share, rmse, skip,  # noqa: E402
-                           write_view_json)  # noqa: E402
+from PluginTestKit import (BEFORE_FAIL, BEFORE_LEAVE, check_render_error, check_window,  # noqa: E402
+                           coverage, distributed_bounds, fail, info_property, leave, off_share,
+                           read_png, require_display, rmse, skip, write_view_json)
 
 SERVER = []  # the pvservers this test started (one; more after a failed start); ended with it
 SERVER_LOGS = []  # their log files, in the same order
@@ -166,24 +167,6 @@ BEFORE_LEAVE.append(stop_servers)
 BEFORE_FAIL.append(report_servers)
 
 
-def read_png(path):
-    from vtkmodules.vtkIOImage import vtkPNGReader
-    from vtkmodules.util.numpy_support import vtk_to_numpy
-
-    reader = vtkPNGReader()
-    reader.SetFileName(path)
-    reader.Update()
-    image = reader.GetOutput()
-    dims = image.GetDimensions()
-    pixels = vtk_to_numpy(image.GetPointData().GetScalars())
-    return dims[0], dims[1], pixels[:, :3].astype("float64")
-
-
-def coverage(pixels, background_tolerance=6.0):
-    """Share of pixels that differ from the black background by more than a few levels."""
-    return float((pixels.max(axis=1) > background_tolerance).mean())
-
-
 def convention_camera(bounds, azimuth=30.0, elevation=20.0, view_angle=30.0):
     """amrsp's camera (docs/design.md): vtkRenderer::ResetCamera on the level-0 box seen along -z with +y
     up (focal point at the centre, distance = half diagonal / sin(view angle / 2)), then Azimuth,
@@ -202,39 +185,6 @@ def convention_camera(bounds, azimuth=30.0, elevation=20.0, view_angle=30.0):
     camera.Elevation(elevation)
     camera.OrthogonalizeViewUp()
     return camera
-
-
-def require_display():
-    """ParaView builds on VTK < 9.4 render through GLX only and abort the process when no X
-    display answers: probe first. CTest sets AMRSP_GLX_ONLY=0 for ParaView on VTK >= 9.4, which
-    renders through EGL or OSMesa when there is no X server and needs nothing here."""
-    import ctypes
-    import ctypes.util
-
-    if os.environ.get("AMRSP_GLX_ONLY", "1") == "0":
-        return
-    if not os.environ.get("DISPLAY"):
-        skip("no X display (DISPLAY is unset); start one with scripts/start-xvfb.sh")
-    library = ctypes.util.find_library("X11")
-    if not library:
-        return  # cannot probe; let VTK try
-    x11 = ctypes.cdll.LoadLibrary(library)
-    x11.XOpenDisplay.restype = ctypes.c_void_p
-    x11.XOpenDisplay.argtypes = [ctypes.c_char_p]
-    x11.XCloseDisplay.argtypes = [ctypes.c_void_p]
-    display = x11.XOpenDisplay(None)
-    if not display:
-        skip("the X display %s does not answer" % os.environ["DISPLAY"])
-    x11.XCloseDisplay(display)
-
-
-def info_property(display, name):
-    """An information-only property of the representation, fetched from where it renders."""
-    display.SMProxy.UpdatePropertyInformation()
-    prop = display.SMProxy.GetProperty(name)
-    if prop is None:
-        fail("the representation has no property %s" % name)
-    return prop.GetElement(0) if prop.GetNumberOfElements() > 0 else None
 
 
 def check_block_copies(display, mode):

@@ -51,9 +51,9 @@ DATASET = "synthetic:cosmo:grids=120,levels=3,cells=100k,seed=5"
 
 def main():
     plugin, amrsp, outdir = sys.argv[1:4]
-    from TestPluginRepresentation import (coverage, info_property, read_png, require_display,
-                                          rmse, run_amrsp)
-    from PluginTestKit import off_share, write_view_json
+    from PluginTestKit import (coverage, info_property, off_share, read_png, require_display, rmse,
+                               write_view_json)
+    from TestPluginRepresentation import run_amrsp
 
     require_display()
     os.makedirs(outdir, exist_ok=True)

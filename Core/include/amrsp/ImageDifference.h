@@ -43,4 +43,12 @@ ImageDifference CompareRgb8(const std::vector<std::uint8_t>& a, const std::vecto
   const std::uint8_t background[3] = nullptr);
 ImageDifference Compare(const Image& a, const Image& b);
 
+/// Whether the 8-bit RGB pixel `rgb` is covered by the volume: a channel more than
+/// ImageDifference::BackgroundLevel from the background colour's (black when null). The one
+/// definition of a covered pixel in the image tests (Python: PluginTestKit.covered).
+bool IsCovered(const std::uint8_t* rgb, const std::uint8_t* background = nullptr);
+/// The share (0-1) of the covered pixels of interleaved 8-bit RGB `rgb8` (0 when empty).
+double CoveredShare(
+  const std::vector<std::uint8_t>& rgb8, const std::uint8_t* background = nullptr);
+
 } // namespace amrsp

@@ -112,16 +112,10 @@ inline std::string Fixed(double v)
   return buffer;
 }
 
-/// Share of pixels with any channel above 4/255.
+/// Share of the image's pixels the volume covers (amrsp::IsCovered over a black background).
 inline double Coverage(const amrsp::Image& img)
 {
-  const std::vector<std::uint8_t> rgb = img.Rgb8();
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < rgb.size(); i += 3)
-  {
-    n += (rgb[i] > 4 || rgb[i + 1] > 4 || rgb[i + 2] > 4) ? 1 : 0;
-  }
-  return static_cast<double>(n) / static_cast<double>(rgb.size() / 3);
+  return amrsp::CoveredShare(img.Rgb8());
 }
 
 /// The settings `amrsp render OPTIONS` would use for `h` (which gets the --scale applied).
@@ -207,11 +201,10 @@ inline FrameComparison CompareFrames(const amrsp::Image& a, const amrsp::Image& 
   for (std::size_t i = 0; i + 2 < x.size(); i += 3)
   {
     int largest = 0;
-    bool covered = false;
+    const bool covered = amrsp::IsCovered(&x[i]) || amrsp::IsCovered(&y[i]);
     for (std::size_t k = i; k < i + 3; ++k)
     {
       largest = std::max(largest, std::abs(static_cast<int>(x[k]) - static_cast<int>(y[k])));
-      covered = covered || x[k] > 4 || y[k] > 4;
     }
     c.LargestDifference = std::max(c.LargestDifference, largest);
     c.DifferentPixels += largest > 0 ? 1 : 0;

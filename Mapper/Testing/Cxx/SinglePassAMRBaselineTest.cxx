@@ -5,6 +5,7 @@
 #include "AmrspDataset.h"
 #include "AmrspSinglePass.h"
 #include "MapperTestHelpers.h"
+#include "RendererChecks.h"
 
 #include "amrsp/ImageDifference.h"
 #include "amrsp/KdTree.h"
@@ -18,8 +19,6 @@
 #include "vtkPNGWriter.h"
 #include "vtkPointData.h"
 #include "vtkUnsignedCharArray.h"
-#include "vtkPlaneSource.h"
-#include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkRegressionTestImage.h"
 #include "vtkRenderWindow.h"
@@ -52,20 +51,7 @@ void Frame(const BaselineCase::Square& q, glm::dvec3& corner, glm::dvec3& right,
 
 void AddSquare(vtkRenderer* renderer, const BaselineCase::Square& q)
 {
-  glm::dvec3 o, r, u;
-  Frame(q, o, r, u);
-  const glm::dvec3 p1 = o + 2.0 * q.Half * r, p2 = o + 2.0 * q.Half * u;
-  vtkNew<vtkPlaneSource> plane;
-  plane->SetOrigin(o.x, o.y, o.z);
-  plane->SetPoint1(p1.x, p1.y, p1.z);
-  plane->SetPoint2(p2.x, p2.y, p2.z);
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputConnection(plane->GetOutputPort());
-  vtkNew<vtkActor> actor;
-  actor->SetMapper(mapper);
-  actor->GetProperty()->SetColor(q.Grey, q.Grey, q.Grey);
-  actor->GetProperty()->LightingOff();
-  renderer->AddActor(actor);
+  renderer->AddActor(mappertest::OpaqueSquare(q.Centre, q.Normal, q.Up, q.Half, q.Grey));
 }
 
 /// Nearest hit of a world ray with the squares, for the CPU images.

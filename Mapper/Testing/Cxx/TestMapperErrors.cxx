@@ -201,10 +201,7 @@ struct Scene
     int lit = 0;
     for (vtkIdType i = 0; i < pixels->GetNumberOfTuples(); ++i)
     {
-      lit += (pixels->GetValue(3 * i) > 2 || pixels->GetValue(3 * i + 1) > 2 ||
-               pixels->GetValue(3 * i + 2) > 2)
-        ? 1
-        : 0;
+      lit += amrsp::IsCovered(pixels->GetPointer(3 * i)) ? 1 : 0;
     }
     return static_cast<double>(lit) / pixels->GetNumberOfTuples();
   }
