@@ -138,11 +138,7 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
 void vtkMultiPassAMRVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Depth.ReleaseGraphicsResources(window);
-  for (vtkSmartPointer<vtkTextureObject>& page : this->AtlasPages)
-  {
-    page->ReleaseGraphicsResources(window);
-  }
-  this->AtlasPages.clear();
+  this->Atlas.ReleaseGraphicsResources(window);
   this->Accumulation.ReleaseGraphicsResources(window);
   this->Transfer.ReleaseGraphicsResources(window);
   this->CubeBuffer->ReleaseGraphicsResources();
@@ -261,10 +257,7 @@ void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   glm::vec3 clipLo, clipHi;
   in.ClipBox(clipLo, clipHi);
   in.DrawNodes(renWin->GetState(), program, view, steps, clipLo, clipHi);
-  for (vtkTextureObject* page : in.AtlasPages)
-  {
-    page->Deactivate();
-  }
+  in.Atlas.Deactivate();
   in.Transfer.GetTexture()->Deactivate();
   if (this->UseDepthBuffer)
   {
@@ -284,7 +277,7 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::UploadAtlas(
   vtkOpenGLRenderWindow* renWin, vtkOverlappingAMR* amr)
 {
   vtkMultiPassAMRVolumeMapper* self = this->Self;
-  if (!this->AtlasPages.empty() && this->Context == renWin &&
+  if (this->Atlas.GetNumberOfPages() > 0 && this->Context == renWin &&
     this->UploadLimit == self->MaximumAtlasSize &&
     this->UploadedBuildTime == self->GetBuildTime().GetMTime())
   {
@@ -301,35 +294,14 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::UploadAtlas(
   std::string error;
   // the previous pages, overwritten in place when of the same size in the same context (a time
   // step's new values: no allocation, no first-touch of fresh driver memory)
-  const amrsp::AtlasPages& pages = this->Data.Atlas;
-  std::vector<vtkSmartPointer<vtkTextureObject>> reusable;
-  if (this->Context == renWin)
-  {
-    reusable = vtkSinglePassAMRPackedAtlas::TakeReusablePages(this->AtlasPages, pages);
-  }
-  this->AtlasPages.clear();
   self->BeginProgressPhase(PROGRESS_UPLOAD, "uploading the atlas");
-  for (std::size_t p = 0; p < pages.Pages.size(); ++p)
+  if (!this->Atlas.UploadPages(renWin, this->Data.Structure, this->Data.Atlas,
+        this->Data.VertexCentred, self->MaximumAtlasSize, this->Context == renWin, error,
+        [self](double f) { self->UpdateProgress(f); }))
   {
-    vtkSmartPointer<vtkTextureObject> page;
-    vtkTextureObject* reuse = p < reusable.size() ? reusable[p].Get() : nullptr;
-    const double share = 1.0 / static_cast<double>(pages.Pages.size());
-    if (!vtkSinglePassAMRPackedAtlas::UploadAtlas(
-          renWin,
-          pages.Pages.size() == 1
-            ? this->Data.Structure
-            : amrsp::PageHierarchy(this->Data.Structure, pages, static_cast<int>(p)),
-          pages.Pages[p], this->Data.VertexCentred, self->MaximumAtlasSize, page, error,
-          [self, p, share](double f)
-          { self->UpdateProgress((static_cast<double>(p) + f) * share); },
-          reuse))
-    {
-      // keep the CPU data: a later context (or a smaller input) may succeed
-      this->AtlasPages.clear();
-      self->ReportError(error);
-      return false;
-    }
-    this->AtlasPages.push_back(page);
+    // keep the CPU data: a later context (or a smaller input) may succeed
+    self->ReportError(error);
+    return false;
   }
   std::vector<amrsp::GridValues>().swap(this->Data.Structure.Values); // the atlas holds them
   this->Context = renWin;

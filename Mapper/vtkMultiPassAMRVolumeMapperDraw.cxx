@@ -150,7 +150,7 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::DrawNodes(vtkOpenGLState* state,
     {
       // several atlas pages: every page is active on a unit of its own
       const glm::vec3 size(this->Data.Atlas.Pages[static_cast<std::size_t>(node.Page)].Dims);
-      glUniform1i(atlas, this->AtlasPages[static_cast<std::size_t>(node.Page)]->GetTextureUnit());
+      glUniform1i(atlas, this->Atlas.GetPage(node.Page)->GetTextureUnit());
       glUniform3fv(atlasSize, 1, &size.x);
       boundPage = node.Page;
     }
@@ -229,12 +229,9 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::SetFrameUniforms(vtkShaderProgra
   this->Transfer.GetShaderRange(transferRange);
   const glm::vec3 atlasSize(this->Data.Atlas.Pages[0].Dims);
 
-  for (vtkTextureObject* page : this->AtlasPages)
-  {
-    page->Activate();
-  }
+  this->Atlas.ActivatePages();
   this->Transfer.GetTexture()->Activate();
-  program->SetUniformi("amrspAtlas", this->AtlasPages[0]->GetTextureUnit());
+  program->SetUniformi("amrspAtlas", this->Atlas.GetPage(0)->GetTextureUnit());
   program->SetUniformi("amrspTransfer", this->Transfer.GetTexture()->GetTextureUnit());
   if (this->Self->UseDepthBuffer)
   {

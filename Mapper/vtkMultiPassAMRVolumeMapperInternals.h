@@ -11,6 +11,7 @@
 
 #include "vtkMultiPassAMRVolumeMapper.h"
 
+#include "vtkSinglePassAMRAtlasTextures.h"
 #include "vtkSinglePassAMRDepthCopy.h"
 #include "vtkSinglePassAMROffscreenImage.h"
 #include "vtkSinglePassAMRPackedAtlas.h"
@@ -98,9 +99,9 @@ public:
 
   // ---- OpenGL resources
   vtkOpenGLRenderWindow* Context = nullptr;
-  int UploadLimit = 0;                // MaximumAtlasSize of the last upload attempt
-  vtkMTimeType UploadedBuildTime = 0; // the build the atlas on the GPU holds
-  std::vector<vtkSmartPointer<vtkTextureObject>> AtlasPages; // one per atlas page
+  int UploadLimit = 0;                 // MaximumAtlasSize of the last upload attempt
+  vtkMTimeType UploadedBuildTime = 0;  // the build the atlas on the GPU holds
+  vtkSinglePassAMRAtlasTextures Atlas; // the packed atlas's pages
   vtkSinglePassAMRDepthCopy Depth;
   vtkSinglePassAMROffscreenImage Accumulation; // viewport-sized, nearest filtering
   vtkSinglePassAMRTransferFunctionTable Transfer;

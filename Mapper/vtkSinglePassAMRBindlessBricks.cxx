@@ -1,10 +1,20 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSinglePassAMRBindlessBricks.h"
 
+#include "vtkSinglePassAMRShaderVariant.h"
+#include "vtkSinglePassAMRTextures.h"
+
+#include "amrsp/BrickAtlas.h"
+#include "amrsp/EmptySpace.h"
+
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
 #include "vtkSinglePassAMROpenGL.h"
 #include "vtkTextureUnitManager.h"
+
+#include <algorithm>
 
 //------------------------------------------------------------------------------
 vtkSinglePassAMRBindlessBricks::~vtkSinglePassAMRBindlessBricks()
@@ -118,17 +128,103 @@ bool vtkSinglePassAMRBindlessBricks::Overwrite(vtkOpenGLRenderWindow* renWin,
 }
 
 //------------------------------------------------------------------------------
+bool vtkSinglePassAMRBindlessBricks::Upload(vtkOpenGLRenderWindow* renWin,
+  const amrsp::RayCastingData& data, std::string& error, const std::function<void(double)>&)
+{
+  this->HandlesTexture = nullptr;
+  this->Bytes = 0;
+  const int max3D = vtkTextureObject::GetMaximumTextureSize3D(renWin);
+  const std::vector<glm::ivec3> extents = amrsp::BrickExtents(data.Data, data.VertexCentred);
+  for (std::size_t g = 0; g < extents.size(); ++g)
+  {
+    const glm::ivec3 e = extents[g];
+    if (e.x > max3D || e.y > max3D || e.z > max3D)
+    {
+      error = "grid " + std::to_string(g) + " (" + std::to_string(e.x) + " x " +
+        std::to_string(e.y) + " x " + std::to_string(e.z) +
+        " texels) exceeds GL_MAX_3D_TEXTURE_SIZE = " + std::to_string(max3D);
+      return false;
+    }
+  }
+  if (!this->Create(
+        renWin, extents, [&data](std::size_t g) { return data.Data.Values[g].data(); },
+        data.VertexCentred, error))
+  {
+    return false;
+  }
+  amrsp::UIntTexture3D handles;
+  handles.Dims = amrsp::TextureDimsFor(extents.size());
+  handles.Texels.assign(
+    static_cast<std::size_t>(handles.Dims.x) * handles.Dims.y * handles.Dims.z, glm::uvec2(0u));
+  for (std::size_t g = 0; g < this->Handles.size(); ++g)
+  {
+    handles.Texels[g] = glm::uvec2(static_cast<uint32_t>(this->Handles[g] & 0xffffffffu),
+      static_cast<uint32_t>(this->Handles[g] >> 32));
+  }
+  this->HandlesTexture = vtkSinglePassAMRTextures::MakeIntegerTexture(renWin, handles);
+  if (!this->HandlesTexture)
+  {
+    return false;
+  }
+  this->Bytes = data.BindlessBytes - data.TreeBytes;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRBindlessBricks::UploadValues(vtkOpenGLRenderWindow* renWin,
+  const amrsp::RayCastingData& data, std::string& error,
+  const std::function<void(double)>& progress)
+{
+  // the same bricks: new texels into the resident textures, the handle table unchanged
+  if (this->HandlesTexture &&
+    this->Overwrite(renWin, amrsp::BrickExtents(data.Data, data.VertexCentred),
+      [&data](std::size_t g) { return data.Data.Values[g].data(); }))
+  {
+    return true;
+  }
+  this->ReleaseGraphicsResources(renWin);
+  return this->Upload(renWin, data, error, progress);
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRBindlessBricks::Describe(vtkSinglePassAMRShaderVariant& variant) const
+{
+  variant.Storage = amrsp::DataStorage::BindlessTextures;
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRBindlessBricks::Activate(vtkShaderProgram* program)
+{
+  this->HandlesTexture->Activate();
+  program->SetUniformi("amrspHandles", this->HandlesTexture->GetTextureUnit());
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRBindlessBricks::Deactivate()
+{
+  this->HandlesTexture->Deactivate();
+}
+
+//------------------------------------------------------------------------------
 void vtkSinglePassAMRBindlessBricks::ReleaseGraphicsResources(vtkWindow* window)
 {
   if (!this->Context || window == this->Context.GetPointer())
   {
     this->Clear();
   }
+  if (this->HandlesTexture)
+  {
+    this->HandlesTexture->ReleaseGraphicsResources(window);
+    this->HandlesTexture = nullptr;
+  }
+  this->Bytes = 0;
 }
 
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRBindlessBricks::Release()
 {
+  this->LargestReleased =
+    std::max(this->LargestReleased, static_cast<long long>(this->Names.size()));
   for (const std::uint64_t handle : this->Handles)
   {
     glMakeTextureHandleNonResidentARB(handle);

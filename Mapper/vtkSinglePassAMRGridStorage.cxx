@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSinglePassAMRGridStorage.h"
 
+#include "vtkSinglePassAMRAtlasTextures.h"
 #include "vtkSinglePassAMRBindlessBricks.h"
+#include "vtkSinglePassAMRLinearBricks.h"
 #include "vtkSinglePassAMRPackedAtlas.h"
 #include "vtkSinglePassAMRTextures.h"
 
@@ -129,12 +131,16 @@ vtkSinglePassAMRStorageChoice vtkSinglePassAMRGridStorage::Choose(vtkOpenGLRende
     facts.Bindless = amrsp::BindlessAccess::None;
   }
   else if (facts.Bindless != amrsp::BindlessAccess::None && this->MaxBindlessTextures >= 0 &&
-    !(this->UploadedStorage == amrsp::DataStorage::BindlessTextures && this->Context == renWin &&
-      !request.NewTextures))
+    !(this->GetUploadedStorage() == amrsp::DataStorage::BindlessTextures &&
+      this->Context == renWin && !request.NewTextures))
   {
     // the set in use is released before the new one is made, but its slots come back later
-    const long long earlier = std::max(this->ReleasedBindlessTextures,
-      this->Context == renWin ? static_cast<long long>(this->Bricks.GetHandles().size()) : 0LL);
+    const auto* bindless = dynamic_cast<const vtkSinglePassAMRBindlessBricks*>(this->Grid.get());
+    const long long inUse = bindless && this->Context == renWin
+      ? static_cast<long long>(bindless->GetHandles().size())
+      : 0LL;
+    const long long earlier = std::max({ this->ReleasedBindlessTextures, inUse,
+      bindless && this->Context == this->CapsContext ? bindless->GetLargestReleasedSet() : 0LL });
     if (data.Grids + earlier > this->MaxBindlessTextures)
     {
       facts.NoBindless = "this driver (Mesa's zink) holds at most " +
@@ -167,79 +173,78 @@ vtkSinglePassAMRStorageChoice vtkSinglePassAMRGridStorage::Choose(vtkOpenGLRende
 bool vtkSinglePassAMRGridStorage::IsUploaded(
   vtkOpenGLRenderWindow* renWin, amrsp::DataStorage storage, int atlasLimit) const
 {
-  return this->UploadedStorage == storage && this->Context == renWin &&
+  return this->GetUploadedStorage() == storage && this->Context == renWin &&
     this->UploadLimit == atlasLimit;
+}
+
+//------------------------------------------------------------------------------
+std::unique_ptr<vtkSinglePassAMRGridData> vtkSinglePassAMRGridStorage::NewGridData(
+  amrsp::DataStorage storage) const
+{
+  if (storage == amrsp::DataStorage::BindlessTextures)
+  {
+    return std::unique_ptr<vtkSinglePassAMRGridData>(new vtkSinglePassAMRBindlessBricks);
+  }
+  if (storage == amrsp::DataStorage::LinearBricks)
+  {
+    std::unique_ptr<vtkSinglePassAMRLinearBricks> linear(new vtkSinglePassAMRLinearBricks);
+    linear->SetMaximumPageBytes(this->LinearPageBytes);
+    return std::unique_ptr<vtkSinglePassAMRGridData>(linear.release());
+  }
+  std::unique_ptr<vtkSinglePassAMRAtlasTextures> atlas(new vtkSinglePassAMRAtlasTextures);
+  atlas->SetAtlasLimit(this->UploadLimit);
+  return std::unique_ptr<vtkSinglePassAMRGridData>(atlas.release());
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRGridStorage::DropGridData(vtkWindow* window)
+{
+  if (!this->Grid)
+  {
+    return;
+  }
+  if (window)
+  {
+    this->Grid->ReleaseGraphicsResources(window);
+  }
+  // zink gives a freed set's bindless slots back only later: count them for the next sets
+  if (const auto* bindless = dynamic_cast<const vtkSinglePassAMRBindlessBricks*>(this->Grid.get()))
+  {
+    if (this->Context == this->CapsContext)
+    {
+      this->ReleasedBindlessTextures =
+        std::max(this->ReleasedBindlessTextures, bindless->GetLargestReleasedSet());
+    }
+  }
+  this->Grid.reset();
+}
+
+//------------------------------------------------------------------------------
+int vtkSinglePassAMRGridStorage::GetNumberOfLinearPages() const
+{
+  const auto* linear = dynamic_cast<const vtkSinglePassAMRLinearBricks*>(this->Grid.get());
+  return linear ? linear->GetNumberOfPages() : 0;
 }
 
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRGridStorage::DescribeGridData(vtkSinglePassAMRShaderVariant& variant) const
 {
-  if (this->UploadedStorage == amrsp::DataStorage::BindlessTextures)
+  if (this->Grid)
   {
-    variant.Storage = amrsp::DataStorage::BindlessTextures;
-  }
-  else if (this->UploadedStorage == amrsp::DataStorage::LinearBricks)
-  {
-    variant.Storage = amrsp::DataStorage::LinearBricks;
-    variant.LinearPages = this->Linear.GetNumberOfPages();
-    variant.LinearWidthLog2 = this->Linear.GetWidthLog2();
-  }
-  else
-  {
-    variant.Storage = amrsp::DataStorage::PackedAtlas;
-    variant.AtlasPages = static_cast<int>(this->AtlasPages.size());
+    this->Grid->Describe(variant);
   }
 }
 
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRGridStorage::ActivateGridData(vtkShaderProgram* program)
 {
-  if (this->UploadedStorage == amrsp::DataStorage::BindlessTextures)
-  {
-    this->HandlesTexture->Activate();
-    program->SetUniformi("amrspHandles", this->HandlesTexture->GetTextureUnit());
-    return;
-  }
-  if (this->UploadedStorage == amrsp::DataStorage::LinearBricks)
-  {
-    this->Linear.Activate(program);
-    return;
-  }
-  // the atlas pages: amrspAtlas, then amrspAtlas1, amrspAtlas2, ...
-  std::vector<float> sizes;
-  for (std::size_t p = 0; p < this->AtlasPages.size(); ++p)
-  {
-    vtkTextureObject* page = this->AtlasPages[p];
-    page->Activate();
-    program->SetUniformi(
-      (p == 0 ? std::string("amrspAtlas") : "amrspAtlas" + std::to_string(p)).c_str(),
-      page->GetTextureUnit());
-    sizes.insert(
-      sizes.end(), { float(page->GetWidth()), float(page->GetHeight()), float(page->GetDepth()) });
-  }
-  program->SetUniform3f("amrspAtlasSize", sizes.data());
-  if (this->AtlasPages.size() > 1)
-  {
-    program->SetUniform3fv(
-      "amrspAtlasPageSize", static_cast<int>(this->AtlasPages.size()), sizes.data());
-  }
+  this->Grid->Activate(program);
 }
 
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRGridStorage::DeactivateGridData()
 {
-  if (this->UploadedStorage == amrsp::DataStorage::BindlessTextures)
-  {
-    this->HandlesTexture->Deactivate();
-  }
-  else if (this->UploadedStorage == amrsp::DataStorage::LinearBricks)
-  {
-    this->Linear.Deactivate();
-  }
-  for (vtkTextureObject* page : this->AtlasPages)
-  {
-    page->Deactivate();
-  }
+  this->Grid->Deactivate();
 }
 
 //------------------------------------------------------------------------------
@@ -248,11 +253,8 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, amrsp::D
   const std::function<void(double)>& progress)
 {
   this->UploadLimit = atlasLimit;
-  const bool bindless = storage == amrsp::DataStorage::BindlessTextures;
-  const bool linear = storage == amrsp::DataStorage::LinearBricks;
-  // bindless and linear bricks: each data node holds its offset inside its own brick
-  const amrsp::UIntTexture3D& dataNodes =
-    bindless || linear ? data.BrickLocalDataNodeTexels : data.PackedDataNodeTexels;
+  std::unique_ptr<vtkSinglePassAMRGridData> grid = this->NewGridData(storage);
+  const amrsp::UIntTexture3D& dataNodes = grid->GetDataNodeTexels(data);
   const int max3D = vtkTextureObject::GetMaximumTextureSize3D(renWin);
   for (const glm::ivec3& dims : { data.TreeTexels.Dims, dataNodes.Dims, data.RopeTexels.Dims })
   {
@@ -262,16 +264,9 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, amrsp::D
       return false;
     }
   }
-  // the previous storage's textures go first (their handles are made non-resident)
-  if (this->Context == renWin)
-  {
-    this->ReleaseBindless(renWin);
-  }
-  this->HandlesTexture = nullptr;
-  this->AtlasPages.clear();
-  this->Linear.Clear();
+  // the previous storage's textures go first (bindless handles are made non-resident)
+  this->DropGridData(this->Context == renWin ? renWin : nullptr);
   this->TransparentFlags = nullptr; // the data nodes may have changed: flagged again per frame
-  this->UploadedStorage = amrsp::DataStorage::None;
   while (glGetError() != GL_NO_ERROR)
   {
   }
@@ -282,21 +277,7 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, amrsp::D
     ? nullptr
     : vtkSinglePassAMRTextures::MakeInteger4Texture(renWin, data.RopeTexels);
   bool ok = this->Tree && this->DataNodes && (this->Ropes || data.RopeTexels.Texels.empty());
-  long long bytes = bindless ? data.BindlessBytes : data.PackedBytes;
-  if (ok && bindless)
-  {
-    ok = this->UploadBindless(renWin, data, error);
-  }
-  else if (ok && linear)
-  {
-    ok = this->Linear.Upload(
-      renWin, data.Data, data.VertexCentred, this->LinearPageBytes, error, progress);
-    bytes = data.TreeBytes + this->Linear.GetBytes();
-  }
-  else if (ok)
-  {
-    ok = this->UploadAtlas(renWin, data, progress);
-  }
+  ok = ok && grid->Upload(renWin, data, error, progress);
   if (ok)
   {
     // grid boxes for the smooth reconstruction: texel 3 g + axis holds grid g's (lo, hi) cells
@@ -323,22 +304,25 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, amrsp::D
     if (error.empty())
     {
       error = UploadFailure(std::string("the kD-tree and ") +
-          (bindless    ? "brick"
-              : linear ? "linear"
-                       : "atlas"),
-        bytes, glError);
+          (storage == amrsp::DataStorage::BindlessTextures  ? "brick"
+              : storage == amrsp::DataStorage::LinearBricks ? "linear"
+                                                            : "atlas"),
+        storage == amrsp::DataStorage::BindlessTextures ? data.BindlessBytes
+          : storage == amrsp::DataStorage::LinearBricks ? data.TreeBytes + grid->GetBytes()
+                                                        : data.PackedBytes,
+        glError);
     }
-    this->ReleaseBindless(renWin);
+    this->Context = renWin;
+    this->Grid = std::move(grid);
+    this->DropGridData(renWin);
     this->Tree = nullptr;
     this->DataNodes = nullptr;
     this->Ropes = nullptr;
-    this->AtlasPages.clear();
-    this->Linear.Clear();
     this->BrickBoxes = nullptr;
     return false;
   }
-  this->TextureBytes = bytes;
-  this->UploadedStorage = storage;
+  this->Grid = std::move(grid);
+  this->TextureBytes = data.TreeBytes + this->Grid->GetBytes();
   this->Context = renWin;
   return true;
 }
@@ -348,36 +332,12 @@ bool vtkSinglePassAMRGridStorage::UploadValues(vtkOpenGLRenderWindow* renWin,
   const amrsp::RayCastingData& data, std::string& error,
   const std::function<void(double)>& progress)
 {
-  const amrsp::DataStorage storage = this->UploadedStorage;
   this->TransparentFlags = nullptr; // the node ranges are the new step's
   while (glGetError() != GL_NO_ERROR)
   {
   }
-  bool ok = false;
-  if (storage == amrsp::DataStorage::BindlessTextures)
-  {
-    // the same bricks: new texels into the resident textures, the handle table unchanged
-    ok = this->HandlesTexture &&
-      this->Bricks.Overwrite(renWin, amrsp::BrickExtents(data.Data, data.VertexCentred),
-        [&data](std::size_t g) { return data.Data.Values[g].data(); });
-    if (!ok)
-    {
-      this->ReleaseBindless(renWin);
-      this->HandlesTexture = nullptr;
-      ok = this->UploadBindless(renWin, data, error);
-    }
-  }
-  else if (storage == amrsp::DataStorage::LinearBricks)
-  {
-    ok = this->Linear.Upload(
-      renWin, data.Data, data.VertexCentred, this->LinearPageBytes, error, progress);
-  }
-  else
-  {
-    // the previous step's pages, overwritten in place where no kept step holds them
-    ok = this->UploadAtlas(renWin, data, progress,
-      vtkSinglePassAMRPackedAtlas::TakeReusablePages(this->AtlasPages, data.Atlas));
-  }
+  const amrsp::DataStorage storage = this->GetUploadedStorage();
+  bool ok = this->Grid && this->Grid->UploadValues(renWin, data, error, progress);
   const GLenum glError = glGetError();
   if (!ok || glError != GL_NO_ERROR)
   {
@@ -387,10 +347,7 @@ bool vtkSinglePassAMRGridStorage::UploadValues(vtkOpenGLRenderWindow* renWin,
           (storage == amrsp::DataStorage::LinearBricks ? "linear" : "atlas"),
         data.PackedBytes, glError);
     }
-    this->ReleaseBindless(renWin);
-    this->AtlasPages.clear();
-    this->Linear.Clear();
-    this->UploadedStorage = amrsp::DataStorage::None;
+    this->DropGridData(renWin);
     return false;
   }
   return true;
@@ -399,90 +356,23 @@ bool vtkSinglePassAMRGridStorage::UploadValues(vtkOpenGLRenderWindow* renWin,
 //------------------------------------------------------------------------------
 std::unique_ptr<vtkSinglePassAMRGridStorage> vtkSinglePassAMRGridStorage::ShareStructure() const
 {
-  if (this->UploadedStorage == amrsp::DataStorage::None ||
-    this->UploadedStorage == amrsp::DataStorage::BindlessTextures)
+  std::unique_ptr<vtkSinglePassAMRGridData> grid =
+    this->Grid ? this->Grid->NewForAnotherStep() : nullptr;
+  if (!grid)
   {
     return nullptr;
   }
   std::unique_ptr<vtkSinglePassAMRGridStorage> shared(new vtkSinglePassAMRGridStorage);
+  shared->Grid = std::move(grid);
   shared->Tree = this->Tree;
   shared->DataNodes = this->DataNodes;
   shared->BrickBoxes = this->BrickBoxes;
   shared->Ropes = this->Ropes;
   shared->TextureBytes = this->TextureBytes;
-  shared->UploadedStorage = this->UploadedStorage;
   shared->UploadLimit = this->UploadLimit;
   shared->LinearPageBytes = this->LinearPageBytes;
   shared->Context = this->Context;
   return shared;
-}
-
-//------------------------------------------------------------------------------
-bool vtkSinglePassAMRGridStorage::UploadAtlas(vtkOpenGLRenderWindow* renWin,
-  const amrsp::RayCastingData& data, const std::function<void(double)>& progress,
-  const std::vector<vtkSmartPointer<vtkTextureObject>>& reusable)
-{
-  const amrsp::AtlasPages& atlas = data.Atlas;
-  for (std::size_t p = 0; p < atlas.Pages.size(); ++p)
-  {
-    vtkTextureObject* reuse = p < reusable.size() ? reusable[p].Get() : nullptr;
-    vtkSmartPointer<vtkTextureObject> page = vtkSinglePassAMRPackedAtlas::UploadAtlasBySlabs(
-      renWin,
-      atlas.Pages.size() == 1 ? data.Data
-                              : amrsp::PageHierarchy(data.Data, atlas, static_cast<int>(p)),
-      atlas.Pages[p], data.VertexCentred,
-      [&progress, &atlas, p](double f)
-      {
-        if (progress)
-        {
-          progress((static_cast<double>(p) + f) / static_cast<double>(atlas.Pages.size()));
-        }
-      },
-      reuse);
-    if (!page)
-    {
-      return false;
-    }
-    this->AtlasPages.push_back(page);
-  }
-  return !this->AtlasPages.empty();
-}
-
-//------------------------------------------------------------------------------
-bool vtkSinglePassAMRGridStorage::UploadBindless(
-  vtkOpenGLRenderWindow* renWin, const amrsp::RayCastingData& data, std::string& error)
-{
-  const int max3D = vtkTextureObject::GetMaximumTextureSize3D(renWin);
-  const std::vector<glm::ivec3> extents = amrsp::BrickExtents(data.Data, data.VertexCentred);
-  for (std::size_t g = 0; g < extents.size(); ++g)
-  {
-    const glm::ivec3 e = extents[g];
-    if (e.x > max3D || e.y > max3D || e.z > max3D)
-    {
-      error = "grid " + std::to_string(g) + " (" + std::to_string(e.x) + " x " +
-        std::to_string(e.y) + " x " + std::to_string(e.z) +
-        " texels) exceeds GL_MAX_3D_TEXTURE_SIZE = " + std::to_string(max3D);
-      return false;
-    }
-  }
-  if (!this->Bricks.Create(
-        renWin, extents, [&data](std::size_t g) { return data.Data.Values[g].data(); },
-        data.VertexCentred, error))
-  {
-    return false;
-  }
-  amrsp::UIntTexture3D handles;
-  handles.Dims = amrsp::TextureDimsFor(extents.size());
-  handles.Texels.assign(
-    static_cast<std::size_t>(handles.Dims.x) * handles.Dims.y * handles.Dims.z, glm::uvec2(0u));
-  const std::vector<std::uint64_t>& resident = this->Bricks.GetHandles();
-  for (std::size_t g = 0; g < resident.size(); ++g)
-  {
-    handles.Texels[g] = glm::uvec2(
-      static_cast<uint32_t>(resident[g] & 0xffffffffu), static_cast<uint32_t>(resident[g] >> 32));
-  }
-  this->HandlesTexture = vtkSinglePassAMRTextures::MakeIntegerTexture(renWin, handles);
-  return this->HandlesTexture != nullptr;
 }
 
 //------------------------------------------------------------------------------
@@ -530,37 +420,11 @@ bool vtkSinglePassAMRGridStorage::UpdateTransparentFlags(vtkOpenGLRenderWindow* 
 }
 
 //------------------------------------------------------------------------------
-void vtkSinglePassAMRGridStorage::ReleaseBindless(vtkWindow* window)
-{
-  if (window == this->CapsContext)
-  {
-    this->ReleasedBindlessTextures = std::max(
-      this->ReleasedBindlessTextures, static_cast<long long>(this->Bricks.GetHandles().size()));
-  }
-  this->Bricks.ReleaseGraphicsResources(window);
-  if (this->HandlesTexture)
-  {
-    this->HandlesTexture->ReleaseGraphicsResources(window);
-    this->HandlesTexture = nullptr;
-  }
-}
-
-//------------------------------------------------------------------------------
 void vtkSinglePassAMRGridStorage::ReleaseGraphicsResources(vtkWindow* window)
 {
-  if (this->Context == window)
-  {
-    this->ReleaseBindless(window);
-  }
-  this->UploadedStorage = amrsp::DataStorage::None;
-  for (vtkSmartPointer<vtkTextureObject>& page : this->AtlasPages)
-  {
-    page->ReleaseGraphicsResources(window);
-  }
-  this->AtlasPages.clear();
-  this->Linear.ReleaseGraphicsResources(window);
-  for (vtkSmartPointer<vtkTextureObject>* t : { &this->Tree, &this->DataNodes,
-         &this->HandlesTexture, &this->BrickBoxes, &this->TransparentFlags, &this->Ropes })
+  this->DropGridData(window);
+  for (vtkSmartPointer<vtkTextureObject>* t :
+    { &this->Tree, &this->DataNodes, &this->BrickBoxes, &this->TransparentFlags, &this->Ropes })
   {
     if (*t)
     {

@@ -1,16 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class   vtkSinglePassAMRGridStorage
- * @brief   the single-pass mapper's GPU data: tree textures and the grid data, packed, bindless or
- * linear
+ * @brief   the single-pass mapper's GPU data: the tree textures, and the grid data of one storage
  *
  * Private to the module (the header exposes core types), as vtkVolumeTexture is to VTK's GPU ray
  * caster. It holds, for one OpenGL context:
- * - the kD-tree (RG32UI) and its data nodes (RG32UI) of amrsp::RayCastingData;
- * - the grid data in one of the paper's two storages (section 5): one packed R32F atlas
- *   (PACKED_ATLAS), or one R32F texture per grid whose GL_ARB_bindless_texture handles are kept
- *   resident and stored in an RG32UI handles texture (BINDLESS_TEXTURES), or the bricks back to
- *   back in 2D R32F pages with an RG32UI brick table (LINEAR_BRICKS, vtkSinglePassAMRLinearBricks);
+ * - the kD-tree (RG32UI) and its data nodes (RG32UI) of amrsp::RayCastingData, the one owner of
+ *   the tree textures;
+ * - the grid data in one storage behind vtkSinglePassAMRGridData: the packed atlas
+ *   (vtkSinglePassAMRAtlasTextures), bindless textures (vtkSinglePassAMRBindlessBricks) or linear
+ *   bricks (vtkSinglePassAMRLinearBricks);
  * - the grids' cell boxes (RG32UI, 3 texels per grid) for the smooth-cell reconstruction;
  * - the empty-space flags (R8, one per data node) for the current transfer-function table.
  * It also answers what the context can do (bindless extensions, access modes, the driver's
@@ -21,8 +20,7 @@
 
 #include "amrsp/RayCastingData.h"
 
-#include "vtkSinglePassAMRBindlessBricks.h"
-#include "vtkSinglePassAMRLinearBricks.h"
+#include "vtkSinglePassAMRGridData.h"
 #include "vtkSinglePassAMRRayCasterChoice.h"
 #include "vtkSinglePassAMRShaderVariant.h"
 #include "vtkSinglePassAMRStorageChoice.h"
@@ -83,7 +81,7 @@ public:
   /// Whether the textures of `storage` in `renWin` are up to date for the data built last.
   bool IsUploaded(vtkOpenGLRenderWindow* renWin, amrsp::DataStorage storage, int atlasLimit) const;
   /// Whether anything is uploaded (a storage and a context).
-  bool HasUpload() const { return this->UploadedStorage != amrsp::DataStorage::None; }
+  bool HasUpload() const { return this->Grid != nullptr; }
 
   /// Uploads the tree and the grid data of `data` in `storage`; the previous textures are freed
   /// first. Returns false with a one-line `error` (a texture over GL_MAX_3D_TEXTURE_SIZE, the
@@ -130,10 +128,8 @@ public:
   /// The textures of the last upload (null before it).
   vtkTextureObject* GetTree() const { return this->Tree; }
   vtkTextureObject* GetDataNodes() const { return this->DataNodes; }
-  /// Packing: the atlas pages.
-  int GetNumberOfAtlasPages() const { return static_cast<int>(this->AtlasPages.size()); }
   /// Linear storage: its pages (0 unless it was uploaded last).
-  int GetNumberOfLinearPages() const { return this->Linear.GetNumberOfPages(); }
+  int GetNumberOfLinearPages() const;
   vtkTextureObject* GetBrickBoxes() const { return this->BrickBoxes; }
   /// The tree's neighbour links and node boxes; null where the build has none.
   vtkTextureObject* GetRopes() const { return this->Ropes; }
@@ -144,7 +140,10 @@ public:
   /// or + linear pages + brick table).
   long long GetTextureBytes() const { return this->TextureBytes; }
   /// The storage of the last upload, None when none is on the GPU.
-  amrsp::DataStorage GetUploadedStorage() const { return this->UploadedStorage; }
+  amrsp::DataStorage GetUploadedStorage() const
+  {
+    return this->Grid ? this->Grid->GetStorage() : amrsp::DataStorage::None;
+  }
 
   /// The largest linear page the next uploads make, in bytes (the mapper's MaximumAtlasPageBytes;
   /// 0: as large as the context allows).
@@ -155,30 +154,22 @@ public:
 
 private:
   void QueryCapabilities(vtkOpenGLRenderWindow* renWin);
-  /// Uploads the atlas pages; a non-null `reusable[p]` (vtkSinglePassAMRPackedAtlas::
-  /// TakeReusablePages) is overwritten in place as page p.
-  bool UploadAtlas(vtkOpenGLRenderWindow* renWin, const amrsp::RayCastingData& data,
-    const std::function<void(double)>& progress,
-    const std::vector<vtkSmartPointer<vtkTextureObject>>& reusable = {});
-  bool UploadBindless(
-    vtkOpenGLRenderWindow* renWin, const amrsp::RayCastingData& data, std::string& error);
-  void ReleaseBindless(vtkWindow* window);
+  /// An empty grid-data object of `storage` with this object's limits.
+  std::unique_ptr<vtkSinglePassAMRGridData> NewGridData(amrsp::DataStorage storage) const;
+  /// Frees the grid data (its textures in `window` when given) and forgets it.
+  void DropGridData(vtkWindow* window);
 
   vtkSmartPointer<vtkTextureObject> Tree;
   vtkSmartPointer<vtkTextureObject> DataNodes;
-  std::vector<vtkSmartPointer<vtkTextureObject>> AtlasPages; // packing: one per atlas page
-  vtkSmartPointer<vtkTextureObject> HandlesTexture; // bindless: RG32UI, one handle per brick
-  vtkSinglePassAMRBindlessBricks Bricks;        // bindless: one texture per grid, handles resident
-  vtkSinglePassAMRLinearBricks Linear;          // linear: pages of bricks back to back, table
-  vtkSmartPointer<vtkTextureObject> BrickBoxes; // RG32UI, per brick and axis: grid cells lo, hi
-  vtkSmartPointer<vtkTextureObject> Ropes;      // RGBA32UI, three per kD node (KdTreeLayout.glsl)
+  std::unique_ptr<vtkSinglePassAMRGridData> Grid; // the storage uploaded last; null: none
+  vtkSmartPointer<vtkTextureObject> BrickBoxes;   // RG32UI, per brick and axis: grid cells lo, hi
+  vtkSmartPointer<vtkTextureObject> Ropes;        // RGBA32UI, three per kD node (KdTreeLayout.glsl)
   // R8, indexed like the data nodes: 255 where the node's value range is transparent under the
   // table of FlagsTableTime
   vtkSmartPointer<vtkTextureObject> TransparentFlags;
   vtkMTimeType FlagsTableTime = 0;
   long long FlaggedDataNodes = 0;
   long long TextureBytes = 0;
-  amrsp::DataStorage UploadedStorage = amrsp::DataStorage::None;
   int UploadLimit = 0; // atlasLimit of the last upload
   long long LinearPageBytes = 0;
   vtkOpenGLRenderWindow* Context = nullptr;

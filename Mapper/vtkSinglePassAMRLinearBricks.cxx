@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSinglePassAMRLinearBricks.h"
 
+#include "vtkSinglePassAMRShaderVariant.h"
+
 #include "vtkSinglePassAMRTextures.h"
 
 #include "amrsp/BrickAtlas.h"
@@ -87,8 +89,8 @@ bool vtkSinglePassAMRLinearBricks::Fits(vtkOpenGLRenderWindow* renWin, const amr
 }
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMRLinearBricks::Upload(vtkOpenGLRenderWindow* renWin, const amrsp::Hierarchy& h,
-  bool vertexCentred, long long maxPageBytes, std::string& error,
+bool vtkSinglePassAMRLinearBricks::UploadBricks(vtkOpenGLRenderWindow* renWin,
+  const amrsp::Hierarchy& h, bool vertexCentred, long long maxPageBytes, std::string& error,
   const std::function<void(double)>& progress)
 {
   // this object's previous pages, overwritten in place where nothing else holds them (a time
@@ -194,6 +196,41 @@ void vtkSinglePassAMRLinearBricks::Activate(vtkShaderProgram* program)
   }
   this->Table->Activate();
   program->SetUniformi("amrspBrickTable", this->Table->GetTextureUnit());
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRLinearBricks::Upload(vtkOpenGLRenderWindow* renWin,
+  const amrsp::RayCastingData& data, std::string& error,
+  const std::function<void(double)>& progress)
+{
+  this->Clear(); // new pages
+  return this->UploadBricks(
+    renWin, data.Data, data.VertexCentred, this->MaximumPageBytes, error, progress);
+}
+
+//------------------------------------------------------------------------------
+bool vtkSinglePassAMRLinearBricks::UploadValues(vtkOpenGLRenderWindow* renWin,
+  const amrsp::RayCastingData& data, std::string& error,
+  const std::function<void(double)>& progress)
+{
+  return this->UploadBricks(
+    renWin, data.Data, data.VertexCentred, this->MaximumPageBytes, error, progress);
+}
+
+//------------------------------------------------------------------------------
+std::unique_ptr<vtkSinglePassAMRGridData> vtkSinglePassAMRLinearBricks::NewForAnotherStep() const
+{
+  std::unique_ptr<vtkSinglePassAMRLinearBricks> other(new vtkSinglePassAMRLinearBricks);
+  other->MaximumPageBytes = this->MaximumPageBytes;
+  return std::unique_ptr<vtkSinglePassAMRGridData>(other.release());
+}
+
+//------------------------------------------------------------------------------
+void vtkSinglePassAMRLinearBricks::Describe(vtkSinglePassAMRShaderVariant& variant) const
+{
+  variant.Storage = amrsp::DataStorage::LinearBricks;
+  variant.LinearPages = this->GetNumberOfPages();
+  variant.LinearWidthLog2 = this->WidthLog2;
 }
 
 //------------------------------------------------------------------------------
