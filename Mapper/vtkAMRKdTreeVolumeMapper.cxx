@@ -3,7 +3,7 @@
 #include "vtkSinglePassAMRDataModel.h"
 
 #include "vtkSinglePassAMRConversion.h"
-#include "vtkSinglePassAMRRenderSupport.h"
+#include "vtkSinglePassAMRContextCapabilities.h"
 
 #include "vtkInformation.h"
 #include "vtkMath.h"
@@ -103,7 +103,7 @@ void vtkAMRKdTreeVolumeMapper::GetBounds(double bounds[6])
 //------------------------------------------------------------------------------
 bool vtkAMRKdTreeVolumeMapper::IsRenderSupported(vtkRenderWindow* window, std::string* why)
 {
-  return vtkSinglePassAMRRenderSupport::IsRenderSupported(window, why);
+  return vtkSinglePassAMRContextCapabilities::IsRenderSupported(window, why);
 }
 
 //------------------------------------------------------------------------------

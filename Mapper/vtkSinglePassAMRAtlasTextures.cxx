@@ -26,8 +26,8 @@ bool vtkSinglePassAMRAtlasTextures::UploadPages(vtkOpenGLRenderWindow* renWin,
   {
     vtkSmartPointer<vtkTextureObject> page;
     vtkTextureObject* old = p < reusable.size() ? reusable[p].Get() : nullptr;
-    if (!vtkSinglePassAMRPackedAtlas::UploadAtlas(renWin,
-          pages.Pages.size() == 1 ? h : amrsp::PageHierarchy(h, pages, static_cast<int>(p)),
+    if (!vtkSinglePassAMRPackedAtlas::UploadAtlas(
+          renWin, pages.Pages.size() == 1 ? h : amrsp::PageHierarchy(h, pages, static_cast<int>(p)),
           pages.Pages[p], vertexCentred, atlasLimit, page, error,
           [&progress, p, share](double f)
           {
@@ -48,8 +48,8 @@ bool vtkSinglePassAMRAtlasTextures::UploadPages(vtkOpenGLRenderWindow* renWin,
     error = "the packed atlas has no page";
     return false;
   }
-  this->Bytes = static_cast<long long>(pages.TotalTexels()) *
-    static_cast<long long>(amrsp::AtlasTexelBytes);
+  this->Bytes =
+    static_cast<long long>(pages.TotalTexels()) * static_cast<long long>(amrsp::AtlasTexelBytes);
   return true;
 }
 
@@ -114,7 +114,8 @@ void vtkSinglePassAMRAtlasTextures::Activate(vtkShaderProgram* program)
   program->SetUniform3f("amrspAtlasSize", sizes.data());
   if (this->Pages.size() > 1)
   {
-    program->SetUniform3fv("amrspAtlasPageSize", static_cast<int>(this->Pages.size()), sizes.data());
+    program->SetUniform3fv(
+      "amrspAtlasPageSize", static_cast<int>(this->Pages.size()), sizes.data());
   }
 }
 

@@ -40,42 +40,10 @@ std::string UploadFailure(const std::string& what, long long bytes, GLenum glErr
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRGridStorage::QueryCapabilities(vtkOpenGLRenderWindow* renWin)
 {
-  if (this->CapsContext == renWin)
+  if (this->Caps.Update(renWin))
   {
-    return;
+    this->ReleasedBindlessTextures = 0; // a new context: no slots of earlier sets in it
   }
-  renWin->MakeCurrent();
-  this->HasBindless = vtkSinglePassAMROpenGL::HasExtension("GL_ARB_bindless_texture");
-  this->HasNVShader5 = vtkSinglePassAMROpenGL::HasExtension("GL_NV_gpu_shader5");
-  this->HasBallot = vtkSinglePassAMROpenGL::HasExtension("GL_ARB_shader_ballot");
-  this->ThreadBuiltins = vtkSinglePassAMROpenGL::HasExtension("GL_NV_shader_thread_builtins");
-  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-  const std::string name = renderer ? renderer : "";
-  this->MaxBindlessTextures = name.find("zink") != std::string::npos ? 1023 : -1;
-  this->ReleasedBindlessTextures = 0;
-  this->CpuDriver = name.find("llvmpipe") != std::string::npos ||
-    name.find("softpipe") != std::string::npos || name.find("lavapipe") != std::string::npos;
-  // compute shaders: core in OpenGL 4.3, an extension of 4.2 (which has the image stores)
-  GLint major = 0, minor = 0;
-  glGetIntegerv(GL_MAJOR_VERSION, &major);
-  glGetIntegerv(GL_MINOR_VERSION, &minor);
-  const int version = 10 * major + minor;
-  this->ComputeVersion.clear();
-  this->NoCompute.clear();
-  if (version >= 43)
-  {
-    this->ComputeVersion = "#version 430 core\n";
-  }
-  else if (version >= 42 && vtkSinglePassAMROpenGL::HasExtension("GL_ARB_compute_shader"))
-  {
-    this->ComputeVersion = "#version 420 core\n#extension GL_ARB_compute_shader : require\n";
-  }
-  else
-  {
-    this->NoCompute = "the OpenGL context (" + std::to_string(major) + "." + std::to_string(minor) +
-      ") has no compute shaders (OpenGL 4.3, or 4.2 with " + "GL_ARB_compute_shader)";
-  }
-  this->CapsContext = renWin;
 }
 
 //------------------------------------------------------------------------------
@@ -84,9 +52,9 @@ vtkSinglePassAMRRayCasterFacts vtkSinglePassAMRGridStorage::RayCasterFacts(
 {
   this->QueryCapabilities(renWin);
   vtkSinglePassAMRRayCasterFacts facts;
-  facts.Compute = !this->ComputeVersion.empty();
-  facts.NoCompute = this->NoCompute;
-  facts.CpuDriver = this->CpuDriver;
+  facts.Compute = !this->Caps.ComputeVersion.empty();
+  facts.NoCompute = this->Caps.NoCompute;
+  facts.CpuDriver = this->Caps.CpuDriver;
   return facts;
 }
 
@@ -94,26 +62,8 @@ vtkSinglePassAMRRayCasterFacts vtkSinglePassAMRGridStorage::RayCasterFacts(
 amrsp::BindlessAccess vtkSinglePassAMRGridStorage::ResolveAccess(
   vtkOpenGLRenderWindow* renWin, amrsp::BindlessAccess access, std::string& why)
 {
-  using Access = amrsp::BindlessAccess;
   this->QueryCapabilities(renWin);
-  if (!this->HasBindless)
-  {
-    why = "the OpenGL context lacks GL_ARB_bindless_texture";
-    return Access::None;
-  }
-  if (access == Access::Direct || (access == Access::Auto && this->HasNVShader5))
-  {
-    return Access::Direct;
-  }
-  if (this->HasBallot)
-  {
-    return Access::Waterfall;
-  }
-  why = access == Access::Waterfall
-    ? "the waterfall access needs GL_ARB_shader_ballot, which the OpenGL context lacks"
-    : "non-uniform bindless handles need GL_NV_gpu_shader5 or GL_ARB_shader_ballot, and the "
-      "OpenGL context has neither";
-  return Access::None;
+  return this->Caps.ResolveAccess(access, why);
 }
 
 //------------------------------------------------------------------------------
@@ -122,15 +72,15 @@ vtkSinglePassAMRStorageChoice vtkSinglePassAMRGridStorage::Choose(vtkOpenGLRende
 {
   vtkSinglePassAMRStorageFacts facts;
   facts.Bindless = this->ResolveAccess(renWin, request.Access, facts.NoBindless);
-  if (facts.Bindless != amrsp::BindlessAccess::None && this->MaxBindlessTextures >= 0 &&
-    data.Grids > this->MaxBindlessTextures)
+  if (facts.Bindless != amrsp::BindlessAccess::None && this->Caps.MaxBindlessTextures >= 0 &&
+    data.Grids > this->Caps.MaxBindlessTextures)
   {
     facts.NoBindless = "this driver (Mesa's zink) holds at most " +
-      std::to_string(this->MaxBindlessTextures) + " bindless textures and the hierarchy has " +
+      std::to_string(this->Caps.MaxBindlessTextures) + " bindless textures and the hierarchy has " +
       std::to_string(data.Grids) + " grids";
     facts.Bindless = amrsp::BindlessAccess::None;
   }
-  else if (facts.Bindless != amrsp::BindlessAccess::None && this->MaxBindlessTextures >= 0 &&
+  else if (facts.Bindless != amrsp::BindlessAccess::None && this->Caps.MaxBindlessTextures >= 0 &&
     !(this->GetUploadedStorage() == amrsp::DataStorage::BindlessTextures &&
       this->Context == renWin && !request.NewTextures))
   {
@@ -140,11 +90,11 @@ vtkSinglePassAMRStorageChoice vtkSinglePassAMRGridStorage::Choose(vtkOpenGLRende
       ? static_cast<long long>(bindless->GetHandles().size())
       : 0LL;
     const long long earlier = std::max({ this->ReleasedBindlessTextures, inUse,
-      bindless && this->Context == this->CapsContext ? bindless->GetLargestReleasedSet() : 0LL });
-    if (data.Grids + earlier > this->MaxBindlessTextures)
+      bindless && this->Context == this->Caps.Context ? bindless->GetLargestReleasedSet() : 0LL });
+    if (data.Grids + earlier > this->Caps.MaxBindlessTextures)
     {
       facts.NoBindless = "this driver (Mesa's zink) holds at most " +
-        std::to_string(this->MaxBindlessTextures) +
+        std::to_string(this->Caps.MaxBindlessTextures) +
         " bindless textures and frees those of an earlier set only later: " +
         std::to_string(data.Grids) + " grids now and " + std::to_string(earlier) +
         " of an earlier set in this context";
@@ -160,7 +110,7 @@ vtkSinglePassAMRStorageChoice vtkSinglePassAMRGridStorage::Choose(vtkOpenGLRende
   }
   facts.AtlasWaste = data.AtlasWaste;
   facts.BrickBytes = data.BrickBytes;
-  facts.CpuDriver = this->CpuDriver;
+  facts.CpuDriver = this->Caps.CpuDriver;
   facts.LinearFits = [this, renWin, &data]
   {
     return vtkSinglePassAMRLinearBricks::Fits(
@@ -210,7 +160,7 @@ void vtkSinglePassAMRGridStorage::DropGridData(vtkWindow* window)
   // zink gives a freed set's bindless slots back only later: count them for the next sets
   if (const auto* bindless = dynamic_cast<const vtkSinglePassAMRBindlessBricks*>(this->Grid.get()))
   {
-    if (this->Context == this->CapsContext)
+    if (this->Context == this->Caps.Context)
     {
       this->ReleasedBindlessTextures =
         std::max(this->ReleasedBindlessTextures, bindless->GetLargestReleasedSet());
@@ -433,5 +383,5 @@ void vtkSinglePassAMRGridStorage::ReleaseGraphicsResources(vtkWindow* window)
     }
   }
   this->Context = nullptr;
-  this->CapsContext = nullptr;
+  this->Caps = vtkSinglePassAMRContextCapabilities();
 }

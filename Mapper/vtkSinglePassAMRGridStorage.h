@@ -12,14 +12,15 @@
  *   bricks (vtkSinglePassAMRLinearBricks);
  * - the grids' cell boxes (RG32UI, 3 texels per grid) for the smooth-cell reconstruction;
  * - the empty-space flags (R8, one per data node) for the current transfer-function table.
- * It also answers what the context can do (bindless extensions, access modes, the driver's
- * handle limit), the facts vtkSinglePassAMRStorageChoice decides on.
+ * It also answers what the context can do (vtkSinglePassAMRContextCapabilities, queried once per
+ * context), the facts vtkSinglePassAMRStorageChoice and the ray-caster rule decide on.
  */
 #ifndef vtkSinglePassAMRGridStorage_h
 #define vtkSinglePassAMRGridStorage_h
 
 #include "amrsp/RayCastingData.h"
 
+#include "vtkSinglePassAMRContextCapabilities.h"
 #include "vtkSinglePassAMRGridData.h"
 #include "vtkSinglePassAMRRayCasterChoice.h"
 #include "vtkSinglePassAMRShaderVariant.h"
@@ -58,7 +59,7 @@ public:
   bool IsCpuDriver(vtkOpenGLRenderWindow* renWin)
   {
     this->QueryCapabilities(renWin);
-    return this->CpuDriver;
+    return this->Caps.CpuDriver;
   }
 
   /// What `renWin` offers the ray casters (compute shaders, a CPU driver).
@@ -68,14 +69,14 @@ public:
   bool HasThreadBuiltins(vtkOpenGLRenderWindow* renWin)
   {
     this->QueryCapabilities(renWin);
-    return this->ThreadBuiltins;
+    return this->Caps.ThreadBuiltins;
   }
   /// The compute shader's first lines in `renWin` (#version, and the extension on OpenGL 4.2);
   /// empty without compute shaders.
   const std::string& GetComputeVersion(vtkOpenGLRenderWindow* renWin)
   {
     this->QueryCapabilities(renWin);
-    return this->ComputeVersion;
+    return this->Caps.ComputeVersion;
   }
 
   /// Whether the textures of `storage` in `renWin` are up to date for the data built last.
@@ -174,21 +175,7 @@ private:
   long long LinearPageBytes = 0;
   vtkOpenGLRenderWindow* Context = nullptr;
 
-  // extensions of the context last asked (cached per context)
-  vtkOpenGLRenderWindow* CapsContext = nullptr;
-  bool HasBindless = false;
-  bool HasNVShader5 = false;
-  bool HasBallot = false;
-  // a driver that renders on the CPU and keeps its textures linear in host memory (llvmpipe,
-  // softpipe, lavapipe under zink)
-  bool CpuDriver = false;
-  std::string ComputeVersion;  // the compute shader's #version lines; empty: no compute shaders
-  std::string NoCompute;       // why not
-  bool ThreadBuiltins = false; // GL_NV_shader_thread_builtins
-  // bindless textures the driver can hold (-1: no known limit). Mesa's zink crashes when more
-  // than 1023 handles are made resident (its bindless descriptor array has 1024 slots); checked
-  // with Mesa 25.0.7: 1023 grids render, 1024 crash inside glMakeTextureHandleResidentARB.
-  long long MaxBindlessTextures = -1;
+  vtkSinglePassAMRContextCapabilities Caps; // of the context last asked
   // zink frees a deleted texture's bindless slot only when the batch that deleted it is
   // recycled, not at glFinish: a regridded series of 600 grids crashed its driver thread (600 old
   // and 600 new handles). So where MaxBindlessTextures applies, a new set must also leave room for

@@ -4,6 +4,7 @@
 
 #include "vtkSinglePassAMRConversion.h"
 #include "vtkSinglePassAMRFrameBudget.h"
+#include "vtkSinglePassAMRContextCapabilities.h"
 #include "vtkSinglePassAMRGridStorage.h"
 #include "vtkSinglePassAMRDepthCopy.h"
 #include "vtkSinglePassAMRProxyBox.h"
@@ -462,9 +463,10 @@ bool vtkSinglePassAMRVolumeMapper::IsBindlessSupported(vtkRenderWindow* window, 
   bool supported = IsRenderSupported(window, &reason);
   if (supported)
   {
-    vtkSinglePassAMRGridStorage capabilities;
-    supported = capabilities.ResolveAccess(vtkOpenGLRenderWindow::SafeDownCast(window),
-                  amrsp::BindlessAccess::Auto, reason) != amrsp::BindlessAccess::None;
+    vtkSinglePassAMRContextCapabilities capabilities;
+    capabilities.Update(vtkOpenGLRenderWindow::SafeDownCast(window));
+    supported = capabilities.ResolveAccess(amrsp::BindlessAccess::Auto, reason) !=
+      amrsp::BindlessAccess::None;
   }
   if (!supported && why)
   {
