@@ -10,6 +10,7 @@
 #include "vtkSinglePassAMRTransferFunctionTable.h"
 #include "vtkSinglePassAMRViewGeometry.h"
 
+#include "amrsp/MultiPassNodes.h"
 #include "amrsp/Hierarchy.h"
 #include "amrsp/IntegerMath.h"
 #include "amrsp/SampleStep.h"
@@ -59,77 +60,12 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
   {
     return true; // a time step of the same structure: the nodes to draw are the same
   }
-  this->Draws.clear();
-  this->DrawOfNode.clear();
+  this->Nodes = amrsp::MultiPassNodes();
   if (!ok)
   {
     return false;
   }
-  const amrsp::Hierarchy& h = this->Data.Structure;
-  const amrsp::KdTree& tree = this->Data.Tree;
-  const glm::i64vec3 finest = h.CumulativeRatio(tree.FinestLevel);
-  std::vector<glm::vec3> levelCellSize;
-  for (int l = 0; l < h.NumberOfLevels(); ++l)
-  {
-    levelCellSize.push_back(glm::vec3(h.CellSize(l)));
-  }
-
-  // Walk the tree from the root with the float boxes the single-pass traversal computes, and
-  // record every leaf with data.
-  struct Pending
-  {
-    int32_t Node;
-    glm::vec3 Lo;
-    glm::vec3 Hi;
-  };
-  std::vector<Pending> stack;
-  stack.push_back(Pending{ 0, glm::vec3(amrsp::RegionLoIndex(h, tree, tree.Root().Region)),
-    glm::vec3(amrsp::RegionHiIndex(h, tree, tree.Root().Region)) });
-  this->DrawOfNode.assign(tree.Nodes.size(), -1);
-  this->DataNodes = 0;
-  while (!stack.empty())
-  {
-    const Pending p = stack.back();
-    stack.pop_back();
-    const amrsp::KdNode& node = tree.Nodes[static_cast<std::size_t>(p.Node)];
-    this->DataNodes += node.HasData() ? 1 : 0;
-    if (!node.IsLeaf())
-    {
-      const int a = node.Axis;
-      const float plane = p.Lo[a] +
-        static_cast<float>(node.Split) * levelCellSize[static_cast<std::size_t>(node.Level)][a];
-      Pending lower{ node.FirstChild, p.Lo, p.Hi };
-      Pending upper{ node.FirstChild + 1, p.Lo, p.Hi };
-      lower.Hi[a] = plane;
-      upper.Lo[a] = plane;
-      stack.push_back(upper);
-      stack.push_back(lower);
-      continue;
-    }
-    if (!node.HasData())
-    {
-      continue; // empty space: nothing to draw
-    }
-    const amrsp::Grid& grid = h.Grids[static_cast<std::size_t>(node.Grid)];
-    const glm::i64vec3 toData = finest / h.CumulativeRatio(grid.Level);
-    const glm::ivec3 origin = this->Data.Atlas.Origins[static_cast<std::size_t>(node.Grid)];
-    vtkMultiPassAMRNodeDraw d;
-    d.Level = grid.Level;
-    d.Page = this->Data.Atlas.PageOfGrid[static_cast<std::size_t>(node.Grid)];
-    for (int a = 0; a < 3; ++a)
-    {
-      d.Lo[a] = p.Lo[a];
-      d.Hi[a] = p.Hi[a];
-      d.CellSize[a] = levelCellSize[static_cast<std::size_t>(grid.Level)][a];
-      const int64_t first = amrsp::FloorDiv(node.Region.Lo[a], toData[a]);
-      const int64_t last = amrsp::CeilDiv(node.Region.Hi[a], toData[a]) - 1;
-      d.FirstCell[a] = static_cast<int>(first);
-      d.LastCell[a] = static_cast<int>(last);
-      d.AtlasOffset[a] = origin[a] + static_cast<int>(first - grid.Cells.Lo[a]);
-    }
-    this->DrawOfNode[static_cast<std::size_t>(p.Node)] = static_cast<int32_t>(this->Draws.size());
-    this->Draws.push_back(d);
-  }
+  this->Nodes = amrsp::ListMultiPassNodes(this->Data.Structure, this->Data.Tree, this->Data.Atlas);
   this->TextureBytes = this->Data.Atlas.TotalTexels() * static_cast<long long>(sizeof(float));
   return true;
 }
@@ -352,7 +288,7 @@ long long vtkMultiPassAMRVolumeMapper::GetNumberOfKdNodes()
 
 long long vtkMultiPassAMRVolumeMapper::GetNumberOfDataNodes()
 {
-  return this->Internals->DataNodes;
+  return this->Internals->Nodes.DataNodes;
 }
 
 long long vtkMultiPassAMRVolumeMapper::GetLastNumberOfPasses()
@@ -370,8 +306,8 @@ void vtkMultiPassAMRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   const vtkInternals& in = *this->Internals;
-  os << indent << "KdNodes: " << in.Data.Tree.Nodes.size() << ", DataNodes: " << in.DataNodes
-     << ", drawn leaves: " << in.Draws.size() << "\n";
+  os << indent << "KdNodes: " << in.Data.Tree.Nodes.size() << ", DataNodes: " << in.Nodes.DataNodes
+     << ", drawn leaves: " << in.Nodes.Draws.size() << "\n";
   const glm::ivec3 d = (in.Data.Atlas.Pages.empty() ? glm::ivec3(0) : in.Data.Atlas.Pages[0].Dims);
   os << indent << "AtlasDimensions: " << d.x << " x " << d.y << " x " << d.z << "\n";
   os << indent << "LastNumberOfPasses: " << in.Passes << "\n";

@@ -50,42 +50,9 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::OrderNodes(
   const vtkSinglePassAMRViewGeometry::ViewGeometry& view)
 {
   const auto t0 = std::chrono::steady_clock::now();
-  const amrsp::Hierarchy& h = this->Data.Structure;
-  const amrsp::KdTree& tree = this->Data.Tree;
-  // the eye in finest cells (the unit of the nodes' exact regions), and the viewing direction in
-  // index space (only its signs matter)
-  const glm::dvec3 finest(h.CumulativeRatio(tree.FinestLevel));
-  const glm::dvec3 eye =
-    (glm::dvec3(view.Eye[0], view.Eye[1], view.Eye[2]) - h.Origin) / h.Spacing0 * finest;
-  const glm::dvec3 direction =
-    glm::dvec3(view.Direction[0], view.Direction[1], view.Direction[2]) / h.Spacing0;
-
-  this->Order.clear();
-  std::vector<int32_t> stack{ 0 };
-  while (!stack.empty())
-  {
-    const int32_t n = stack.back();
-    stack.pop_back();
-    const amrsp::KdNode& node = tree.Nodes[static_cast<std::size_t>(n)];
-    if (node.IsLeaf())
-    {
-      const int32_t draw = this->DrawOfNode[static_cast<std::size_t>(n)];
-      if (draw >= 0)
-      {
-        this->Order.push_back(draw);
-      }
-      continue;
-    }
-    // Any ray from the eye that crosses the split plane goes from the eye's side to the other
-    // (parallel rays: from the side they come from), so visiting the eye's side first orders
-    // every ray's segments front to back.
-    const int a = node.Axis;
-    const double plane =
-      static_cast<double>(tree.Nodes[static_cast<std::size_t>(node.FirstChild)].Region.Hi[a]);
-    const bool lowerFirst = view.Parallel ? direction[a] >= 0.0 : eye[a] < plane;
-    stack.push_back(lowerFirst ? node.FirstChild + 1 : node.FirstChild); // visited second
-    stack.push_back(lowerFirst ? node.FirstChild : node.FirstChild + 1);
-  }
+  this->Order = amrsp::OrderFrontToBack(this->Data.Structure, this->Data.Tree, this->Nodes,
+    glm::dvec3(view.Eye[0], view.Eye[1], view.Eye[2]),
+    glm::dvec3(view.Direction[0], view.Direction[1], view.Direction[2]), view.Parallel);
   this->OrderSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
@@ -126,7 +93,7 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::DrawNodes(vtkOpenGLState* state,
 
   for (const int32_t d : this->Order)
   {
-    const vtkMultiPassAMRNodeDraw& node = this->Draws[static_cast<std::size_t>(d)];
+    const amrsp::NodeDraw& node = this->Nodes.Draws[static_cast<std::size_t>(d)];
     float lo[3], hi[3];
     bool inside = true;
     for (int a = 0; a < 3; ++a)

@@ -18,6 +18,8 @@
 #include "vtkSinglePassAMRTransferFunctionTable.h"
 #include "vtkSinglePassAMRViewGeometry.h"
 
+#include "amrsp/MultiPassNodes.h"
+
 #include "vtkNew.h"
 #include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLVertexArrayObject.h"
@@ -38,24 +40,6 @@ class vtkShaderProgram;
 class vtkVolume;
 class vtkVolumeProperty;
 class vtkWindow;
-
-/// Everything one draw needs about its data node (the per-node uniforms).
-struct vtkMultiPassAMRNodeDraw
-{
-  /// The node's box in level-0 index units, computed from the root down in float exactly as the
-  /// single-pass shader computes it during its traversal (plane = lo + split * cell size).
-  float Lo[3];
-  float Hi[3];
-  /// Size of a cell of the node's data level, level-0 index units (float, as the shaders').
-  float CellSize[3];
-  int Level = 0;
-  /// First and last cell of the node in its level's index space (exact: floor and ceiling of the
-  /// node's finest-cell box), and the atlas texel holding FirstCell.
-  int FirstCell[3];
-  int LastCell[3];
-  int AtlasOffset[3];
-  int Page = 0; ///< the atlas page (texture) holding the node's brick
-};
 
 //------------------------------------------------------------------------------
 class vtkMultiPassAMRVolumeMapper::vtkInternals
@@ -86,14 +70,12 @@ public:
 
   // ---- CPU results of the build
   vtkSinglePassAMRPackedAtlas::PackedHierarchy
-    Data;                                     // Data.Structure.Values are dropped once uploaded
-  std::vector<vtkMultiPassAMRNodeDraw> Draws; // one per leaf with data
-  std::vector<int32_t> DrawOfNode;            // kD node index -> index into Draws, -1 for none
-  long long DataNodes = 0;                    // types (a) and (b)
+    Data;                      // Data.Structure.Values are dropped once uploaded
+  amrsp::MultiPassNodes Nodes; // one draw per leaf with data (amrsp/MultiPassNodes.h)
   long long TextureBytes = 0;
 
   // ---- per frame
-  std::vector<int32_t> Order; // indices into Draws, front to back
+  std::vector<int32_t> Order; // indices into Nodes.Draws, front to back
   double OrderSeconds = 0.0;
   long long Passes = 0;
 

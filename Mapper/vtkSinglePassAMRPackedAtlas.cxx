@@ -24,47 +24,6 @@ namespace vtkSinglePassAMRPackedAtlas
 //------------------------------------------------------------------------------
 namespace
 {
-/// BuildPackedHierarchy on a converted hierarchy, or keeping `out`'s structure when `h` has it
-/// and `mayRefresh`.
-bool PackHierarchy(amrsp::Hierarchy converted, int packLimit, int64_t maxPageTexels,
-  bool mayRefresh, PackedHierarchy& out, bool& refreshed, std::string& error)
-{
-  refreshed = false;
-  try
-  {
-    if (mayRefresh && !out.Tree.Nodes.empty() && amrsp::SameStructure(out.Structure, converted))
-    {
-      amrsp::FiniteValueRange(converted, out.ScalarRange); // as the full build below
-      out.Structure.Values = std::move(converted.Values);
-      refreshed = true;
-      return true;
-    }
-    out = PackedHierarchy();
-    out.Structure = std::move(converted);
-    const amrsp::Hierarchy& h = out.Structure;
-    out.Tree = amrsp::BuildKdTree(h);
-    // one brick per grid (cells, or vertices one texel larger), packed within the per-axis limit
-    // the data-node offsets can address and MaximumAtlasSize when set
-    out.Atlas =
-      amrsp::PackBricksInPages(amrsp::BrickExtents(h, h.VertexCentred), amrsp::Packer::Best,
-        amrsp::AtlasLimits(packLimit > 0 ? std::min(packLimit, 2048) : 2048), maxPageTexels);
-    out.VertexCentred = h.VertexCentred;
-
-    // the level table and the finite range as the single-pass build computes them
-    const amrsp::LevelTable levels = amrsp::ComputeLevelTable(h, out.Tree);
-    out.LevelMinEdge = levels.LevelMinEdge;
-    std::copy(levels.Bounds, levels.Bounds + 6, out.Bounds);
-    amrsp::FiniteValueRange(h, out.ScalarRange);
-  }
-  catch (const std::exception& e)
-  {
-    error = e.what();
-    out = PackedHierarchy();
-    return false;
-  }
-  return true;
-}
-
 bool ConvertAndPack(vtkOverlappingAMR* amr, const std::string& array, int component, int packLimit,
   int64_t maxPageTexels, bool mayRefresh, PackedHierarchy& out, bool& refreshed, std::string& error)
 {
@@ -87,7 +46,8 @@ bool ConvertAndPack(vtkOverlappingAMR* amr, const std::string& array, int compon
     out = PackedHierarchy();
     return false;
   }
-  return PackHierarchy(std::move(h), packLimit, maxPageTexels, mayRefresh, out, refreshed, error);
+  return amrsp::PackHierarchy(
+    std::move(h), packLimit, maxPageTexels, mayRefresh, out, refreshed, error);
 }
 } // namespace
 

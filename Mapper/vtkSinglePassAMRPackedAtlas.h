@@ -4,9 +4,9 @@
  * @brief   the packed atlas: its CPU build and its upload (private to the module)
  *
  * The paper's packing storage (sections 4.1 and 5.1): every grid's brick packed into one R32F
- * 3D atlas (or a few pages of it). The CPU build (conversion, kD-tree, packing, level table,
- * scalar range) as the multi-pass mapper uses it, the atlas's size checks, and its upload slab by
- * slab, which the single-pass storage uses too.
+ * 3D atlas (or a few pages of it). The multi-pass mapper's build from vtkOverlappingAMR (the
+ * conversion, then amrsp::PackHierarchy), the atlas's size checks, and its upload slab by slab,
+ * which vtkSinglePassAMRAtlasTextures holds for both mappers.
  */
 #ifndef vtkSinglePassAMRPackedAtlas_h
 #define vtkSinglePassAMRPackedAtlas_h
@@ -14,7 +14,7 @@
 #include "amrsp/AtlasPages.h"
 #include "amrsp/BrickAtlas.h"
 #include "amrsp/Hierarchy.h"
-#include "amrsp/KdTree.h"
+#include "amrsp/PackedHierarchy.h"
 
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
@@ -30,27 +30,7 @@ class vtkOverlappingAMR;
 namespace vtkSinglePassAMRPackedAtlas
 {
 
-/**
- * The CPU side of the packing storage (paper, sections 4.1 and 5.1): the hierarchy's structure,
- * its kD-tree, one brick per grid packed into one float atlas, and what the shaders need about
- * the levels.
- */
-struct PackedHierarchy
-{
-  /// Grids, ratios, origin and spacing, and the values until the atlas holds them.
-  amrsp::Hierarchy Structure;
-  amrsp::KdTree Tree;
-  /// Where each grid's brick lies in the atlas pages (usually one); Structure.Values are the
-  /// bricks (borrowed from the input where possible), dropped by the caller after the upload.
-  amrsp::AtlasPages Atlas;
-  bool VertexCentred = false; ///< vertex bricks (trilinear) instead of cell bricks (nearest)
-  /// Smallest model-space edge of a cell of each level (the sampling rule's D for factor 1).
-  std::vector<double> LevelMinEdge;
-  /// Finite value range of the selected scalars ([0, 1] when there is none).
-  double ScalarRange[2] = { 0.0, 1.0 };
-  /// Model-space bounds of the root box [xmin, xmax, ymin, ymax, zmin, zmax].
-  double Bounds[6] = { 0.0, -1.0, 0.0, -1.0, 0.0, -1.0 };
-};
+using amrsp::PackedHierarchy;
 
 /**
  * Converts `amr` (array `array`, component `component`), builds the kD-tree and packs the bricks
