@@ -2,8 +2,8 @@
 #include "vtkAMRKdTreeVolumeMapper.h"
 #include "vtkSinglePassAMRDataModel.h"
 
-#include "vtkSinglePassAMRConversion.h"
-#include "vtkSinglePassAMRContextCapabilities.h"
+#include "vtkAMRMapperConversion.h"
+#include "vtkAMRMapperContextCapabilities.h"
 
 #include "vtkInformation.h"
 #include "vtkMath.h"
@@ -103,13 +103,13 @@ void vtkAMRKdTreeVolumeMapper::GetBounds(double bounds[6])
 //------------------------------------------------------------------------------
 bool vtkAMRKdTreeVolumeMapper::IsRenderSupported(vtkRenderWindow* window, std::string* why)
 {
-  return vtkSinglePassAMRContextCapabilities::IsRenderSupported(window, why);
+  return vtkAMRMapperContextCapabilities::IsRenderSupported(window, why);
 }
 
 //------------------------------------------------------------------------------
 bool vtkAMRKdTreeVolumeMapper::EnsureBuilt(vtkOverlappingAMR* amr)
 {
-  const std::string array = vtkSinglePassAMRConversion::RequestedArray(
+  const std::string array = vtkAMRMapperConversion::RequestedArray(
     amr, this->ArrayAccessMode, this->ArrayName, this->ArrayId);
   const bool sameSettings = this->BuiltArray == array &&
     this->BuiltComponent == this->ArrayComponent &&

@@ -2,13 +2,13 @@
 #include "vtkMultiPassAMRVolumeMapper.h"
 #include "vtkMultiPassAMRVolumeMapperInternals.h"
 
-#include "vtkSinglePassAMRDepthCopy.h"
-#include "vtkSinglePassAMRPackedAtlas.h"
-#include "vtkSinglePassAMRProxyBox.h"
-#include "vtkSinglePassAMRScopedBlendedDraw.h"
-#include "vtkSinglePassAMRShaderComposer.h"
-#include "vtkSinglePassAMRTransferFunctionTable.h"
-#include "vtkSinglePassAMRViewGeometry.h"
+#include "vtkAMRMapperDepthCopy.h"
+#include "vtkAMRMapperPackedAtlas.h"
+#include "vtkAMRMapperProxyBox.h"
+#include "vtkAMRMapperScopedBlendedDraw.h"
+#include "vtkAMRMapperShaderComposer.h"
+#include "vtkAMRMapperTransferFunctionTable.h"
+#include "vtkAMRMapperViewGeometry.h"
 
 #include "amrsp/MultiPassNodes.h"
 #include "amrsp/Hierarchy.h"
@@ -33,8 +33,8 @@
 #include "vtkTextureObject.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
-#include "vtkSinglePassAMROffscreenImage.h"
-#include "vtkSinglePassAMROpenGL.h"
+#include "vtkAMRMapperOffscreenImage.h"
+#include "vtkAMRMapperOpenGL.h"
 
 // GLSL embedded at build time (vtk_encode_string)
 #include "amrsp_MultiPassAMR_frag_glsl.h"
@@ -54,7 +54,7 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::Build(vtkOverlappingAMR* amr,
   const std::string& array, int component, int packLimit, int64_t maxPageTexels, bool mayRefresh,
   bool& refreshed, std::string& error)
 {
-  const bool ok = vtkSinglePassAMRPackedAtlas::RefreshPackedHierarchy(
+  const bool ok = vtkAMRMapperPackedAtlas::RefreshPackedHierarchy(
     amr, array, component, packLimit, maxPageTexels, mayRefresh, this->Data, refreshed, error);
   if (ok && refreshed)
   {
@@ -166,9 +166,9 @@ void vtkMultiPassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     return;
   }
-  vtkSinglePassAMRViewGeometry::ViewGeometry view;
+  vtkAMRMapperViewGeometry::ViewGeometry view;
   std::string error;
-  if (!vtkSinglePassAMRViewGeometry::ComputeViewGeometry(ren, vol, view, error) ||
+  if (!vtkAMRMapperViewGeometry::ComputeViewGeometry(ren, vol, view, error) ||
     !in.Accumulation.Ensure(renWin, view.Width, view.Height, false, error))
   {
     this->ReportError(error);
@@ -277,7 +277,7 @@ long long vtkMultiPassAMRVolumeMapper::GetTextureBytes()
 
 long long vtkMultiPassAMRVolumeMapper::GetAccumulationBytes()
 {
-  const vtkSinglePassAMROffscreenImage& a = this->Internals->Accumulation;
+  const vtkAMRMapperOffscreenImage& a = this->Internals->Accumulation;
   return 16LL * a.GetWidth() * a.GetHeight();
 }
 

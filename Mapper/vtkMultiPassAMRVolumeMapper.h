@@ -9,7 +9,7 @@
  * inside that box and the segments are composited by blending, front to back across the draws.
  *
  * - Data: the same decomposition and storage as vtkSinglePassAMRVolumeMapper's packing path
- *   (vtkSinglePassAMRConversion, amrsp::BuildKdTree, one brick per grid in one packed R32F atlas).
+ *   (vtkAMRMapperConversion, amrsp::BuildKdTree, one brick per grid in one packed R32F atlas).
  *   No tree textures: the tree lives on the CPU only.
  * - Each frame: the tree's leaves with data (type (b) nodes, the finest level everywhere; no
  *   level of detail) are ordered front to back for the current camera: at every inner node the

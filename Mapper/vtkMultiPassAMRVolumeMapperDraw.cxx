@@ -3,13 +3,13 @@
 // uniforms, the unit cube each node is drawn as (vtkMultiPassAMRVolumeMapperInternals.h).
 #include "vtkMultiPassAMRVolumeMapperInternals.h"
 
-#include "vtkSinglePassAMRDepthCopy.h"
-#include "vtkSinglePassAMRPackedAtlas.h"
-#include "vtkSinglePassAMRProxyBox.h"
-#include "vtkSinglePassAMRScopedBlendedDraw.h"
-#include "vtkSinglePassAMRShaderComposer.h"
-#include "vtkSinglePassAMRTransferFunctionTable.h"
-#include "vtkSinglePassAMRViewGeometry.h"
+#include "vtkAMRMapperDepthCopy.h"
+#include "vtkAMRMapperPackedAtlas.h"
+#include "vtkAMRMapperProxyBox.h"
+#include "vtkAMRMapperScopedBlendedDraw.h"
+#include "vtkAMRMapperShaderComposer.h"
+#include "vtkAMRMapperTransferFunctionTable.h"
+#include "vtkAMRMapperViewGeometry.h"
 #include "amrsp/Hierarchy.h"
 #include "amrsp/IntegerMath.h"
 #include "amrsp/SampleStep.h"
@@ -31,8 +31,8 @@
 #include "vtkTextureObject.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
-#include "vtkSinglePassAMROffscreenImage.h"
-#include "vtkSinglePassAMROpenGL.h"
+#include "vtkAMRMapperOffscreenImage.h"
+#include "vtkAMRMapperOpenGL.h"
 #include "amrsp_MultiPassAMR_frag_glsl.h"
 #include "amrsp_MultiPassAMR_vert_glsl.h"
 #include "amrsp_BrickSample_glsl.h"
@@ -47,7 +47,7 @@
 
 //------------------------------------------------------------------------------
 void vtkMultiPassAMRVolumeMapper::vtkInternals::OrderNodes(
-  const vtkSinglePassAMRViewGeometry::ViewGeometry& view)
+  const vtkAMRMapperViewGeometry::ViewGeometry& view)
 {
   const auto t0 = std::chrono::steady_clock::now();
   this->Order = amrsp::OrderFrontToBack(this->Data.Structure, this->Data.Tree, this->Nodes,
@@ -58,7 +58,7 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::OrderNodes(
 
 //------------------------------------------------------------------------------
 void vtkMultiPassAMRVolumeMapper::vtkInternals::DrawNodes(vtkOpenGLState* state,
-  vtkShaderProgram* program, const vtkSinglePassAMRViewGeometry::ViewGeometry& view,
+  vtkShaderProgram* program, const vtkAMRMapperViewGeometry::ViewGeometry& view,
   const std::vector<float>& steps, const glm::vec3& clipLo, const glm::vec3& clipHi)
 {
   // per-node uniforms are set directly through their locations (thousands per frame)
@@ -83,7 +83,7 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::DrawNodes(vtkOpenGLState* state,
   // back faces: one fragment per covered pixel, also with the eye inside the box; a mirroring
   // volume transform flips the winding. Front to back: dst += (1 - dst.a) * src for colour and
   // opacity (src premultiplied)
-  const vtkSinglePassAMRScopedBlendedDraw blended(
+  const vtkAMRMapperScopedBlendedDraw blended(
     state, view.Mirrored ? GL_BACK : GL_FRONT, GL_ONE_MINUS_DST_ALPHA, GL_ONE);
   // no near/far clipping: the back faces of a node between the eye and the near plane still
   // reach the shader, which starts the rays at the eye as the single-pass shader does
@@ -149,12 +149,12 @@ vtkShaderProgram* vtkMultiPassAMRVolumeMapper::vtkInternals::ReadyShaders(
     defines += "#define AMRSP_LOG_TRANSFER 1\n";
   }
   const std::string fragment =
-    vtkSinglePassAMRShaderComposer::ComposeFragmentShader(amrsp_MultiPassAMR_frag_glsl, defines,
+    vtkAMRMapperShaderComposer::ComposeFragmentShader(amrsp_MultiPassAMR_frag_glsl, defines,
       { { "RayCommon", amrsp_RayCommon_glsl }, { "BrickSample", amrsp_BrickSample_glsl },
         { "GridStorage", amrsp_StoragePackedAtlas_glsl } },
       vol);
   std::string error;
-  vtkShaderProgram* program = vtkSinglePassAMRShaderComposer::ReadyProgram(renWin,
+  vtkShaderProgram* program = vtkAMRMapperShaderComposer::ReadyProgram(renWin,
     amrsp_MultiPassAMR_vert_glsl, fragment, "multi-pass AMR", this->FailedFragmentSource, error);
   if (!program)
   {
@@ -170,10 +170,10 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::BindCube(vtkShaderProgram* progr
   {
     const double lo[3] = { 0.0, 0.0, 0.0 }, hi[3] = { 1.0, 1.0, 1.0 };
     this->CubeBuffer->Upload(
-      vtkSinglePassAMRProxyBox::BoxTriangles(lo, hi), vtkOpenGLBufferObject::ArrayBuffer);
+      vtkAMRMapperProxyBox::BoxTriangles(lo, hi), vtkOpenGLBufferObject::ArrayBuffer);
     this->CubeArrayProgram = nullptr;
   }
-  if (!vtkSinglePassAMRProxyBox::BindTriangles(
+  if (!vtkAMRMapperProxyBox::BindTriangles(
         this->CubeArray, this->CubeBuffer, program, "amrspCorner", this->CubeArrayProgram))
   {
     this->Self->ReportError("cannot bind the node box's vertices to the shader");
@@ -184,7 +184,7 @@ bool vtkMultiPassAMRVolumeMapper::vtkInternals::BindCube(vtkShaderProgram* progr
 
 //------------------------------------------------------------------------------
 void vtkMultiPassAMRVolumeMapper::vtkInternals::SetFrameUniforms(vtkShaderProgram* program,
-  vtkVolumeProperty* property, const vtkSinglePassAMRViewGeometry::ViewGeometry& view)
+  vtkVolumeProperty* property, const vtkAMRMapperViewGeometry::ViewGeometry& view)
 {
   const amrsp::Hierarchy& h = this->Data.Structure;
   const glm::vec3 origin(h.Origin);
@@ -212,7 +212,7 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::SetFrameUniforms(vtkShaderProgra
   program->SetUniform3f("amrspSpacing0", &spacing.x);
   program->SetUniform2f("amrspTransferRange", transferRange);
   program->SetUniformf(
-    "amrspTransferSize", static_cast<float>(vtkSinglePassAMRTransferFunctionTable::Size));
+    "amrspTransferSize", static_cast<float>(vtkAMRMapperTransferFunctionTable::Size));
   program->SetUniformf("amrspUnitDistance",
     static_cast<float>(std::max(property->GetScalarOpacityUnitDistance(0), 1e-12)));
   program->SetUniform3f("amrspAtlasSize", &atlasSize.x);
@@ -224,7 +224,7 @@ void vtkMultiPassAMRVolumeMapper::vtkInternals::ClipBox(glm::vec3& clipLo, glm::
   const amrsp::Hierarchy& h = this->Data.Structure;
   const amrsp::Box root = h.RootCells();
   std::string cropWarning;
-  vtkSinglePassAMRProxyBox::ClipBox(this->Self, h.Origin, h.Spacing0, glm::vec3(root.Lo),
+  vtkAMRMapperProxyBox::ClipBox(this->Self, h.Origin, h.Spacing0, glm::vec3(root.Lo),
     glm::vec3(root.Hi), clipLo, clipHi, cropWarning);
   if (!cropWarning.empty())
   {

@@ -11,12 +11,12 @@
 
 #include "vtkMultiPassAMRVolumeMapper.h"
 
-#include "vtkSinglePassAMRAtlasTextures.h"
-#include "vtkSinglePassAMRDepthCopy.h"
-#include "vtkSinglePassAMROffscreenImage.h"
-#include "vtkSinglePassAMRPackedAtlas.h"
-#include "vtkSinglePassAMRTransferFunctionTable.h"
-#include "vtkSinglePassAMRViewGeometry.h"
+#include "vtkAMRMapperAtlasTextures.h"
+#include "vtkAMRMapperDepthCopy.h"
+#include "vtkAMRMapperOffscreenImage.h"
+#include "vtkAMRMapperPackedAtlas.h"
+#include "vtkAMRMapperTransferFunctionTable.h"
+#include "vtkAMRMapperViewGeometry.h"
 
 #include "amrsp/MultiPassNodes.h"
 
@@ -61,7 +61,7 @@ public:
   bool BindCube(vtkShaderProgram* program);
   /// Activates the atlas and transfer table and sets the per-frame uniforms.
   void SetFrameUniforms(vtkShaderProgram* program, vtkVolumeProperty* property,
-    const vtkSinglePassAMRViewGeometry::ViewGeometry& view);
+    const vtkAMRMapperViewGeometry::ViewGeometry& view);
   /// The box the rays integrate in (index units): the root box, cropped (warns once when the
   /// cropping flags are not supported).
   void ClipBox(glm::vec3& clipLo, glm::vec3& clipHi);
@@ -69,8 +69,7 @@ public:
   vtkMultiPassAMRVolumeMapper* Self;
 
   // ---- CPU results of the build
-  vtkSinglePassAMRPackedAtlas::PackedHierarchy
-    Data;                      // Data.Structure.Values are dropped once uploaded
+  vtkAMRMapperPackedAtlas::PackedHierarchy Data; // Data.Structure.Values are dropped once uploaded
   amrsp::MultiPassNodes Nodes; // one draw per leaf with data (amrsp/MultiPassNodes.h)
   long long TextureBytes = 0;
 
@@ -81,12 +80,12 @@ public:
 
   // ---- OpenGL resources
   vtkOpenGLRenderWindow* Context = nullptr;
-  int UploadLimit = 0;                 // MaximumAtlasSize of the last upload attempt
-  vtkMTimeType UploadedBuildTime = 0;  // the build the atlas on the GPU holds
-  vtkSinglePassAMRAtlasTextures Atlas; // the packed atlas's pages
-  vtkSinglePassAMRDepthCopy Depth;
-  vtkSinglePassAMROffscreenImage Accumulation; // viewport-sized, nearest filtering
-  vtkSinglePassAMRTransferFunctionTable Transfer;
+  int UploadLimit = 0;                // MaximumAtlasSize of the last upload attempt
+  vtkMTimeType UploadedBuildTime = 0; // the build the atlas on the GPU holds
+  vtkAMRMapperAtlasTextures Atlas;    // the packed atlas's pages
+  vtkAMRMapperDepthCopy Depth;
+  vtkAMRMapperOffscreenImage Accumulation; // viewport-sized, nearest filtering
+  vtkAMRMapperTransferFunctionTable Transfer;
   vtkNew<vtkOpenGLBufferObject> CubeBuffer;
   vtkNew<vtkOpenGLVertexArrayObject> CubeArray;
   vtkShaderProgram* CubeArrayProgram = nullptr;
@@ -101,7 +100,7 @@ public:
     int64_t maxPageTexels, bool mayRefresh, bool& refreshed, std::string& error);
 
   /// Fills Order with the data leaves front to back for rays from `view` (see the class comment).
-  void OrderNodes(const vtkSinglePassAMRViewGeometry::ViewGeometry& view);
+  void OrderNodes(const vtkAMRMapperViewGeometry::ViewGeometry& view);
 
   /// Clears the accumulation target and draws the ordered nodes into it, front to back. The
   /// program, its per-frame uniforms, the textures and the cube's vertex array are ready;
@@ -109,7 +108,7 @@ public:
   /// intersected with [clipLo, clipHi] (index units; the cropping sub-volume or the root box),
   /// and nodes outside it are not drawn.
   void DrawNodes(vtkOpenGLState* state, vtkShaderProgram* program,
-    const vtkSinglePassAMRViewGeometry::ViewGeometry& view, const std::vector<float>& steps,
+    const vtkAMRMapperViewGeometry::ViewGeometry& view, const std::vector<float>& steps,
     const glm::vec3& clipLo, const glm::vec3& clipHi);
 
   void ReleaseGraphicsResources(vtkWindow* window);

@@ -2,7 +2,7 @@
 #include "vtkSinglePassAMRBindlessBricks.h"
 
 #include "vtkSinglePassAMRShaderVariant.h"
-#include "vtkSinglePassAMRTextures.h"
+#include "vtkAMRMapperTextures.h"
 
 #include "amrsp/BrickAtlas.h"
 #include "amrsp/EmptySpace.h"
@@ -11,7 +11,7 @@
 #include "vtkOpenGLState.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
-#include "vtkSinglePassAMROpenGL.h"
+#include "vtkAMRMapperOpenGL.h"
 #include "vtkTextureUnitManager.h"
 
 #include <algorithm>
@@ -161,7 +161,7 @@ bool vtkSinglePassAMRBindlessBricks::Upload(vtkOpenGLRenderWindow* renWin,
     handles.Texels[g] = glm::uvec2(static_cast<uint32_t>(this->Handles[g] & 0xffffffffu),
       static_cast<uint32_t>(this->Handles[g] >> 32));
   }
-  this->HandlesTexture = vtkSinglePassAMRTextures::MakeIntegerTexture(renWin, handles);
+  this->HandlesTexture = vtkAMRMapperTextures::MakeIntegerTexture(renWin, handles);
   if (!this->HandlesTexture)
   {
     return false;

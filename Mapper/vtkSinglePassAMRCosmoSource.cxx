@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSinglePassAMRCosmoSource.h"
 
-#include "vtkSinglePassAMRConversion.h"
+#include "vtkAMRMapperConversion.h"
 #include "vtkDataObject.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -79,7 +79,7 @@ int vtkSinglePassAMRCosmoSource::RequestData(
   try
   {
     const amrsp::Hierarchy h = amrsp::GenerateCosmo(p);
-    vtkSinglePassAMRConversion::ToOverlappingAMR(h, output);
+    vtkAMRMapperConversion::ToOverlappingAMR(h, output);
     if (p.Steps > 1)
     {
       output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), static_cast<double>(p.Step));

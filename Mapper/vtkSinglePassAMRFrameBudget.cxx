@@ -5,7 +5,7 @@
 #include "vtkOpenGLState.h"
 #include "vtkVolume.h"
 
-#include "vtkSinglePassAMROpenGL.h"
+#include "vtkAMRMapperOpenGL.h"
 
 #include <algorithm>
 #include <cmath>

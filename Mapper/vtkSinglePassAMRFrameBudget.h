@@ -21,7 +21,7 @@
 
 #include "amrsp/InteractiveQuality.h"
 
-#include "vtkSinglePassAMROffscreenImage.h"
+#include "vtkAMRMapperOffscreenImage.h"
 
 #include <chrono>
 #include <functional>
@@ -59,7 +59,7 @@ public:
   static void ReducedSize(int width, int height, double d, int& w, int& h);
 
   /// The offscreen image the rays of a reduced frame go into.
-  vtkSinglePassAMROffscreenImage Image;
+  vtkAMRMapperOffscreenImage Image;
 
   // what the last frame did
   bool LastInteractive = false;

@@ -4,7 +4,7 @@
  * @brief   one storage of the grid values on the GPU, behind the interface the mapper uses
  *
  * Private to the module. Each storage is one class with one .cxx and one GLSL piece:
- * vtkSinglePassAMRAtlasTextures (PackedAtlas, Shaders/StoragePackedAtlas.glsl),
+ * vtkAMRMapperAtlasTextures (PackedAtlas, Shaders/StoragePackedAtlas.glsl),
  * vtkSinglePassAMRBindlessBricks (BindlessTextures, Shaders/StorageBindless.glsl) and
  * vtkSinglePassAMRLinearBricks (LinearBricks, Shaders/StorageLinearBricks.glsl).
  * vtkSinglePassAMRGridStorage owns the tree textures every storage shares and one of these;

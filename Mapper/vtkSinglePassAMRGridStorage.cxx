@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSinglePassAMRGridStorage.h"
 
-#include "vtkSinglePassAMRAtlasTextures.h"
+#include "vtkAMRMapperAtlasTextures.h"
 #include "vtkSinglePassAMRBindlessBricks.h"
 #include "vtkSinglePassAMRLinearBricks.h"
-#include "vtkSinglePassAMRPackedAtlas.h"
-#include "vtkSinglePassAMRTextures.h"
+#include "vtkAMRMapperPackedAtlas.h"
+#include "vtkAMRMapperTextures.h"
 
 #include "amrsp/AtlasPages.h"
 #include "amrsp/BrickAtlas.h"
@@ -14,7 +14,7 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
-#include "vtkSinglePassAMROpenGL.h"
+#include "vtkAMRMapperOpenGL.h"
 
 #include <algorithm>
 #include <chrono>
@@ -106,7 +106,7 @@ vtkSinglePassAMRStorageChoice vtkSinglePassAMRGridStorage::Choose(vtkOpenGLRende
   for (const glm::ivec3& dims : data.PageDims)
   {
     facts.AtlasFits = facts.AtlasFits &&
-      vtkSinglePassAMRPackedAtlas::AtlasFitsContext(renWin, dims, atlasLimit, facts.NoAtlas);
+      vtkAMRMapperPackedAtlas::AtlasFitsContext(renWin, dims, atlasLimit, facts.NoAtlas);
   }
   facts.AtlasWaste = data.AtlasWaste;
   facts.BrickBytes = data.BrickBytes;
@@ -141,7 +141,7 @@ std::unique_ptr<vtkSinglePassAMRGridData> vtkSinglePassAMRGridStorage::NewGridDa
     linear->SetMaximumPageBytes(this->LinearPageBytes);
     return std::unique_ptr<vtkSinglePassAMRGridData>(linear.release());
   }
-  std::unique_ptr<vtkSinglePassAMRAtlasTextures> atlas(new vtkSinglePassAMRAtlasTextures);
+  std::unique_ptr<vtkAMRMapperAtlasTextures> atlas(new vtkAMRMapperAtlasTextures);
   atlas->SetAtlasLimit(this->UploadLimit);
   return std::unique_ptr<vtkSinglePassAMRGridData>(atlas.release());
 }
@@ -221,11 +221,11 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, amrsp::D
   {
   }
 
-  this->Tree = vtkSinglePassAMRTextures::MakeIntegerTexture(renWin, data.TreeTexels);
-  this->DataNodes = vtkSinglePassAMRTextures::MakeIntegerTexture(renWin, dataNodes);
+  this->Tree = vtkAMRMapperTextures::MakeIntegerTexture(renWin, data.TreeTexels);
+  this->DataNodes = vtkAMRMapperTextures::MakeIntegerTexture(renWin, dataNodes);
   this->Ropes = data.RopeTexels.Texels.empty()
     ? nullptr
-    : vtkSinglePassAMRTextures::MakeInteger4Texture(renWin, data.RopeTexels);
+    : vtkAMRMapperTextures::MakeInteger4Texture(renWin, data.RopeTexels);
   bool ok = this->Tree && this->DataNodes && (this->Ropes || data.RopeTexels.Texels.empty());
   ok = ok && grid->Upload(renWin, data, error, progress);
   if (ok)
@@ -245,7 +245,7 @@ bool vtkSinglePassAMRGridStorage::Upload(vtkOpenGLRenderWindow* renWin, amrsp::D
           static_cast<uint32_t>(static_cast<int32_t>(box.Hi[a])));
       }
     }
-    this->BrickBoxes = vtkSinglePassAMRTextures::MakeIntegerTexture(renWin, boxes);
+    this->BrickBoxes = vtkAMRMapperTextures::MakeIntegerTexture(renWin, boxes);
     ok = this->BrickBoxes != nullptr;
   }
   const GLenum glError = glGetError();
@@ -383,5 +383,5 @@ void vtkSinglePassAMRGridStorage::ReleaseGraphicsResources(vtkWindow* window)
     }
   }
   this->Context = nullptr;
-  this->Caps = vtkSinglePassAMRContextCapabilities();
+  this->Caps = vtkAMRMapperContextCapabilities();
 }

@@ -8,11 +8,11 @@
  * - the kD-tree (RG32UI) and its data nodes (RG32UI) of amrsp::RayCastingData, the one owner of
  *   the tree textures;
  * - the grid data in one storage behind vtkSinglePassAMRGridData: the packed atlas
- *   (vtkSinglePassAMRAtlasTextures), bindless textures (vtkSinglePassAMRBindlessBricks) or linear
+ *   (vtkAMRMapperAtlasTextures), bindless textures (vtkSinglePassAMRBindlessBricks) or linear
  *   bricks (vtkSinglePassAMRLinearBricks);
  * - the grids' cell boxes (RG32UI, 3 texels per grid) for the smooth-cell reconstruction;
  * - the empty-space flags (R8, one per data node) for the current transfer-function table.
- * It also answers what the context can do (vtkSinglePassAMRContextCapabilities, queried once per
+ * It also answers what the context can do (vtkAMRMapperContextCapabilities, queried once per
  * context), the facts vtkSinglePassAMRStorageChoice and the ray-caster rule decide on.
  */
 #ifndef vtkSinglePassAMRGridStorage_h
@@ -20,7 +20,7 @@
 
 #include "amrsp/RayCastingData.h"
 
-#include "vtkSinglePassAMRContextCapabilities.h"
+#include "vtkAMRMapperContextCapabilities.h"
 #include "vtkSinglePassAMRGridData.h"
 #include "vtkSinglePassAMRRayCasterChoice.h"
 #include "vtkSinglePassAMRShaderVariant.h"
@@ -175,7 +175,7 @@ private:
   long long LinearPageBytes = 0;
   vtkOpenGLRenderWindow* Context = nullptr;
 
-  vtkSinglePassAMRContextCapabilities Caps; // of the context last asked
+  vtkAMRMapperContextCapabilities Caps; // of the context last asked
   // zink frees a deleted texture's bindless slot only when the batch that deleted it is
   // recycled, not at glFinish: a regridded series of 600 grids crashed its driver thread (600 old
   // and 600 new handles). So where MaxBindlessTextures applies, a new set must also leave room for

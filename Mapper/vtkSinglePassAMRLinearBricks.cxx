@@ -3,7 +3,7 @@
 
 #include "vtkSinglePassAMRShaderVariant.h"
 
-#include "vtkSinglePassAMRTextures.h"
+#include "vtkAMRMapperTextures.h"
 
 #include "amrsp/BrickAtlas.h"
 #include "amrsp/BrickPacking.h"
@@ -12,7 +12,7 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
-#include "vtkSinglePassAMROpenGL.h"
+#include "vtkAMRMapperOpenGL.h"
 
 #include <algorithm>
 #include <stdexcept>
@@ -170,8 +170,7 @@ bool vtkSinglePassAMRLinearBricks::UploadBricks(vtkOpenGLRenderWindow* renWin,
   {
     progress(1.0);
   }
-  this->Table =
-    vtkSinglePassAMRTextures::MakeIntegerTexture(renWin, amrsp::LinearBrickTable(layout));
+  this->Table = vtkAMRMapperTextures::MakeIntegerTexture(renWin, amrsp::LinearBrickTable(layout));
   if (!this->Table)
   {
     error = "the driver refused the linear storage's brick table";

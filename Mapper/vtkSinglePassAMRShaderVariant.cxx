@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSinglePassAMRShaderVariant.h"
 
-#include "vtkSinglePassAMRShaderComposer.h"
+#include "vtkAMRMapperShaderComposer.h"
 
 #include "amrsp/LinearBricks.h"
 
@@ -70,7 +70,7 @@ std::string vtkSinglePassAMRComposeShader(const vtkSinglePassAMRShaderVariant& v
     : variant.Storage == amrsp::DataStorage::LinearBricks ? sources.LinearBricksStorage
                                                           : sources.PackedAtlasStorage;
   // CastRay first: the ray's source holds the other pieces' markers
-  return vtkSinglePassAMRShaderComposer::ComposeFragmentShader(
+  return vtkAMRMapperShaderComposer::ComposeFragmentShader(
     compute ? sources.Compute : sources.Fragment, variant.Defines(),
     { { "CastRay", sources.Ray }, { "KdTreeLayout", sources.KdTreeLayout },
       { "RayCommon", sources.RayCommon }, { "GridStorage", storage },

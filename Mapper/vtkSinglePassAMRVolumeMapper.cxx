@@ -2,15 +2,15 @@
 #include "vtkSinglePassAMRVolumeMapper.h"
 #include "vtkSinglePassAMRVolumeMapperInternals.h"
 
-#include "vtkSinglePassAMRConversion.h"
+#include "vtkAMRMapperConversion.h"
 #include "vtkSinglePassAMRFrameBudget.h"
-#include "vtkSinglePassAMRContextCapabilities.h"
+#include "vtkAMRMapperContextCapabilities.h"
 #include "vtkSinglePassAMRGridStorage.h"
-#include "vtkSinglePassAMRDepthCopy.h"
-#include "vtkSinglePassAMRProxyBox.h"
+#include "vtkAMRMapperDepthCopy.h"
+#include "vtkAMRMapperProxyBox.h"
 #include "vtkSinglePassAMRRayLoopChoice.h"
-#include "vtkSinglePassAMRTransferFunctionTable.h"
-#include "vtkSinglePassAMRViewGeometry.h"
+#include "vtkAMRMapperTransferFunctionTable.h"
+#include "vtkAMRMapperViewGeometry.h"
 
 #include "amrsp/BrickAtlas.h"
 #include "amrsp/RayCastingData.h"
@@ -34,7 +34,7 @@
 #include "vtkTextureObject.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
-#include "vtkSinglePassAMROpenGL.h"
+#include "vtkAMRMapperOpenGL.h"
 
 #include <algorithm>
 #include <chrono>
@@ -129,14 +129,14 @@ bool vtkSinglePassAMRVolumeMapper::BuildData(vtkOverlappingAMR* amr, const std::
   }
   try
   {
-    vtkSinglePassAMRConversion::ArraySelection selection;
+    vtkAMRMapperConversion::ArraySelection selection;
     selection.Name = array;
     selection.Component = this->ArrayComponent;
     amrsp::Hierarchy h;
     // ProgressEvent: the build reports 0 to 1 (conversion, then PrepareRayCasting's steps), the
     // upload in the first render 0 to 1 again
     this->BeginProgressPhase(PROGRESS_BUILD, "converting the AMR blocks");
-    if (!vtkSinglePassAMRConversion::FromOverlappingAMR(amr, selection, h, error))
+    if (!vtkAMRMapperConversion::FromOverlappingAMR(amr, selection, h, error))
     {
       in.Data = amrsp::RayCastingData();
       in.PendingUpload = false;
@@ -238,9 +238,9 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     return;
   }
-  vtkSinglePassAMRViewGeometry::ViewGeometry view;
+  vtkAMRMapperViewGeometry::ViewGeometry view;
   std::string viewError;
-  if (!vtkSinglePassAMRViewGeometry::ComputeViewGeometry(ren, vol, view, viewError))
+  if (!vtkAMRMapperViewGeometry::ComputeViewGeometry(ren, vol, view, viewError))
   {
     this->ReportError(viewError);
     return;
@@ -251,7 +251,7 @@ void vtkSinglePassAMRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   frame.Quality =
     in.Budget.Begin(vol, budget, view.Width, view.Height, this->GetBuildTime().GetMTime());
   // the rays' image: the viewport, or at (0, 0) the reduced image of this frame
-  vtkSinglePassAMRViewGeometry::ViewGeometry rays = view;
+  vtkAMRMapperViewGeometry::ViewGeometry rays = view;
   if (frame.Reduced())
   {
     rays.X0 = rays.Y0 = 0;
@@ -463,7 +463,7 @@ bool vtkSinglePassAMRVolumeMapper::IsBindlessSupported(vtkRenderWindow* window, 
   bool supported = IsRenderSupported(window, &reason);
   if (supported)
   {
-    vtkSinglePassAMRContextCapabilities capabilities;
+    vtkAMRMapperContextCapabilities capabilities;
     capabilities.Update(vtkOpenGLRenderWindow::SafeDownCast(window));
     supported = capabilities.ResolveAccess(amrsp::BindlessAccess::Auto, reason) !=
       amrsp::BindlessAccess::None;

@@ -4,11 +4,11 @@
 // draw of the proxy box's back faces (vtkSinglePassAMRVolumeMapperInternals.h).
 #include "vtkSinglePassAMRVolumeMapperInternals.h"
 
-#include "vtkSinglePassAMRProxyBox.h"
+#include "vtkAMRMapperProxyBox.h"
 #include "vtkSinglePassAMRRayCasterChoice.h"
 #include "vtkSinglePassAMRRayLoopChoice.h"
-#include "vtkSinglePassAMRScopedBlendedDraw.h"
-#include "vtkSinglePassAMRShaderComposer.h"
+#include "vtkAMRMapperScopedBlendedDraw.h"
+#include "vtkAMRMapperShaderComposer.h"
 #include "vtkSinglePassAMRShaderVariant.h"
 
 #include "amrsp/SampleStep.h"
@@ -25,7 +25,7 @@
 #include "vtkTextureObject.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
-#include "vtkSinglePassAMROpenGL.h"
+#include "vtkAMRMapperOpenGL.h"
 
 // GLSL embedded at build time (vtk_encode_string)
 #include "amrsp_BrickSample_glsl.h"
@@ -185,7 +185,7 @@ vtkShaderProgram* vtkSinglePassAMRVolumeMapper::vtkInternals::ReadyShader(
     return this->ReadyComputeProgram(renWin, source);
   }
   std::string error;
-  vtkShaderProgram* program = vtkSinglePassAMRShaderComposer::ReadyProgram(renWin,
+  vtkShaderProgram* program = vtkAMRMapperShaderComposer::ReadyProgram(renWin,
     amrsp_SinglePassAMR_vert_glsl, source, "single-pass AMR", this->FailedFragmentSource, error);
   if (!program)
   {
@@ -253,10 +253,10 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::FreeComputePrograms(vtkWindow* 
 
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRVolumeMapper::vtkInternals::DispatchRays(
-  vtkShaderProgram* program, const vtkSinglePassAMRViewGeometry::ViewGeometry& rays, bool reduced)
+  vtkShaderProgram* program, const vtkAMRMapperViewGeometry::ViewGeometry& rays, bool reduced)
 {
   namespace group = vtkSinglePassAMRComputeGroup;
-  vtkSinglePassAMROffscreenImage& image = this->RaysImage(reduced);
+  vtkAMRMapperOffscreenImage& image = this->RaysImage(reduced);
   const int unit = 0;
   image.BindAsImage(unit);
   program->SetUniformi("amrspRayImage", unit);
@@ -277,11 +277,11 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::BindProxyBox(vtkShaderProgram* 
     const double lo[3] = { b[0], b[2], b[4] };
     const double hi[3] = { b[1], b[3], b[5] };
     this->BoxBuffer->Upload(
-      vtkSinglePassAMRProxyBox::BoxTriangles(lo, hi), vtkOpenGLBufferObject::ArrayBuffer);
+      vtkAMRMapperProxyBox::BoxTriangles(lo, hi), vtkOpenGLBufferObject::ArrayBuffer);
     this->BoxBufferTime = buildTime;
     this->BoxArrayProgram = nullptr;
   }
-  if (!vtkSinglePassAMRProxyBox::BindTriangles(
+  if (!vtkAMRMapperProxyBox::BindTriangles(
         this->BoxArray, this->BoxBuffer, program, "vertexMC", this->BoxArrayProgram))
   {
     this->Self->ReportError("cannot bind the proxy box's vertices to the shader");
@@ -303,7 +303,7 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::UpdateEmptySpaceFlags(
   // the node ranges were joined after the upload (PrepareStorage)
   float tableRange[2];
   this->Transfer.GetShaderRange(tableRange);
-  const vtkSinglePassAMRTransferFunctionTable& table = this->Transfer;
+  const vtkAMRMapperTransferFunctionTable& table = this->Transfer;
   if (!this->Storage->UpdateTransparentFlags(renWin, this->Data.NodeRanges, table.GetOpacityTable(),
         tableRange, table.GetTableTime(), [&table](float s) { return table.TableScalar(s); }))
   {
@@ -350,8 +350,7 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::ActivateTextures(
 
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRVolumeMapper::vtkInternals::SetDataUniforms(vtkShaderProgram* program,
-  vtkRenderer* ren, vtkVolumeProperty* property,
-  const vtkSinglePassAMRViewGeometry::ViewGeometry& view,
+  vtkRenderer* ren, vtkVolumeProperty* property, const vtkAMRMapperViewGeometry::ViewGeometry& view,
   const vtkSinglePassAMRFrameSettings& frame)
 {
   vtkSinglePassAMRVolumeMapper* self = this->Self;
@@ -382,7 +381,7 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::SetDataUniforms(vtkShaderProgra
   program->SetUniform3f("amrspRootHi", &d.RootHi.x);
   glm::vec3 clipLo, clipHi;
   std::string cropWarning;
-  vtkSinglePassAMRProxyBox::ClipBox(
+  vtkAMRMapperProxyBox::ClipBox(
     self, d.Data.Origin, d.Data.Spacing0, d.RootLo, d.RootHi, clipLo, clipHi, cropWarning);
   if (!cropWarning.empty())
   {
@@ -419,7 +418,7 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::SetDataUniforms(vtkShaderProgra
   }
   program->SetUniform2f("amrspTransferRange", transferRange);
   program->SetUniformf(
-    "amrspTransferSize", static_cast<float>(vtkSinglePassAMRTransferFunctionTable::Size));
+    "amrspTransferSize", static_cast<float>(vtkAMRMapperTransferFunctionTable::Size));
   // level of detail: world size of a pixel at distance 1 (perspective) or everywhere (parallel),
   // as amrsp::LevelOfDetail
   vtkCamera* camera = ren->GetActiveCamera();
@@ -441,8 +440,8 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::SetLightingUniforms(vtkShaderPr
   vtkRenderer* ren, vtkVolume* vol, vtkVolumeProperty* property,
   const vtkSinglePassAMRFrameSettings& frame)
 {
-  const vtkSinglePassAMRViewGeometry::ModelLight light =
-    vtkSinglePassAMRViewGeometry::FirstLightInModel(ren, vol);
+  const vtkAMRMapperViewGeometry::ModelLight light =
+    vtkAMRMapperViewGeometry::FirstLightInModel(ren, vol);
   const auto setIfUsed = [program](const char* name, auto&& set)
   {
     if (program->IsUniformUsed(name))
@@ -482,11 +481,11 @@ void vtkSinglePassAMRVolumeMapper::vtkInternals::SetLightingUniforms(vtkShaderPr
 
 //------------------------------------------------------------------------------
 void vtkSinglePassAMRVolumeMapper::vtkInternals::DrawBackFaces(
-  vtkOpenGLRenderWindow* renWin, const vtkSinglePassAMRViewGeometry::ViewGeometry& view)
+  vtkOpenGLRenderWindow* renWin, const vtkAMRMapperViewGeometry::ViewGeometry& view)
 {
   {
     // back faces only (a mirroring volume transform flips the winding), premultiplied "over"
-    const vtkSinglePassAMRScopedBlendedDraw blended(
+    const vtkAMRMapperScopedBlendedDraw blended(
       renWin->GetState(), view.Mirrored ? GL_BACK : GL_FRONT, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glDrawArrays(GL_TRIANGLES, 0, 36);
   }

@@ -12,13 +12,13 @@
 #include "vtkSinglePassAMRVolumeMapper.h"
 
 #include "vtkSinglePassAMRComputeProgram.h"
-#include "vtkSinglePassAMRDepthCopy.h"
+#include "vtkAMRMapperDepthCopy.h"
 #include "vtkSinglePassAMRFrameBudget.h"
 #include "vtkSinglePassAMRGridStorage.h"
 #include "vtkSinglePassAMRShaderVariant.h"
 #include "vtkSinglePassAMRStorageChoice.h"
-#include "vtkSinglePassAMRTransferFunctionTable.h"
-#include "vtkSinglePassAMRViewGeometry.h"
+#include "vtkAMRMapperTransferFunctionTable.h"
+#include "vtkAMRMapperViewGeometry.h"
 
 #include "amrsp/RayCastingData.h"
 
@@ -93,11 +93,11 @@ public:
   vtkShaderProgram* ReadyComputeProgram(vtkOpenGLRenderWindow* renWin, const std::string& source);
   /// Casts the rays of `rays` (the viewport, or the reduced image at (0, 0)) with the bound
   /// compute `program` into RaysImage(reduced), which Render made ready; Render composites it.
-  void DispatchRays(vtkShaderProgram* program,
-    const vtkSinglePassAMRViewGeometry::ViewGeometry& rays, bool reduced);
+  void DispatchRays(
+    vtkShaderProgram* program, const vtkAMRMapperViewGeometry::ViewGeometry& rays, bool reduced);
   /// The offscreen image a frame's rays go into: the reduced image of an interactive frame
   /// (bilinear), or the compute caster's viewport-sized one (nearest).
-  vtkSinglePassAMROffscreenImage& RaysImage(bool reduced)
+  vtkAMRMapperOffscreenImage& RaysImage(bool reduced)
   {
     return reduced ? this->Budget.Image : this->ComputeImage;
   }
@@ -109,14 +109,13 @@ public:
   void ActivateTextures(vtkShaderProgram* program, const vtkSinglePassAMRFrameSettings& frame);
   /// The tree, the levels, sampling, transfer function, clipping and level of detail.
   void SetDataUniforms(vtkShaderProgram* program, vtkRenderer* ren, vtkVolumeProperty* property,
-    const vtkSinglePassAMRViewGeometry::ViewGeometry& view,
-    const vtkSinglePassAMRFrameSettings& frame);
+    const vtkAMRMapperViewGeometry::ViewGeometry& view, const vtkSinglePassAMRFrameSettings& frame);
   /// The first light in model coordinates, the material, shadow step and iso-values.
   void SetLightingUniforms(vtkShaderProgram* program, vtkRenderer* ren, vtkVolume* vol,
     vtkVolumeProperty* property, const vtkSinglePassAMRFrameSettings& frame);
   /// Draws the proxy box's back faces once per pixel, blending premultiplied colour "over".
   void DrawBackFaces(
-    vtkOpenGLRenderWindow* renWin, const vtkSinglePassAMRViewGeometry::ViewGeometry& view);
+    vtkOpenGLRenderWindow* renWin, const vtkAMRMapperViewGeometry::ViewGeometry& view);
   void DeactivateTextures(const vtkSinglePassAMRFrameSettings& frame);
 
   vtkSinglePassAMRVolumeMapper* Self;
@@ -165,8 +164,8 @@ public:
     }
   }
   std::unique_ptr<vtkSinglePassAMRGridStorage> Storage{ new vtkSinglePassAMRGridStorage };
-  vtkSinglePassAMRTransferFunctionTable Transfer;
-  vtkSinglePassAMRDepthCopy Depth;
+  vtkAMRMapperTransferFunctionTable Transfer;
+  vtkAMRMapperDepthCopy Depth;
   vtkSinglePassAMRFrameBudget Budget;
 
   // proxy geometry: the root box's 12 triangles, for the build of BoxBufferTime
@@ -183,7 +182,7 @@ public:
     ComputePrograms;
   static constexpr std::size_t MaxComputePrograms = 16;
   vtkOpenGLRenderWindow* ComputeContext = nullptr;
-  vtkSinglePassAMROffscreenImage ComputeImage;
+  vtkAMRMapperOffscreenImage ComputeImage;
   void FreeComputePrograms(vtkWindow* window);
 
   // what the last frame did

@@ -12,8 +12,8 @@
 namespace amrsp
 {
 
-bool PackHierarchy(Hierarchy converted, int packLimit, int64_t maxPageTexels,
-  bool mayRefresh, PackedHierarchy& out, bool& refreshed, std::string& error)
+bool PackHierarchy(Hierarchy converted, int packLimit, int64_t maxPageTexels, bool mayRefresh,
+  PackedHierarchy& out, bool& refreshed, std::string& error)
 {
   refreshed = false;
   try
@@ -31,9 +31,8 @@ bool PackHierarchy(Hierarchy converted, int packLimit, int64_t maxPageTexels,
     out.Tree = BuildKdTree(h);
     // one brick per grid (cells, or vertices one texel larger), packed within the per-axis limit
     // the data-node offsets can address and MaximumAtlasSize when set
-    out.Atlas =
-      PackBricksInPages(BrickExtents(h, h.VertexCentred), Packer::Best,
-        AtlasLimits(packLimit > 0 ? std::min(packLimit, 2048) : 2048), maxPageTexels);
+    out.Atlas = PackBricksInPages(BrickExtents(h, h.VertexCentred), Packer::Best,
+      AtlasLimits(packLimit > 0 ? std::min(packLimit, 2048) : 2048), maxPageTexels);
     out.VertexCentred = h.VertexCentred;
 
     // the level table and the finite range as the single-pass build computes them

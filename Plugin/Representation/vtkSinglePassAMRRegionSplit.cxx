@@ -4,7 +4,7 @@
 #include "vtkSinglePassAMRDataModel.h"
 
 #include "vtkAMRBox.h"
-#include "vtkSinglePassAMRConversion.h"
+#include "vtkAMRMapperConversion.h"
 #include "vtkCellData.h"
 #include "vtkCharArray.h"
 #include "vtkCommunicator.h"
@@ -385,10 +385,10 @@ vtkSmartPointer<vtkOverlappingAMR> vtkSinglePassAMRRegionSplit::SplitByRegion(
   // 1. the metadata must be the same on every rank; then every rank computes the same regions
   amrsp::Hierarchy boxes;
   std::string conversionError;
-  vtkSinglePassAMRConversion::ArraySelection structureOnly;
+  vtkAMRMapperConversion::ArraySelection structureOnly;
   structureOnly.CopyValues = false;
   const bool usable = local && local->GetNumberOfLevels() > 0 &&
-    vtkSinglePassAMRConversion::FromOverlappingAMR(local, structureOnly, boxes, conversionError) &&
+    vtkAMRMapperConversion::FromOverlappingAMR(local, structureOnly, boxes, conversionError) &&
     !boxes.RootCells().Empty();
   const long long mine[2] = { usable ? 1 : 0, usable ? MetadataDigest(local) : 0 };
   long long lowest[2] = { 0, 0 };

@@ -33,8 +33,8 @@ int32_t LeafAt(const KdTree& tree, const glm::dvec3& p)
   while (!tree.Nodes[static_cast<std::size_t>(n)].IsLeaf())
   {
     const KdNode& node = tree.Nodes[static_cast<std::size_t>(n)];
-    const double plane =
-      static_cast<double>(tree.Nodes[static_cast<std::size_t>(node.FirstChild)].Region.Hi[node.Axis]);
+    const double plane = static_cast<double>(
+      tree.Nodes[static_cast<std::size_t>(node.FirstChild)].Region.Hi[node.Axis]);
     n = p[node.Axis] < plane ? node.FirstChild : node.FirstChild + 1;
   }
   return n;
@@ -130,8 +130,8 @@ TEST(MultiPassNodes, EveryRayMeetsItsSegmentsFrontToBack)
          glm::dvec3(0.3, 1.8, -2.2), glm::dvec3(0.1, -0.2, 0.05) })
   {
     const glm::dvec3 eye = centre + offset * size;
-    const std::vector<int32_t> order = OrderFrontToBack(
-      packed.Structure, packed.Tree, nodes, eye, centre - eye, false);
+    const std::vector<int32_t> order =
+      OrderFrontToBack(packed.Structure, packed.Tree, nodes, eye, centre - eye, false);
     std::vector<int32_t> sorted = order;
     std::sort(sorted.begin(), sorted.end());
     ASSERT_EQ(sorted.size(), nodes.Draws.size());

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // vtkOverlappingAMR -> amrsp::Hierarchy: ghost layers, ratios, bad input.
-#include "vtkSinglePassAMRConversion.h"
+#include "vtkAMRMapperConversion.h"
 #include "vtkSinglePassAMRDataModel.h"
 
 #include "vtkAMRBox.h"
@@ -67,10 +67,10 @@ vtkNew<vtkOverlappingAMR> MakeAMR(int ghost, double fineSpacing, int components 
 TEST(Conversion, StripsGhostLayers)
 {
   auto amr = MakeAMR(1, 0.5);
-  vtkSinglePassAMRConversion::ArraySelection sel;
+  vtkAMRMapperConversion::ArraySelection sel;
   amrsp::Hierarchy h;
   std::string error;
-  ASSERT_TRUE(vtkSinglePassAMRConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
+  ASSERT_TRUE(vtkAMRMapperConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
   ASSERT_EQ(h.Grids.size(), 2u);
   EXPECT_EQ(h.ArrayName, "phi");
   EXPECT_EQ(h.RefinementRatio[1], glm::ivec3(2));
@@ -85,13 +85,13 @@ TEST(Conversion, StripsGhostLayers)
 TEST(Conversion, VectorMagnitudeAndComponent)
 {
   auto amr = MakeAMR(0, 0.5, 2);
-  vtkSinglePassAMRConversion::ArraySelection sel;
+  vtkAMRMapperConversion::ArraySelection sel;
   amrsp::Hierarchy h;
   std::string error;
-  ASSERT_TRUE(vtkSinglePassAMRConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
+  ASSERT_TRUE(vtkAMRMapperConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
   EXPECT_FLOAT_EQ(h.Values[0][3], std::sqrt(3.0f * 3.0f + 4.0f * 4.0f));
   sel.Component = 1;
-  ASSERT_TRUE(vtkSinglePassAMRConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
+  ASSERT_TRUE(vtkAMRMapperConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
   EXPECT_EQ(h.Values[0][3], 4.0f);
 }
 
@@ -112,11 +112,11 @@ TEST(Conversion, PointDataIsVertexCentred)
     }
     g->GetPointData()->AddArray(p);
   }
-  vtkSinglePassAMRConversion::ArraySelection sel;
+  vtkAMRMapperConversion::ArraySelection sel;
   sel.Name = "pressure";
   amrsp::Hierarchy h;
   std::string error;
-  ASSERT_TRUE(vtkSinglePassAMRConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
+  ASSERT_TRUE(vtkAMRMapperConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
   EXPECT_TRUE(h.VertexCentred);
   ASSERT_EQ(h.Values[0].size(), 125u);
   ASSERT_EQ(h.Values[1].size(), 125u);
@@ -143,17 +143,17 @@ TEST(Conversion, IntegerAndDoubleArraysBecomeFloat)
     g->GetCellData()->AddArray(ints);
     g->GetCellData()->AddArray(bytes);
   }
-  vtkSinglePassAMRConversion::ArraySelection sel;
+  vtkAMRMapperConversion::ArraySelection sel;
   amrsp::Hierarchy h;
   std::string error;
   sel.Name = "count";
-  ASSERT_TRUE(vtkSinglePassAMRConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
+  ASSERT_TRUE(vtkAMRMapperConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
   EXPECT_EQ(h.Values[0][9], -63.0f);
   sel.Name = "flag";
-  ASSERT_TRUE(vtkSinglePassAMRConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
+  ASSERT_TRUE(vtkAMRMapperConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
   EXPECT_EQ(h.Values[1][63], 63.0f);
   sel.Name = "phi"; // vtkDoubleArray
-  ASSERT_TRUE(vtkSinglePassAMRConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
+  ASSERT_TRUE(vtkAMRMapperConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
   EXPECT_EQ(h.Values[1][5], 1005.0f);
 }
 
@@ -161,14 +161,14 @@ TEST(Conversion, BadInputGivesOneClearError)
 {
   amrsp::Hierarchy h;
   std::string error;
-  vtkSinglePassAMRConversion::ArraySelection sel;
-  EXPECT_FALSE(vtkSinglePassAMRConversion::FromOverlappingAMR(MakeAMR(0, 0.3), sel, h, error));
+  vtkAMRMapperConversion::ArraySelection sel;
+  EXPECT_FALSE(vtkAMRMapperConversion::FromOverlappingAMR(MakeAMR(0, 0.3), sel, h, error));
   EXPECT_NE(error.find("unsupported refinement"), std::string::npos) << error;
   sel.Name = "rho";
-  EXPECT_FALSE(vtkSinglePassAMRConversion::FromOverlappingAMR(MakeAMR(0, 0.5), sel, h, error));
+  EXPECT_FALSE(vtkAMRMapperConversion::FromOverlappingAMR(MakeAMR(0, 0.5), sel, h, error));
   EXPECT_NE(error.find("no cell array named 'rho' (available: phi)"), std::string::npos) << error;
   vtkNew<vtkOverlappingAMR> empty;
-  EXPECT_FALSE(vtkSinglePassAMRConversion::FromOverlappingAMR(empty, sel, h, error));
+  EXPECT_FALSE(vtkAMRMapperConversion::FromOverlappingAMR(empty, sel, h, error));
   EXPECT_NE(error.find("no blocks"), std::string::npos) << error;
 }
 
@@ -210,7 +210,7 @@ TEST(Conversion, ToOverlappingAMRSharesTheValuesAndKeepsThemAlive)
   {
     amrsp::Hierarchy h = FloatHierarchy();
     level1 = static_cast<const amrsp::Hierarchy&>(h).Values[1].data();
-    vtkSinglePassAMRConversion::ToOverlappingAMR(h, amr, false);
+    vtkAMRMapperConversion::ToOverlappingAMR(h, amr, false);
     ASSERT_NE(BlockArray(amr, 1), nullptr);
     EXPECT_EQ(BlockArray(amr, 1)->GetPointer(0), level1); // no copy
     EXPECT_EQ(vtkSinglePassAMRDataModel::Block(amr, 1, 0)->GetCellData()->GetArray(
@@ -231,12 +231,12 @@ TEST(Conversion, ToOverlappingAMRSharesTheValuesAndKeepsThemAlive)
 TEST(Conversion, FromOverlappingAMRBorrowsFloatArraysWithoutGhosts)
 {
   vtkNew<vtkOverlappingAMR> amr;
-  vtkSinglePassAMRConversion::ToOverlappingAMR(FloatHierarchy(), amr);
-  vtkSinglePassAMRConversion::ArraySelection sel;
+  vtkAMRMapperConversion::ToOverlappingAMR(FloatHierarchy(), amr);
+  vtkAMRMapperConversion::ArraySelection sel;
   sel.Name = "density";
   amrsp::Hierarchy h;
   std::string error;
-  ASSERT_TRUE(vtkSinglePassAMRConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
+  ASSERT_TRUE(vtkAMRMapperConversion::FromOverlappingAMR(amr, sel, h, error)) << error;
   const amrsp::Hierarchy& read = h;
   EXPECT_TRUE(read.Values[0].IsBorrowed());
   EXPECT_EQ(read.Values[0].data(), BlockArray(amr, 0)->GetPointer(0));
@@ -267,9 +267,9 @@ TEST(Conversion, BlankingMatchesVtkBlankCells)
     h.Values.emplace_back(static_cast<std::size_t>(g.Cells.Cells()), 1.0f);
   }
   vtkNew<vtkOverlappingAMR> ours;
-  vtkSinglePassAMRConversion::ToOverlappingAMR(h, ours);
+  vtkAMRMapperConversion::ToOverlappingAMR(h, ours);
   vtkNew<vtkOverlappingAMR> vtks;
-  vtkSinglePassAMRConversion::ToOverlappingAMR(h, vtks);
+  vtkAMRMapperConversion::ToOverlappingAMR(h, vtks);
   for (unsigned int l = 0; l < vtks->GetNumberOfLevels(); ++l)
   {
     for (unsigned int i = 0; i < vtkSinglePassAMRDataModel::NumberOfBlocks(vtks, l); ++i)

@@ -7,7 +7,7 @@
 
 #include "amrsp/SyntheticCosmo.h"
 #include "amrsp/VertexData.h"
-#include "vtkSinglePassAMRConversion.h"
+#include "vtkAMRMapperConversion.h"
 
 #include "vtkAMRBaseReader.h"
 #include "vtkAMREnzoReader.h"
@@ -473,7 +473,7 @@ bool FileChecksOn()
   return !(skip && std::string(skip) == "1");
 }
 
-/// `requested`, or the array the conversion renders by default (vtkSinglePassAMRConversion: the
+/// `requested`, or the array the conversion renders by default (vtkAMRMapperConversion: the
 /// first cell array, else the first point array; never vtkGhostType).
 std::string FirstArrayName(vtkOverlappingAMR* amr, const std::string& requested)
 {
@@ -483,7 +483,7 @@ std::string FirstArrayName(vtkOverlappingAMR* amr, const std::string& requested)
   }
   for (bool points : { false, true })
   {
-    const std::vector<std::string> names = vtkSinglePassAMRConversion::ArrayNames(amr, points);
+    const std::vector<std::string> names = vtkAMRMapperConversion::ArrayNames(amr, points);
     if (!names.empty())
     {
       return names.front();
@@ -630,7 +630,7 @@ void GenerateSyntheticCosmo(const DatasetRequest& request, LoadedDataset& out)
   if (request.NeedVTK)
   {
     out.Amr = vtkSmartPointer<vtkOverlappingAMR>::New();
-    vtkSinglePassAMRConversion::ToOverlappingAMR(out.Data, out.Amr);
+    vtkAMRMapperConversion::ToOverlappingAMR(out.Data, out.Amr);
   }
 }
 
@@ -720,10 +720,10 @@ void ReadDatasetFile(const DatasetRequest& request, CaptureVTKMessages& capture,
   }
 }
 
-/// The hierarchy of out.Amr with the request's array and component (vtkSinglePassAMRConversion).
+/// The hierarchy of out.Amr with the request's array and component (vtkAMRMapperConversion).
 void ConvertSelected(const DatasetRequest& request, LoadedDataset& out)
 {
-  vtkSinglePassAMRConversion::ArraySelection selection;
+  vtkAMRMapperConversion::ArraySelection selection;
   selection.Name = request.Array;
   if (selection.Name.empty() && out.Format == "synthetic:pulse")
   {
@@ -732,7 +732,7 @@ void ConvertSelected(const DatasetRequest& request, LoadedDataset& out)
   selection.Component = request.Component;
   selection.CopyValues = request.NeedValues;
   std::string error;
-  if (!vtkSinglePassAMRConversion::FromOverlappingAMR(out.Amr, selection, out.Data, error))
+  if (!vtkAMRMapperConversion::FromOverlappingAMR(out.Amr, selection, out.Data, error))
   {
     throw DatasetError(error + " (" + request.Spec + ")");
   }
@@ -795,7 +795,7 @@ void ReadIsolated(const DatasetRequest& request, LoadedDataset& out)
   if (request.NeedVTK)
   {
     out.Amr = vtkSmartPointer<vtkOverlappingAMR>::New();
-    vtkSinglePassAMRConversion::ToOverlappingAMR(out.Data, out.Amr);
+    vtkAMRMapperConversion::ToOverlappingAMR(out.Data, out.Amr);
   }
 }
 

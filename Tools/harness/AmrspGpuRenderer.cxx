@@ -5,7 +5,7 @@
 #include "AmrspSceneLighting.h"
 #include "AmrspProgress.h"
 
-#include "vtkSinglePassAMRConversion.h"
+#include "vtkAMRMapperConversion.h"
 #include "vtkAMRKdTreeVolumeMapper.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
 #include "vtkSmartPointer.h"
@@ -193,7 +193,7 @@ GpuRenderer::GpuRenderer(const std::string& method, vtkVolumeMapper* mapper, con
   if (scene.AmrInput)
   {
     // the project's mappers do not read blanking: no vtkGhostType array (1 byte per cell)
-    vtkSinglePassAMRConversion::ToOverlappingAMR(h, I->Amr, scene.Blanking);
+    vtkAMRMapperConversion::ToOverlappingAMR(h, I->Amr, scene.Blanking);
     I->Mapper->SetInputDataObject(0, I->Amr);
     I->Mapper->SelectScalarArray(h.ArrayName.empty() ? "values" : h.ArrayName.c_str());
   }
@@ -420,7 +420,7 @@ void GpuRenderer::SetData(const Hierarchy& h, bool blanking)
 {
   // a new data object, as a reader's next time step is: the mapper sees another input
   I->Amr = vtkSmartPointer<vtkOverlappingAMR>::New();
-  vtkSinglePassAMRConversion::ToOverlappingAMR(h, I->Amr, blanking);
+  vtkAMRMapperConversion::ToOverlappingAMR(h, I->Amr, blanking);
   I->Mapper->SetInputDataObject(0, I->Amr);
   // a step may map its values otherwise (log10 or not): its array's name
   I->Mapper->SelectScalarArray(h.ArrayName.empty() ? "values" : h.ArrayName.c_str());

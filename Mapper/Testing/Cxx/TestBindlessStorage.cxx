@@ -26,7 +26,7 @@
 #include "amrsp/Render.h"
 #include "amrsp/SyntheticCosmo.h"
 
-#include "vtkSinglePassAMROpenGL.h"
+#include "vtkAMRMapperOpenGL.h"
 #include "vtkSinglePassAMRVolumeMapper.h"
 
 #include "vtkCallbackCommand.h"

@@ -1,15 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @file    vtkSinglePassAMRPackedAtlas.h
+ * @file    vtkAMRMapperPackedAtlas.h
  * @brief   the packed atlas: its CPU build and its upload (private to the module)
  *
  * The paper's packing storage (sections 4.1 and 5.1): every grid's brick packed into one R32F
  * 3D atlas (or a few pages of it). The multi-pass mapper's build from vtkOverlappingAMR (the
  * conversion, then amrsp::PackHierarchy), the atlas's size checks, and its upload slab by slab,
- * which vtkSinglePassAMRAtlasTextures holds for both mappers.
+ * which vtkAMRMapperAtlasTextures holds for both mappers.
  */
-#ifndef vtkSinglePassAMRPackedAtlas_h
-#define vtkSinglePassAMRPackedAtlas_h
+#ifndef vtkAMRMapperPackedAtlas_h
+#define vtkAMRMapperPackedAtlas_h
 
 #include "amrsp/AtlasPages.h"
 #include "amrsp/BrickAtlas.h"
@@ -27,7 +27,7 @@
 class vtkOpenGLRenderWindow;
 class vtkOverlappingAMR;
 
-namespace vtkSinglePassAMRPackedAtlas
+namespace vtkAMRMapperPackedAtlas
 {
 
 using amrsp::PackedHierarchy;
@@ -102,6 +102,6 @@ bool UploadAtlas(vtkOpenGLRenderWindow* renWin, const amrsp::Hierarchy& h,
 std::vector<vtkSmartPointer<vtkTextureObject>> TakeReusablePages(
   std::vector<vtkSmartPointer<vtkTextureObject>>& pages, const amrsp::AtlasPages& layout);
 
-} // namespace vtkSinglePassAMRPackedAtlas
+} // namespace vtkAMRMapperPackedAtlas
 
 #endif

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "vtkSinglePassAMROffscreenImage.h"
+#include "vtkAMRMapperOffscreenImage.h"
 
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLQuadHelper.h"
@@ -9,19 +9,19 @@
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
 
-#include "vtkSinglePassAMROpenGL.h"
-#include "vtkSinglePassAMRScopedBlendedDraw.h"
+#include "vtkAMRMapperOpenGL.h"
+#include "vtkAMRMapperScopedBlendedDraw.h"
 
 #include "amrsp_OffscreenComposite_frag_glsl.h"
 
 //------------------------------------------------------------------------------
-vtkSinglePassAMROffscreenImage::vtkSinglePassAMROffscreenImage() = default;
+vtkAMRMapperOffscreenImage::vtkAMRMapperOffscreenImage() = default;
 
 //------------------------------------------------------------------------------
-vtkSinglePassAMROffscreenImage::~vtkSinglePassAMROffscreenImage() = default;
+vtkAMRMapperOffscreenImage::~vtkAMRMapperOffscreenImage() = default;
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMROffscreenImage::Ensure(
+bool vtkAMRMapperOffscreenImage::Ensure(
   vtkOpenGLRenderWindow* renWin, int width, int height, bool linear, std::string& error)
 {
   if (this->Colour && this->Framebuffer && this->Colour->GetContext() == renWin &&
@@ -81,7 +81,7 @@ bool vtkSinglePassAMROffscreenImage::Ensure(
 }
 
 //------------------------------------------------------------------------------
-void vtkSinglePassAMROffscreenImage::BeginDrawing(vtkOpenGLState* state)
+void vtkAMRMapperOffscreenImage::BeginDrawing(vtkOpenGLState* state)
 {
   this->Framebuffer->SaveCurrentBindingsAndBuffers(GL_DRAW_FRAMEBUFFER);
   this->Framebuffer->Bind(GL_DRAW_FRAMEBUFFER);
@@ -93,27 +93,26 @@ void vtkSinglePassAMROffscreenImage::BeginDrawing(vtkOpenGLState* state)
 }
 
 //------------------------------------------------------------------------------
-void vtkSinglePassAMROffscreenImage::EndDrawing()
+void vtkAMRMapperOffscreenImage::EndDrawing()
 {
   this->Framebuffer->RestorePreviousBindingsAndBuffers(GL_DRAW_FRAMEBUFFER);
 }
 
 //------------------------------------------------------------------------------
-void vtkSinglePassAMROffscreenImage::BindAsImage(int unit)
+void vtkAMRMapperOffscreenImage::BindAsImage(int unit)
 {
   glBindImageTexture(static_cast<GLuint>(unit), this->Colour->GetHandle(), 0, GL_FALSE, 0,
     GL_WRITE_ONLY, GL_RGBA32F);
 }
 
 //------------------------------------------------------------------------------
-void vtkSinglePassAMROffscreenImage::UnbindImage(int unit)
+void vtkAMRMapperOffscreenImage::UnbindImage(int unit)
 {
   glBindImageTexture(static_cast<GLuint>(unit), 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
 }
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMROffscreenImage::CompositeOver(
-  vtkOpenGLRenderWindow* renWin, std::string& error)
+bool vtkAMRMapperOffscreenImage::CompositeOver(vtkOpenGLRenderWindow* renWin, std::string& error)
 {
   if (!this->Composite)
   {
@@ -127,7 +126,7 @@ bool vtkSinglePassAMROffscreenImage::CompositeOver(
     return false;
   }
   // premultiplied "over" the frame
-  const vtkSinglePassAMRScopedBlendedDraw blended(
+  const vtkAMRMapperScopedBlendedDraw blended(
     renWin->GetState(), GL_NONE, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   renWin->GetShaderCache()->ReadyShaderProgram(this->Composite->Program);
   this->Colour->Activate();
@@ -138,7 +137,7 @@ bool vtkSinglePassAMROffscreenImage::CompositeOver(
 }
 
 //------------------------------------------------------------------------------
-void vtkSinglePassAMROffscreenImage::ReleaseGraphicsResources(vtkWindow* window)
+void vtkAMRMapperOffscreenImage::ReleaseGraphicsResources(vtkWindow* window)
 {
   if (this->Colour)
   {

@@ -1,15 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @file    vtkSinglePassAMRDepthCopy.h
+ * @file    vtkAMRMapperDepthCopy.h
  * @brief   the opaque geometry's depth, copied for the ray caster (private to the module)
  *
  * Rays stop at the opaque geometry VTK drew before the volume: both mappers read its depth from
  * this copy.
  */
-#ifndef vtkSinglePassAMRDepthCopy_h
-#define vtkSinglePassAMRDepthCopy_h
+#ifndef vtkAMRMapperDepthCopy_h
+#define vtkAMRMapperDepthCopy_h
 
-#include "vtkSinglePassAMRViewGeometry.h"
+#include "vtkAMRMapperViewGeometry.h"
 
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkSmartPointer.h"
@@ -22,7 +22,7 @@ class vtkWindow;
 /// the viewport's size and of the framebuffer's depth format (a depth blit needs the same format
 /// on both sides), and the framebuffer object the blit writes into (multisampled windows, VTK's
 /// default, can be read only by a blit, which resolves them).
-struct vtkSinglePassAMRDepthCopy
+struct vtkAMRMapperDepthCopy
 {
   vtkSmartPointer<vtkTextureObject> Depth;
   vtkSmartPointer<vtkTextureObject> Colour; // completes the framebuffer object; never read
@@ -31,8 +31,7 @@ struct vtkSinglePassAMRDepthCopy
 
   /// Copies the depth buffer of `view`'s viewport into Depth, (re)creating the textures when
   /// missing, of another context or size, or of another depth format. Leaves Depth active.
-  void CopyFrom(
-    vtkOpenGLRenderWindow* renWin, const vtkSinglePassAMRViewGeometry::ViewGeometry& view);
+  void CopyFrom(vtkOpenGLRenderWindow* renWin, const vtkAMRMapperViewGeometry::ViewGeometry& view);
   void ReleaseGraphicsResources(vtkWindow* window);
 };
 

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @file    vtkSinglePassAMRTransferFunctionTable.h
+ * @file    vtkAMRMapperTransferFunctionTable.h
  * @brief   a volume property's colour and opacity as one RGBA table texture (private to the module)
  *
  * Shared by both mappers so that they colour a scalar identically, linear or log-scaled.
  */
-#ifndef vtkSinglePassAMRTransferFunctionTable_h
-#define vtkSinglePassAMRTransferFunctionTable_h
+#ifndef vtkAMRMapperTransferFunctionTable_h
+#define vtkAMRMapperTransferFunctionTable_h
 
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h" // for GetTexture
@@ -26,7 +26,7 @@ class vtkWindow;
  * spans the union of the functions' ranges (both clamp beyond their end points); when the
  * functions have no range, the data's scalar range.
  */
-class vtkSinglePassAMRTransferFunctionTable
+class vtkAMRMapperTransferFunctionTable
 {
 public:
   /// Entries of the RGBA table (linear filtering between entries).

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "vtkSinglePassAMRViewGeometry.h"
+#include "vtkAMRMapperViewGeometry.h"
 
 #include "vtkCamera.h"
 #include "vtkLight.h"
@@ -12,7 +12,7 @@
 #include "vtkRenderer.h"
 #include "vtkVolume.h"
 
-namespace vtkSinglePassAMRViewGeometry
+namespace vtkAMRMapperViewGeometry
 {
 
 //------------------------------------------------------------------------------
@@ -118,4 +118,4 @@ ModelLight FirstLightInModel(vtkRenderer* ren, vtkVolume* vol)
   return light;
 }
 
-} // namespace vtkSinglePassAMRViewGeometry
+} // namespace vtkAMRMapperViewGeometry

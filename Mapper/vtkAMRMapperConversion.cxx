@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "vtkSinglePassAMRConversion.h"
+#include "vtkAMRMapperConversion.h"
 
 #include "amrsp/RefinedCells.h"
 #include "amrsp/VertexData.h"
@@ -185,13 +185,12 @@ bool ReadLevels(vtkOverlappingAMR* amr, amrsp::Hierarchy& out, std::string& erro
 
 /// The array to render: by name (cell arrays first, then point arrays), or the first cell
 /// array, or the first point array when there is no cell array. `points` says which kind.
-bool ChooseArray(vtkOverlappingAMR* amr,
-  const vtkSinglePassAMRConversion::ArraySelection& selection, std::string& name, bool& points,
-  std::string& error)
+bool ChooseArray(vtkOverlappingAMR* amr, const vtkAMRMapperConversion::ArraySelection& selection,
+  std::string& name, bool& points, std::string& error)
 {
   name = selection.Name;
-  const std::vector<std::string> cellArrays = vtkSinglePassAMRConversion::ArrayNames(amr, false);
-  const std::vector<std::string> pointArrays = vtkSinglePassAMRConversion::ArrayNames(amr, true);
+  const std::vector<std::string> cellArrays = vtkAMRMapperConversion::ArrayNames(amr, false);
+  const std::vector<std::string> pointArrays = vtkAMRMapperConversion::ArrayNames(amr, true);
   const auto has = [](const std::vector<std::string>& v, const std::string& n)
   { return std::find(v.begin(), v.end(), n) != v.end(); };
   points = false;
@@ -344,12 +343,12 @@ bool ReadBlockValues(vtkDataSet* block, const amrsp::Grid& g, const std::string&
 }
 } // namespace
 
-std::vector<std::string> vtkSinglePassAMRConversion::CellArrayNames(vtkOverlappingAMR* amr)
+std::vector<std::string> vtkAMRMapperConversion::CellArrayNames(vtkOverlappingAMR* amr)
 {
   return ArrayNames(amr, false);
 }
 
-std::vector<std::string> vtkSinglePassAMRConversion::ArrayNames(vtkOverlappingAMR* amr, bool points)
+std::vector<std::string> vtkAMRMapperConversion::ArrayNames(vtkOverlappingAMR* amr, bool points)
 {
   std::vector<std::string> names;
   if (vtkDataSet* g = FirstBlock(amr))
@@ -369,7 +368,7 @@ std::vector<std::string> vtkSinglePassAMRConversion::ArrayNames(vtkOverlappingAM
   return names;
 }
 
-bool vtkSinglePassAMRConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
+bool vtkAMRMapperConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
   const ArraySelection& selection, amrsp::Hierarchy& out, std::string& error)
 {
   out = amrsp::Hierarchy();
@@ -450,7 +449,7 @@ bool vtkSinglePassAMRConversion::FromOverlappingAMR(vtkOverlappingAMR* amr,
   return true;
 }
 
-void vtkSinglePassAMRConversion::ToOverlappingAMR(
+void vtkAMRMapperConversion::ToOverlappingAMR(
   const amrsp::Hierarchy& h, vtkOverlappingAMR* out, bool blanking)
 {
   const int levels = h.NumberOfLevels();
@@ -529,7 +528,7 @@ void vtkSinglePassAMRConversion::ToOverlappingAMR(
 }
 
 //------------------------------------------------------------------------------
-std::string vtkSinglePassAMRConversion::RequestedArray(
+std::string vtkAMRMapperConversion::RequestedArray(
   vtkOverlappingAMR* amr, int accessMode, const char* name, int id)
 {
   if (accessMode == VTK_GET_ARRAY_BY_NAME && name && *name)

@@ -1,18 +1,18 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @class   vtkSinglePassAMRAtlasTextures
+ * @class   vtkAMRMapperAtlasTextures
  * @brief   the packed-atlas storage on the GPU: one R32F 3D texture per atlas page
  *
  * Private to the module. The paper's packing storage (sections 4.1 and 5.1): every grid's brick
  * packed into one atlas, or a few pages of it (amrsp::AtlasPages), each uploaded slab by slab
- * (vtkSinglePassAMRPackedAtlas::UploadAtlas). Both mappers hold their atlas in one of these: the
+ * (vtkAMRMapperPackedAtlas::UploadAtlas). Both mappers hold their atlas in one of these: the
  * single pass through the vtkSinglePassAMRGridData interface, the multi-pass mapper through
  * UploadPages and GetPage. Its GLSL piece is Shaders/StoragePackedAtlas.glsl.
  *
  * Invariant: Pages[p] holds page p of the layout uploaded last; empty when nothing is uploaded.
  */
-#ifndef vtkSinglePassAMRAtlasTextures_h
-#define vtkSinglePassAMRAtlasTextures_h
+#ifndef vtkAMRMapperAtlasTextures_h
+#define vtkAMRMapperAtlasTextures_h
 
 #include "vtkSinglePassAMRGridData.h"
 
@@ -25,7 +25,7 @@
 
 class vtkTextureObject;
 
-class vtkSinglePassAMRAtlasTextures : public vtkSinglePassAMRGridData
+class vtkAMRMapperAtlasTextures : public vtkSinglePassAMRGridData
 {
 public:
   /// Uploads the bricks of `h` (cells, or vertices when `vertexCentred`) placed by `pages`, each

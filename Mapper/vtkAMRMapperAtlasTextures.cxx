@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "vtkSinglePassAMRAtlasTextures.h"
+#include "vtkAMRMapperAtlasTextures.h"
 
-#include "vtkSinglePassAMRPackedAtlas.h"
+#include "vtkAMRMapperPackedAtlas.h"
 #include "vtkSinglePassAMRShaderVariant.h"
 
 #include "amrsp/BrickAtlas.h"
@@ -10,14 +10,14 @@
 #include "vtkTextureObject.h"
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMRAtlasTextures::UploadPages(vtkOpenGLRenderWindow* renWin,
+bool vtkAMRMapperAtlasTextures::UploadPages(vtkOpenGLRenderWindow* renWin,
   const amrsp::Hierarchy& h, const amrsp::AtlasPages& pages, bool vertexCentred, int atlasLimit,
   bool reuse, std::string& error, const std::function<void(double)>& progress)
 {
   std::vector<vtkSmartPointer<vtkTextureObject>> reusable;
   if (reuse)
   {
-    reusable = vtkSinglePassAMRPackedAtlas::TakeReusablePages(this->Pages, pages);
+    reusable = vtkAMRMapperPackedAtlas::TakeReusablePages(this->Pages, pages);
   }
   this->Pages.clear();
   this->Bytes = 0;
@@ -26,7 +26,7 @@ bool vtkSinglePassAMRAtlasTextures::UploadPages(vtkOpenGLRenderWindow* renWin,
   {
     vtkSmartPointer<vtkTextureObject> page;
     vtkTextureObject* old = p < reusable.size() ? reusable[p].Get() : nullptr;
-    if (!vtkSinglePassAMRPackedAtlas::UploadAtlas(
+    if (!vtkAMRMapperPackedAtlas::UploadAtlas(
           renWin, pages.Pages.size() == 1 ? h : amrsp::PageHierarchy(h, pages, static_cast<int>(p)),
           pages.Pages[p], vertexCentred, atlasLimit, page, error,
           [&progress, p, share](double f)
@@ -54,7 +54,7 @@ bool vtkSinglePassAMRAtlasTextures::UploadPages(vtkOpenGLRenderWindow* renWin,
 }
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMRAtlasTextures::Upload(vtkOpenGLRenderWindow* renWin,
+bool vtkAMRMapperAtlasTextures::Upload(vtkOpenGLRenderWindow* renWin,
   const amrsp::RayCastingData& data, std::string& error,
   const std::function<void(double)>& progress)
 {
@@ -63,7 +63,7 @@ bool vtkSinglePassAMRAtlasTextures::Upload(vtkOpenGLRenderWindow* renWin,
 }
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMRAtlasTextures::UploadValues(vtkOpenGLRenderWindow* renWin,
+bool vtkAMRMapperAtlasTextures::UploadValues(vtkOpenGLRenderWindow* renWin,
   const amrsp::RayCastingData& data, std::string& error,
   const std::function<void(double)>& progress)
 {
@@ -73,22 +73,22 @@ bool vtkSinglePassAMRAtlasTextures::UploadValues(vtkOpenGLRenderWindow* renWin,
 }
 
 //------------------------------------------------------------------------------
-std::unique_ptr<vtkSinglePassAMRGridData> vtkSinglePassAMRAtlasTextures::NewForAnotherStep() const
+std::unique_ptr<vtkSinglePassAMRGridData> vtkAMRMapperAtlasTextures::NewForAnotherStep() const
 {
-  std::unique_ptr<vtkSinglePassAMRAtlasTextures> other(new vtkSinglePassAMRAtlasTextures);
+  std::unique_ptr<vtkAMRMapperAtlasTextures> other(new vtkAMRMapperAtlasTextures);
   other->AtlasLimit = this->AtlasLimit;
   return std::unique_ptr<vtkSinglePassAMRGridData>(other.release());
 }
 
 //------------------------------------------------------------------------------
-void vtkSinglePassAMRAtlasTextures::Describe(vtkSinglePassAMRShaderVariant& variant) const
+void vtkAMRMapperAtlasTextures::Describe(vtkSinglePassAMRShaderVariant& variant) const
 {
   variant.Storage = amrsp::DataStorage::PackedAtlas;
   variant.AtlasPages = static_cast<int>(this->Pages.size());
 }
 
 //------------------------------------------------------------------------------
-void vtkSinglePassAMRAtlasTextures::ActivatePages()
+void vtkAMRMapperAtlasTextures::ActivatePages()
 {
   for (vtkTextureObject* page : this->Pages)
   {
@@ -97,7 +97,7 @@ void vtkSinglePassAMRAtlasTextures::ActivatePages()
 }
 
 //------------------------------------------------------------------------------
-void vtkSinglePassAMRAtlasTextures::Activate(vtkShaderProgram* program)
+void vtkAMRMapperAtlasTextures::Activate(vtkShaderProgram* program)
 {
   // the atlas pages: amrspAtlas, then amrspAtlas1, amrspAtlas2, ...
   this->ActivatePages();
@@ -120,7 +120,7 @@ void vtkSinglePassAMRAtlasTextures::Activate(vtkShaderProgram* program)
 }
 
 //------------------------------------------------------------------------------
-void vtkSinglePassAMRAtlasTextures::Deactivate()
+void vtkAMRMapperAtlasTextures::Deactivate()
 {
   for (vtkTextureObject* page : this->Pages)
   {
@@ -129,7 +129,7 @@ void vtkSinglePassAMRAtlasTextures::Deactivate()
 }
 
 //------------------------------------------------------------------------------
-void vtkSinglePassAMRAtlasTextures::ReleaseGraphicsResources(vtkWindow* window)
+void vtkAMRMapperAtlasTextures::ReleaseGraphicsResources(vtkWindow* window)
 {
   for (vtkSmartPointer<vtkTextureObject>& page : this->Pages)
   {

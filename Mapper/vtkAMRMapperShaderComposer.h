@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @file    vtkSinglePassAMRShaderComposer.h
+ * @file    vtkAMRMapperShaderComposer.h
  * @brief   a mapper's fragment shader from its template and the GLSL pieces (private)
  *
  * Both mappers compose their shaders here, so the pieces they share (the .glsl files of Shaders/)
  * and the user's vtkShaderProperty replacements apply to both alike.
  */
-#ifndef vtkSinglePassAMRShaderComposer_h
-#define vtkSinglePassAMRShaderComposer_h
+#ifndef vtkAMRMapperShaderComposer_h
+#define vtkAMRMapperShaderComposer_h
 
 #include <string>
 #include <utility>
@@ -17,7 +17,7 @@ class vtkOpenGLRenderWindow;
 class vtkShaderProgram;
 class vtkVolume;
 
-namespace vtkSinglePassAMRShaderComposer
+namespace vtkAMRMapperShaderComposer
 {
 
 /**
@@ -38,6 +38,6 @@ std::string ComposeFragmentShader(const char* source, const std::string& defines
 vtkShaderProgram* ReadyProgram(vtkOpenGLRenderWindow* renWin, const char* vertex,
   const std::string& fragment, const char* name, std::string& failedFragment, std::string& error);
 
-} // namespace vtkSinglePassAMRShaderComposer
+} // namespace vtkAMRMapperShaderComposer
 
 #endif

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @file    vtkSinglePassAMRTextures.h
+ * @file    vtkAMRMapperTextures.h
  * @brief   the texture objects both AMR mappers create (private to the module)
  *
  * The integer 3D textures of the kD-tree encodings and the R32F textures of bricks and atlases,
  * all nearest or trilinear and clamped, as vtkTextureObjects. Not installed.
  */
-#ifndef vtkSinglePassAMRTextures_h
-#define vtkSinglePassAMRTextures_h
+#ifndef vtkAMRMapperTextures_h
+#define vtkAMRMapperTextures_h
 
 #include "amrsp/KdTreeEncoding.h"
 
@@ -18,7 +18,7 @@
 
 class vtkOpenGLRenderWindow;
 
-namespace vtkSinglePassAMRTextures
+namespace vtkAMRMapperTextures
 {
 
 /// An RG32UI 3D texture of a kD-tree encoding (nearest, clamped); null when OpenGL refused it.
@@ -33,6 +33,6 @@ vtkSmartPointer<vtkTextureObject> MakeIntegerTexture(
 vtkSmartPointer<vtkTextureObject> MakeScalarTexture(
   vtkOpenGLRenderWindow* renWin, const glm::ivec3& dims, const float* texels, bool vertexCentred);
 
-} // namespace vtkSinglePassAMRTextures
+} // namespace vtkAMRMapperTextures
 
 #endif

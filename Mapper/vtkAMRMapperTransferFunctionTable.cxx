@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "vtkSinglePassAMRTransferFunctionTable.h"
+#include "vtkAMRMapperTransferFunctionTable.h"
 
 #include "vtkColorTransferFunction.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkVolumeProperty.h"
-#include "vtkSinglePassAMROpenGL.h"
+#include "vtkAMRMapperOpenGL.h"
 
 #include <algorithm>
 #include <cfloat>
@@ -13,14 +13,14 @@
 
 namespace
 {
-/// `rgb` (3 per entry) and `alpha` (1 per entry), vtkSinglePassAMRTransferFunctionTable::Size
+/// `rgb` (3 per entry) and `alpha` (1 per entry), vtkAMRMapperTransferFunctionTable::Size
 /// entries over [range[0], range[1]]: evenly spaced scalars, or log-spaced ones when `logarithmic`.
 /// Without `colour` the grey function gives all three channels.
 void Tabulate(vtkColorTransferFunction* colour, vtkPiecewiseFunction* greyFunction,
   vtkPiecewiseFunction* opacity, const double range[2], bool logarithmic, std::vector<float>& rgb,
   std::vector<float>& alpha)
 {
-  const int n = vtkSinglePassAMRTransferFunctionTable::Size;
+  const int n = vtkAMRMapperTransferFunctionTable::Size;
   if (logarithmic)
   {
     // entry i at 10^(log a + i (log b - log a) / (n - 1)), as vtkColorTransferFunction::GetTable
@@ -67,7 +67,7 @@ void Tabulate(vtkColorTransferFunction* colour, vtkPiecewiseFunction* greyFuncti
 } // namespace
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMRTransferFunctionTable::Update(vtkOpenGLRenderWindow* renWin,
+bool vtkAMRMapperTransferFunctionTable::Update(vtkOpenGLRenderWindow* renWin,
   vtkVolumeProperty* property, const double scalarRange[2], const vtkTimeStamp& dataTime)
 {
   if (this->Texture && this->Texture->GetContext() == renWin && this->Property == property &&
@@ -142,7 +142,7 @@ bool vtkSinglePassAMRTransferFunctionTable::Update(vtkOpenGLRenderWindow* renWin
     opacity = linearOpacity;
   }
 
-  const int n = vtkSinglePassAMRTransferFunctionTable::Size;
+  const int n = vtkAMRMapperTransferFunctionTable::Size;
   std::vector<float> rgb(static_cast<std::size_t>(3 * n)), alpha(static_cast<std::size_t>(n));
   std::vector<float> rgba(static_cast<std::size_t>(4 * n));
   Tabulate(colour, greyFunction, opacity, range, this->Logarithmic, rgb, alpha);
@@ -178,7 +178,7 @@ bool vtkSinglePassAMRTransferFunctionTable::Update(vtkOpenGLRenderWindow* renWin
   return true;
 }
 
-void vtkSinglePassAMRTransferFunctionTable::GetShaderRange(float range[2]) const
+void vtkAMRMapperTransferFunctionTable::GetShaderRange(float range[2]) const
 {
   const double lo = this->Logarithmic ? std::log10(this->Range[0]) : this->Range[0];
   const double hi = this->Logarithmic ? std::log10(this->Range[1]) : this->Range[1];
@@ -186,7 +186,7 @@ void vtkSinglePassAMRTransferFunctionTable::GetShaderRange(float range[2]) const
   range[1] = static_cast<float>(1.0 / (hi - lo));
 }
 
-float vtkSinglePassAMRTransferFunctionTable::TableScalar(float scalar) const
+float vtkAMRMapperTransferFunctionTable::TableScalar(float scalar) const
 {
   if (!this->Logarithmic)
   {
@@ -196,7 +196,7 @@ float vtkSinglePassAMRTransferFunctionTable::TableScalar(float scalar) const
   return scalar > 0.0f ? std::log10(scalar) : -FLT_MAX;
 }
 
-void vtkSinglePassAMRTransferFunctionTable::ReleaseGraphicsResources(vtkWindow* window)
+void vtkAMRMapperTransferFunctionTable::ReleaseGraphicsResources(vtkWindow* window)
 {
   if (this->Texture)
   {

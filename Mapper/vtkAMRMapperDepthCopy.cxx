@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "vtkSinglePassAMRDepthCopy.h"
+#include "vtkAMRMapperDepthCopy.h"
 
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
-#include "vtkSinglePassAMROpenGL.h"
+#include "vtkAMRMapperOpenGL.h"
 
 //------------------------------------------------------------------------------
 namespace
@@ -32,7 +32,7 @@ int ReadFramebufferDepthFormat()
 }
 } // namespace
 
-void vtkSinglePassAMRDepthCopy::ReleaseGraphicsResources(vtkWindow* window)
+void vtkAMRMapperDepthCopy::ReleaseGraphicsResources(vtkWindow* window)
 {
   if (this->Framebuffer)
   {
@@ -45,13 +45,13 @@ void vtkSinglePassAMRDepthCopy::ReleaseGraphicsResources(vtkWindow* window)
       t->ReleaseGraphicsResources(window);
     }
   }
-  *this = vtkSinglePassAMRDepthCopy();
+  *this = vtkAMRMapperDepthCopy();
 }
 
-void vtkSinglePassAMRDepthCopy::CopyFrom(
-  vtkOpenGLRenderWindow* renWin, const vtkSinglePassAMRViewGeometry::ViewGeometry& view)
+void vtkAMRMapperDepthCopy::CopyFrom(
+  vtkOpenGLRenderWindow* renWin, const vtkAMRMapperViewGeometry::ViewGeometry& view)
 {
-  vtkSinglePassAMRDepthCopy& copy = *this;
+  vtkAMRMapperDepthCopy& copy = *this;
   const int format = ReadFramebufferDepthFormat();
   const unsigned int width = static_cast<unsigned int>(view.Width);
   const unsigned int height = static_cast<unsigned int>(view.Height);

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "vtkSinglePassAMRScopedBlendedDraw.h"
+#include "vtkAMRMapperScopedBlendedDraw.h"
 
-#include "vtkSinglePassAMROpenGL.h"
+#include "vtkAMRMapperOpenGL.h"
 
 //------------------------------------------------------------------------------
-vtkSinglePassAMRScopedBlendedDraw::vtkSinglePassAMRScopedBlendedDraw(
+vtkAMRMapperScopedBlendedDraw::vtkAMRMapperScopedBlendedDraw(
   vtkOpenGLState* state, unsigned int cullFace, unsigned int source, unsigned int destination)
   : State(state)
   , Culls(cullFace != GL_NONE)
@@ -30,7 +30,7 @@ vtkSinglePassAMRScopedBlendedDraw::vtkSinglePassAMRScopedBlendedDraw(
 }
 
 //------------------------------------------------------------------------------
-vtkSinglePassAMRScopedBlendedDraw::~vtkSinglePassAMRScopedBlendedDraw()
+vtkAMRMapperScopedBlendedDraw::~vtkAMRMapperScopedBlendedDraw()
 {
   if (this->Culls)
   {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @file    vtkSinglePassAMRViewGeometry.h
+ * @file    vtkAMRMapperViewGeometry.h
  * @brief   the renderer's view and light in the volume's model coordinates (private to the module)
  *
  * What both mappers derive from VTK's camera, the volume's matrix and the renderer's lights:
@@ -8,8 +8,8 @@
  * Units: "index units" are level-0 cell indices (world = Origin + index * Spacing0); "model"
  * coordinates are the volume's own (before its vtkProp3D matrix).
  */
-#ifndef vtkSinglePassAMRViewGeometry_h
-#define vtkSinglePassAMRViewGeometry_h
+#ifndef vtkAMRMapperViewGeometry_h
+#define vtkAMRMapperViewGeometry_h
 
 #include <string>
 
@@ -17,7 +17,7 @@ class vtkMatrix4x4;
 class vtkRenderer;
 class vtkVolume;
 
-namespace vtkSinglePassAMRViewGeometry
+namespace vtkAMRMapperViewGeometry
 {
 
 /// Column-major float copy of a row-major vtkMatrix4x4, as glUniformMatrix4fv expects.
@@ -60,6 +60,6 @@ struct ModelLight
 /// The first switched-on light of `ren` moved into the model coordinates of `vol` (none: black).
 ModelLight FirstLightInModel(vtkRenderer* ren, vtkVolume* vol);
 
-} // namespace vtkSinglePassAMRViewGeometry
+} // namespace vtkAMRMapperViewGeometry
 
 #endif

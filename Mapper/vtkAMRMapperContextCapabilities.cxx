@@ -1,12 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "vtkSinglePassAMRContextCapabilities.h"
+#include "vtkAMRMapperContextCapabilities.h"
 
 #include "vtkOpenGLRenderWindow.h"
-#include "vtkSinglePassAMROpenGL.h"
+#include "vtkAMRMapperOpenGL.h"
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMRContextCapabilities::IsRenderSupported(
-  vtkRenderWindow* window, std::string* why)
+bool vtkAMRMapperContextCapabilities::IsRenderSupported(vtkRenderWindow* window, std::string* why)
 {
   vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
   auto fail = [why](const std::string& reason)
@@ -38,17 +37,17 @@ bool vtkSinglePassAMRContextCapabilities::IsRenderSupported(
 }
 
 //------------------------------------------------------------------------------
-bool vtkSinglePassAMRContextCapabilities::Update(vtkOpenGLRenderWindow* renWin)
+bool vtkAMRMapperContextCapabilities::Update(vtkOpenGLRenderWindow* renWin)
 {
   if (this->Context == renWin)
   {
     return false;
   }
   renWin->MakeCurrent();
-  this->Bindless = vtkSinglePassAMROpenGL::HasExtension("GL_ARB_bindless_texture");
-  this->NVShader5 = vtkSinglePassAMROpenGL::HasExtension("GL_NV_gpu_shader5");
-  this->Ballot = vtkSinglePassAMROpenGL::HasExtension("GL_ARB_shader_ballot");
-  this->ThreadBuiltins = vtkSinglePassAMROpenGL::HasExtension("GL_NV_shader_thread_builtins");
+  this->Bindless = vtkAMRMapperOpenGL::HasExtension("GL_ARB_bindless_texture");
+  this->NVShader5 = vtkAMRMapperOpenGL::HasExtension("GL_NV_gpu_shader5");
+  this->Ballot = vtkAMRMapperOpenGL::HasExtension("GL_ARB_shader_ballot");
+  this->ThreadBuiltins = vtkAMRMapperOpenGL::HasExtension("GL_NV_shader_thread_builtins");
   const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   const std::string name = renderer ? renderer : "";
   this->MaxBindlessTextures = name.find("zink") != std::string::npos ? 1023 : -1;
@@ -65,7 +64,7 @@ bool vtkSinglePassAMRContextCapabilities::Update(vtkOpenGLRenderWindow* renWin)
   {
     this->ComputeVersion = "#version 430 core\n";
   }
-  else if (version >= 42 && vtkSinglePassAMROpenGL::HasExtension("GL_ARB_compute_shader"))
+  else if (version >= 42 && vtkAMRMapperOpenGL::HasExtension("GL_ARB_compute_shader"))
   {
     this->ComputeVersion = "#version 420 core\n#extension GL_ARB_compute_shader : require\n";
   }
@@ -79,7 +78,7 @@ bool vtkSinglePassAMRContextCapabilities::Update(vtkOpenGLRenderWindow* renWin)
 }
 
 //------------------------------------------------------------------------------
-amrsp::BindlessAccess vtkSinglePassAMRContextCapabilities::ResolveAccess(
+amrsp::BindlessAccess vtkAMRMapperContextCapabilities::ResolveAccess(
   amrsp::BindlessAccess access, std::string& why) const
 {
   using Access = amrsp::BindlessAccess;

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "vtkSinglePassAMRTextures.h"
+#include "vtkAMRMapperTextures.h"
 
 #include "vtkOpenGLRenderWindow.h"
-#include "vtkSinglePassAMROpenGL.h"
+#include "vtkAMRMapperOpenGL.h"
 
-namespace vtkSinglePassAMRTextures
+namespace vtkAMRMapperTextures
 {
 
 //------------------------------------------------------------------------------
@@ -66,4 +66,4 @@ vtkSmartPointer<vtkTextureObject> MakeScalarTexture(
   return ok ? tex : nullptr;
 }
 
-} // namespace vtkSinglePassAMRTextures
+} // namespace vtkAMRMapperTextures

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @class   vtkSinglePassAMRConversion
+ * @class   vtkAMRMapperConversion
  * @brief   converts between vtkOverlappingAMR and the core's amrsp::Hierarchy
  *
  * Not installed (the header exposes core types), but exported: the amrsp tool and the ParaView
@@ -9,8 +9,8 @@
  * half-open boxes in the same index spaces. Refinement ratios are recovered per axis from the level
  * spacings, so anisotropic and per-level ratios survive; a non-integer ratio is an error.
  */
-#ifndef vtkSinglePassAMRConversion_h
-#define vtkSinglePassAMRConversion_h
+#ifndef vtkAMRMapperConversion_h
+#define vtkAMRMapperConversion_h
 
 #include "amrsp/Hierarchy.h"
 #include "vtkSinglePassAMRModule.h" // for export macro
@@ -20,7 +20,7 @@
 
 class vtkOverlappingAMR;
 
-class VTKSINGLEPASSAMR_EXPORT vtkSinglePassAMRConversion
+class VTKSINGLEPASSAMR_EXPORT vtkAMRMapperConversion
 {
 public:
   struct ArraySelection

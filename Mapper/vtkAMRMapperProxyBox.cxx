@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "vtkSinglePassAMRProxyBox.h"
+#include "vtkAMRMapperProxyBox.h"
 
 #include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLVertexArrayObject.h"
@@ -9,7 +9,7 @@
 #include <algorithm>
 #include <sstream>
 
-namespace vtkSinglePassAMRProxyBox
+namespace vtkAMRMapperProxyBox
 {
 
 //------------------------------------------------------------------------------
@@ -95,4 +95,4 @@ bool BindTriangles(vtkOpenGLVertexArrayObject* array, vtkOpenGLBufferObject* buf
   return true;
 }
 
-} // namespace vtkSinglePassAMRProxyBox
+} // namespace vtkAMRMapperProxyBox

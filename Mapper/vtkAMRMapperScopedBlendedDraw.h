@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @file    vtkSinglePassAMRScopedBlendedDraw.h
+ * @file    vtkAMRMapperScopedBlendedDraw.h
  * @brief   the OpenGL state of one blended draw of the proxy box (private to the module)
  *
  * Set on construction, restored on destruction.
  */
-#ifndef vtkSinglePassAMRScopedBlendedDraw_h
-#define vtkSinglePassAMRScopedBlendedDraw_h
+#ifndef vtkAMRMapperScopedBlendedDraw_h
+#define vtkAMRMapperScopedBlendedDraw_h
 
 #include "vtkOpenGLState.h"
 
@@ -18,14 +18,14 @@
  * as they were, and the culled face to GL_BACK (VTK's default, which vtkOpenGLState does not
  * save).
  */
-class vtkSinglePassAMRScopedBlendedDraw
+class vtkAMRMapperScopedBlendedDraw
 {
 public:
-  vtkSinglePassAMRScopedBlendedDraw(
+  vtkAMRMapperScopedBlendedDraw(
     vtkOpenGLState* state, unsigned int cullFace, unsigned int source, unsigned int destination);
-  ~vtkSinglePassAMRScopedBlendedDraw();
-  vtkSinglePassAMRScopedBlendedDraw(const vtkSinglePassAMRScopedBlendedDraw&) = delete;
-  vtkSinglePassAMRScopedBlendedDraw& operator=(const vtkSinglePassAMRScopedBlendedDraw&) = delete;
+  ~vtkAMRMapperScopedBlendedDraw();
+  vtkAMRMapperScopedBlendedDraw(const vtkAMRMapperScopedBlendedDraw&) = delete;
+  vtkAMRMapperScopedBlendedDraw& operator=(const vtkAMRMapperScopedBlendedDraw&) = delete;
 
 private:
   vtkOpenGLState* State;

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @file vtkSinglePassAMROpenGL.h
+ * @file vtkAMRMapperOpenGL.h
  * @brief The one place where the mappers see which OpenGL loader their VTK has.
  *
  * VTK up to 9.3 loads OpenGL through GLEW (modules VTK::glew and VTK::opengl, `vtk_glew.h`);
@@ -10,8 +10,8 @@
  * glad. Both loaders declare the same core and ARB entry points (bindless textures included),
  * so everything else in the mappers is written once.
  */
-#ifndef vtkSinglePassAMROpenGL_h
-#define vtkSinglePassAMROpenGL_h
+#ifndef vtkAMRMapperOpenGL_h
+#define vtkAMRMapperOpenGL_h
 
 #if defined(VTK_MODULE_ENABLE_VTK_glad) && VTK_MODULE_ENABLE_VTK_glad
 #include "vtk_glad.h"
@@ -21,7 +21,7 @@
 
 #include <cstring>
 
-namespace vtkSinglePassAMROpenGL
+namespace vtkAMRMapperOpenGL
 {
 /// Whether the current OpenGL (3.0+) context lists the extension `name` (e.g.
 /// "GL_ARB_bindless_texture"). Reads GL_EXTENSIONS one by one, which both loaders provide.
@@ -39,6 +39,6 @@ inline bool HasExtension(const char* name)
   }
   return false;
 }
-} // namespace vtkSinglePassAMROpenGL
+} // namespace vtkAMRMapperOpenGL
 
 #endif

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "vtkSinglePassAMRShaderComposer.h"
+#include "vtkAMRMapperShaderComposer.h"
 
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
@@ -8,7 +8,7 @@
 #include "vtkShaderProgram.h"
 #include "vtkVolume.h"
 
-namespace vtkSinglePassAMRShaderComposer
+namespace vtkAMRMapperShaderComposer
 {
 
 //------------------------------------------------------------------------------
@@ -63,4 +63,4 @@ vtkShaderProgram* ReadyProgram(vtkOpenGLRenderWindow* renWin, const char* vertex
   return program;
 }
 
-} // namespace vtkSinglePassAMRShaderComposer
+} // namespace vtkAMRMapperShaderComposer

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @file    vtkSinglePassAMRProxyBox.h
+ * @file    vtkAMRMapperProxyBox.h
  * @brief   the box the rays are integrated in, and its triangles (private to the module)
  *
  * Units: "index units" are level-0 cell indices (world = Origin + index * Spacing0); "model"
  * coordinates are the volume's own (before its vtkProp3D matrix).
  */
-#ifndef vtkSinglePassAMRProxyBox_h
-#define vtkSinglePassAMRProxyBox_h
+#ifndef vtkAMRMapperProxyBox_h
+#define vtkAMRMapperProxyBox_h
 
 #include <glm/glm.hpp>
 
@@ -19,7 +19,7 @@ class vtkOpenGLVertexArrayObject;
 class vtkShaderProgram;
 class vtkVolumeMapper;
 
-namespace vtkSinglePassAMRProxyBox
+namespace vtkAMRMapperProxyBox
 {
 
 /**
@@ -43,6 +43,6 @@ std::vector<float> BoxTriangles(const double lo[3], const double hi[3]);
 bool BindTriangles(vtkOpenGLVertexArrayObject* array, vtkOpenGLBufferObject* buffer,
   vtkShaderProgram* program, const char* attribute, vtkShaderProgram*& boundProgram);
 
-} // namespace vtkSinglePassAMRProxyBox
+} // namespace vtkAMRMapperProxyBox
 
 #endif

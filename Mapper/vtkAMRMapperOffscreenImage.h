@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @class   vtkSinglePassAMROffscreenImage
+ * @class   vtkAMRMapperOffscreenImage
  * @brief   an offscreen RGBA32F image of premultiplied colour, composited over the viewport
  *
  * Private to the module. The multi-pass mapper accumulates its node draws in one of the
@@ -10,8 +10,8 @@
  * blended premultiplied "over" (ONE, ONE_MINUS_SRC_ALPHA) onto the current framebuffer's
  * viewport, as the single-pass mapper blends its own rays.
  */
-#ifndef vtkSinglePassAMROffscreenImage_h
-#define vtkSinglePassAMROffscreenImage_h
+#ifndef vtkAMRMapperOffscreenImage_h
+#define vtkAMRMapperOffscreenImage_h
 
 #include "vtkSmartPointer.h"
 
@@ -25,13 +25,13 @@ class vtkOpenGLState;
 class vtkTextureObject;
 class vtkWindow;
 
-class vtkSinglePassAMROffscreenImage
+class vtkAMRMapperOffscreenImage
 {
 public:
-  vtkSinglePassAMROffscreenImage();
-  ~vtkSinglePassAMROffscreenImage();
-  vtkSinglePassAMROffscreenImage(const vtkSinglePassAMROffscreenImage&) = delete;
-  vtkSinglePassAMROffscreenImage& operator=(const vtkSinglePassAMROffscreenImage&) = delete;
+  vtkAMRMapperOffscreenImage();
+  ~vtkAMRMapperOffscreenImage();
+  vtkAMRMapperOffscreenImage(const vtkAMRMapperOffscreenImage&) = delete;
+  vtkAMRMapperOffscreenImage& operator=(const vtkAMRMapperOffscreenImage&) = delete;
 
   /// (Re)creates the image and its framebuffer for `width` x `height` pixels of `renWin` when
   /// missing, of another context, size or filtering (`linear`: bilinear magnification, else

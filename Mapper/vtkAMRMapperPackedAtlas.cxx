@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "vtkSinglePassAMRPackedAtlas.h"
+#include "vtkAMRMapperPackedAtlas.h"
 
-#include "vtkSinglePassAMRConversion.h"
-#include "vtkSinglePassAMRTextures.h"
+#include "vtkAMRMapperConversion.h"
+#include "vtkAMRMapperTextures.h"
 
 #include "amrsp/AtlasPages.h"
 #include "amrsp/BrickPacking.h"
@@ -10,7 +10,7 @@
 
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOverlappingAMR.h"
-#include "vtkSinglePassAMROpenGL.h"
+#include "vtkAMRMapperOpenGL.h"
 
 #include <algorithm>
 #include <exception>
@@ -18,7 +18,7 @@
 #include <sstream>
 #include <utility>
 
-namespace vtkSinglePassAMRPackedAtlas
+namespace vtkAMRMapperPackedAtlas
 {
 
 //------------------------------------------------------------------------------
@@ -31,10 +31,10 @@ bool ConvertAndPack(vtkOverlappingAMR* amr, const std::string& array, int compon
   amrsp::Hierarchy h;
   try
   {
-    vtkSinglePassAMRConversion::ArraySelection selection;
+    vtkAMRMapperConversion::ArraySelection selection;
     selection.Name = array;
     selection.Component = component;
-    if (!vtkSinglePassAMRConversion::FromOverlappingAMR(amr, selection, h, error))
+    if (!vtkAMRMapperConversion::FromOverlappingAMR(amr, selection, h, error))
     {
       out = PackedHierarchy();
       return false;
@@ -102,7 +102,7 @@ vtkSmartPointer<vtkTextureObject> UploadAtlasBySlabs(vtkOpenGLRenderWindow* renW
   if (!reuse || static_cast<int>(reuse->GetWidth()) != d.x ||
     static_cast<int>(reuse->GetHeight()) != d.y || static_cast<int>(reuse->GetDepth()) != d.z)
   {
-    atlas = vtkSinglePassAMRTextures::MakeScalarTexture(renWin, d, nullptr, vertexCentred);
+    atlas = vtkAMRMapperTextures::MakeScalarTexture(renWin, d, nullptr, vertexCentred);
   }
   if (!atlas)
   {
@@ -212,4 +212,4 @@ std::vector<vtkSmartPointer<vtkTextureObject>> TakeReusablePages(
   return reusable; // `old` releases the rest here
 }
 
-} // namespace vtkSinglePassAMRPackedAtlas
+} // namespace vtkAMRMapperPackedAtlas

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @class   vtkSinglePassAMRContextCapabilities
+ * @class   vtkAMRMapperContextCapabilities
  * @brief   what an OpenGL context offers the AMR mappers, queried once per context
  *
  * Private to the module: the one place that asks a context what it can do. IsRenderSupported
@@ -10,8 +10,8 @@
  * builtins, a CPU driver, Mesa's zink handle limit), which vtkSinglePassAMRGridStorage hands to
  * vtkSinglePassAMRStorageChoice and vtkSinglePassAMRChooseRayCaster.
  */
-#ifndef vtkSinglePassAMRContextCapabilities_h
-#define vtkSinglePassAMRContextCapabilities_h
+#ifndef vtkAMRMapperContextCapabilities_h
+#define vtkAMRMapperContextCapabilities_h
 
 #include "amrsp/DataStorage.h"
 
@@ -20,7 +20,7 @@
 class vtkOpenGLRenderWindow;
 class vtkRenderWindow;
 
-struct vtkSinglePassAMRContextCapabilities
+struct vtkAMRMapperContextCapabilities
 {
   /// Whether `window` offers an OpenGL 3.2 core context (integer and float textures, GLSL 1.50,
   /// float colour attachments, depth clamping); creates its context when it has none. When it
