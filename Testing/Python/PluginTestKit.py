@@ -2,7 +2,9 @@
 # Imports nothing of ParaView at module level (TestGuiSmoke.py runs under plain python3).
 # Importing it makes an uncaught exception a FAIL that runs the BEFORE_FAIL hooks.
 import os
+import subprocess
 import sys
+import time
 
 sys.path.insert(
     0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Tools", "scripts"))
@@ -224,28 +226,37 @@ def read_png(path):
     return dims[0], dims[1], pixels[:, :3].astype("float64")
 
 
-def require_display():
-    """ParaView builds on VTK < 9.4 render through GLX only and abort the process when no X
-    display answers: probe first. CTest sets AMRSP_GLX_ONLY=0 for ParaView on VTK >= 9.4, which
-    renders through EGL or OSMesa when there is no X server and needs nothing here."""
+def x_display_answers():
+    """Whether the X display named by DISPLAY answers (True when libX11 cannot be found to ask)."""
     import ctypes
     import ctypes.util
 
-    if os.environ.get("AMRSP_GLX_ONLY", "1") == "0":
-        return
     if not os.environ.get("DISPLAY"):
-        skip("no X display (DISPLAY is unset); start one with scripts/start-xvfb.sh")
+        return False
     library = ctypes.util.find_library("X11")
     if not library:
-        return  # cannot probe; let VTK try
+        return True  # cannot probe; let VTK try
     x11 = ctypes.cdll.LoadLibrary(library)
     x11.XOpenDisplay.restype = ctypes.c_void_p
     x11.XOpenDisplay.argtypes = [ctypes.c_char_p]
     x11.XCloseDisplay.argtypes = [ctypes.c_void_p]
     display = x11.XOpenDisplay(None)
     if not display:
-        skip("the X display %s does not answer" % os.environ["DISPLAY"])
+        return False
     x11.XCloseDisplay(display)
+    return True
+
+
+def require_display():
+    """ParaView builds on VTK < 9.4 render through GLX only and abort the process when no X
+    display answers: probe first. CTest sets AMRSP_GLX_ONLY=0 for ParaView on VTK >= 9.4, which
+    renders through EGL or OSMesa when there is no X server and needs nothing here."""
+    if os.environ.get("AMRSP_GLX_ONLY", "1") == "0":
+        return
+    if not os.environ.get("DISPLAY"):
+        skip("no X display (DISPLAY is unset); start one with scripts/start-xvfb.sh")
+    if not x_display_answers():
+        skip("the X display %s does not answer" % os.environ["DISPLAY"])
 
 
 def info_property(display, name):
@@ -255,3 +266,193 @@ def info_property(display, name):
     if prop is None:
         fail("the representation has no property %s" % name)
     return prop.GetElement(0) if prop.GetNumberOfElements() > 0 else None
+
+
+# ---- pvservers this test started (ended with it; their logs reported when it fails)
+SERVER = []  # the pvservers this test started (one; more after a failed start); ended with it
+SERVER_LOGS = []  # their log files, in the same order
+
+
+# ghost types the range information skips: duplicate, refined (under a finer level), hidden
+SKIPPED_GHOSTS = 1 | 8 | 32
+
+
+def end_process(process, seconds):
+    """Terminates `process`, killing it when it has not ended within `seconds`."""
+    process.terminate()
+    try:
+        process.wait(timeout=seconds)
+    except subprocess.TimeoutExpired:
+        process.kill()
+
+
+def stop_servers():
+    for server in SERVER:
+        if server.poll() is None:
+            end_process(server, 10)
+
+
+def report_servers():
+    # The end of the log of a pvserver that is gone (its exit code says whether it crashed).
+    for server, path in zip(SERVER, SERVER_LOGS):
+        try:
+            with open(path, errors="replace") as f:
+                lines = f.readlines()
+        except OSError:
+            continue
+        if server.poll() is not None:
+            print("pvserver ended with exit code %s; its log (%s) ends:\n%s"
+                  % (server.returncode, path, "".join(lines[-15:])))
+
+
+BEFORE_LEAVE.append(stop_servers)
+BEFORE_FAIL.append(report_servers)
+
+
+def run_amrsp(command):
+    run = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                         universal_newlines=True)
+    if run.returncode != 0:
+        print(run.stdout)
+        fail("%s failed (exit code %d)" % (" ".join(command[:2]), run.returncode))
+    return run.stdout.strip()
+
+
+def free_port():
+    import socket
+
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
+        s.bind(("localhost", 0))
+        return s.getsockname()[1]
+
+
+def copy_server_output(server, log_path):
+    """Copies the pvserver's output into its log as it comes. VTK's X abort line (the X server
+    refused the pvserver's window) is also repeated on this test's output at once, where
+    RetryOnXFailure.py sees it: the client often crashes when its server aborts, before any
+    report could be printed."""
+    import threading
+
+    def copy():
+        with open(log_path, "a", errors="replace") as log:
+            for raw in iter(server.stdout.readline, b""):
+                line = raw.decode(errors="replace")
+                log.write(line)
+                log.flush()
+                if "bad X server connection" in line:
+                    sys.stdout.write("pvserver: " + line.strip() + "\n")
+                    sys.stdout.flush()
+
+    threading.Thread(target=copy, daemon=True).start()
+
+
+def start_server(pvserver, log_path):
+    """Starts our own pvserver on a free loopback port and connects to it."""
+    from paraview import simple
+
+    for attempt in range(3):
+        port = free_port()
+        open(log_path, "w").close()
+        server = subprocess.Popen([pvserver, "--force-offscreen-rendering",
+                                   "--server-port=%d" % port], stdout=subprocess.PIPE,
+                                  stderr=subprocess.STDOUT)
+        copy_server_output(server, log_path)
+        SERVER.append(server)
+        SERVER_LOGS.append(log_path)
+        deadline = time.time() + 60.0
+        while server.poll() is None and time.time() < deadline:
+            with open(log_path) as f:
+                if "Accepting connection" in f.read():
+                    break
+            time.sleep(0.1)
+        if server.poll() is None:
+            simple.Connect("localhost", port)
+            print("client-server: connected to our pvserver on port %d (log %s)"
+                  % (port, log_path))
+            return server
+        server.wait()
+    fail("pvserver did not start (see %s)" % log_path)
+
+
+def server_died(server):
+    """Fails (report_servers prints the end of its log) when our pvserver is gone."""
+    if server is not None and server.poll() is not None:
+        fail("pvserver ended unexpectedly (exit code %s)" % server.returncode)
+
+
+def stop_server(server):
+    from paraview import simple
+
+    simple.Disconnect()
+    end_process(server, 30)
+
+
+def clean_environment():
+    """pvpython initialises MPI as a singleton and exports OpenMPI's variables (OMPI_*, PMIX_*);
+    an mpiexec (or pvbatch) started with them exits at once with code 1 and no output.
+    ParaView's data-movement log is switched on: the representation names each rank's region
+    there."""
+    env = {k: v for k, v in os.environ.items()
+           if not k.startswith(("OMPI_", "PMIX_", "OPAL_", "ORTE_"))}
+    env["PARAVIEW_LOG_DATA_MOVEMENT_VERBOSITY"] = "INFO"
+    return env
+
+
+# pvbatch on several ranks renders in parallel only while every rank passed ParaView's X display
+# and OpenGL check (vtkPVRenderingCapabilitiesInformation, at view creation); one refused X
+# connection on one rank (an Xvfb without -noreset refused 4 of 160 connections made 4 at a
+# time: it drops connections while it resets) turns parallel rendering off on all ranks, and ParaView 5.11 then deadlocks in IceT at
+# the first render (docs/paraview.md, "MPI runs and the X display check"). --disable-xdisplay-test skips
+# that check: each rank opens its own window when it renders, and a refused connection there
+# aborts the run with "bad X server connection", which RetryOnXFailure.py runs again.
+MPI_PVBATCH_OPTIONS = ["--disable-xdisplay-test"]
+# A run that takes longer than this has hung (2 and 4 ranks take 5 to 25 s here): it is killed
+# and the test FAILS (no retry).
+HANG_SECONDS = 150
+
+
+def call_with_hang_detector(command, log):
+    import signal
+
+    process = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT,
+                               env=clean_environment(), start_new_session=True)
+    try:
+        return process.wait(timeout=HANG_SECONDS)
+    except subprocess.TimeoutExpired:
+        os.killpg(process.pid, signal.SIGKILL)
+        process.wait()
+        log.flush()
+        with open(log.name) as f:
+            tail = f.read().splitlines()[-15:]
+        print("end of the log:\n" + "\n".join(tail))
+        print("FAIL: %s did not finish within %d s: it hung (killed)"
+              % (" ".join(command), HANG_SECONDS))
+        sys.exit(1)
+
+
+def array_statistics(source, name):
+    """(count, minimum, maximum, smallest positive value) of the cell array `name` over every
+    block of the source's vtkOverlappingAMR, skipping the cells the mapper never samples (builtin
+    session: the source's own output)."""
+    import numpy
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    amr = source.GetClientSideObject().GetOutputDataObject(0)
+    values = []
+    for level in range(amr.GetNumberOfLevels()):
+        for index in range(amr.GetNumberOfDataSets(level)):
+            block = amr.GetDataSet(level, index)
+            if block is None or block.GetCellData().GetArray(name) is None:
+                continue
+            data = vtk_to_numpy(block.GetCellData().GetArray(name)).astype("float64")
+            if data.ndim > 1:
+                data = data[:, 0]
+            ghosts = block.GetCellData().GetArray("vtkGhostType")
+            if ghosts is not None:
+                data = data[(vtk_to_numpy(ghosts) & SKIPPED_GHOSTS) == 0]
+            values.append(data[numpy.isfinite(data)])
+    data = numpy.concatenate(values) if values else numpy.zeros(0)
+    positive = data[data > 0.0]
+    return (int(data.size), float(data.min()) if data.size else 0.0,
+            float(data.max()) if data.size else 0.0,
+            float(positive.min()) if positive.size else 0.0)

@@ -19,7 +19,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from PluginTestKit import check_render_error, fail, leave, skip  # noqa: E402
+from PluginTestKit import check_render_error, fail, leave, skip, x_display_answers  # noqa: E402
 
 MIN_COVERAGE = 0.05  # share of the checked pixels that must show the volume (measured 12.6 %)
 ENZO = "enzo_moving7/DD0010/moving7_0010.hierarchy"
@@ -32,26 +32,6 @@ REFERENCE_RMSE_BOUND = 2.4
 # over the checked pixels; measured 12.6).
 LOG_DIFFERENCE_BOUND = 5.0
 REFERENCE_OFF_BOUND = 0.005
-
-
-def display_answers():
-    import ctypes
-    import ctypes.util
-
-    if not os.environ.get("DISPLAY"):
-        return False
-    library = ctypes.util.find_library("X11")
-    if not library:
-        return True
-    x11 = ctypes.cdll.LoadLibrary(library)
-    x11.XOpenDisplay.restype = ctypes.c_void_p
-    x11.XOpenDisplay.argtypes = [ctypes.c_char_p]
-    x11.XCloseDisplay.argtypes = [ctypes.c_void_p]
-    handle = x11.XOpenDisplay(None)
-    if not handle:
-        return False
-    x11.XCloseDisplay(handle)
-    return True
 
 
 def check_interactive_frames(status):
@@ -107,7 +87,7 @@ def main():
     gui_display = os.environ.get("DISPLAY") or os.environ.get("AMRSP_GUI_DISPLAY", "")
     if gui_display:
         os.environ["DISPLAY"] = gui_display
-    if not display_answers():
+    if not x_display_answers():
         skip("no X display answers (DISPLAY=%r); the GUI needs one (scripts/start-xvfb.sh)"
              % os.environ.get("DISPLAY"))
     os.makedirs(outdir, exist_ok=True)

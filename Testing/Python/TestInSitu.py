@@ -23,9 +23,8 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from PluginTestKit import (coverage, fail, off_share, read_png, require_display, rmse,  # noqa: E402
-                           skip)
-from TestPluginParallel import clean_environment  # noqa: E402
+from PluginTestKit import (clean_environment, coverage, fail, off_share, read_png,  # noqa: E402
+                           require_display, rmse, skip)
 
 STEPS = 5
 REGRID = 2  # steps 2 and 4 regrid

@@ -27,7 +27,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from PluginTestKit import check_render_error, fail, skip  # noqa: E402
+from PluginTestKit import array_statistics, check_render_error, fail, skip  # noqa: E402
 
 TYPE = "AMR Single-Pass Volume"
 SIZE = 160
@@ -45,42 +45,12 @@ BOUNDS = {
     "enzo-x-velocity": 0.25,
     "contrast": 0.25,
 }
-# ghost types the range information skips: duplicate, refined (under a finer level), hidden
-SKIPPED_GHOSTS = 1 | 8 | 32
 
 
 def density_like(stats):
     """The rule, on (count, minimum, maximum, smallest positive value)."""
     count, lo, hi, lo_positive = stats
     return count > 0 and lo >= 0.0 and lo_positive > 0.0 and hi / lo_positive > 10.0 ** DECADES
-
-
-def array_statistics(source, name):
-    """(count, minimum, maximum, smallest positive value) of the cell array `name` over every
-    block of the source's vtkOverlappingAMR, skipping the cells the mapper never samples (builtin
-    session: the source's own output)."""
-    import numpy
-    from vtkmodules.util.numpy_support import vtk_to_numpy
-
-    amr = source.GetClientSideObject().GetOutputDataObject(0)
-    values = []
-    for level in range(amr.GetNumberOfLevels()):
-        for index in range(amr.GetNumberOfDataSets(level)):
-            block = amr.GetDataSet(level, index)
-            if block is None or block.GetCellData().GetArray(name) is None:
-                continue
-            data = vtk_to_numpy(block.GetCellData().GetArray(name)).astype("float64")
-            if data.ndim > 1:
-                data = data[:, 0]
-            ghosts = block.GetCellData().GetArray("vtkGhostType")
-            if ghosts is not None:
-                data = data[(vtk_to_numpy(ghosts) & SKIPPED_GHOSTS) == 0]
-            values.append(data[numpy.isfinite(data)])
-    data = numpy.concatenate(values) if values else numpy.zeros(0)
-    positive = data[data > 0.0]
-    return (int(data.size), float(data.min()) if data.size else 0.0,
-            float(data.max()) if data.size else 0.0,
-            float(positive.min()) if positive.size else 0.0)
 
 
 def function_range(function):
@@ -125,8 +95,7 @@ class Session:
         """Renders the view (the amrsp camera directions), returns the share of pixels that show
         the volume; fails on a render error."""
         from paraview import simple
-        from PluginTestKit import coverage, info_property, read_png
-        from TestPluginRepresentation import server_died
+        from PluginTestKit import coverage, info_property, read_png, server_died
 
         simple.Render(view)
         # ResetCamera keeps the view direction: start each shot from the same one
@@ -357,8 +326,7 @@ def main():
     enzo_path = os.path.join(data_dir, ENZO)
     if not os.path.exists(enzo_path):
         skip("dataset not found: %s" % enzo_path)
-    from PluginTestKit import require_display
-    from TestPluginRepresentation import start_server, stop_server
+    from PluginTestKit import require_display, start_server, stop_server
 
     require_display()
     os.makedirs(outdir, exist_ok=True)

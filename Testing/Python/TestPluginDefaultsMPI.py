@@ -26,9 +26,7 @@ RESULT = re.compile(r"^defaults: ranks (\d+), picked (\S+), log (\d), range \[(\
 
 def run_one(plugin):
     """One pvbatch run: prints the result line."""
-    from PluginTestKit import fail, skip
-    from TestPluginDefaults import array_statistics
-    from PluginTestKit import require_display
+    from PluginTestKit import array_statistics, fail, require_display, skip
 
     path = os.path.join(os.environ.get("AMRSP_DATA_DIR", "../shared/data"), ENZO)
     if not os.path.exists(path):
@@ -58,7 +56,7 @@ def run_one(plugin):
 
 
 def driver(mpiexec, pvbatch, plugin, outdir):
-    from TestPluginParallel import MPI_PVBATCH_OPTIONS, SKIP, call_with_hang_detector
+    from PluginTestKit import MPI_PVBATCH_OPTIONS, SKIP, call_with_hang_detector
 
     os.makedirs(outdir, exist_ok=True)
     script = [os.path.abspath(__file__), "--run", plugin]

@@ -13,30 +13,18 @@
 import glob
 import os
 import re
-import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from PluginTestKit import distributed_bounds, off_share, rmse as kit_rmse  # noqa: E402
+from PluginTestKit import (MPI_PVBATCH_OPTIONS, SKIP, call_with_hang_detector,  # noqa: E402
+                           clean_environment, distributed_bounds, off_share, rmse as kit_rmse)
 
-SKIP = 125
 # The parallel image is the ranks' region images composited by IceT in visibility order (or,
 # gathering, rank 0's image over the others' empty ones). Pixels on the volume's silhouette
 # differ, as they do when a pvserver renders (Plugin.ClientServer.remote.*), and with regions
 # the samples along a ray restart at each region face (a shift below one sample step).
 # The bounds per dataset and split, with what was measured: PluginTestKit.DISTRIBUTED_BOUNDS.
 HERE = os.path.dirname(os.path.abspath(__file__))
-
-
-def clean_environment():
-    """pvpython initialises MPI as a singleton and exports OpenMPI's variables (OMPI_*, PMIX_*);
-    an mpiexec (or pvbatch) started with them exits at once with code 1 and no output.
-    ParaView's data-movement log is switched on: the representation names each rank's region
-    there."""
-    env = {k: v for k, v in os.environ.items()
-           if not k.startswith(("OMPI_", "PMIX_", "OPAL_", "ORTE_"))}
-    env["PARAVIEW_LOG_DATA_MOVEMENT_VERBOSITY"] = "INFO"
-    return env
 
 
 REGION_LINE = re.compile(r"AMR single-pass: rank (\d+) renders region \[(\S+), (\S+)\] x "
@@ -101,38 +89,6 @@ def check_regions(log_path, ranks, mode):
     if overlap > 1e-9 * volume(union) or abs(covered - volume(union)) > 1e-9 * volume(union):
         print("FAIL: the regions do not tile their bounding box (overlap %g, covered %g of %g)"
               % (overlap, covered, volume(union)))
-        sys.exit(1)
-
-
-# pvbatch on several ranks renders in parallel only while every rank passed ParaView's X display
-# and OpenGL check (vtkPVRenderingCapabilitiesInformation, at view creation); one refused X
-# connection on one rank (an Xvfb without -noreset refused 4 of 160 connections made 4 at a
-# time: it drops connections while it resets) turns parallel rendering off on all ranks, and ParaView 5.11 then deadlocks in IceT at
-# the first render (docs/paraview.md, "MPI runs and the X display check"). --disable-xdisplay-test skips
-# that check: each rank opens its own window when it renders, and a refused connection there
-# aborts the run with "bad X server connection", which RetryOnXFailure.py runs again.
-MPI_PVBATCH_OPTIONS = ["--disable-xdisplay-test"]
-# A run that takes longer than this has hung (2 and 4 ranks take 5 to 25 s here): it is killed
-# and the test FAILS (no retry).
-HANG_SECONDS = 150
-
-
-def call_with_hang_detector(command, log):
-    import signal
-
-    process = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT,
-                               env=clean_environment(), start_new_session=True)
-    try:
-        return process.wait(timeout=HANG_SECONDS)
-    except subprocess.TimeoutExpired:
-        os.killpg(process.pid, signal.SIGKILL)
-        process.wait()
-        log.flush()
-        with open(log.name) as f:
-            tail = f.read().splitlines()[-15:]
-        print("end of the log:\n" + "\n".join(tail))
-        print("FAIL: %s did not finish within %d s: it hung (killed)"
-              % (" ".join(command), HANG_SECONDS))
         sys.exit(1)
 
 

@@ -24,17 +24,15 @@
 # Exit codes: 0 pass, 1 fail, 125 skipped (data missing, or no OpenGL context the mapper can use).
 import math
 import os
-import subprocess
 import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from PluginTestKit import (BEFORE_FAIL, BEFORE_LEAVE, check_render_error, check_window,  # noqa: E402
-                           coverage, distributed_bounds, fail, info_property, leave, off_share,
-                           read_png, require_display, rmse, skip, write_view_json)
+from PluginTestKit import (check_render_error, check_window, coverage,  # noqa: E402
+                           distributed_bounds, fail, info_property, leave, off_share, read_png,
+                           require_display, rmse, run_amrsp, server_died, skip, start_server,
+                           stop_server, write_view_json)
 
-SERVER = []  # the pvservers this test started (one; more after a failed start); ended with it
-SERVER_LOGS = []  # their log files, in the same order
 
 
 def enzo_transfer(lo, hi):
@@ -140,33 +138,6 @@ BASELINE_RMSE_BOUND = 0.5
 # dataset and split are PluginTestKit.DISTRIBUTED_BOUNDS (with what was measured).
 
 
-def stop_servers():
-    for server in SERVER:
-        if server.poll() is None:
-            server.terminate()
-            try:
-                server.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                server.kill()
-
-
-def report_servers():
-    # The end of the log of a pvserver that is gone (its exit code says whether it crashed).
-    for server, path in zip(SERVER, SERVER_LOGS):
-        try:
-            with open(path, errors="replace") as f:
-                lines = f.readlines()
-        except OSError:
-            continue
-        if server.poll() is not None:
-            print("pvserver ended with exit code %s; its log (%s) ends:\n%s"
-                  % (server.returncode, path, "".join(lines[-15:])))
-
-
-BEFORE_LEAVE.append(stop_servers)
-BEFORE_FAIL.append(report_servers)
-
-
 def convention_camera(bounds, azimuth=30.0, elevation=20.0, view_angle=30.0):
     """amrsp's camera (docs/design.md): vtkRenderer::ResetCamera on the level-0 box seen along -z with +y
     up (focal point at the centre, distance = half diagonal / sin(view angle / 2)), then Azimuth,
@@ -206,15 +177,6 @@ def check_block_copies(display, mode):
              "read the representation's own copy of the input (0)" % copies)
 
 
-def run_amrsp(command):
-    run = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                         universal_newlines=True)
-    if run.returncode != 0:
-        print(run.stdout)
-        fail("%s failed (exit code %d)" % (" ".join(command[:2]), run.returncode))
-    return run.stdout.strip()
-
-
 def reject_wrong_views(amrsp, path, case, json_path, outdir, label, ref_pixels):
     """The CPU reference of the view with one thing wrong must fail the bounds the screenshot is
     held to: a plumbing error of that kind cannot pass."""
@@ -252,79 +214,6 @@ def reject_wrong_views(amrsp, path, case, json_path, outdir, label, ref_pixels):
               "levels: %s" % (name, difference, 100.0 * off, "ok" if rejected else "NOT REJECTED"))
         if not rejected:
             fail("the bounds do not reject a view with the %s" % name)
-
-
-def free_port():
-    import socket
-
-    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
-        s.bind(("localhost", 0))
-        return s.getsockname()[1]
-
-
-def copy_server_output(server, log_path):
-    """Copies the pvserver's output into its log as it comes. VTK's X abort line (the X server
-    refused the pvserver's window) is also repeated on this test's output at once, where
-    RetryOnXFailure.py sees it: the client often crashes when its server aborts, before any
-    report could be printed."""
-    import threading
-
-    def copy():
-        with open(log_path, "a", errors="replace") as log:
-            for raw in iter(server.stdout.readline, b""):
-                line = raw.decode(errors="replace")
-                log.write(line)
-                log.flush()
-                if "bad X server connection" in line:
-                    sys.stdout.write("pvserver: " + line.strip() + "\n")
-                    sys.stdout.flush()
-
-    threading.Thread(target=copy, daemon=True).start()
-
-
-def start_server(pvserver, log_path):
-    """Starts our own pvserver on a free loopback port and connects to it."""
-    from paraview import simple
-
-    for attempt in range(3):
-        port = free_port()
-        open(log_path, "w").close()
-        server = subprocess.Popen([pvserver, "--force-offscreen-rendering",
-                                   "--server-port=%d" % port], stdout=subprocess.PIPE,
-                                  stderr=subprocess.STDOUT)
-        copy_server_output(server, log_path)
-        SERVER.append(server)
-        SERVER_LOGS.append(log_path)
-        deadline = time.time() + 60.0
-        while server.poll() is None and time.time() < deadline:
-            with open(log_path) as f:
-                if "Accepting connection" in f.read():
-                    break
-            time.sleep(0.1)
-        if server.poll() is None:
-            simple.Connect("localhost", port)
-            print("client-server: connected to our pvserver on port %d (log %s)"
-                  % (port, log_path))
-            return server
-        server.wait()
-    fail("pvserver did not start (see %s)" % log_path)
-
-
-def server_died(server):
-    """Fails (report_servers prints the end of its log) when our pvserver is gone."""
-    if server is not None and server.poll() is not None:
-        fail("pvserver ended unexpectedly (exit code %s)" % server.returncode)
-
-
-def stop_server(server):
-    from paraview import simple
-
-    simple.Disconnect()
-    server.terminate()
-    try:
-        server.wait(timeout=30)
-    except subprocess.TimeoutExpired:
-        server.kill()
 
 
 def check_other_caster(view, display, mode, ranks, pixels, path):

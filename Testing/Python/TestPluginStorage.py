@@ -52,8 +52,7 @@ DATASET = "synthetic:cosmo:grids=120,levels=3,cells=100k,seed=5"
 def main():
     plugin, amrsp, outdir = sys.argv[1:4]
     from PluginTestKit import (coverage, info_property, off_share, read_png, require_display, rmse,
-                               write_view_json)
-    from TestPluginRepresentation import run_amrsp
+                               run_amrsp, write_view_json)
 
     require_display()
     os.makedirs(outdir, exist_ok=True)

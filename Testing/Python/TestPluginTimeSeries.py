@@ -31,8 +31,7 @@ WRONG_STEP_RMSE = 20.0
 
 def main():
     plugin, amrsp, outdir = sys.argv[1:4]
-    from PluginTestKit import coverage, info_property, read_png, require_display, rmse
-    from TestPluginRepresentation import run_amrsp
+    from PluginTestKit import coverage, info_property, read_png, require_display, rmse, run_amrsp
 
     require_display()
     os.makedirs(outdir, exist_ok=True)
