@@ -47,7 +47,7 @@ bool vtkAMRMapperContextCapabilities::Update(vtkOpenGLRenderWindow* renWin)
   this->Bindless = vtkAMRMapperOpenGL::HasExtension("GL_ARB_bindless_texture");
   this->NVShader5 = vtkAMRMapperOpenGL::HasExtension("GL_NV_gpu_shader5");
   this->Ballot = vtkAMRMapperOpenGL::HasExtension("GL_ARB_shader_ballot");
-  this->ThreadBuiltins = vtkAMRMapperOpenGL::HasExtension("GL_NV_shader_thread_builtins");
+  this->ThreadBuiltins = vtkAMRMapperOpenGL::HasExtension("GL_NV_shader_thread_group");
   const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   const std::string name = renderer ? renderer : "";
   this->MaxBindlessTextures = name.find("zink") != std::string::npos ? 1023 : -1;

@@ -39,7 +39,7 @@ struct vtkAMRMapperContextCapabilities
   bool Bindless = false;                    ///< GL_ARB_bindless_texture
   bool NVShader5 = false;                   ///< GL_NV_gpu_shader5: non-uniform handles
   bool Ballot = false;                      ///< GL_ARB_shader_ballot: the waterfall access
-  bool ThreadBuiltins = false;              ///< GL_NV_shader_thread_builtins: the probe
+  bool ThreadBuiltins = false;              ///< GL_NV_shader_thread_group: the probe
   /// A driver that renders on the CPU and keeps its textures linear in host memory (Mesa's
   /// llvmpipe, softpipe, lavapipe under zink).
   bool CpuDriver = false;

@@ -64,7 +64,7 @@ public:
 
   /// What `renWin` offers the ray casters (compute shaders, a CPU driver).
   vtkSinglePassAMRRayCasterFacts RayCasterFacts(vtkOpenGLRenderWindow* renWin);
-  /// Whether `renWin` has GL_NV_shader_thread_builtins (gl_SMIDNV, gl_WarpIDNV: the occupancy
+  /// Whether `renWin` has GL_NV_shader_thread_group (gl_SMIDNV, gl_WarpIDNV: the occupancy
   /// probe).
   bool HasThreadBuiltins(vtkOpenGLRenderWindow* renWin)
   {

@@ -46,7 +46,7 @@ struct vtkSinglePassAMRShaderVariant
   bool AccelerationCounts =
     false;                     ///< AMRSP_ACCELERATION_COUNTS (ignored with LoopCount or the probe)
   int LoopCount = 0;           ///< AMRSP_LOOP_COUNT 1..3 (ignored with the probe)
-  bool OccupancyProbe = false; ///< GL_NV_shader_thread_builtins
+  bool OccupancyProbe = false; ///< GL_NV_shader_thread_group
   int GroupWidth = 8;          ///< compute: work group size
   int GroupHeight = 4;
 

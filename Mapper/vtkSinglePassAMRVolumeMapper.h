@@ -387,7 +387,7 @@ public:
 
   ///@{
   /**
-   * Diagnostic output (default off), on contexts with GL_NV_shader_thread_builtins (NVIDIA): every
+   * Diagnostic output (default off), on contexts with GL_NV_shader_thread_group (NVIDIA): every
    * ray that meets the volume writes, opaque and 8-bit exact, where it ran instead of its colour:
    * red the multiprocessor (gl_SMIDNV), green the warp slot on it (gl_WarpIDNV), blue the chip's
    * multiprocessor count (gl_SMCountNV). Counting the distinct values over a frame shows how much

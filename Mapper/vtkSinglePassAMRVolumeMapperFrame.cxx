@@ -120,7 +120,7 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareAppearance(
   frame.UseDepth = self->UseDepthBuffer;
   if (self->OccupancyProbe && !this->Storage->HasThreadBuiltins(renWin))
   {
-    self->ReportError("the occupancy probe needs GL_NV_shader_thread_builtins, which the OpenGL "
+    self->ReportError("the occupancy probe needs GL_NV_shader_thread_group, which the OpenGL "
                       "context lacks");
     return false;
   }

@@ -60,7 +60,7 @@
 //   AMRSP_LOOP_COUNT    diagnostic output: one count of the ray's loops instead of its colour,
 //                       as a 24-bit integer (red the low byte, opaque): 1 segment-loop
 //                       iterations, 2 descent steps, 3 samples (amrsp/WorkCounters.h)
-//   AMRSP_OCCUPANCY_PROBE diagnostic output (GL_NV_shader_thread_builtins): where the ray ran
+//   AMRSP_OCCUPANCY_PROBE diagnostic output (GL_NV_shader_thread_group): where the ray ran
 //                       instead of its colour, opaque and 8-bit exact: red the multiprocessor
 //                       (gl_SMIDNV), green the warp slot on it (gl_WarpIDNV), blue the chip's
 //                       multiprocessors (gl_SMCountNV), for every ray that meets the volume
@@ -77,7 +77,7 @@
 #error "AMRSP_PACKING, AMRSP_BINDLESS or AMRSP_LINEAR must be defined"
 #endif
 #ifdef AMRSP_OCCUPANCY_PROBE
-#extension GL_NV_shader_thread_builtins : require
+#extension GL_NV_shader_thread_group : require
 #endif
 #ifndef AMRSP_BLEND_MODE
 #define AMRSP_BLEND_MODE 0

@@ -74,9 +74,9 @@ for name in expected:
                     name, method, result.get("caster"), result.get("loop")))
         if "--occupancy" in r["args"] and method != "multipass":
             occupancy = result.get("occupancy", {})
-            # where the driver lacks GL_NV_shader_thread_builtins the probe says so; on NVIDIA
+            # where the driver lacks GL_NV_shader_thread_group the probe says so; on NVIDIA
             # it counts the multiprocessors the rays ran on
-            if not (occupancy.get("available") is False and "GL_NV_shader_thread_builtins" in
+            if not (occupancy.get("available") is False and "GL_NV_shader_thread_group" in
                     occupancy.get("why", "")) and not occupancy.get("sms", 0) > 0:
                 failures.append("%s %s: no occupancy: %s" % (name, method, occupancy))
 for run in ("dataset3", "billion", "dataset2", "dataset1"):

@@ -332,6 +332,11 @@ void MapperFields(const Method& m, GpuRenderer& gpu, const Image& first, const B
     r["ropes"] = singlePass->GetMapper()->GetLastRopes();
     r["loop"] = RayLoopName(singlePass->LoopUsed());
     r["caster"] = RayCasterName(singlePass->CasterUsed());
+    const std::string casterFallback = singlePass->GetMapper()->GetRayCasterFallbackReason();
+    if (!casterFallback.empty())
+    {
+      r["caster_fallback"] = casterFallback; // why the compute caster asked for did not run
+    }
     if (c.S.GpuAblation != 0)
     {
       r["ablation"] = c.S.GpuAblation == 1

@@ -47,7 +47,7 @@ struct BenchOptions
   /// of amrsp/WorkCounters.h for frame 0, and the shader's own counts: AmrspBenchWork.h).
   bool Counters = false;
   /// --occupancy: every single-pass method gets an "occupancy" object, where the rays of frame 0
-  /// ran (vtkSinglePassAMRVolumeMapper::OccupancyProbe; NVIDIA's GL_NV_shader_thread_builtins):
+  /// ran (vtkSinglePassAMRVolumeMapper::OccupancyProbe; NVIDIA's GL_NV_shader_thread_group):
   /// {available, caster, rays, sms, sm_count, warps, most_warps_on_one_sm} or {available: false,
   /// why}.
   bool Occupancy = false;

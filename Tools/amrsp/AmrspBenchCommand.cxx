@@ -120,7 +120,7 @@ std::string BenchHelp()
        "single-pass methods also \"gpu\": the shader's own segment, descent and sample totals\n"
        "of the same frame and whether they agree with the mirror's (docs/performance.md).\n"
        "--occupancy adds to every single-pass method an \"occupancy\" object: where the rays of\n"
-       "frame 0 ran, through NVIDIA's GL_NV_shader_thread_builtins (the mapper's\n"
+       "frame 0 ran, through NVIDIA's GL_NV_shader_thread_group (the mapper's\n"
        "OccupancyProbe): {available, caster, rays, sms (distinct multiprocessors), sm_count,\n"
        "warps (distinct multiprocessor and warp-slot pairs), most_warps_on_one_sm}, or\n"
        "{available: false, why} on other drivers.\n"

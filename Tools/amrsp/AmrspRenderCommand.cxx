@@ -84,8 +84,9 @@ ImageRun RenderGpu(const Method& m, std::string& method, const LoadedDataset& d,
                   : std::string("not built"))
            << ", for bindless " << singlePass->BindlessBytes() / (1024.0 * 1024.0) << " MiB\n"
            << "ray loop: " << RayLoopName(singlePass->LoopUsed()) << "\n"
-           << "caster: " << RayCasterName(singlePass->CasterUsed()) << "\n";
-    // (a compute caster that fell back: the mapper's one warning says why)
+           << "caster: " << RayCasterName(singlePass->CasterUsed());
+    const std::string casterFallback = singlePass->GetMapper()->GetRayCasterFallbackReason();
+    report << (casterFallback.empty() ? "" : " (" + casterFallback + ")") << "\n";
   }
   report << "device: " << r.Device() << "\n"
          << "backend: " << r.Backend() << " (VTK " << VtkVersion() << ", ParaView "

@@ -66,7 +66,7 @@ public:
   };
   /// Renders the current camera's frame (RenderAsIs) with the occupancy probe and counts where
   /// its rays ran; the mapper draws colours again afterwards. Not Available (with the reason)
-  /// where the context lacks GL_NV_shader_thread_builtins.
+  /// where the context lacks GL_NV_shader_thread_group.
   Occupancy RenderOccupancy();
 
 private:

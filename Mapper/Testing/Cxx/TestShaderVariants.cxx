@@ -15,7 +15,7 @@
 // configuration only (scripts/build.sh), once per CI run. Two deviations, both glslang 12's limits
 // and said in the output: the bindless waterfall variants are checked as GLSL 4.50, fragment and
 // compute (glslang declares GL_ARB_shader_ballot's functions from 4.50 only; Mesa and NVIDIA
-// from 1.50, as the spec allows), and the occupancy probe (GL_NV_shader_thread_builtins, unknown to
+// from 1.50, as the spec allows), and the occupancy probe (GL_NV_shader_thread_group, unknown to
 // glslang) is not checked here: the GPU profile compiles it on NVIDIA.
 //
 // A variant that fails prints its defines and glslangValidator's first errors; the test also
@@ -258,7 +258,7 @@ int Run(const std::string& shaderDir, const std::string& work)
   mappertest::Check(failed == 0,
     std::to_string(checked - failed) + " of " + std::to_string(checked) +
       " variants compile (glslangValidator); not checked here: the occupancy probe "
-      "(GL_NV_shader_thread_builtins is unknown to glslang), compiled on NVIDIA by the GPU "
+      "(GL_NV_shader_thread_group is unknown to glslang), compiled on NVIDIA by the GPU "
       "profile; the bindless waterfall checked as GLSL 4.50 (glslang 12 declares "
       "GL_ARB_shader_ballot from 4.50)");
   // the check rejects a broken source: a type error in the ray's code
