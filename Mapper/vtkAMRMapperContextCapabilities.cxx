@@ -53,7 +53,9 @@ bool vtkAMRMapperContextCapabilities::Update(vtkOpenGLRenderWindow* renWin)
   this->MaxBindlessTextures = name.find("zink") != std::string::npos ? 1023 : -1;
   this->CpuDriver = name.find("llvmpipe") != std::string::npos ||
     name.find("softpipe") != std::string::npos || name.find("lavapipe") != std::string::npos;
-  // compute shaders: core in OpenGL 4.3, an extension of 4.2 (which has the image stores)
+  // compute shaders: core in OpenGL 4.3; an extension of 4.2 (which has the image stores); and
+  // both extensions of an older core context that offers them (NVIDIA's EGL gives VTK a 3.2
+  // context and lists every extension the GPU has there)
   GLint major = 0, minor = 0;
   glGetIntegerv(GL_MAJOR_VERSION, &major);
   glGetIntegerv(GL_MINOR_VERSION, &minor);
@@ -68,10 +70,17 @@ bool vtkAMRMapperContextCapabilities::Update(vtkOpenGLRenderWindow* renWin)
   {
     this->ComputeVersion = "#version 420 core\n#extension GL_ARB_compute_shader : require\n";
   }
+  else if (vtkAMRMapperOpenGL::HasExtension("GL_ARB_compute_shader") &&
+    vtkAMRMapperOpenGL::HasExtension("GL_ARB_shader_image_load_store"))
+  {
+    this->ComputeVersion = "#version 150 core\n#extension GL_ARB_compute_shader : require\n"
+                           "#extension GL_ARB_shader_image_load_store : require\n";
+  }
   else
   {
     this->NoCompute = "the OpenGL context (" + std::to_string(major) + "." + std::to_string(minor) +
-      ") has no compute shaders (OpenGL 4.3, or 4.2 with " + "GL_ARB_compute_shader)";
+      ") has no compute shaders (OpenGL 4.3, or GL_ARB_compute_shader with 4.2 or with "
+      "GL_ARB_shader_image_load_store)";
   }
   this->Context = renWin;
   return true;

@@ -368,6 +368,7 @@ void MapperFields(const Method& m, GpuRenderer& gpu, const Image& first, const B
   r["gpu_bytes"] = gpu.TextureBytes();
   r["device"] = gpu.Device();
   r["backend"] = gpu.Backend();
+  r["opengl_version"] = gpu.OpenGLVersion();
   if (m.IsKdTreeMapper())
   {
     const SinglePassRenderer* singlePass = dynamic_cast<SinglePassRenderer*>(&gpu);

@@ -89,6 +89,7 @@ ImageRun RenderGpu(const Method& m, std::string& method, const LoadedDataset& d,
     report << (casterFallback.empty() ? "" : " (" + casterFallback + ")") << "\n";
   }
   report << "device: " << r.Device() << "\n"
+         << "opengl: " << r.OpenGLVersion() << "\n"
          << "backend: " << r.Backend() << " (VTK " << VtkVersion() << ", ParaView "
          << ParaViewVersion() << ")\n"
          << "atlas: "

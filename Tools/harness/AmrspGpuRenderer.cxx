@@ -59,6 +59,7 @@ struct GpuRenderer::Internals
   int Width = 0;
   int Height = 0;
   std::string Device;
+  std::string OpenGLVersion; ///< the context's GL_VERSION string
   std::string Backend;
   /// GPU time of the frames: timer queries around Render() (GL_TIMESTAMP at its start and end)
   vtkOpenGLRenderTimer Timer;
@@ -307,10 +308,15 @@ Image GpuRenderer::RenderAsIs(double& milliseconds)
     std::istringstream caps(I->Window->ReportCapabilities());
     for (std::string line; std::getline(caps, line);)
     {
-      const std::string key = "OpenGL renderer string:";
-      if (line.compare(0, key.size(), key) == 0)
+      const std::string renderer = "OpenGL renderer string:";
+      const std::string version = "OpenGL version string:";
+      if (line.compare(0, renderer.size(), renderer) == 0)
       {
-        I->Device = line.substr(line.find_first_not_of(' ', key.size()));
+        I->Device = line.substr(line.find_first_not_of(' ', renderer.size()));
+      }
+      else if (line.compare(0, version.size(), version) == 0)
+      {
+        I->OpenGLVersion = line.substr(line.find_first_not_of(' ', version.size()));
       }
     }
     I->Backend = BackendOf(I->Window);
@@ -471,6 +477,11 @@ const std::string& GpuRenderer::Method() const
 std::string GpuRenderer::Device() const
 {
   return I->Device;
+}
+
+std::string GpuRenderer::OpenGLVersion() const
+{
+  return I->OpenGLVersion;
 }
 
 std::string GpuRenderer::Backend() const

@@ -107,6 +107,8 @@ public:
 
   /// "OpenGL renderer string" of the context, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
   std::string Device() const;
+  /// The context's OpenGL version string (GL_VERSION), after the first frame.
+  std::string OpenGLVersion() const;
   /// The window system the frames were rendered through: "GLX", "EGL" or "OSMesa" (BackendOf).
   std::string Backend() const;
   /// The tool's name of the method ("packing", "bindless", "multipass", "uniform-gpu", ...).
