@@ -55,13 +55,6 @@ public:
   amrsp::BindlessAccess ResolveAccess(
     vtkOpenGLRenderWindow* renWin, amrsp::BindlessAccess access, std::string& why);
 
-  /// Whether `renWin` renders on a CPU driver (Mesa's llvmpipe, softpipe, or zink on lavapipe).
-  bool IsCpuDriver(vtkOpenGLRenderWindow* renWin)
-  {
-    this->QueryCapabilities(renWin);
-    return this->Caps.CpuDriver;
-  }
-
   /// What `renWin` offers the ray casters (compute shaders, a CPU driver).
   vtkSinglePassAMRRayCasterFacts RayCasterFacts(vtkOpenGLRenderWindow* renWin);
   /// Whether `renWin` has GL_NV_shader_thread_group (gl_SMIDNV, gl_WarpIDNV: the occupancy

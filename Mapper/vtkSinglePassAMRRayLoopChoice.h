@@ -13,20 +13,17 @@
 #include "amrsp/RayLoop.h"
 
 /**
- * The loop a frame uses. Auto: the flat loop on a GPU, the nested loops on a CPU driver (Mesa's
- * llvmpipe, softpipe, or zink on lavapipe). A GPU runs 32 pixels in lockstep, and the work
- * counters predict fewer lockstep steps for the flat loop (amrsp/WorkCounters.h; at 512x512
- * datasets 2 and 3 8.87 and 11.47 per pixel against 11.25 and 15.22); a CPU driver runs no
- * lockstep groups of that width, and there the flat loop measured 30-42 % slower
- * (docs/performance.md, "The flat loop"). The image is the same either way.
+ * The loop a frame uses. Auto: the nested loops, everywhere. The work counters predict fewer
+ * lockstep steps for the flat loop (amrsp/WorkCounters.h: at 1024x1024 dataset 3 10.90 per pixel
+ * against 13.08), but on an NVIDIA H200 it measured slower with both casters (compute caster,
+ * dataset 3 7.15 ms against 5.52, a billion cells 16.0 against 14.6, dataset 2 5.34 against
+ * 3.84), and on a CPU driver, which runs no lockstep groups of that width, 30-42 % slower
+ * (docs/performance.md, "On an NVIDIA H200" and "The flat loop"). The image is the same either
+ * way.
  */
-inline amrsp::RayLoop vtkSinglePassAMRChooseRayLoop(amrsp::RayLoop requested, bool cpuDriver)
+inline amrsp::RayLoop vtkSinglePassAMRChooseRayLoop(amrsp::RayLoop requested)
 {
-  if (requested != amrsp::RayLoop::Auto)
-  {
-    return requested;
-  }
-  return cpuDriver ? amrsp::RayLoop::Nested : amrsp::RayLoop::Flat;
+  return requested == amrsp::RayLoop::Auto ? amrsp::RayLoop::Nested : requested;
 }
 
 #endif

@@ -328,7 +328,7 @@ public:
   {
     NESTED_LOOPS = 0, ///< per segment a descent loop, then a sample loop
     FLAT_LOOP = 1,    ///< one loop of single descent steps, segment set-ups and samples
-    AUTO_LOOP = 2     ///< the flat loop on a GPU, the nested loops on a CPU driver
+    AUTO_LOOP = 2     ///< the nested loops (measured faster on an NVIDIA H200 and on llvmpipe)
   };
 
   ///@{
@@ -337,11 +337,11 @@ public:
    * of 32 pixels that share each loop iteration: with nested loops a group waits, per segment,
    * for its longest descent and then its longest sample run; the flat loop (Aila and Laine's
    * "if-if") lets every lane take its own next operation each iteration, at the price of both
-   * branches where lanes disagree. The images and counts are the same. AUTO_LOOP takes the flat
-   * loop on a GPU, where the work counters predict fewer lockstep steps (amrsp/WorkCounters.h),
-   * and the nested loops on a CPU driver (Mesa's llvmpipe, softpipe, zink on lavapipe), where the
-   * flat loop measured slower (docs/performance.md, "The flat loop", which also says why it is not
-   * the default yet). GetLastRayLoop tells which loop the last frame used (NESTED_LOOPS or
+   * branches where lanes disagree. The images and counts are the same. AUTO_LOOP takes the nested
+   * loops: the work counters predict fewer lockstep steps for the flat loop
+   * (amrsp/WorkCounters.h), but it measured 10-39 % slower on an NVIDIA H200 and 30-42 % slower
+   * on llvmpipe (docs/performance.md, "On an NVIDIA H200"). GetLastRayLoop tells which loop the
+   * last frame used (NESTED_LOOPS or
    * FLAT_LOOP; GetRayLoopName gives its word).
    */
   vtkSetClampMacro(RayLoop, int, NESTED_LOOPS, AUTO_LOOP);

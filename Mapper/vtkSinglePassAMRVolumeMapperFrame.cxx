@@ -115,8 +115,8 @@ bool vtkSinglePassAMRVolumeMapper::vtkInternals::PrepareAppearance(
   frame.SkipEmpty = self->EmptySpaceSkipping && frame.Blend == amrsp::BlendMode::Composite;
   frame.SmoothCells = self->CellInterpolation == SMOOTH_CELL && !this->Data.VertexCentred;
   frame.Ropes = self->Ropes && this->Storage->GetRopes() != nullptr;
-  frame.FlatLoop = vtkSinglePassAMRChooseRayLoop(static_cast<amrsp::RayLoop>(self->RayLoop),
-                     this->Storage->IsCpuDriver(renWin)) == amrsp::RayLoop::Flat;
+  frame.FlatLoop = vtkSinglePassAMRChooseRayLoop(static_cast<amrsp::RayLoop>(self->RayLoop)) ==
+    amrsp::RayLoop::Flat;
   frame.UseDepth = self->UseDepthBuffer;
   if (self->OccupancyProbe && !this->Storage->HasThreadBuiltins(renWin))
   {
