@@ -5,7 +5,6 @@
 #include "AmrspRenderOptions.h"
 
 #include "AmrspDataset.h"
-#include "AmrspLightingOptions.h"
 
 #include "amrsp/VertexData.h"
 
@@ -295,11 +294,11 @@ ExplicitView ReadViewJson(const std::string& path)
 }
 
 /// The light, material and iso-values of a --view-json file override the conventions.
-void ApplyExplicitLighting(const ExplicitView& v, const Arguments& a, RenderSettings& s)
+void ApplyExplicitLighting(const ExplicitView& v, const RenderRequest& r, RenderSettings& s)
 {
   if (v.HasLight)
   {
-    if (a.Has("light"))
+    if (r.Light)
     {
       throw UsageError{ "--light cannot be combined with a --view-json light" };
     }
@@ -318,7 +317,7 @@ void ApplyExplicitLighting(const ExplicitView& v, const Arguments& a, RenderSett
   }
   if (!v.IsoValues.empty())
   {
-    if (s.Blend != BlendMode::IsoSurface || a.Has("iso"))
+    if (s.Blend != BlendMode::IsoSurface || r.Iso)
     {
       throw UsageError{ "--view-json iso_values need --blend iso and no --iso" };
     }
@@ -328,62 +327,25 @@ void ApplyExplicitLighting(const ExplicitView& v, const Arguments& a, RenderSett
 
 } // namespace
 
-namespace
-{
-/// --size WxH into s.Width and s.Height (1 to 16384 each).
-void ParseImageSize(const std::string& size, RenderSettings& s)
-{
-  const std::size_t x = size.find('x');
-  try
-  {
-    if (x == std::string::npos)
-    {
-      throw std::invalid_argument(size);
-    }
-    s.Width = std::stoi(size.substr(0, x));
-    s.Height = std::stoi(size.substr(x + 1));
-  }
-  catch (const std::exception&)
-  {
-    throw UsageError{ "--size expects WxH, got '" + size + "'" };
-  }
-  if (s.Width < 1 || s.Height < 1 || s.Width > 16384 || s.Height > 16384)
-  {
-    throw UsageError{ "--size must be between 1x1 and 16384x16384" };
-  }
-}
-
-/// --blend's name as a BlendMode.
-BlendMode ParseBlendMode(const std::string& blend)
-{
-  BlendMode mode = BlendMode::Composite;
-  if (!ParseIn(BlendModeNames, blend.c_str(), mode))
-  {
-    throw UsageError{ "--blend must be " + WordsOf(BlendModeNames) };
-  }
-  return mode;
-}
-
-} // namespace
-
 RenderSettings MakeSettings(
-  Hierarchy& h, const Arguments& a, glm::dvec2* range, const ScalarSpan* over)
+  Hierarchy& h, const RenderRequest& r, glm::dvec2* range, const ScalarSpan* over)
 {
   ExplicitView explicitView;
-  if (a.Has("view-json"))
+  if (!r.ViewJson.empty())
   {
-    explicitView = ReadViewJson(a.Get("view-json", ""));
-    if (explicitView.HasCamera && (a.Has("azimuth") || a.Has("elevation") || a.Has("zoom")))
+    explicitView = ReadViewJson(r.ViewJson);
+    if (explicitView.HasCamera && (r.Azimuth || r.Elevation || r.Zoom))
     {
       throw UsageError{ "--azimuth, --elevation and --zoom cannot change a --view-json camera" };
     }
-    if (explicitView.HasTransfer && a.Has("tf"))
+    if (explicitView.HasTransfer && r.Tf)
     {
       throw UsageError{ "--tf cannot be combined with a --view-json transfer function" };
     }
   }
   RenderSettings s;
-  ParseImageSize(a.Get("size", "512x512"), s);
+  s.Width = r.Width;
+  s.Height = r.Height;
   glm::dvec3 lo, hi;
   Bounds(h, lo, hi);
   if (explicitView.HasCamera)
@@ -393,10 +355,10 @@ RenderSettings MakeSettings(
   else
   {
     s.View = Camera::ResetTo(lo, hi);
-    s.View.Azimuth(a.GetNumber("azimuth", 30.0));
-    s.View.Elevation(a.GetNumber("elevation", 20.0));
+    s.View.Azimuth(r.Azimuth.value_or(30.0));
+    s.View.Elevation(r.Elevation.value_or(20.0));
     s.View.OrthogonalizeViewUp();
-    s.View.Zoom(a.GetNumber("zoom", 1.0));
+    s.View.Zoom(r.Zoom.value_or(1.0));
   }
   if (explicitView.HasBackground)
   {
@@ -405,21 +367,20 @@ RenderSettings MakeSettings(
   double vlo, vhi;
   // an explicit transfer function is written in the data's own values
   // --range all and step are a series' choice (AmrspSeries.cxx hands the span over all steps)
-  const std::string given = a.Get("range", "step");
   ScalarSpan givenSpan;
-  if (!over && given != "all" && given != "step")
+  if (!over && r.Range != "all" && r.Range != "step")
   {
-    givenSpan = ParseScalarSpan(given);
+    givenSpan = ParseScalarSpan(r.Range);
     over = &givenSpan;
   }
-  PrepareScalars(h, a.Get("scale", explicitView.HasTransfer ? "linear" : "auto"), vlo, vhi, over);
+  PrepareScalars(h, r.Scale.value_or(explicitView.HasTransfer ? "linear" : "auto"), vlo, vhi, over);
   if (range)
   {
     *range = glm::dvec2(vlo, vhi);
   }
   const double fileUnit = explicitView.HasTransfer ? explicitView.Transfer.UnitDistance : 0.0;
   const double unit =
-    a.GetNumber("unit-distance", fileUnit > 0.0 ? fileUnit : glm::length(hi - lo) / 100.0);
+    r.UnitDistance.value_or(fileUnit > 0.0 ? fileUnit : glm::length(hi - lo) / 100.0);
   if (!(unit > 0.0))
   {
     throw UsageError{ "--unit-distance must be positive" };
@@ -433,99 +394,61 @@ RenderSettings MakeSettings(
   {
     try
     {
-      s.Transfer = TransferFunction::Preset(a.Get("tf", "default"), vlo, vhi, unit);
+      s.Transfer = TransferFunction::Preset(r.Tf.value_or("default"), vlo, vhi, unit);
     }
     catch (const std::invalid_argument& e)
     {
       throw UsageError{ e.what() };
     }
   }
-  s.SampleDistanceFactor = a.GetNumber("sample-factor", 1.0);
-  s.ReferenceSampleFactor = a.GetNumber("reference-sample-factor", 0.5);
-  if (!(s.SampleDistanceFactor > 0.0) || !(s.ReferenceSampleFactor > 0.0))
+  s.SampleDistanceFactor = r.SampleFactor;
+  s.ReferenceSampleFactor = r.ReferenceSampleFactor;
+  s.LodThresholdPixels = static_cast<float>(r.Lod);
+  s.AtlasPageBytes = static_cast<long long>(r.AtlasPageMiB * 1024.0 * 1024.0);
+  s.Blend = r.Blend;
+  // shading, shadows, the light and the iso-values (fractions of the transfer function's range)
+  s.Light.Shade = r.Shade;
+  s.Light.ShadowStep = r.ShadowStep;
+  s.Light.Shadows = r.ShadowStep > 0.0;
+  if (r.Light)
   {
-    throw UsageError{ "sample factors must be positive" };
+    s.Light.Headlight = false;
+    s.Light.Positional = true;
+    s.Light.Position = *r.Light;
+    s.Light.FocalPoint = s.View.FocalPoint;
   }
-  s.LodThresholdPixels = static_cast<float>(a.GetNumber("lod", 0.0));
-  const double pageMiB = a.GetNumber("atlas-page-mib", 0.0);
-  if (pageMiB < 0.0)
+  if (s.Blend == BlendMode::IsoSurface)
   {
-    throw UsageError{ "--atlas-page-mib must be positive" };
-  }
-  s.AtlasPageBytes = static_cast<long long>(pageMiB * 1024.0 * 1024.0);
-  s.Blend = ParseBlendMode(a.Get("blend", "composite"));
-  ApplyLightingOptions(s, a, vlo, vhi);
-  ApplyExplicitLighting(explicitView, a, s);
-  s.Threads = static_cast<int>(a.GetNumber("threads", 0.0));
-  s.OpacityThreshold = a.GetNumber("opacity-threshold", 0.999);
-  if (!(s.OpacityThreshold >= 0.0 && s.OpacityThreshold <= 1.0))
-  {
-    throw UsageError{ "--opacity-threshold must be between 0 and 1" };
-  }
-  const std::string skipping = a.Get("empty-space-skipping", "on");
-  if (skipping != "on" && skipping != "off")
-  {
-    throw UsageError{ "--empty-space-skipping must be on or off" };
-  }
-  s.SkipEmptySpace = skipping == "on";
-  const std::string ropes = a.Get("ropes", "on");
-  if (ropes != "on" && ropes != "off")
-  {
-    throw UsageError{ "--ropes must be on or off" };
-  }
-  s.Ropes = ropes == "on";
-  if (!ParseIn(RayLoopNames, a.Get("loop", "nested").c_str(), s.GpuRayLoop))
-  {
-    throw UsageError{ "--loop must be " + WordsOf(RayLoopNames) };
-  }
-  if (!ParseIn(RayCasterNames, a.Get("caster", "auto").c_str(), s.GpuRayCaster))
-  {
-    throw UsageError{ "--caster must be " + WordsOf(RayCasterNames) };
-  }
-  const std::string ablation = a.Get("ablation", "none");
-  const std::string samplingOnly = "sampling-only";
-  if (ablation == "traversal-only")
-  {
-    s.GpuAblation = 1;
-  }
-  else if (ablation.rfind(samplingOnly, 0) == 0)
-  {
-    s.GpuAblation = 2;
-    if (ablation.size() > samplingOnly.size())
+    s.IsoValues.clear();
+    for (double x : r.Iso.value_or(std::vector<double>{ 0.5 }))
     {
-      const std::string n = ablation.substr(samplingOnly.size() + 1);
-      if (ablation[samplingOnly.size()] != ':' || n.empty() || n.size() > 7 ||
-        n.find_first_not_of("0123456789") != std::string::npos || std::stoi(n) < 1)
-      {
-        throw UsageError{ "--ablation sampling-only:N needs a whole N from 1 to 9999999, got '" +
-          ablation + "'" };
-      }
-      s.GpuAblationSamples = std::stoi(n);
+      s.IsoValues.push_back(vlo + x * (vhi - vlo));
     }
   }
-  else if (ablation != "none")
+  ApplyExplicitLighting(explicitView, r, s);
+  s.Threads = r.Threads;
+  s.OpacityThreshold = r.OpacityThreshold;
+  s.SkipEmptySpace = r.SkipEmptySpace;
+  s.Ropes = r.Ropes;
+  s.GpuRayLoop = r.Loop;
+  s.GpuRayCaster = r.Caster;
+  s.GpuAblation = r.Ablation;
+  s.GpuAblationSamples = r.AblationSamples;
+  s.SmoothCellData = r.SmoothCells;
+  if (r.Crop)
   {
-    throw UsageError{ "--ablation must be none, traversal-only or sampling-only[:N], got '" +
-      ablation + "'" };
-  }
-  const std::string interpolation = a.Get("interpolation", "nearest");
-  if (interpolation != "nearest" && interpolation != "smooth")
-  {
-    throw UsageError{ "--interpolation must be nearest or smooth" };
-  }
-  s.SmoothCellData = interpolation == "smooth";
-  if (a.Has("crop"))
-  {
-    const std::vector<double> c = a.GetNumbers("crop", "");
-    if (c.size() != 6 || c[0] > c[1] || c[2] > c[3] || c[4] > c[5])
-    {
-      throw UsageError{ "--crop expects X0,X1,Y0,Y1,Z0,Z1 with X0 <= X1, Y0 <= Y1, Z0 <= Z1" };
-    }
+    const std::array<double, 6>& c = *r.Crop;
     s.Clip = true;
     s.ClipLo = glm::dvec3(c[0], c[2], c[4]);
     s.ClipHi = glm::dvec3(c[1], c[3], c[5]);
   }
   return s;
+}
+
+RenderSettings MakeSettings(
+  Hierarchy& h, const Arguments& a, glm::dvec2* range, const ScalarSpan* over)
+{
+  return MakeSettings(h, ParseRenderRequest(a), range, over);
 }
 
 RenderSettings MakeSettings(Hierarchy& h, const std::vector<std::string>& optionWords)

@@ -8,6 +8,7 @@
 
 #include "AmrspArguments.h"
 #include "AmrspGpuRenderer.h"
+#include "AmrspRenderRequest.h"
 
 #include "amrsp/Hierarchy.h"
 #include "amrsp/Render.h"
@@ -44,11 +45,14 @@ ScalarSpan Union(const ScalarSpan& a, const ScalarSpan& b);
 /// A given span, "LO:HI" with LO < HI finite (--range). Throws UsageError otherwise.
 ScalarSpan ParseScalarSpan(const std::string& text);
 
-/// The render settings of the view and transfer-function options. Maps the scalars of `h` as
-/// --scale asks (log10 in place) and returns their display range in `range`. The scale rule and
-/// the transfer function's range follow `over` where it is given (a series' span over all its
-/// steps), else --range LO:HI where it is given, else `h`'s own values. Throws UsageError for bad
-/// options and DatasetError for data the scale cannot map.
+/// The render settings of a request (the view, transfer-function and rendering options). Maps the
+/// scalars of `h` as --scale asks (log10 in place) and returns their display range in `range`. The
+/// scale rule and the transfer function's range follow `over` where it is given (a series' span
+/// over all its steps), else --range LO:HI where it is given, else `h`'s own values. Throws
+/// UsageError for bad options and DatasetError for data the scale cannot map.
+RenderSettings MakeSettings(Hierarchy& h, const RenderRequest& r, glm::dvec2* range = nullptr,
+  const ScalarSpan* over = nullptr);
+/// MakeSettings of the request the option words of `a` make (ParseRenderRequest).
 RenderSettings MakeSettings(
   Hierarchy& h, const Arguments& a, glm::dvec2* range = nullptr, const ScalarSpan* over = nullptr);
 

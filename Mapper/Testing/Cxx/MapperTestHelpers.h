@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -118,10 +119,26 @@ inline double Coverage(const amrsp::Image& img)
   return amrsp::CoveredShare(img.Rgb8());
 }
 
-/// The settings `amrsp render OPTIONS` would use for `h` (which gets the --scale applied).
-inline amrsp::RenderSettings Settings(amrsp::Hierarchy& h, const std::vector<std::string>& options)
+/// The settings `amrsp render` would use for `h` (which gets the scale applied) with the options
+/// of `r` (harness::MakeSettings, the tool's conventions; no option words are parsed).
+inline amrsp::RenderSettings Settings(amrsp::Hierarchy& h, const amrsp::harness::RenderRequest& r)
 {
-  return amrsp::harness::MakeSettings(h, options);
+  return amrsp::harness::MakeSettings(h, r);
+}
+
+/// A render request of `width` x `height` pixels with the tool's defaults otherwise, which `edit`
+/// may change (e.g. [](RenderRequest& r) { r.Scale = "linear"; }).
+inline amrsp::harness::RenderRequest Request(
+  int width, int height, const std::function<void(amrsp::harness::RenderRequest&)>& edit = nullptr)
+{
+  amrsp::harness::RenderRequest r;
+  r.Width = width;
+  r.Height = height;
+  if (edit)
+  {
+    edit(r);
+  }
+  return r;
 }
 
 /// The hierarchy of a dataset spec (`amrsp render`'s DATASET), without the VTK objects;

@@ -422,22 +422,12 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
     }
   }
 
-  std::vector<std::string> words = { "render", spec };
-  words.insert(words.end(), c.Options.begin(), c.Options.end());
-  std::vector<char*> args;
-  for (std::string& w : words)
-  {
-    args.push_back(&w[0]);
-  }
   try
   {
-    std::vector<std::string> known = RenderOptionNames;
-    known.insert(known.end(), { "array", "centering" });
-    const Arguments a = ParseArguments(static_cast<int>(args.size()), args.data(), 1, known, {});
     DatasetRequest request;
     request.Spec = spec;
-    request.Array = a.Get("array", "");
-    request.Centering = a.Get("centering", "auto");
+    request.Array = c.Array;
+    request.Centering = c.Centering;
     request.NeedVTK = false;
     LoadedDataset d;
     if (c.Data)
@@ -448,15 +438,15 @@ int RunBaselineTest(int argc, char* argv[], const BaselineCase& c)
     {
       d = LoadDataset(request);
     }
-    RenderSettings s = MakeSettings(d.Data, a);
+    RenderSettings s = MakeSettings(d.Data, c.Request);
     if (c.Settings)
     {
       c.Settings(s);
     }
     ViewAngles view;
-    view.Azimuth = a.GetNumber("azimuth", 30.0);
-    view.Elevation = a.GetNumber("elevation", 20.0);
-    view.Zoom = a.GetNumber("zoom", 1.0);
+    view.Azimuth = c.Request.Azimuth.value_or(30.0);
+    view.Elevation = c.Request.Elevation.value_or(20.0);
+    view.Zoom = c.Request.Zoom.value_or(1.0);
 
     SinglePassRenderer gpu(d.Data, s, view);
     for (const BaselineCase::Square& q : c.Squares)

@@ -5,6 +5,8 @@
 /// with the amrsp tool's conventions, compared with VTK's baseline image AND with the CPU
 /// reference image of the same view.
 
+#include "AmrspRenderRequest.h"
+
 #include "amrsp/Render.h"
 
 #include <glm/glm.hpp>
@@ -29,8 +31,12 @@ struct BaselineCase
 {
   /// A dataset argument of the amrsp tool; a path relative to AMRSP_DATA_DIR starts with "data:".
   std::string Dataset;
-  /// amrsp options (--array, --centering, --size, --azimuth, --lod, ...).
-  std::vector<std::string> Options;
+  /// The array and centring to load (amrsp's --array, --centering; empty array: the first).
+  std::string Array;
+  std::string Centering = "auto";
+  /// The render options as values (size, view, transfer function, blending, lighting, ...);
+  /// the tool's defaults where not set.
+  harness::RenderRequest Request;
   /// Optional: the hierarchy to render (cell-centred values as displayed) instead of loading
   /// Dataset, which then only names it in the log.
   std::function<Hierarchy()> Data;

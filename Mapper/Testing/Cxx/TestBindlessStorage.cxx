@@ -89,7 +89,7 @@ void TestDataset(
   const std::string& name, Hierarchy h, bool uniformHandlesOnly, double referenceBound)
 {
   std::cout << "dataset " << name << " (" << h.Grids.size() << " grids)\n";
-  const RenderSettings s = Settings(h, { "--size", "96x96" });
+  const RenderSettings s = Settings(h, mappertest::Request(96, 96));
   const EncodedKdTree enc = EncodeKdTree(h, BuildKdTree(h));
   const Image kd = RenderKdTree(h, enc, s);
   const Image ref = RenderReference(h, s);
@@ -203,7 +203,7 @@ void TestAutomaticChoice()
 {
   std::cout << "automatic storage choice\n";
   Hierarchy h = LoadHierarchy("synthetic:cosmo:grids=30,levels=3,cells=60k,seed=5");
-  const RenderSettings s = Settings(h, { "--size", "64x64" });
+  const RenderSettings s = Settings(h, mappertest::Request(64, 64));
   SinglePassRenderer gpu(h, s, ViewAngles(), DataStorage::Auto);
   Mapper* m = gpu.GetMapper();
   double ms = 0.0;
@@ -238,7 +238,7 @@ void TestAutomaticChoice()
 
   // a data change: new bricks and handles, the old ones made non-resident
   Hierarchy other = LoadHierarchy("synthetic:cosmo:grids=30,levels=3,cells=60k,seed=6");
-  Settings(other, { "--size", "64x64" });           // displays log10(Density) like `h`
+  Settings(other, mappertest::Request(64, 64));     // displays log10(Density) like `h`
   SinglePassRenderer fresh(other, s, ViewAngles()); // with the same transfer function and view
   fresh.GetMapper()->SetDataStorageToPackedAtlas();
   const Image expectedOther = fresh.Render(0.0, ms);
@@ -258,7 +258,7 @@ void TestDriverLimit()
 {
   std::cout << "more grids than zink's 1023 bindless textures\n";
   Hierarchy h = LoadHierarchy("synthetic:cosmo:grids=1100,levels=3,cells=200k,seed=5");
-  const RenderSettings s = Settings(h, { "--size", "32x32" });
+  const RenderSettings s = Settings(h, mappertest::Request(32, 32));
   SinglePassRenderer gpu(h, s, ViewAngles(), DataStorage::PackedAtlas);
   Mapper* m = gpu.GetMapper();
   double ms = 0.0;
@@ -292,8 +292,12 @@ void TestRegridOnZink()
     ParseCosmoParameters("grids=600,levels=3,cells=300k,seed=5,steps=3,regrid=2");
   Hierarchy before = GenerateCosmoStep(p, 0);
   Hierarchy after = GenerateCosmoStep(p, 2);
-  Settings(after, { "--scale", "log" }); // log10 of the density in both steps
-  const RenderSettings s = Settings(before, { "--size", "32x32", "--scale", "log" });
+  Settings(after,
+    mappertest::Request(512, 512,
+      [](amrsp::harness::RenderRequest& r)
+      { r.Scale = "log"; })); // log10 of the density in both steps
+  const RenderSettings s = Settings(
+    before, mappertest::Request(32, 32, [](amrsp::harness::RenderRequest& r) { r.Scale = "log"; }));
   SinglePassRenderer gpu(before, s, ViewAngles(), DataStorage::BindlessTextures);
   Mapper* m = gpu.GetMapper();
   double ms = 0.0;
@@ -343,7 +347,7 @@ int RunBindless()
 int RunFallback()
 {
   Hierarchy h = LoadHierarchy("synthetic:cosmo:grids=30,levels=3,cells=60k,seed=5");
-  const RenderSettings s = Settings(h, { "--size", "64x64" });
+  const RenderSettings s = Settings(h, mappertest::Request(64, 64));
   SinglePassRenderer gpu(h, s, ViewAngles());
   Mapper* m = gpu.GetMapper();
   double ms = 0.0;

@@ -38,7 +38,7 @@ double VolumeRmse(const Image& a, const Image& b)
 void TestInteractiveFrames()
 {
   Hierarchy h = mappertest::LoadHierarchy("synthetic:cosmo:grids=200,levels=4,cells=2M,seed=5");
-  const RenderSettings s = mappertest::Settings(h, { "--size", "128x128" });
+  const RenderSettings s = mappertest::Settings(h, mappertest::Request(128, 128));
   SinglePassRenderer gpu(h, s, ViewAngles(), DataStorage::PackedAtlas);
   vtkSinglePassAMRVolumeMapper* mapper = gpu.GetMapper();
   vtkRenderWindow* window = gpu.GetRenderer()->GetRenderWindow();

@@ -61,7 +61,7 @@ std::string StorageName(Mapper* m)
 void TestDataset(const std::string& name, Hierarchy h, double referenceBound, bool smooth = false)
 {
   std::cout << "dataset " << name << " (" << h.Grids.size() << " grids)\n";
-  RenderSettings s = Settings(h, { "--size", "96x96" });
+  RenderSettings s = Settings(h, mappertest::Request(96, 96));
   s.SmoothCellData = smooth;
   const EncodedKdTree enc = EncodeKdTree(h, BuildKdTree(h));
   const Image kd = RenderKdTree(h, enc, s);
@@ -176,7 +176,7 @@ void TestAutomaticChoice()
 {
   std::cout << "automatic storage choice\n";
   Hierarchy h = LoadHierarchy("synthetic:cosmo:grids=30,levels=3,cells=60k,seed=5");
-  const RenderSettings s = Settings(h, { "--size", "64x64" });
+  const RenderSettings s = Settings(h, mappertest::Request(64, 64));
   SinglePassRenderer gpu(h, s, ViewAngles(), DataStorage::PackedAtlas);
   Mapper* m = gpu.GetMapper();
   double ms = 0.0;
@@ -203,7 +203,7 @@ void TestAutomaticChoice()
   // AUTO_STORAGE relies on says so, and asking for them is an error naming the pages
   {
     Hierarchy big = LoadHierarchy("synthetic:cosmo:grids=60,levels=3,cells=100k,seed=4");
-    Settings(big, { "--size", "64x64" });
+    Settings(big, mappertest::Request(64, 64));
     auto* gl = vtkOpenGLRenderWindow::SafeDownCast(window);
     Check(vtkSinglePassAMRLinearBricks::Fits(gl, big, false, 0) &&
         !vtkSinglePassAMRLinearBricks::Fits(gl, big, false, 4),

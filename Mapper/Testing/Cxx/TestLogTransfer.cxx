@@ -68,7 +68,8 @@ void TestLogTransfer()
 {
   Hierarchy h = mappertest::LoadHierarchy("synthetic:cosmo:grids=60,levels=3,cells=200k,seed=3");
   // the densities themselves (positive, about ten decades), not their log10
-  RenderSettings s = mappertest::Settings(h, { "--size", "96x96", "--scale", "linear" });
+  RenderSettings s = mappertest::Settings(
+    h, mappertest::Request(96, 96, [](amrsp::harness::RenderRequest& r) { r.Scale = "linear"; }));
   s.Transfer = LogFunction();
   s.Transfer.UnitDistance = 0.02 * (h.WorldHi(h.RootCells(), 0) - h.Origin).x;
   RenderSettings linear = s;

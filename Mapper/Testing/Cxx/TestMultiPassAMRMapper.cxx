@@ -280,7 +280,7 @@ void TestDataset(const std::string& spec)
 {
   std::cout << "dataset " << spec << "\n";
   Hierarchy h = LoadHierarchy(spec);
-  const RenderSettings s = Settings(h, { "--size", "128x128" });
+  const RenderSettings s = Settings(h, mappertest::Request(128, 128));
   const KdTree tree = BuildKdTree(h);
   const EncodedKdTree enc = EncodeKdTree(h, tree);
 
@@ -319,7 +319,8 @@ void TestDataset(const std::string& spec)
     CheckVsSinglePass(o, single.Render(orbit, ms), "orbit " + Fixed(orbit) + " deg");
   }
   {
-    RenderSettings zs = Settings(h, { "--size", "128x128", "--zoom", "3" });
+    RenderSettings zs = Settings(
+      h, mappertest::Request(128, 128, [](amrsp::harness::RenderRequest& r) { r.Zoom = 3.0; }));
     ViewAngles zoomed;
     zoomed.Zoom = 3.0;
     MultipassRenderer mz(h, zs, zoomed);
@@ -331,8 +332,14 @@ void TestDataset(const std::string& spec)
 
   // an opaque transfer function: the segments' order decides the image
   {
-    RenderSettings os = Settings(
-      h, { "--size", "96x96", "--azimuth", "-60", "--elevation", "35", "--unit-distance", "1e-3" });
+    RenderSettings os = Settings(h,
+      mappertest::Request(96, 96,
+        [](amrsp::harness::RenderRequest& r)
+        {
+          r.Azimuth = -60.0;
+          r.Elevation = 35.0;
+          r.UnitDistance = 1e-3;
+        }));
     ViewAngles view;
     view.Azimuth = -60.0;
     view.Elevation = 35.0;
@@ -362,7 +369,7 @@ void TestVertexCentred(const std::string& spec)
   std::cout << "dataset " << spec << " (vertex-centred)\n";
   Hierarchy h = LoadHierarchy(spec, "vertex");
   Check(h.VertexCentred, "the data was converted to vertices");
-  const RenderSettings s = Settings(h, { "--size", "96x96" });
+  const RenderSettings s = Settings(h, mappertest::Request(96, 96));
   MultipassRenderer gpu(h, s, ViewAngles());
   SinglePassRenderer single(h, s, ViewAngles());
   double ms = 0.0;
@@ -386,7 +393,7 @@ int main()
       TestVertexCentred("synthetic:cosmo:grids=40,levels=3,cells=100k,seed=5");
       std::cout << "level of detail\n";
       Hierarchy small = LoadHierarchy("synthetic:cosmo:grids=20,levels=2,cells=50k,seed=1");
-      RenderSettings s = Settings(small, { "--size", "32x32" });
+      RenderSettings s = Settings(small, mappertest::Request(32, 32));
       s.LodThresholdPixels = 2.0f;
       CheckError([&] { MultipassRenderer refused(small, s, ViewAngles()); },
         { "finest level only" }, "--lod is refused by the multipass method");

@@ -67,7 +67,8 @@ void SameBytes(SinglePassRenderer& gpu, const std::string& what)
 void TestCasters()
 {
   Hierarchy h = mappertest::LoadHierarchy("synthetic:cosmo:grids=120,levels=3,cells=500k,seed=3");
-  const RenderSettings s = mappertest::Settings(h, { "--size", "120x96", "--shade", "on" });
+  const RenderSettings s = mappertest::Settings(
+    h, mappertest::Request(120, 96, [](amrsp::harness::RenderRequest& r) { r.Shade = true; }));
   SinglePassRenderer gpu(h, s, ViewAngles(), DataStorage::PackedAtlas);
   Mapper* mapper = gpu.GetMapper();
   double ms = 0.0;
@@ -150,7 +151,7 @@ int& Skipped()
 void TestNoCompute()
 {
   Hierarchy h = mappertest::LoadHierarchy("synthetic:cosmo:grids=60,levels=3,cells=200k,seed=2");
-  const RenderSettings s = mappertest::Settings(h, { "--size", "96x96" });
+  const RenderSettings s = mappertest::Settings(h, mappertest::Request(96, 96));
   SinglePassRenderer gpu(h, s, ViewAngles(), DataStorage::PackedAtlas);
   Mapper* mapper = gpu.GetMapper();
   int warnings = 0;

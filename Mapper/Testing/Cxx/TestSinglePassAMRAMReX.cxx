@@ -6,7 +6,9 @@ int TestSinglePassAMRAMReX(int argc, char* argv[])
 {
   amrsp::test::BaselineCase c;
   c.Dataset = "data:amrex_plt1_Y";
-  c.Options = { "--array", "Y(H2)", "--size", "200x200" };
+  c.Array = "Y(H2)";
+  c.Request.Width = 200;
+  c.Request.Height = 200;
   // covered-pixel bounds close to what llvmpipe (LLVM 15) measures, each wrong image rejected
   // by the reference with at least twice the margin; measured: reference 2.42, 1.62 % of
   // the pixels off by more than 8 levels, mirror 0.25, stored baseline 0.05;

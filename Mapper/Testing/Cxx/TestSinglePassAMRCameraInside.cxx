@@ -10,8 +10,11 @@ int TestSinglePassAMRCameraInside(int argc, char* argv[])
   c.Dataset = "synthetic:cosmo:grids=120,levels=4,cells=300k,seed=2";
   // near the eye a coarse cell covers many pixels: finer sampling on both sides keeps the
   // midpoint-rule difference between the GPU's rule and the reference's small
-  c.Options = { "--size", "200x200", "--unit-distance", "0.02", "--sample-factor", "0.25",
-    "--reference-sample-factor", "0.25" };
+  c.Request.Width = 200;
+  c.Request.Height = 200;
+  c.Request.UnitDistance = 0.02;
+  c.Request.SampleFactor = 0.25;
+  c.Request.ReferenceSampleFactor = 0.25;
   // covered-pixel bounds close to what llvmpipe (LLVM 15) measures, each wrong image rejected
   // by the reference with at least twice the margin; measured: reference 2.31, 0.06 % of
   // the pixels off by more than 8 levels, mirror 0.15, stored baseline 0.00

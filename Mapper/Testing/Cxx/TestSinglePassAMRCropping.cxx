@@ -17,8 +17,12 @@ int TestSinglePassAMRCropping(int argc, char* argv[])
 {
   amrsp::test::BaselineCase c;
   c.Dataset = "data:enzo_moving7/DD0010/moving7_0010.hierarchy";
-  c.Options = { "--array", "Density", "--size", "160x160", "--unit-distance", "0.01",
-    "--interpolation", "smooth", "--crop", "0.2,0.75,0.3,0.9,0.25,0.8" };
+  c.Array = "Density";
+  c.Request.Width = 160;
+  c.Request.Height = 160;
+  c.Request.UnitDistance = 0.01;
+  c.Request.SmoothCells = true;
+  c.Request.Crop = std::array<double, 6>{ 0.2, 0.75, 0.3, 0.9, 0.25, 0.8 };
   // covered-pixel bounds close to what llvmpipe (LLVM 15) measures, each wrong image rejected
   // by the reference with at least twice the margin; measured: reference 0.42, 0.00 % of
   // the pixels off by more than 8 levels, mirror 0.02, stored baseline 0.00

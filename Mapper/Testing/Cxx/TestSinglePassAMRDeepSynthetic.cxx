@@ -6,7 +6,9 @@ int TestSinglePassAMRDeepSynthetic(int argc, char* argv[])
 {
   amrsp::test::BaselineCase c;
   c.Dataset = "synthetic:cosmo:grids=300,levels=8,cells=600k,seed=4";
-  c.Options = { "--size", "200x200", "--unit-distance", "0.01" };
+  c.Request.Width = 200;
+  c.Request.Height = 200;
+  c.Request.UnitDistance = 0.01;
   // covered-pixel bounds close to what llvmpipe (LLVM 15) measures, each wrong image (level 0
   // alone included) rejected by the reference with at least twice the margin; measured: reference
   // 0.80, 0.07 % of the pixels off by more than 8 levels, mirror 0.01, stored baseline 0.00

@@ -20,8 +20,11 @@ int TestSinglePassAMREarlyTermination(int argc, char* argv[])
 {
   amrsp::test::BaselineCase c;
   c.Dataset = "data:amrex_plt1_Y";
-  c.Options = { "--array", "Y(H2)", "--size", "200x200", "--unit-distance", "0.0002",
-    "--opacity-threshold", "0.95" };
+  c.Array = "Y(H2)";
+  c.Request.Width = 200;
+  c.Request.Height = 200;
+  c.Request.UnitDistance = 0.0002;
+  c.Request.OpacityThreshold = 0.95;
   // covered-pixel bounds close to what llvmpipe (LLVM 15) measures, each wrong image rejected
   // by the reference with at least twice the margin; measured: reference 2.75, 1.94 % of
   // the pixels off by more than 8 levels, mirror 0.32, stored baseline 0.04

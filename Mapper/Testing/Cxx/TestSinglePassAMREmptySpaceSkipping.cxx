@@ -20,8 +20,13 @@ int TestSinglePassAMREmptySpaceSkipping(int argc, char* argv[])
 {
   amrsp::test::BaselineCase c;
   c.Dataset = "data:enzo_moving7/DD0010/moving7_0010.hierarchy";
-  c.Options = { "--array", "Dark_Matter_Density", "--size", "200x200", "--zoom", "3",
-    "--unit-distance", "0.004", "--tf", "sparse", "--empty-space-skipping", "on" };
+  c.Array = "Dark_Matter_Density";
+  c.Request.Width = 200;
+  c.Request.Height = 200;
+  c.Request.Zoom = 3.0;
+  c.Request.UnitDistance = 0.004;
+  c.Request.Tf = "sparse";
+  c.Request.SkipEmptySpace = true;
   // covered-pixel bounds close to what llvmpipe (LLVM 15) measures, each wrong image rejected
   // by the reference with at least twice the margin; measured: reference 6.04, 31.51 % of
   // the pixels off by more than 8 levels, mirror 0.58, stored baseline 0.15;

@@ -10,7 +10,11 @@ int TestSinglePassAMRGradientShading(int argc, char* argv[])
 {
   amrsp::test::BaselineCase c;
   c.Dataset = "synthetic:cosmo:grids=60,levels=3,cells=100k,seed=3";
-  c.Options = { "--size", "128x128", "--zoom", "1.5", "--unit-distance", "0.005", "--shade", "on" };
+  c.Request.Width = 128;
+  c.Request.Height = 128;
+  c.Request.Zoom = 1.5;
+  c.Request.UnitDistance = 0.005;
+  c.Request.Shade = true;
   // covered-pixel bounds close to what llvmpipe (LLVM 15, 19 and 21) measures, each wrong image
   // (level 0 alone included) rejected by the reference with at least twice the margin; measured:
   // reference 2.99, 2.93 % of the pixels off by more than 8 levels, mirror 0.02 (0.06 while

@@ -10,8 +10,14 @@ int TestSinglePassAMRIsoSurface(int argc, char* argv[])
   amrsp::test::BaselineCase c;
   c.Dataset = "synthetic:cosmo:grids=60,levels=3,cells=100k,seed=3";
   // iso-values at 0.4 and 0.7 of the transfer function's range (log10 of the density)
-  c.Options = { "--size", "128x128", "--zoom", "1.5", "--unit-distance", "0.005", "--blend", "iso",
-    "--iso", "0.4,0.7", "--tf", "grey", "--shade", "on" };
+  c.Request.Width = 128;
+  c.Request.Height = 128;
+  c.Request.Zoom = 1.5;
+  c.Request.UnitDistance = 0.005;
+  c.Request.Blend = amrsp::BlendMode::IsoSurface;
+  c.Request.Iso = std::vector<double>{ 0.4, 0.7 };
+  c.Request.Tf = "grey";
+  c.Request.Shade = true;
   // covered-pixel bounds close to what llvmpipe (LLVM 15) measures, each wrong image (level 0
   // alone included) rejected by the reference with at least twice the margin; measured:
   // reference 6.42, 16.03 % of the pixels off by more than 8 levels, mirror 0.00, stored baseline

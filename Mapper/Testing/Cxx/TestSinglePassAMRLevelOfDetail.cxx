@@ -7,7 +7,10 @@ int TestSinglePassAMRLevelOfDetail(int argc, char* argv[])
 {
   amrsp::test::BaselineCase c;
   c.Dataset = "data:amrex_plt1_Y";
-  c.Options = { "--array", "Y(H2)", "--size", "200x200", "--lod", "8" };
+  c.Array = "Y(H2)";
+  c.Request.Width = 200;
+  c.Request.Height = 200;
+  c.Request.Lod = 8.0;
   // covered-pixel bounds close to what llvmpipe (LLVM 15) measures, each wrong image rejected
   // by the reference with at least twice the margin; measured: reference 7.64, 43.93 % of
   // the pixels off by more than 8 levels, mirror 0.36, stored baseline 0.16;

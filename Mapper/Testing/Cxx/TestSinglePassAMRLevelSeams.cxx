@@ -52,8 +52,13 @@ int TestSinglePassAMRLevelSeams(int argc, char* argv[])
   test::BaselineCase c;
   c.Dataset = "paraboloid on a two-level patch hierarchy (16^3 + 16^3 cells)";
   c.Data = [] { return test::LevelPatch(2, Finest, Field); };
-  c.Options = { "--size", "128x128", "--zoom", "2.5", "--sample-factor", "0.5", "--scale", "linear",
-    "--shade", "on", "--interpolation", "smooth" };
+  c.Request.Width = 128;
+  c.Request.Height = 128;
+  c.Request.Zoom = 2.5;
+  c.Request.SampleFactor = 0.5;
+  c.Request.Scale = "linear";
+  c.Request.Shade = true;
+  c.Request.SmoothCells = true;
   // covered-pixel bounds close to what llvmpipe (LLVM 15) measures, each wrong image (level 0
   // alone included) rejected by the reference with at least twice the margin; measured: reference
   // 0.49, 0.00 % of the pixels off by more than 8 levels, mirror 0.01, stored baseline 0.00

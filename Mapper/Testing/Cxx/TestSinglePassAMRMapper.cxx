@@ -207,7 +207,7 @@ void TestDataset(const std::string& spec)
 {
   std::cout << "dataset " << spec << "\n";
   Hierarchy h = LoadHierarchy(spec);
-  const RenderSettings s = Settings(h, { "--size", "128x128" });
+  const RenderSettings s = Settings(h, mappertest::Request(128, 128));
   const EncodedKdTree enc = EncodeKdTree(h, BuildKdTree(h));
 
   SinglePassRenderer gpu(h, s, ViewAngles());
@@ -281,7 +281,7 @@ void TestVertexCentred(const std::string& spec)
   std::cout << "dataset " << spec << " (vertex-centred)\n";
   Hierarchy h = LoadHierarchy(spec, "vertex");
   Check(h.VertexCentred, "the data was converted to vertices");
-  const RenderSettings s = Settings(h, { "--size", "96x96" });
+  const RenderSettings s = Settings(h, mappertest::Request(96, 96));
   SinglePassRenderer gpu(h, s, ViewAngles());
   double ms = 0.0;
   const Image img = gpu.Render(0.0, ms);
@@ -337,8 +337,14 @@ void TestRefinementRatios(
   // RMSE from the reference on a single 6^3 grid. Finer steps and a thinner medium measure the
   // cells instead (GPU vs reference 0.92, GPU vs kD-tree 0.06 with ratios 3 x 2 x 3 and 3).
   const RenderSettings s = Settings(h,
-    { "--size", "96x96", "--scale", "linear", "--sample-factor", "0.25",
-      "--reference-sample-factor", "0.125", "--unit-distance", "2" });
+    mappertest::Request(96, 96,
+      [](amrsp::harness::RenderRequest& r)
+      {
+        r.Scale = "linear";
+        r.SampleFactor = 0.25;
+        r.ReferenceSampleFactor = 0.125;
+        r.UnitDistance = 2.0;
+      }));
   const EncodedKdTree enc = EncodeKdTree(h, BuildKdTree(h));
   SinglePassRenderer gpu(h, s, ViewAngles());
   double ms = 0.0;
@@ -387,7 +393,8 @@ void TestLevelOfDetailAndNaN()
   FillSmoothField(h,
     [](const Grid& g, const glm::dvec3& p)
     { return g.Level == 1 && p.x < 2.0 && p.y < 2.0 && p.z < 2.0; });
-  RenderSettings s = Settings(h, { "--size", "96x96", "--scale", "linear" });
+  RenderSettings s = Settings(
+    h, mappertest::Request(96, 96, [](amrsp::harness::RenderRequest& r) { r.Scale = "linear"; }));
   const EncodedKdTree enc = EncodeKdTree(h, BuildKdTree(h));
   SinglePassRenderer gpu(h, s, ViewAngles());
   double ms = 0.0;
@@ -416,7 +423,7 @@ void TestAtlasPages()
     Hierarchy h = LoadHierarchy("synthetic:cosmo:grids=60,levels=3,cells=200k,seed=3",
       std::string(centering) == "vertex" ? "vertex" : "auto");
     const std::string name = std::string(centering) + " data";
-    const RenderSettings base = Settings(h, { "--size", "96x96" });
+    const RenderSettings base = Settings(h, mappertest::Request(96, 96));
     for (const char* interpolation : { "nearest", "smooth" })
     {
       RenderSettings s = base;
@@ -457,7 +464,7 @@ void TestProgressEvents()
 {
   std::cout << "progress events\n";
   Hierarchy h = LoadHierarchy("synthetic:cosmo:grids=60,levels=3,cells=200k,seed=3");
-  const RenderSettings s = Settings(h, { "--size", "48x48" });
+  const RenderSettings s = Settings(h, mappertest::Request(48, 48));
   struct Event
   {
     double Fraction;
@@ -574,7 +581,7 @@ void TestTwoRenderersAndDataChanges()
     request.Spec = spec;
     request.NeedVTK = false;
     data.push_back(LoadDataset(request).Data);
-    const RenderSettings s = Settings(data.back(), { "--size", "96x96" });
+    const RenderSettings s = Settings(data.back(), mappertest::Request(96, 96));
     alone.emplace_back(new SinglePassRenderer(data.back(), s, ViewAngles()));
     double ms = 0.0;
     images.push_back(alone.back()->Render(0.0, ms));

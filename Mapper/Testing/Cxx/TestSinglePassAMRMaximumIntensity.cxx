@@ -6,8 +6,11 @@ int TestSinglePassAMRMaximumIntensity(int argc, char* argv[])
 {
   amrsp::test::BaselineCase c;
   c.Dataset = "data:enzo_moving7/DD0010/moving7_0010.hierarchy";
-  c.Options = { "--array", "Density", "--size", "200x200", "--blend", "maximum", "--tf",
-    "grey-opaque" };
+  c.Array = "Density";
+  c.Request.Width = 200;
+  c.Request.Height = 200;
+  c.Request.Blend = amrsp::BlendMode::Maximum;
+  c.Request.Tf = "grey-opaque";
   // covered-pixel bounds close to what llvmpipe (LLVM 15) measures, each wrong image (level 0
   // alone included) rejected by the reference with at least twice the margin; measured:
   // reference 8.29, 4.45 % of the pixels off by more than 8 levels, mirror 0.12, stored baseline

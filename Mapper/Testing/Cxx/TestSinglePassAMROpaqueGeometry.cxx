@@ -7,7 +7,9 @@ int TestSinglePassAMROpaqueGeometry(int argc, char* argv[])
 {
   amrsp::test::BaselineCase c;
   c.Dataset = "synthetic:cosmo:grids=120,levels=4,cells=300k,seed=2";
-  c.Options = { "--size", "200x200", "--unit-distance", "0.02" };
+  c.Request.Width = 200;
+  c.Request.Height = 200;
+  c.Request.UnitDistance = 0.02;
   // covered-pixel bounds close to what llvmpipe (LLVM 15) measures, each wrong image (level 0
   // alone included) rejected by the reference with at least twice the margin; measured:
   // reference 1.33, 0.67 % of the pixels off by more than 8 levels, mirror 0.26, stored baseline

@@ -9,8 +9,13 @@ int TestSinglePassAMRShadows(int argc, char* argv[])
 {
   amrsp::test::BaselineCase c;
   c.Dataset = "synthetic:cosmo:grids=60,levels=3,cells=100k,seed=3";
-  c.Options = { "--size", "96x96", "--zoom", "1.5", "--unit-distance", "0.005", "--shade", "on",
-    "--light", "1.2,1.5,1.2", "--shadows", "0.08" };
+  c.Request.Width = 96;
+  c.Request.Height = 96;
+  c.Request.Zoom = 1.5;
+  c.Request.UnitDistance = 0.005;
+  c.Request.Shade = true;
+  c.Request.Light = glm::dvec3(1.2, 1.5, 1.2);
+  c.Request.ShadowStep = 0.08;
   // covered-pixel bounds close to what llvmpipe (LLVM 15) measures, each wrong image (level 0
   // alone included) rejected by the reference with at least twice the margin; measured:
   // reference 2.33, 1.70 % of the pixels off by more than 8 levels, mirror 0.06, stored baseline

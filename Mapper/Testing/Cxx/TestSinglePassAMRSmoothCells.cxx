@@ -14,7 +14,10 @@ int TestSinglePassAMRSmoothCells(int argc, char* argv[])
 {
   amrsp::test::BaselineCase c;
   c.Dataset = "data:enzo_moving7/DD0010/moving7_0010.hierarchy";
-  c.Options = { "--array", "Density", "--size", "200x200", "--interpolation", "smooth" };
+  c.Array = "Density";
+  c.Request.Width = 200;
+  c.Request.Height = 200;
+  c.Request.SmoothCells = true;
   // covered-pixel bounds close to what llvmpipe (LLVM 15) measures, each wrong image rejected
   // by the reference with at least twice the margin; measured: reference 0.43, 0.00 % of
   // the pixels off by more than 8 levels, mirror 0.01, stored baseline 0.00

@@ -62,7 +62,10 @@ std::vector<Hierarchy> Steps()
   for (int s = 0; s < p.Steps; ++s)
   {
     steps.push_back(GenerateCosmoStep(p, s));
-    Settings(steps.back(), { "--scale", "log" }); // log10 of the density, every step alike
+    Settings(steps.back(),
+      mappertest::Request(512, 512,
+        [](amrsp::harness::RenderRequest& r)
+        { r.Scale = "log"; })); // log10 of the density, every step alike
   }
   return steps;
 }
@@ -111,7 +114,8 @@ void CheckMethod(const std::string& methodName, std::vector<Hierarchy>& steps,
   bool requireStorage = false, RayCaster caster = RayCaster::Auto)
 {
   Hierarchy first = steps[0]; // shares the values; the settings leave them as they are
-  RenderSettings s = Settings(first, { "--size", "96x96", "--scale", "linear" });
+  RenderSettings s = Settings(first,
+    mappertest::Request(96, 96, [](amrsp::harness::RenderRequest& r) { r.Scale = "linear"; }));
   s.GpuRayCaster = caster;
   const std::string method = methodName;
   const std::string label =
@@ -222,7 +226,8 @@ void ScaleInPlace(vtkOverlappingAMR* amr, const std::string& array, double facto
 void CheckKeptSteps(const std::string& method, std::vector<Hierarchy>& steps)
 {
   Hierarchy first = steps[0];
-  const RenderSettings s = Settings(first, { "--size", "96x96", "--scale", "linear" });
+  const RenderSettings s = Settings(first,
+    mappertest::Request(96, 96, [](amrsp::harness::RenderRequest& r) { r.Scale = "linear"; }));
   double ms = 0.0;
   SinglePassRenderer series(steps[0], s, ViewAngles(), StorageNamed(method));
   vtkSinglePassAMRVolumeMapper* mapper = series.GetMapper();
