@@ -4,6 +4,7 @@
 #include "amrsp/Shading.h"
 
 #include <stdexcept>
+#include <utility>
 
 namespace amrsp
 {
@@ -82,13 +83,13 @@ RenderRequest ParseRenderRequest(const Arguments& a)
   RenderRequest r;
   r.ViewJson = a.Get("view-json", "");
   ParseImageSize(a.Get("size", "512x512"), r);
-  for (const auto& [key, value] :
-    { std::make_pair("azimuth", &r.Azimuth), std::make_pair("elevation", &r.Elevation),
-      std::make_pair("zoom", &r.Zoom), std::make_pair("unit-distance", &r.UnitDistance) })
+  const std::pair<const char*, std::optional<double>*> numbers[] = { { "azimuth", &r.Azimuth },
+    { "elevation", &r.Elevation }, { "zoom", &r.Zoom }, { "unit-distance", &r.UnitDistance } };
+  for (const auto& number : numbers)
   {
-    if (a.Has(key))
+    if (a.Has(number.first))
     {
-      *value = a.GetNumber(key, 0.0);
+      *number.second = a.GetNumber(number.first, 0.0);
     }
   }
   if (r.UnitDistance && !(*r.UnitDistance > 0.0))

@@ -28,31 +28,33 @@ struct RenderRequest
 {
   int Width = 512; ///< --size WxH
   int Height = 512;
-  std::string ViewJson; ///< --view-json: a file with the camera, transfer function, light (empty: none)
+  std::string
+    ViewJson; ///< --view-json: a file with the camera, transfer function, light (empty: none)
   /// --azimuth, --elevation (degrees, after ResetCamera) and --zoom; unset: 30, 20, 1 (and no
   /// change of a --view-json camera)
   std::optional<double> Azimuth;
   std::optional<double> Elevation;
   std::optional<double> Zoom;
-  std::optional<std::string> Tf;    ///< --tf preset; unset: "default"
-  std::optional<std::string> Scale; ///< --scale auto|linear|log; unset: auto (linear for a file's TF)
-  std::string Range = "step";       ///< --range all|step|LO:HI
-  std::optional<double> UnitDistance; ///< --unit-distance; unset: the file's, or diagonal / 100
-  double SampleFactor = 1.0;          ///< --sample-factor
-  double ReferenceSampleFactor = 0.5; ///< --reference-sample-factor
-  double Lod = 0.0;                   ///< --lod (pixels)
-  double AtlasPageMiB = 0.0;          ///< --atlas-page-mib (0: the mapper's default)
+  std::optional<std::string> Tf; ///< --tf preset; unset: "default"
+  std::optional<std::string>
+    Scale;                    ///< --scale auto|linear|log; unset: auto (linear for a file's TF)
+  std::string Range = "step"; ///< --range all|step|LO:HI
+  std::optional<double> UnitDistance;     ///< --unit-distance; unset: the file's, or diagonal / 100
+  double SampleFactor = 1.0;              ///< --sample-factor
+  double ReferenceSampleFactor = 0.5;     ///< --reference-sample-factor
+  double Lod = 0.0;                       ///< --lod (pixels)
+  double AtlasPageMiB = 0.0;              ///< --atlas-page-mib (0: the mapper's default)
   BlendMode Blend = BlendMode::Composite; ///< --blend
   bool Shade = false;                     ///< --shade on|off
   double ShadowStep = 0.0;                ///< --shadows (world units; 0: off)
   std::optional<glm::dvec3> Light;        ///< --light X,Y,Z (a positional light)
   /// --iso: iso-values as fractions of the transfer function's range (1 to 8); unset: 0.5
   std::optional<std::vector<double>> Iso;
-  int Threads = 0;                 ///< --threads (0: hardware concurrency)
-  double OpacityThreshold = 0.999; ///< --opacity-threshold
-  bool SkipEmptySpace = true;      ///< --empty-space-skipping on|off
-  bool Ropes = true;               ///< --ropes on|off
-  RayLoop Loop = RayLoop::Nested;  ///< --loop
+  int Threads = 0;                    ///< --threads (0: hardware concurrency)
+  double OpacityThreshold = 0.999;    ///< --opacity-threshold
+  bool SkipEmptySpace = true;         ///< --empty-space-skipping on|off
+  bool Ropes = true;                  ///< --ropes on|off
+  RayLoop Loop = RayLoop::Nested;     ///< --loop
   RayCaster Caster = RayCaster::Auto; ///< --caster
   int Ablation = 0;                   ///< --ablation: 0 none, 1 traversal-only, 2 sampling-only
   int AblationSamples = 256;          ///< --ablation sampling-only:N
