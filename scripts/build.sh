@@ -23,7 +23,13 @@ case "$config" in
     # the vtk configuration with AddressSanitizer and UndefinedBehaviorSanitizer
     prefix=${AMRSP_VTK91_PREFIX:-/opt/amrsp/vtk-9.1}
     args=(-DAMRSP_WITH_PARAVIEW=OFF "-DVTK_DIR=$prefix/usr/lib/$multiarch/cmake/vtk-9.1"
-      -DAMRSP_SANITIZE=ON -DAMRSP_MAPPER_TESTS=OFF) ;;  # it runs the core and tool tests
+      -DAMRSP_SANITIZE=ON -DAMRSP_MAPPER_TESTS=OFF  # it runs the core and tool tests
+      -DAMRSP_WRAP_PYTHON=OFF) ;;  # Python cannot load an AddressSanitizer module
+esac
+# The VTK configurations wrap the module for Debian's python3-vtk9, which is built for the
+# system's python3 (not one an environment manager puts first on PATH)
+case "$config" in
+  vtk|forky-vtk) [ -x /usr/bin/python3 ] && args+=(-DPython3_EXECUTABLE=/usr/bin/python3) ;;
 esac
 # Mapper.ShaderVariants checks the shader sources, which no VTK version changes: once per CI run,
 # in the Debian 12 ParaView configuration
