@@ -16,36 +16,31 @@ import sys
 
 import numpy
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import PluginTestKit as kit  # noqa: E402  (plain Python: it imports nothing of ParaView)
+
 readme, amrsp, data_dir, work = sys.argv[1:5]
-SKIP = 125
 RMSE_BOUND = 10.0     # 0-255, over the pixels covered in either image (measured 6.7: docs/python.md)
 COVERAGE_BOUND = 0.02  # difference of the covered shares
 MIN_COVERAGE = 0.05    # the least share of the image the volume must cover (measured 0.084)
-BACKGROUND_LEVEL = 2  # a pixel is covered where it differs from the background by more than this
 REFERENCE_SAMPLE_FACTOR = 0.25  # the reference's step: a quarter of the finest cell edge
 
 
-def fail(message):
-    print("FAIL: " + message)
-    sys.exit(1)
+fail = kit.fail
 
 
 def read_png(path):
-    from vtkmodules.vtkIOImage import vtkPNGReader
-    from vtkmodules.util.numpy_support import vtk_to_numpy
-
-    reader = vtkPNGReader()
-    reader.SetFileName(path)
-    reader.Update()
-    image = reader.GetOutput()
-    if image.GetNumberOfPoints() == 0:
+    _, _, pixels = kit.read_png(path)
+    if len(pixels) == 0:
         fail("cannot read %s" % path)
-    return vtk_to_numpy(image.GetPointData().GetScalars())[:, :3].astype(float)
+    return pixels
 
 
 def compare(image, reference, background):
-    covered_image = (abs(image - background).max(axis=1) > BACKGROUND_LEVEL)
-    covered_reference = (abs(reference - background).max(axis=1) > BACKGROUND_LEVEL)
+    """kit.rmse and kit.coverage over a background that is not black: a pixel is covered where it
+    differs from the background by more than kit.BACKGROUND_LEVEL."""
+    covered_image = (abs(image - background).max(axis=1) > kit.BACKGROUND_LEVEL)
+    covered_reference = (abs(reference - background).max(axis=1) > kit.BACKGROUND_LEVEL)
     either = covered_image | covered_reference
     rmse = float(numpy.sqrt(((image[either] - reference[either]) ** 2).mean())) if either.any() else 0.0
     return rmse, float(covered_image.mean()), float(covered_reference.mean())
@@ -62,8 +57,7 @@ documented = "../shared/data"
 if documented not in blocks[0]:
     fail("the example does not read its data from %s" % documented)
 if not os.path.isdir(data_dir):
-    print("SKIPPED: the data folder %s is not here" % data_dir)
-    sys.exit(SKIP)
+    kit.skip("the data folder %s is not here" % data_dir)  # a failure in CI (AMRSP_REQUIRE_GPU=1)
 code = blocks[0].replace(documented, os.path.abspath(data_dir))
 shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
@@ -153,4 +147,4 @@ print("%s: the reference of the camera turned by 2 degrees is rejected: covered 
       "%.3f" % ("ok" if turned_rejected else "FAIL", turned_rmse, turned_share))
 ok = good and rejected and turned_rejected
 print("PASS" if ok else "FAIL")
-sys.exit(0 if ok else 1)
+kit.leave(0 if ok else 1)
