@@ -74,6 +74,9 @@ PKGS_BUILD=(cmake g++ make ninja-build pkg-config patchelf clang-format libgtest
 PKGS_BUILD+=(glslang-tools)
 # The Debian 13 and testing roots of scripts/debian-root.sh (configurations trixie-*, forky-*).
 PKGS_BUILD+=(debootstrap)
+# The vtk configuration's Python wrapping (Wrapping/Python: Python.h) and its test (numpy), for
+# the system python3 that Debian's python3-vtk9 is built for
+PKGS_BUILD+=(python3-dev python3-numpy)
 # Headless GLX rendering.
 PKGS_X=(xvfb xauth x11-utils mesa-utils)
 # ParaView 5.11 (with its own VTK 9.2); mpi-default-bin gives mpiexec for pvbatch (a Recommends of paraview).
