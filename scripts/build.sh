@@ -16,7 +16,11 @@ case "$config" in
     args=(-DAMRSP_WITH_PARAVIEW=ON) ;;
   vtk)
     prefix=${AMRSP_VTK91_PREFIX:-/opt/amrsp/vtk-9.1}
-    args=(-DAMRSP_WITH_PARAVIEW=OFF "-DVTK_DIR=$prefix/usr/lib/$multiarch/cmake/vtk-9.1") ;;
+    # dpkg does not own the private prefix: its packages' version (install-deps.sh's stamp) is what
+    # the Debian package of this configuration depends on
+    vtk_version=$(sed -n 's/^version=//p' "$prefix/.amrsp/stamp" 2>/dev/null || true)
+    args=(-DAMRSP_WITH_PARAVIEW=OFF "-DVTK_DIR=$prefix/usr/lib/$multiarch/cmake/vtk-9.1"
+      "-DAMRSP_DEBIAN_VTK_DEPENDS=${vtk_version:+libvtk9.1 (= $vtk_version), python3-vtk9 (= $vtk_version)}") ;;
   forky-vtk)
     args=(-DAMRSP_WITH_PARAVIEW=OFF) ;;  # the system VTK 9.6, which ParaView 6.1 uses too
   sanitizers)
@@ -34,11 +38,11 @@ esac
 # Mapper.ShaderVariants checks the shader sources, which no VTK version changes: once per CI run,
 # in the Debian 12 ParaView configuration
 [ "$config" = paraview ] && args+=(-DAMRSP_SHADER_VARIANT_TEST=ON) || args+=(-DAMRSP_SHADER_VARIANT_TEST=OFF)
-# The fuzzer's 300 variants once per VTK version: the vtk configuration has sanitizers' VTK 9.1,
-# forky-paraview forky-vtk's 9.6 (100 variants there)
+# The fuzzer's 300 variants where the oldest and the newest VTK parse (sanitizers: 9.1 with
+# AddressSanitizer, forky-vtk: 9.6), 100 in the other configurations (CI time)
 case "$config" in
-  vtk|forky-paraview) args+=(-DAMRSP_FUZZ_VARIANTS=100) ;;
-  *) args+=(-DAMRSP_FUZZ_VARIANTS=300) ;;
+  sanitizers|forky-vtk) args+=(-DAMRSP_FUZZ_VARIANTS=300) ;;
+  *) args+=(-DAMRSP_FUZZ_VARIANTS=100) ;;
 esac
 # The GPU profile command's smoke test where the GPU bundle's amrsp comes from (forky-vtk), the
 # only build the profile runs

@@ -6,9 +6,13 @@
 #                                              # scripts/install-deps.sh inside it (idempotent)
 #   scripts/debian-root.sh SUITE run CMD ...   # run CMD inside the root, in the repository
 #   scripts/debian-root.sh SUITE path          # print the root's folder
+#   scripts/debian-root.sh SUITE clean-ensure  # a *clean* root: debootstrap minbase and the package
+#                                              # lists, nothing else (scripts/test-package.sh copies it)
 #
-# SUITE: trixie or forky. The root lives in $AMRSP_ROOTS_DIR/SUITE (default /var/cache/amrsp/roots);
-# delete that folder to start over. Inside a root the repository is mounted at /amrsp/src and
+# SUITE: trixie or forky (bookworm too for clean-ensure). The root lives in $AMRSP_ROOTS_DIR/SUITE
+# (default /var/cache/amrsp/roots), the clean one in $AMRSP_ROOTS_DIR/clean-SUITE; delete a folder to
+# start over. AMRSP_ROOT_DIR=DIR makes `run` use the root in DIR (a copy of a clean root), and
+# AMRSP_ROOT_APT_ARCHIVES=DIR mounts DIR as its /var/cache/apt/archives (packages downloaded once). Inside a root the repository is mounted at /amrsp/src and
 # ../shared at /amrsp/shared (so the repository's ../shared is the same data), /tmp/.X11-unix is the
 # host's (the X server of scripts/start-xvfb.sh serves GLX-only ParaView builds), and /proc, /sys, /dev
 # are the host's. The mounts live in a private mount namespace (unshare): they disappear when the
@@ -21,10 +25,12 @@ action=${2:?usage: scripts/debian-root.sh SUITE ensure|run CMD...|path}
 shift 2
 case "$suite" in
   trixie|forky) ;;
-  *) echo "debian-root: unknown suite '$suite' (trixie or forky)" >&2; exit 2 ;;
+  bookworm) [ "$action" = clean-ensure ] || [ -n "${AMRSP_ROOT_DIR:-}" ] \
+    || { echo "debian-root: bookworm is this host's release: only clean-ensure, or run with AMRSP_ROOT_DIR" >&2; exit 2; } ;;
+  *) echo "debian-root: unknown suite '$suite' (trixie or forky; bookworm for clean-ensure)" >&2; exit 2 ;;
 esac
 roots=${AMRSP_ROOTS_DIR:-/var/cache/amrsp/roots}
-root=$roots/$suite
+root=${AMRSP_ROOT_DIR:-$roots/$suite}
 log() { printf '[root %s] %s\n' "$suite" "$*"; }
 die() { printf '[root %s] ERROR: %s\n' "$suite" "$*" >&2; exit 1; }
 
@@ -56,7 +62,7 @@ run_in_root() {
   # shellcheck disable=SC2016  # expanded by the inner shell
   unshare --mount --propagation private -- /bin/bash -c '
     set -e
-    root=$1 repo=$2 shared=$3; shift 3
+    root=$1 repo=$2 shared=$3 archives=$4; shift 4
     mkdir -p "$root/amrsp/src" "$root/amrsp/shared" "$root/tmp/.X11-unix"
     mount -t proc proc "$root/proc"
     mount --rbind /sys "$root/sys"
@@ -64,36 +70,43 @@ run_in_root() {
     mount --bind "$repo" "$root/amrsp/src"
     if [ -d "$shared" ]; then mount --bind "$shared" "$root/amrsp/shared"; fi
     if [ -d /tmp/.X11-unix ]; then mount --bind /tmp/.X11-unix "$root/tmp/.X11-unix"; fi
+    if [ -n "$archives" ]; then mount --bind "$archives" "$root/var/cache/apt/archives"; fi
     cp -L /etc/resolv.conf "$root/etc/resolv.conf" 2>/dev/null || true
     exec chroot "$root" "$@"
-  ' amrsp-root "$root" "$repo" "$shared" \
+  ' amrsp-root "$root" "$repo" "$shared" "${AMRSP_ROOT_APT_ARCHIVES:-}" \
     /usr/bin/env -i HOME=/root PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
       LANG=C.UTF-8 "${keep[@]}" /bin/bash -c 'cd /amrsp/src && exec "$@"' amrsp-cmd "$@"
 }
 
-ensure_root() {
-  local t0=$SECONDS mirror
+# bootstrap DIR: a minbase root of $suite from the host's mirror in DIR (made in DIR.tmp, then moved)
+bootstrap() {
+  local dir=$1 mirror
   mirror=$(host_mirror)
+  command -v debootstrap >/dev/null || die "debootstrap is missing (scripts/install-deps.sh installs it)"
+  # bookworm's debootstrap has no script named forky; the sid script bootstraps any recent suite
+  local script=/usr/share/debootstrap/scripts/sid
+  rm -rf "$dir.tmp"
+  mkdir -p "$roots"
+  log "debootstrap $suite from $mirror into $dir (about 1 min)"
+  if ! debootstrap --variant=minbase "$suite" "$dir.tmp" "$mirror" "$script" \
+      >"$dir-debootstrap.log" 2>&1; then
+    tail -n 20 "$dir-debootstrap.log" >&2
+    die "debootstrap failed (log: $dir-debootstrap.log)"
+  fi
+  printf 'deb %s %s main\n' "$mirror" "$suite" >"$dir.tmp/etc/apt/sources.list"
+  # The mirror may serve a frozen snapshot whose Release files are past their Valid-Until date.
+  echo 'Acquire::Check-Valid-Until "false";' >"$dir.tmp/etc/apt/apt.conf.d/99amrsp-mirror"
+  # A root is a cache that can be made again: dpkg need not sync every file (much faster unpacking).
+  echo force-unsafe-io >"$dir.tmp/etc/dpkg/dpkg.cfg.d/amrsp-unsafe-io"
+  printf 'suite=%s\nmirror=%s\n' "$suite" "$mirror" >"$dir.tmp/.amrsp-root"
+  rm -rf "$dir"
+  mv "$dir.tmp" "$dir"
+}
+
+ensure_root() {
+  local t0=$SECONDS
   if [ ! -f "$root/.amrsp-root" ]; then
-    command -v debootstrap >/dev/null || die "debootstrap is missing (scripts/install-deps.sh installs it)"
-    # bookworm's debootstrap has no script named forky; the sid script bootstraps any recent suite
-    local script=/usr/share/debootstrap/scripts/sid
-    rm -rf "$root.tmp"
-    mkdir -p "$roots"
-    log "debootstrap $suite from $mirror into $root (about 1 min)"
-    if ! debootstrap --variant=minbase "$suite" "$root.tmp" "$mirror" "$script" \
-        >"$roots/$suite-debootstrap.log" 2>&1; then
-      tail -n 20 "$roots/$suite-debootstrap.log" >&2
-      die "debootstrap failed (log: $roots/$suite-debootstrap.log)"
-    fi
-    printf 'deb %s %s main\n' "$mirror" "$suite" >"$root.tmp/etc/apt/sources.list"
-    # The mirror may serve a frozen snapshot whose Release files are past their Valid-Until date.
-    echo 'Acquire::Check-Valid-Until "false";' >"$root.tmp/etc/apt/apt.conf.d/99amrsp-mirror"
-    # A root is a cache that can be made again: dpkg need not sync every file (much faster unpacking).
-    echo force-unsafe-io >"$root.tmp/etc/dpkg/dpkg.cfg.d/amrsp-unsafe-io"
-    printf 'suite=%s\nmirror=%s\n' "$suite" "$mirror" >"$root.tmp/.amrsp-root"
-    rm -rf "$root"
-    mv "$root.tmp" "$root"
+    bootstrap "$root"
   else
     log "reusing $root"
   fi
@@ -106,9 +119,33 @@ ensure_root() {
   log "ready in $((SECONDS - t0)) s ($(du -sh "$root" 2>/dev/null | cut -f1))"
 }
 
+# The clean root: minbase and fresh package lists, never changed afterwards (its users copy it).
+# Remade when older than a week, so that its lists follow the mirror.
+clean_ensure() {
+  local t0=$SECONDS
+  root=$roots/clean-$suite
+  mkdir -p "$roots"
+  exec 8>"$roots/clean-$suite.lock"
+  flock 8  # one maker at a time; a second caller finds the root made
+  if [ -f "$root/.amrsp-clean" ] && [ -n "$(find "$root/.amrsp-clean" -mtime -7 2>/dev/null)" ]; then
+    log "reusing the clean root $root"
+    return 0
+  fi
+  bootstrap "$root.new"
+  root=$root.new
+  run_in_root apt-get -q -o Acquire::Check-Valid-Until=false update >"$root/tmp/apt-update.log" 2>&1 \
+    || { tail -n 20 "$root/tmp/apt-update.log" >&2; die "apt-get update in the clean root failed"; }
+  root=$roots/clean-$suite
+  touch "$root.new/.amrsp-clean"
+  rm -rf "$root"
+  mv "$root.new" "$root"
+  log "clean root ready in $((SECONDS - t0)) s ($(du -sh "$root" 2>/dev/null | cut -f1))"
+}
+
 case "$action" in
   ensure) ensure_root ;;
+  clean-ensure) clean_ensure ;;
   run) [ "$#" -gt 0 ] || die "run needs a command"; run_in_root "$@" ;;
   path) printf '%s\n' "$root" ;;
-  *) die "unknown action '$action' (ensure, run or path)" ;;
+  *) die "unknown action '$action' (ensure, clean-ensure, run or path)" ;;
 esac

@@ -49,6 +49,40 @@ for suite in "${roots[@]}"; do
   "$repo/scripts/debian-root.sh" "$suite" ensure >"$repo/build/root-$suite.log" 2>&1 &
   root_pid[$suite]=$!
 done
+# The Debian packages (scripts/package.sh) are installed into clean roots of their releases
+# (scripts/test-package.sh), on a Debian 12 host: the clean roots are made in the background too.
+packaged=()
+for config in "${configs[@]}"; do
+  [ "$config" = sanitizers ] || packaged+=("$config")
+done
+if [ "$host" = bookworm ] && [ "${#packaged[@]}" -gt 0 ]; then
+  clean_suites=()
+  for config in "${packaged[@]}"; do
+    suite=$(amrsp_config_suite "$config")
+    case " ${clean_suites[*]} " in *" $suite "*) ;; *) clean_suites+=("$suite") ;; esac
+  done
+  echo "[test] making clean roots (${clean_suites[*]}) for the package tests in the background (log: build/clean-roots.log)"
+  ( for suite in "${clean_suites[@]}"; do "$repo/scripts/debian-root.sh" "$suite" clean-ensure || true; done ) \
+    >"$repo/build/clean-roots.log" 2>&1 &
+fi
+# A configuration's package is built and tested in the background as soon as the configuration is
+# built, while its tests run (one package test at a time: they share apt caches).
+package_pids=()
+start_package_test() {  # $1 = config
+  local config=$1
+  if [ "$host" != bookworm ]; then
+    echo "[summary] $config package: SKIPPED (clean roots are made on a Debian 12 host)" >>"$repo/build/test-summary.txt"
+    [ "${CI:-}" != true ] || status=1
+    return 0
+  fi
+  mkdir -p "$repo/build/packages"
+  (
+    flock 9
+    "$repo/scripts/package.sh" "$config" || true  # without a .deb, test-package.sh reports the failure
+    "$repo/scripts/test-package.sh" "$config"
+  ) 9>"$repo/build/packages/.lock" >"$repo/build/packages/$config.log" 2>&1 &
+  package_pids+=("$!:$config")
+}
 wait_for_root() {  # $1 = suite
   local pid=${root_pid[$1]:-}
   [ -n "$pid" ] || return 0
@@ -81,9 +115,16 @@ for config in "${configs[@]}"; do
     continue
   fi
   builds+=("$config $((SECONDS - t0)) s")
+  [ "$config" = sanitizers ] || start_package_test "$config"
   "$repo/scripts/run-tests.sh" "$config" || status=1
 done
 for suite in "${roots[@]}"; do wait_for_root "$suite" >/dev/null 2>&1 || true; done
+for entry in "${package_pids[@]}"; do
+  if ! wait "${entry%%:*}"; then
+    status=1
+    tail -n 30 "$repo/build/packages/${entry#*:}.log"
+  fi
+done
 
 echo "[test] build times: $(IFS=,; echo "${builds[*]}")"
 echo "[test] summary ($(( (SECONDS - t_start) / 60 )) min in all):"

@@ -1,0 +1,51 @@
+# CPack pre-build script (CPACK_PRE_BUILD_SCRIPTS), run on the staged package tree:
+# 1. the ParaView plugin folder usr/lib/paraview-X.Y moves into usr/lib/<multiarch>/, where Debian's
+#    ParaView keeps its plugins (the build installs into LIBDIR=lib; the plugin folder holds the
+#    plugin, its libraries and the .plugins file, and refers to nothing outside itself by path);
+# 2. every ELF file keeps only the run-path entries relative to itself ($ORIGIN...) or under /usr;
+#    an entry such as a private VTK prefix of the build machine is dropped. Needs patchelf.
+file(GLOB amrsp_plugin_folders LIST_DIRECTORIES true
+  "${CPACK_TEMPORARY_INSTALL_DIRECTORY}/*/usr/lib/paraview-*"
+  "${CPACK_TEMPORARY_INSTALL_DIRECTORY}/usr/lib/paraview-*")
+foreach (folder IN LISTS amrsp_plugin_folders)
+  get_filename_component(lib "${folder}" DIRECTORY)
+  get_filename_component(name "${folder}" NAME)
+  file(MAKE_DIRECTORY "${lib}/${CPACK_AMRSP_MULTIARCH}")
+  file(RENAME "${folder}" "${lib}/${CPACK_AMRSP_MULTIARCH}/${name}")
+  message(STATUS "plugin folder: usr/lib/${name} -> usr/lib/${CPACK_AMRSP_MULTIARCH}/${name}")
+endforeach ()
+find_program(amrsp_patchelf patchelf REQUIRED)
+file(GLOB_RECURSE amrsp_staged LIST_DIRECTORIES false "${CPACK_TEMPORARY_INSTALL_DIRECTORY}/*")
+foreach (file IN LISTS amrsp_staged)
+  if (IS_SYMLINK "${file}")
+    continue()
+  endif ()
+  file(READ "${file}" magic LIMIT 4 HEX)
+  if (NOT magic STREQUAL "7f454c46")
+    continue()
+  endif ()
+  execute_process(COMMAND "${amrsp_patchelf}" --print-rpath "${file}"
+    OUTPUT_VARIABLE rpath OUTPUT_STRIP_TRAILING_WHITESPACE RESULT_VARIABLE rc)
+  if (NOT rc EQUAL 0 OR rpath STREQUAL "")
+    continue()
+  endif ()
+  string(REPLACE ":" ";" entries "${rpath}")
+  set(kept "")
+  foreach (entry IN LISTS entries)
+    if (entry MATCHES "^\\$ORIGIN" OR entry MATCHES "^/usr/")
+      list(APPEND kept "${entry}")
+    endif ()
+  endforeach ()
+  string(REPLACE ";" ":" kept "${kept}")
+  if (NOT kept STREQUAL rpath)
+    if (kept STREQUAL "")
+      execute_process(COMMAND "${amrsp_patchelf}" --remove-rpath "${file}" RESULT_VARIABLE rc)
+    else ()
+      execute_process(COMMAND "${amrsp_patchelf}" --set-rpath "${kept}" "${file}" RESULT_VARIABLE rc)
+    endif ()
+    if (NOT rc EQUAL 0)
+      message(FATAL_ERROR "patchelf could not rewrite the run path of ${file}")
+    endif ()
+    message(STATUS "run path of ${file}: '${rpath}' -> '${kept}'")
+  endif ()
+endforeach ()

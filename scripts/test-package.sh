@@ -1,0 +1,141 @@
+#!/usr/bin/env bash
+# Installs the Debian package of one configuration (scripts/package.sh CONFIG) the way a user would,
+# `apt-get install ./<package>.deb`, into a copy of a *clean* root of the configuration's release
+# (debootstrap minbase and nothing else: scripts/debian-root.sh SUITE clean-ensure), and renders
+# with what it installed. Run as root on a Debian 12 host.
+#   scripts/test-package.sh CONFIG     # paraview, vtk, trixie-paraview, forky-paraview, forky-vtk
+# Checks (each prints ok or FAIL; the last line is the summary for scripts/test.sh):
+#   install   apt-get resolves the package's exact ParaView/VTK dependency from the release and installs
+#   files     `dpkg -L` lists nothing outside /usr/{bin,include,lib,share} and /etc/profile.d
+#             (the check is first shown to reject a list with a file in /opt)
+#   plugin    ParaView packages: pvpython, started from a login shell (/etc/profile.d) with no
+#             LoadPlugin, has the plugin and renders the image the build tree's plugin renders
+#             (Testing/Package/CheckPluginPackage.py; it rejects the camera turned by 2 degrees);
+#             the same pvpython started without the login shell does not have it (control)
+#   python    VTK packages: the README's VTK Python example, run as written with the installed
+#             `singlepassamr`, against `amrsp reference` of the installed tool (RMSE bound and its
+#             two controls: Testing/Python/TestDocumentedVtkPython.py)
+#   tool      VTK packages: the installed `amrsp render --compare` within Tool.CLI.RenderPacking's
+#             bounds of its CPU reference
+# The copy of the clean root is deleted afterwards (AMRSP_KEEP_PACKAGE_ROOT=1 keeps it). Package
+# downloads go to the build root's apt cache (the host's for Debian 12), so they happen once.
+set -Eeuo pipefail
+repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+. "$repo/scripts/configs.sh"
+config=${1:?usage: scripts/test-package.sh CONFIG}
+suite=$(amrsp_config_suite "$config") || { echo "[package-test] unknown configuration $config" >&2; exit 2; }
+[ "$config" != sanitizers ] || { echo "[package-test] sanitizers has no package" >&2; exit 2; }
+summary=${AMRSP_SUMMARY_FILE:-$repo/build/test-summary.txt}
+roots=${AMRSP_ROOTS_DIR:-/var/cache/amrsp/roots}
+out="$repo/build/packages/$config"
+log="$out/test.log"
+t0=$SECONDS
+passed=0 failed=0
+mkdir -p "$out"
+: >"$log"
+say() { echo "$*" | tee -a "$log"; }
+check() {  # NAME DESCRIPTION: records the result of the command that just ran ($rc)
+  if [ "$rc" = 0 ]; then passed=$((passed + 1)); say "ok: $1: $2"; else failed=$((failed + 1)); say "FAIL: $1: $2"; fi
+}
+finish() {
+  local total=$((passed + failed))
+  local line="[summary] $config package: $passed passed, $failed failed, 0 skipped of $total checks in $((SECONDS - t0)) s ($deb_name in a clean $suite root)"
+  echo "$line" | tee -a "$log"
+  echo "$line" >>"$summary"
+  [ "${AMRSP_KEEP_PACKAGE_ROOT:-0}" = 1 ] || rm -rf "$scratch"
+  [ "$failed" = 0 ] && [ "$total" -gt 0 ]
+}
+scratch=$roots/package-test-$config
+deb_name="no package"
+if [ "$(amrsp_host_suite)" != bookworm ]; then
+  echo "[package-test] clean roots are made on a Debian 12 host; this is $(amrsp_host_suite)" >&2
+  exit 2
+fi
+debs=("$out"/*.deb)
+if [ ! -f "${debs[0]}" ]; then
+  rc=1; check install "no .deb in $out (scripts/package.sh $config)"; finish; exit 1
+fi
+deb=${debs[0]}
+deb_name=$(basename "$deb")
+package=$(dpkg-deb -f "$deb" Package)
+
+"$repo/scripts/debian-root.sh" "$suite" clean-ensure >>"$log" 2>&1 \
+  || { rc=1; check install "the clean $suite root could not be made (log: $log)"; finish; exit 1; }
+rm -rf "$scratch"
+cp -a "$roots/clean-$suite" "$scratch"
+mkdir -p "$scratch/tmp/package"
+cp "$deb" "$scratch/tmp/package/"
+if [ "$suite" = bookworm ]; then archives=/var/cache/apt/archives; else archives=$roots/$suite/var/cache/apt/archives; fi
+in_root() { AMRSP_ROOT_DIR=$scratch AMRSP_ROOT_APT_ARCHIVES=$archives "$repo/scripts/debian-root.sh" "$suite" run "$@"; }
+
+# install
+set +e
+t=$SECONDS
+in_root env DEBIAN_FRONTEND=noninteractive apt-get -q -y -o Acquire::Check-Valid-Until=false \
+  install "/tmp/package/$deb_name" >"$out/apt-install.log" 2>&1
+rc=$?
+check install "apt-get install ./$deb_name: $(grep -oE '^[0-9]+ upgraded, [0-9]+ newly installed' "$out/apt-install.log" || echo 'see apt-install.log') in $((SECONDS - t)) s (Depends: $(dpkg-deb -f "$deb" Depends))"
+[ "$rc" = 0 ] || { tail -n 20 "$out/apt-install.log" | tee -a "$log"; finish; exit 1; }
+
+# files: only the usual places, the filter itself shown to reject a file in /opt
+usual='^/(\.|usr|usr/(bin|include|lib|share)(/.*)?|etc|etc/profile\.d(/.*)?)$'
+unusual=$( (in_root dpkg -L "$package"; echo /opt/amrsp/control-entry) | grep -vE "$usual")
+if [ "$unusual" = /opt/amrsp/control-entry ]; then rc=0; unusual=; else rc=1; fi
+check files "dpkg -L $package: $(in_root dpkg -L "$package" | wc -l) entries, none outside /usr/{bin,include,lib,share} and /etc/profile.d (the filter rejects /opt/amrsp/control-entry)${unusual:+; found: $unusual}"
+
+display_env=()
+case "$suite" in
+  forky) display_env=(VTK_DEFAULT_OPENGL_WINDOW=vtkEGLRenderWindow) ;;  # no X server
+  *) . "$repo/scripts/start-xvfb.sh" >/dev/null 2>&1; display_env=("DISPLAY=$DISPLAY") ;;
+esac
+require=()
+[ "${CI:-}" != true ] || require=(AMRSP_REQUIRE_GPU=1)
+case "$config" in
+  *paraview)
+    # the build tree's plugin renders the expected images, in the build's own environment
+    plugin=$(cd "$repo" && ls build/"$config"/lib/paraview-*/plugins/SinglePassAMRPlugin/SinglePassAMRPlugin.so)
+    if [ "$suite" = bookworm ]; then
+      env "${display_env[@]}" pvpython --force-offscreen-rendering Testing/Package/CheckPluginPackage.py \
+        build "$repo/$plugin" "$out/check" >"$out/build-render.log" 2>&1
+    else
+      "$repo/scripts/debian-root.sh" "$suite" run env "${display_env[@]}" pvpython --force-offscreen-rendering \
+        Testing/Package/CheckPluginPackage.py build "$plugin" "build/packages/$config/check" >"$out/build-render.log" 2>&1
+    fi
+    rc=$?
+    check plugin-build-render "the build tree's plugin rendered build.png and build-turned.png"
+    [ "$rc" = 0 ] || tail -n 20 "$out/build-render.log" | tee -a "$log"
+    # control: a pvpython that did not read /etc/profile.d
+    control=$(in_root env "${display_env[@]}" pvpython --force-offscreen-rendering \
+      Testing/Package/CheckPluginPackage.py probe 2>&1 | sed -n 's/^FOUND: //p')
+    [ -z "$control" ]; rc=$?
+    check plugin-control "pvpython started without a login shell has no plugin (found: ${control:-nothing})"
+    in_root env "${display_env[@]}" "${require[@]}" bash -lc "pvpython --force-offscreen-rendering \
+      Testing/Package/CheckPluginPackage.py installed build/packages/$config/check" >"$out/installed-render.log" 2>&1
+    rc=$?
+    sed 's/^/  /' "$out/installed-render.log" | grep -E 'proxies|PV_PLUGIN|RMSE|covers|FAIL|Error' | tee -a "$log"
+    check plugin "pvpython from a login shell loads the installed plugin at start and renders the build's image" ;;
+  *vtk)
+    # the check's own tool (the example does not need it): numpy for the image comparison
+    in_root env DEBIAN_FRONTEND=noninteractive apt-get -q -y -o Acquire::Check-Valid-Until=false \
+      install --no-install-recommends python3-numpy >>"$out/apt-install.log" 2>&1
+    rc=$?
+    check numpy "python3-numpy for the image comparison (the checks' tool, not the package's)"
+    in_root env "${display_env[@]}" "${require[@]}" python3 -c \
+      'import singlepassamr, sys; print(singlepassamr.__file__); sys.exit(not singlepassamr.__file__.startswith("/usr/lib/python3/dist-packages/"))' \
+      >"$out/import.log" 2>&1
+    rc=$?
+    check import "python3 imports singlepassamr from $(tail -n 1 "$out/import.log")"
+    in_root env "${display_env[@]}" "${require[@]}" python3 Testing/Python/TestDocumentedVtkPython.py \
+      README.md /usr/bin/amrsp /amrsp/shared/data /tmp/package/python >"$out/python.log" 2>&1
+    rc=$?
+    grep -E '^(ok|FAIL)' "$out/python.log" | sed 's/^/  /' | tee -a "$log"
+    check python "the README's VTK Python example with the installed package, against the installed amrsp reference"
+    in_root env "${display_env[@]}" sh Testing/Tool/expect-at-most.sh "method: packing" "vs cpu-reference:=9" \
+      "vs cpu-kdtree:=0.05" -- amrsp render synthetic:pulse --method packing --size 64x64 --compare \
+      -o /tmp/package/pulse.png >"$out/tool.log" 2>&1
+    rc=$?
+    grep -E 'vs cpu|backend:|FAIL' "$out/tool.log" | sed 's/^/  /' | tee -a "$log"
+    check tool "the installed amrsp renders within its CPU reference's bounds" ;;
+esac
+set -e
+finish
