@@ -4,9 +4,9 @@
 #include "amrsp/Hierarchy.h"
 #include "amrsp/KdTreeLayout.h"
 #include "amrsp/ParallelFor.h"
+#include "amrsp/TextCase.h"
 
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <climits>
 #include <cmath>
@@ -587,15 +587,6 @@ Trial PackBestFit(const std::vector<glm::ivec3>& extents, int64_t used, const gl
   return best;
 }
 
-std::string Lower(std::string s)
-{
-  for (char& c : s)
-  {
-    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  }
-  return s;
-}
-
 } // namespace
 
 //--------------------------------------------------------------------------------------------------
@@ -704,7 +695,7 @@ AtlasLayout PackBricks(const std::vector<glm::ivec3>& extents, Packer packer,
 
 Packer ParsePacker(const std::string& name)
 {
-  const std::string n = Lower(name);
+  const std::string n = LowerAscii(name);
   if (n == "nfdh")
   {
     return Packer::NextFitDecreasingHeight;

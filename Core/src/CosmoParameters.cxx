@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The synthetic cosmology's parameters: synthetic:cosmo:grids=N,levels=L,cells=C,... parsing.
 #include "amrsp/SyntheticCosmo.h"
+#include "amrsp/TextCase.h"
 
 #include <algorithm>
 #include <cstddef>
@@ -29,18 +30,6 @@ std::string Trim(const std::string& s)
   }
   const std::size_t e = s.find_last_not_of(ws);
   return s.substr(b, e - b + 1);
-}
-
-std::string Lower(std::string s)
-{
-  for (char& c : s)
-  {
-    if (c >= 'A' && c <= 'Z')
-    {
-      c = static_cast<char>(c - 'A' + 'a');
-    }
-  }
-  return s;
 }
 
 [[noreturn]] void BadValue(const std::string& key, const std::string& value, const std::string& why)
@@ -181,7 +170,7 @@ CosmoParameters ParseCosmoParameters(const std::string& spec)
         "' is not key=value (keys: grids, levels, cells, seed, roots, values, steps, regrid, "
         "step)");
     }
-    const std::string key = Lower(Trim(item.substr(0, eq)));
+    const std::string key = LowerAscii(Trim(item.substr(0, eq)));
     const std::string value = Trim(item.substr(eq + 1));
     if (std::find(seen.begin(), seen.end(), key) != seen.end())
     {
@@ -223,7 +212,7 @@ CosmoParameters ParseCosmoParameters(const std::string& spec)
     }
     else if (key == "values")
     {
-      const std::string v = Lower(value);
+      const std::string v = LowerAscii(value);
       if (v == "1" || v == "true" || v == "on" || v == "yes")
       {
         p.GenerateValues = true;

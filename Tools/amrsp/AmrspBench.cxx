@@ -33,6 +33,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -46,6 +47,15 @@ using namespace harness; // the datasets, renderers and checks the commands use
 
 using Json = BenchJson;
 using Clock = std::chrono::steady_clock;
+
+std::string Fixed(double v, int digits)
+{
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(digits);
+  s << v;
+  return s.str();
+}
 
 namespace
 {

@@ -73,6 +73,8 @@ BenchJson RunBenchMethods(const Hierarchy& h, const RenderSettings& s, const Ima
 /// after its orbit; `still0` is the orbit's frame 0 (still_bit_identical compares a still frame
 /// drawn after the interactive ones with it). Does nothing for the other methods.
 void InteractiveFields(GpuRenderer& gpu, const Image& still0, const BenchOptions& o, BenchJson& r);
+/// `v` with `digits` decimals (the Markdown tables' figures).
+std::string Fixed(double v, int digits);
 /// The interactive frames' table of a "methods" object (empty without --interactive).
 std::string InteractiveMarkdown(const BenchJson& methods);
 

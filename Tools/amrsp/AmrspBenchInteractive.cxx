@@ -37,14 +37,6 @@ double Mean(const std::vector<double>& v)
   return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
 }
 
-std::string Fixed(double v, int digits)
-{
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(digits);
-  s << v;
-  return s.str();
-}
 } // namespace
 
 void InteractiveFields(GpuRenderer& gpu, const Image& still0, const BenchOptions& o, BenchJson& r)

@@ -7,7 +7,6 @@
 #include "AmrspBench.h"
 
 #include <algorithm>
-#include <iomanip>
 #include <sstream>
 #include <string>
 
@@ -62,13 +61,6 @@ const PaperTiming PaperTable2[3] = {
   { "bindless", { "0.5 + 71.4", "2.8 + 124.2", "6.1 + 530.3" }, { 1.7, 3.2, 7.4 },
     { 2.1, 0.9, 0.4 } },
 };
-
-std::string Fixed(double v, int digits)
-{
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(digits) << v;
-  return s.str();
-}
 
 std::string Thousands(long long v)
 {

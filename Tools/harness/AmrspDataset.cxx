@@ -6,6 +6,7 @@
 #include "AmrspProgress.h"
 
 #include "amrsp/SyntheticCosmo.h"
+#include "amrsp/TextCase.h"
 #include "amrsp/VertexData.h"
 #include "vtkAMRMapperConversion.h"
 
@@ -381,15 +382,6 @@ vtkSmartPointer<vtkOverlappingAMR> ReadHierarchicalBoxV01(const std::string& pat
   return amr;
 }
 
-std::string Lower(std::string s)
-{
-  for (char& c : s)
-  {
-    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  }
-  return s;
-}
-
 vtkSmartPointer<vtkOverlappingAMR> RunAlgorithm(
   vtkAlgorithm* algorithm, const std::string& what, CaptureVTKMessages& capture)
 {
@@ -660,7 +652,7 @@ void ReadDatasetFile(const DatasetRequest& request, CaptureVTKMessages& capture,
   {
     throw DatasetError("no such file or directory: " + spec);
   }
-  const std::string ext = Lower(path.extension().string());
+  const std::string ext = LowerAscii(path.extension().string());
   if (fs::is_directory(path, ec))
   {
     if (!fs::exists(path / "Header", ec))
@@ -747,7 +739,7 @@ std::string ReadingWhat(const std::string& spec)
 {
   namespace fs = std::filesystem;
   std::error_code ec;
-  const std::string ext = Lower(fs::path(spec).extension().string());
+  const std::string ext = LowerAscii(fs::path(spec).extension().string());
   if (fs::is_directory(spec, ec))
   {
     return "reading the AMReX plotfile " + spec;

@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "AmrspDriver.h"
 
+#include "amrsp/TextCase.h"
+
 #include "vtkRenderWindow.h"
 #include "vtkVersion.h"
 
-#include <cctype>
 #include <cstdlib>
 #include <cstring>
 #include <dlfcn.h>
@@ -105,11 +106,7 @@ void SelectBackend(const std::string& name)
                   : (name == "egl" ? "vtkEGLRenderWindow" : "vtkOSOpenGLRenderWindow"),
     1);
 #else
-  std::string only = AvailableBackends();
-  for (char& c : only)
-  {
-    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  }
+  const std::string only = LowerAscii(AvailableBackends());
   if (name != "auto" && name != only)
   {
     throw std::invalid_argument("--backend " + name + ": VTK " + VtkVersion() +
