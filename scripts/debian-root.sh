@@ -12,8 +12,8 @@
 # SUITE: trixie or forky (bookworm too for clean-ensure). The root lives in $AMRSP_ROOTS_DIR/SUITE
 # (default /var/cache/amrsp/roots), the clean one in $AMRSP_ROOTS_DIR/clean-SUITE; delete a folder to
 # start over. AMRSP_ROOT_DIR=DIR makes `run` use the root in DIR (a copy of a clean root), and
-# AMRSP_ROOT_APT_ARCHIVES=DIR mounts DIR as its /var/cache/apt/archives (packages downloaded once). Inside a root the repository is mounted at /amrsp/src and
-# ../shared at /amrsp/shared (so the repository's ../shared is the same data), /tmp/.X11-unix is the
+# AMRSP_ROOT_APT_ARCHIVES=DIR mounts DIR as its /var/cache/apt/archives (packages downloaded once).
+# Inside a root the repository is mounted at /amrsp/src and ../shared at /amrsp/shared (so the repository's ../shared is the same data), /tmp/.X11-unix is the
 # host's (the X server of scripts/start-xvfb.sh serves GLX-only ParaView builds), and /proc, /sys, /dev
 # are the host's. The mounts live in a private mount namespace (unshare): they disappear when the
 # command ends, whatever way it ends; nothing is left mounted on the host.
@@ -122,24 +122,22 @@ ensure_root() {
 # The clean root: minbase and fresh package lists, never changed afterwards (its users copy it).
 # Remade when older than a week, so that its lists follow the mirror.
 clean_ensure() {
-  local t0=$SECONDS
-  root=$roots/clean-$suite
+  local t0=$SECONDS clean=$roots/clean-$suite
   mkdir -p "$roots"
   exec 8>"$roots/clean-$suite.lock"
   flock 8  # one maker at a time; a second caller finds the root made
-  if [ -f "$root/.amrsp-clean" ] && [ -n "$(find "$root/.amrsp-clean" -mtime -7 2>/dev/null)" ]; then
-    log "reusing the clean root $root"
+  if [ -f "$clean/.amrsp-clean" ] && [ -n "$(find "$clean/.amrsp-clean" -mtime -7 2>/dev/null)" ]; then
+    log "reusing the clean root $clean"
     return 0
   fi
-  bootstrap "$root.new"
-  root=$root.new
+  bootstrap "$clean.new"
+  root=$clean.new  # the root run_in_root enters
   run_in_root apt-get -q -o Acquire::Check-Valid-Until=false update >"$root/tmp/apt-update.log" 2>&1 \
     || { tail -n 20 "$root/tmp/apt-update.log" >&2; die "apt-get update in the clean root failed"; }
-  root=$roots/clean-$suite
-  touch "$root.new/.amrsp-clean"
-  rm -rf "$root"
-  mv "$root.new" "$root"
-  log "clean root ready in $((SECONDS - t0)) s ($(du -sh "$root" 2>/dev/null | cut -f1))"
+  touch "$clean.new/.amrsp-clean"
+  rm -rf "$clean"
+  mv "$clean.new" "$clean"
+  log "clean root ready in $((SECONDS - t0)) s ($(du -sh "$clean" 2>/dev/null | cut -f1))"
 }
 
 case "$action" in
