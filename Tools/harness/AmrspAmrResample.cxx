@@ -153,14 +153,6 @@ vtkStandardNewMacro(vtkAmrspTimedAMRVolumeMapper);
 
 namespace
 {
-vtkSmartPointer<vtkAmrspTimedAMRVolumeMapper> NewMapper()
-{
-  return vtkSmartPointer<vtkAmrspTimedAMRVolumeMapper>::New();
-}
-} // namespace
-
-namespace
-{
 /// vtkAMRResampleFilter copies every array of each block into its grid and asserts (aborting
 /// the process) when two blocks hold different numbers of arrays; vtkAMRVolumeMapper blanks the
 /// blocks that lack vtkGhostType itself, only some of them: every block gets it here first.
@@ -209,7 +201,7 @@ void RequireSameArrays(vtkDataObject* input)
 
 AmrResampleRenderer::AmrResampleRenderer(
   const Hierarchy& h, const RenderSettings& s, const ViewAngles& view, const glm::ivec3& samples)
-  : AmrResampleRenderer(NewMapper(), h, s, view, samples)
+  : AmrResampleRenderer(vtkSmartPointer<vtkAmrspTimedAMRVolumeMapper>::New(), h, s, view, samples)
 {
 }
 

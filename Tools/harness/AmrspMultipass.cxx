@@ -11,7 +11,7 @@ namespace harness
 
 namespace
 {
-vtkSmartPointer<vtkMultiPassAMRVolumeMapper> NewMapper(const RenderSettings& s)
+vtkSmartPointer<vtkMultiPassAMRVolumeMapper> NewMultipassMapper(const RenderSettings& s)
 {
   if (s.LodThresholdPixels > 0.0f)
   {
@@ -23,7 +23,7 @@ vtkSmartPointer<vtkMultiPassAMRVolumeMapper> NewMapper(const RenderSettings& s)
 
 MultipassRenderer::MultipassRenderer(
   const Hierarchy& h, const RenderSettings& s, const ViewAngles& view)
-  : MultipassRenderer(NewMapper(s), h, s, view)
+  : MultipassRenderer(NewMultipassMapper(s), h, s, view)
 {
 }
 

@@ -16,17 +16,10 @@ namespace amrsp
 namespace harness
 {
 
-namespace
-{
-vtkSmartPointer<vtkSinglePassAMRVolumeMapper> NewMapper()
-{
-  return vtkSmartPointer<vtkSinglePassAMRVolumeMapper>::New();
-}
-} // namespace
-
 SinglePassRenderer::SinglePassRenderer(const Hierarchy& h, const RenderSettings& s,
   const ViewAngles& view, DataStorage storage, BindlessAccess access)
-  : SinglePassRenderer(NewMapper(), h, s, view, storage, access)
+  : SinglePassRenderer(
+      vtkSmartPointer<vtkSinglePassAMRVolumeMapper>::New(), h, s, view, storage, access)
 {
 }
 

@@ -24,10 +24,6 @@ namespace harness
 
 namespace
 {
-vtkSmartPointer<vtkGPUVolumeRayCastMapper> NewMapper()
-{
-  return vtkSmartPointer<vtkGPUVolumeRayCastMapper>::New();
-}
 
 GpuScene UniformScene()
 {
@@ -41,7 +37,7 @@ GpuScene UniformScene()
 
 UniformGpuRenderer::UniformGpuRenderer(
   const Hierarchy& h, const RenderSettings& s, const ViewAngles& view, int level)
-  : UniformGpuRenderer(NewMapper(), h, s, view, level)
+  : UniformGpuRenderer(vtkSmartPointer<vtkGPUVolumeRayCastMapper>::New(), h, s, view, level)
 {
 }
 
