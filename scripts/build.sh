@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Configures and builds one configuration of the project (idempotent; reuses the build folder).
 #   scripts/build.sh CONFIG   -> build/CONFIG
-# CONFIG (scripts/configs.sh): paraview, vtk (Debian 12), trixie-paraview (Debian 13), forky-paraview,
-# forky-vtk (Debian testing). On a Debian 12 host a trixie-/forky- configuration is built inside that
-# release's root (scripts/debian-root.sh; create it with `scripts/debian-root.sh SUITE ensure`).
+# CONFIG (scripts/configs.sh): paraview, vtk (Debian 12), trixie-paraview, trixie-vtk (Debian 13),
+# forky-paraview, forky-vtk (Debian testing). On a Debian 12 host a trixie-/forky- configuration is
+# built inside that release's root (scripts/debian-root.sh; create it with `scripts/debian-root.sh SUITE ensure`).
 set -Eeuo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 . "$repo/scripts/configs.sh"
@@ -11,29 +11,28 @@ config=${1:?usage: scripts/build.sh CONFIG ($AMRSP_ALL_CONFIGS)}
 amrsp_run_where_config_belongs scripts/build.sh "$config"
 jobs=${AMRSP_JOBS:-$(nproc)}
 multiarch=$(amrsp_multiarch)
+read -r private_vtk private_prefix <<<"$(amrsp_private_vtk "$config")" || true
 case "$config" in
   *paraview)
     args=(-DAMRSP_WITH_PARAVIEW=ON) ;;
-  vtk)
-    prefix=${AMRSP_VTK91_PREFIX:-/opt/amrsp/vtk-9.1}
-    # dpkg does not own the private prefix: its packages' version (install-deps.sh's stamp) is what
-    # the Debian package of this configuration depends on
-    vtk_version=$(sed -n 's/^version=//p' "$prefix/.amrsp/stamp" 2>/dev/null || true)
-    args=(-DAMRSP_WITH_PARAVIEW=OFF "-DVTK_DIR=$prefix/usr/lib/$multiarch/cmake/vtk-9.1"
-      "-DAMRSP_DEBIAN_VTK_DEPENDS=${vtk_version:+libvtk9.1 (= $vtk_version), python3-vtk9 (= $vtk_version)}") ;;
+  vtk|trixie-vtk)
+    # dpkg does not own the private prefix: its packages' version (vtk-private-prefix.sh's stamp) is
+    # what the Debian package of this configuration depends on
+    vtk_version=$(sed -n 's/^version=//p' "$private_prefix/.amrsp/stamp" 2>/dev/null || true)
+    args=(-DAMRSP_WITH_PARAVIEW=OFF "-DVTK_DIR=$private_prefix/usr/lib/$multiarch/cmake/vtk-$private_vtk"
+      "-DAMRSP_DEBIAN_VTK_DEPENDS=${vtk_version:+libvtk$private_vtk (= $vtk_version), python3-vtk9 (= $vtk_version)}") ;;
   forky-vtk)
     args=(-DAMRSP_WITH_PARAVIEW=OFF) ;;  # the system VTK 9.6, which ParaView 6.1 uses too
   sanitizers)
     # the vtk configuration with AddressSanitizer and UndefinedBehaviorSanitizer
-    prefix=${AMRSP_VTK91_PREFIX:-/opt/amrsp/vtk-9.1}
-    args=(-DAMRSP_WITH_PARAVIEW=OFF "-DVTK_DIR=$prefix/usr/lib/$multiarch/cmake/vtk-9.1"
+    args=(-DAMRSP_WITH_PARAVIEW=OFF "-DVTK_DIR=$private_prefix/usr/lib/$multiarch/cmake/vtk-$private_vtk"
       -DAMRSP_SANITIZE=ON -DAMRSP_MAPPER_TESTS=OFF  # it runs the core and tool tests
       -DAMRSP_WRAP_PYTHON=OFF) ;;  # Python cannot load an AddressSanitizer module
 esac
 # The VTK configurations wrap the module for Debian's python3-vtk9, which is built for the
 # system's python3 (not one an environment manager puts first on PATH)
 case "$config" in
-  vtk|forky-vtk) [ -x /usr/bin/python3 ] && args+=(-DPython3_EXECUTABLE=/usr/bin/python3) ;;
+  *vtk) [ -x /usr/bin/python3 ] && args+=(-DPython3_EXECUTABLE=/usr/bin/python3) ;;
 esac
 # Mapper.ShaderVariants checks the shader sources, which no VTK version changes: once per CI run,
 # in the Debian 12 ParaView configuration

@@ -5,13 +5,14 @@
 #   paraview         12 bookworm (this host)  ParaView 5.11, its bundled VTK 9.2   GLX (Xvfb)
 #   vtk              12 bookworm (this host)  plain VTK 9.1 (private prefix)       GLX (Xvfb)
 #   trixie-paraview  13 trixie                ParaView 5.13, its bundled VTK 9.3   GLX (Xvfb)
+#   trixie-vtk       13 trixie                plain VTK 9.3 (private prefix)       GLX (Xvfb)
 #   forky-paraview   testing forky            ParaView 6.1 on the system VTK 9.6   EGL, OSMesa (no X server)
 #   forky-vtk        testing forky            plain VTK 9.6 (the same VTK)         EGL, OSMesa (no X server)
 #
 # A configuration whose suite is not the running system's is built and tested inside a Debian root
 # of that suite (scripts/debian-root.sh), on a Debian 12 host only.
 
-AMRSP_ALL_CONFIGS="paraview vtk sanitizers trixie-paraview forky-paraview forky-vtk"
+AMRSP_ALL_CONFIGS="paraview vtk sanitizers trixie-paraview trixie-vtk forky-paraview forky-vtk"
 
 # The running system's codename (bookworm, trixie, forky), or what os-release says.
 amrsp_host_suite() {
@@ -39,7 +40,7 @@ amrsp_config_suite() {  # $1 = config
 amrsp_default_configs() {
   case "$(amrsp_host_suite)" in
     bookworm) echo "$AMRSP_ALL_CONFIGS" ;;
-    trixie) echo "trixie-paraview" ;;
+    trixie) echo "trixie-paraview trixie-vtk" ;;
     forky) echo "forky-paraview forky-vtk" ;;
     *) return 1 ;;
   esac
@@ -48,8 +49,18 @@ amrsp_default_configs() {
 # The one line for an unsupported system.
 amrsp_unsupported() {
   echo "this is '$(. /etc/os-release 2>/dev/null && echo "${PRETTY_NAME:-unknown}")'; supported: Debian 12" \
-    "bookworm (all configurations), Debian 13 trixie (ParaView 5.13), Debian testing forky (ParaView 6.1," \
-    "VTK 9.6)"
+    "bookworm (all configurations), Debian 13 trixie (ParaView 5.13, VTK 9.3), Debian testing forky" \
+    "(ParaView 6.1, VTK 9.6)"
+}
+
+# Debian's plain VTK that a configuration builds against from a private prefix, since that
+# release's python3-paraview Conflicts with python3-vtk9 (scripts/vtk-private-prefix.sh); nothing
+# for the others. Prints "VERSION PREFIX".
+amrsp_private_vtk() {  # $1 = config
+  case "$1" in
+    vtk|sanitizers) echo "9.1 ${AMRSP_VTK91_PREFIX:-/opt/amrsp/vtk-9.1}" ;;
+    trixie-vtk) echo "9.3 ${AMRSP_VTK93_PREFIX:-/opt/amrsp/vtk-9.3}" ;;
+  esac
 }
 
 # The window-system backends whose ctest passes a configuration runs, the first being the full suite.

@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
-# Install what the project needs on Debian 13 trixie (ParaView 5.13 with its bundled VTK 9.3) or on
-# Debian testing forky (ParaView 6.1 on the system VTK 9.6, plus plain VTK 9.6). Run as root;
-# idempotent (a second run only refreshes the package lists once a day and installs what is missing).
+# Install what the project needs on Debian 13 trixie (ParaView 5.13 with its bundled VTK 9.3, and
+# Debian's plain VTK 9.3 in a private prefix) or on Debian testing forky (ParaView 6.1 on the system
+# VTK 9.6, plus plain VTK 9.6). Run as root; idempotent (a second run only refreshes the package
+# lists once a day and installs what is missing).
 # scripts/install-deps.sh runs this on those systems; scripts/debian-root.sh runs it inside a root.
 #
+# trixie's python3-paraview Conflicts with python3-vtk9, as on Debian 12: the trixie-vtk configuration
+# builds against VTK 9.3 unpacked into $AMRSP_VTK93_PREFIX (default /opt/amrsp/vtk-9.3) by
+# scripts/vtk-private-prefix.sh.
 # Besides the packages it repairs two things the Debian packages need (see fix_python_suffixes and
 # osmesa_prefix below):
 #   - paraview-dev's CMake files (5.13 and 6.1) name ParaView's and VTK's Python modules without their
@@ -120,6 +124,9 @@ osmesa_prefix() {
   log "OSMesa: LD_LIBRARY_PATH=$prefix/usr/lib/$multiarch VTK_DEFAULT_OPENGL_WINDOW=vtkOSOpenGLRenderWindow"
 }
 [ "$suite" != forky ] || osmesa_prefix
+if [ "$suite" = trixie ]; then
+  "$SCRIPT_DIR/vtk-private-prefix.sh" 9.3 "${AMRSP_VTK93_PREFIX:-/opt/amrsp/vtk-9.3}" | sed 's/^/[install-deps] /'
+fi
 
 log "all done in $((SECONDS - T_START)) s"
-log "ParaView $(dpkg-query -W -f='${Version}' paraview), VTK $(dpkg-query -W -f='${Version}' libvtk9-dev 2>/dev/null || echo "bundled with ParaView")"
+log "ParaView $(dpkg-query -W -f='${Version}' paraview), VTK $(dpkg-query -W -f='${Version}' libvtk9-dev 2>/dev/null || echo "bundled with ParaView; plain VTK in ${AMRSP_VTK93_PREFIX:-/opt/amrsp/vtk-9.3}")"

@@ -10,7 +10,8 @@
 #   1. Debian packages: build tools, GoogleTest, Xvfb, ParaView 5.11 (+ its bundled VTK 9.2) and every -dev
 #      package that ParaView's CMake config asks for at configure time of a plugin.
 #   2. Debian's plain VTK 9.1 (libvtk9-dev) unpacked into a private prefix (it conflicts with python3-paraview,
-#      so it cannot be installed normally); its non-conflicting dependencies are installed with apt.
+#      so it cannot be installed normally); its non-conflicting dependencies are installed with apt
+#      (scripts/vtk-private-prefix.sh, which Debian 13's VTK 9.3 shares).
 #      VTK_DIR=$AMRSP_VTK91_PREFIX/usr/lib/<multiarch>/cmake/vtk-9.1
 #   3. Mesa 25 from bookworm-backports (zink on lavapipe: GL 4.6 + GL_ARB_bindless_texture), checked with glxinfo.
 # Nothing is ever removed: every apt step is simulated first and refused if it would remove a package.
@@ -58,7 +59,6 @@ VTK91_PREFIX=${AMRSP_VTK91_PREFIX:-/opt/amrsp/vtk-9.1}
 VTK91_PREFIX=${VTK91_PREFIX%/}
 case "$VTK91_PREFIX" in /?*) ;; *) die "AMRSP_VTK91_PREFIX must be an absolute path, got '$VTK91_PREFIX'" ;; esac
 VTK91_DIR=$VTK91_PREFIX/usr/lib/$MULTIARCH/cmake/vtk-9.1
-VTK91_META=$VTK91_PREFIX/.amrsp
 LOG_DIR=${AMRSP_DEPS_LOG_DIR:-/tmp/amrsp-install-deps-logs}
 mkdir -p "$LOG_DIR"
 BACKPORTS_LIST=/etc/apt/sources.list.d/amrsp-bookworm-backports.list
@@ -97,15 +97,6 @@ PKGS_PARAVIEW_CMAKE=(qtbase5-dev libqt5svg5-dev qttools5-dev libqt5opengl5-dev q
 # Mesa from bookworm-backports (installed with -t bookworm-backports).
 PKGS_MESA=(libgl1-mesa-dri libglx-mesa0 libegl-mesa0 mesa-vulkan-drivers)
 MESA_MIN_VERSION=25
-# VTK 9.1 packages unpacked (never installed) into the prefix: VTK-targets.cmake checks that every imported
-# file exists, and those files come from all six (python3-vtk9: Python modules + vtkWrapPython; vtk9:
-# vtkWrapHierarchy/vtkProbeOpenGLVersion; libvtk9-java: vtkWrapJava/vtkParseJava; libvtk9.1-qt: Qt libs).
-PKGS_VTK91=(libvtk9-dev libvtk9.1 libvtk9.1-qt vtk9 python3-vtk9 libvtk9-java)
-# Dependencies of those six that are NOT installed with apt: the VTK packages themselves, and default-jdk
-# (a libvtk9-dev Depends only for Java wrapping: vtk-config.cmake never loads VTKJava-targets.cmake and no
-# find_package of it needs Java, so a JDK is not needed to configure or build against VTK 9.1).
-VTK91_DEPS_EXCLUDE='^(libvtk9(\.1)?(-dev|-java|-qt)?|vtk9|python3-vtk9|default-jdk)( |$)'
-
 # ---------------------------------------------------------------------------------------------------- helpers
 APT_UPDATED=0
 apt_update_once() {
@@ -241,78 +232,10 @@ part_mesa() {
 }
 
 # ---------------------------------------------------------------------------------------------------- part 3
-vtk91_prefix_complete() {
-  [ -f "$VTK91_META/stamp" ] && [ -f "$VTK91_META/apt-deps.txt" ] && [ -f "$VTK91_DIR/vtk-config.cmake" ]
-}
-
-vtk91_unpack() {
-  local version tmp dl p f n=0
-  apt_update_once
-  version=$(apt-cache policy libvtk9-dev | sed -n 's/^ *Candidate: //p')
-  [ -n "$version" ] && [ "$version" != "(none)" ] || die "no candidate for libvtk9-dev in the apt lists"
-  case "$version" in 9.1.*) ;; *) die "libvtk9-dev candidate is $version, expected 9.1.x" ;; esac
-  log "[vtk91] downloading ${PKGS_VTK91[*]} = $version"
-  dl=$(mktemp -d /tmp/amrsp-vtk91-debs.XXXXXX)
-  chmod 755 "$dl"; chown _apt "$dl" 2>/dev/null || true   # lets apt download sandboxed as _apt
-  local args=()
-  for p in "${PKGS_VTK91[@]}"; do args+=("$p=$version"); done
-  if ! (cd "$dl" && apt-get "${APT_COMMON[@]}" download "${args[@]}") >"$LOG_DIR/apt-download-vtk91.log" 2>&1; then
-    tail -n 20 "$LOG_DIR/apt-download-vtk91.log" >&2
-    die "apt-get download of VTK 9.1 failed (log: $LOG_DIR/apt-download-vtk91.log)"
-  fi
-  tmp="$VTK91_PREFIX.tmp.$$"
-  rm -rf "$tmp"; mkdir -p "$tmp/.amrsp"
-  log "[vtk91] unpacking into $VTK91_PREFIX"
-  for p in "${PKGS_VTK91[@]}"; do dpkg-deb -x "$dl/${p}_"*.deb "$tmp"; done
-  # Their dependencies, minus the excluded ones, as one apt "satisfy" string (keeps versions and alternatives).
-  for p in "${PKGS_VTK91[@]}"; do dpkg-deb -f "$dl/${p}_"*.deb Depends | tr ',' '\n'; done \
-    | sed 's/^ *//; s/ *$//' | grep -v '^$' | grep -vE "$VTK91_DEPS_EXCLUDE" | sort -u | paste -sd, - \
-    >"$tmp/.amrsp/apt-deps.txt"
-  # Debian's VTK libraries have no RUNPATH (they live in /usr/lib): with a DT_RUNPATH executable (the ld default)
-  # their own dependencies (libvtkCommonCore -> libvtksys ...) would not be found. $ORIGIN makes the prefix
-  # self-contained: nothing like LD_LIBRARY_PATH is needed. (The prefix's bin/ tools already have
-  # $ORIGIN/../lib/<multiarch>.)
-  while IFS= read -r -d '' f; do
-    patchelf --set-rpath '$ORIGIN' "$f"; n=$((n + 1))
-  done < <(find "$tmp/usr/lib/$MULTIARCH" -maxdepth 1 -type f -name 'libvtk*.so.*' -print0)
-  log "[vtk91] set RUNPATH \$ORIGIN on $n libraries"
-  printf 'version=%s\npackages=%s\nrunpath=$ORIGIN\n' "$version" "${PKGS_VTK91[*]}" >"$tmp/.amrsp/stamp"
-  rm -rf "$VTK91_PREFIX"
-  mkdir -p "$(dirname "$VTK91_PREFIX")"
-  mv "$tmp" "$VTK91_PREFIX"
-  rm -rf "$dl"
-}
-
+# Debian 12's plain VTK 9.1 in its private prefix (python3-paraview Conflicts with python3-vtk9)
 part_vtk91() {
-  local t0=$SECONDS deps sim
-  log "[vtk91] Debian VTK 9.1 in the private prefix $VTK91_PREFIX"
-  if vtk91_prefix_complete && [ "${AMRSP_VTK91_REFRESH:-0}" != 1 ]; then
-    log "[vtk91] prefix already complete ($(sed -n 's/^version=//p' "$VTK91_META/stamp"))"
-  else
-    vtk91_unpack
-  fi
-  deps=$(cat "$VTK91_META/apt-deps.txt")
-  # `apt-get satisfy` takes the Depends syntax as is. A simulation tells whether anything is missing.
-  if ! sim=$(apt-get -s "${APT_INSTALL[@]}" satisfy "$deps" 2>&1); then
-    apt_update_once
-    sim=$(apt-get -s "${APT_INSTALL[@]}" satisfy "$deps" 2>&1) \
-      || { printf '%s\n' "$sim" | tail -n 20 >&2; die "apt cannot satisfy the VTK 9.1 dependencies"; }
-  fi
-  if printf '%s\n' "$sim" | grep -q '^Inst '; then
-    apt_update_once
-    log "[vtk91] installing the VTK 9.1 dependencies: $(printf '%s\n' "$sim" | awk '/^Inst /{print $2}' | tr '\n' ' ')"
-    apt_run vtk91-deps satisfy "$deps"
-  else
-    log "[vtk91] VTK 9.1 dependencies already installed"
-  fi
-  # Quick sanity checks (no compiler): all libraries resolve, no ParaView VTK sneaks in.
-  local bad
-  bad=$(ldd "$VTK91_PREFIX/usr/lib/$MULTIARCH/libvtkRenderingOpenGL2-9.1.so.1" "$VTK91_PREFIX/usr/lib/$MULTIARCH/libvtkIOAMR-9.1.so.1" \
-        | grep -E 'not found|pv5\.11' || true)
-  [ -z "$bad" ] || die "VTK 9.1 libraries do not resolve cleanly: $bad"
-  is_installed python3-paraview || die "ParaView was removed by the VTK 9.1 dependencies"
-  log "[vtk91] VTK_DIR=$VTK91_DIR"
-  log "[vtk91] done in $((SECONDS - t0)) s"
+  AMRSP_VTK_PREFIX_REFRESH=${AMRSP_VTK91_REFRESH:-0} AMRSP_DEPS_LOG_DIR=$LOG_DIR \
+    "$SCRIPT_DIR/vtk-private-prefix.sh" 9.1 "$VTK91_PREFIX" | sed 's/^/[install-deps] /'
 }
 
 # ---------------------------------------------------------------------------------------------------- verify

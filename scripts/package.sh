@@ -3,7 +3,7 @@
 # from its build folder (scripts/build.sh CONFIG first):
 #   scripts/package.sh CONFIG   -> build/packages/CONFIG/<name>_<version>_<arch>.deb
 #   paraview, trixie-paraview, forky-paraview: singlepassamr-paraview-plugin (the ParaView plugin)
-#   vtk, forky-vtk: singlepassamr-vtk (the VTK module, its Python package, the amrsp tool)
+#   vtk, trixie-vtk, forky-vtk: singlepassamr-vtk (the VTK module, its Python package, the amrsp tool)
 # Each depends on the exact Debian version of the ParaView or VTK the build used; a build whose
 # ParaView/VTK dpkg does not know is refused. scripts/test-package.sh installs the package into a
 # clean root of the same release and renders with it.

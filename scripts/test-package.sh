@@ -3,7 +3,7 @@
 # `apt-get install ./<package>.deb`, into a copy of a *clean* root of the configuration's release
 # (debootstrap minbase and nothing else: scripts/debian-root.sh SUITE clean-ensure), and renders
 # with what it installed. Run as root on a Debian 12 host.
-#   scripts/test-package.sh CONFIG     # paraview, vtk, trixie-paraview, forky-paraview, forky-vtk
+#   scripts/test-package.sh CONFIG   # paraview, vtk, trixie-paraview, trixie-vtk, forky-paraview, forky-vtk
 # Checks (each prints ok or FAIL; the last line is the summary for scripts/test.sh):
 #   install   apt-get resolves the package's exact ParaView/VTK dependency from the release and installs
 #   files     `dpkg -L` lists nothing outside /usr/{bin,include,lib,share} and /etc/profile.d
