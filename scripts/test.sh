@@ -2,10 +2,11 @@
 # README command 2: installs what is missing, builds every configuration and runs every test of each,
 # then prints one summary line per configuration and backend (scripts/configs.sh lists them).
 #
-# On Debian 12 that is all five configurations: paraview and vtk on the host (GLX, Xvfb), and, in
-# Debian roots that scripts/debian-root.sh creates or reuses under /var/cache/amrsp/roots,
-# trixie-paraview (ParaView 5.13, GLX) and forky-paraview / forky-vtk (ParaView 6.1 and plain VTK 9.6,
-# with no X server: EGL, then OSMesa). On Debian 13 or testing: that release's configurations.
+# On Debian 12 that is all seven configurations: paraview, vtk and sanitizers on the host (GLX,
+# Xvfb), and, in Debian roots that scripts/debian-root.sh creates or reuses under
+# /var/cache/amrsp/roots, trixie-paraview / trixie-vtk (ParaView 5.13 and plain VTK 9.3, GLX) and
+# forky-paraview / forky-vtk (ParaView 6.1 and plain VTK 9.6, with no X server: EGL, then OSMesa).
+# On Debian 13 or testing: that release's configurations.
 #   AMRSP_CONFIGS="paraview forky-vtk" scripts/test.sh     # a subset, for a quicker local run
 #   AMRSP_JOBS=N                                           # parallel build and ctest jobs
 set -Eeuo pipefail
