@@ -3,7 +3,8 @@
 #   scripts/build.sh CONFIG   -> build/CONFIG
 # CONFIG (scripts/configs.sh): paraview, vtk (Debian 12), trixie-paraview, trixie-vtk (Debian 13),
 # forky-paraview, forky-vtk (Debian testing). On a Debian 12 host a trixie-/forky- configuration is
-# built inside that release's root (scripts/debian-root.sh; create it with `scripts/debian-root.sh SUITE ensure`).
+# built inside that release's root (scripts/debian-root.sh; create it with
+# `scripts/debian-root.sh SUITE ensure`).
 set -Eeuo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 . "$repo/scripts/configs.sh"

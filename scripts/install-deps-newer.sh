@@ -124,9 +124,11 @@ osmesa_prefix() {
   log "OSMesa: LD_LIBRARY_PATH=$prefix/usr/lib/$multiarch VTK_DEFAULT_OPENGL_WINDOW=vtkOSOpenGLRenderWindow"
 }
 [ "$suite" != forky ] || osmesa_prefix
+# trixie: Debian's VTK 9.3 in the trixie-vtk configuration's private prefix (configs.sh names it)
+read -r private_vtk private_prefix <<<"$(amrsp_private_vtk trixie-vtk)"
 if [ "$suite" = trixie ]; then
-  "$SCRIPT_DIR/vtk-private-prefix.sh" 9.3 "${AMRSP_VTK93_PREFIX:-/opt/amrsp/vtk-9.3}" | sed 's/^/[install-deps] /'
+  "$SCRIPT_DIR/vtk-private-prefix.sh" "$private_vtk" "$private_prefix" | sed 's/^/[install-deps] /'
 fi
 
 log "all done in $((SECONDS - T_START)) s"
-log "ParaView $(dpkg-query -W -f='${Version}' paraview), VTK $(dpkg-query -W -f='${Version}' libvtk9-dev 2>/dev/null || echo "bundled with ParaView; plain VTK in ${AMRSP_VTK93_PREFIX:-/opt/amrsp/vtk-9.3}")"
+log "ParaView $(dpkg-query -W -f='${Version}' paraview), VTK $(dpkg-query -W -f='${Version}' libvtk9-dev 2>/dev/null || echo "bundled with ParaView; plain VTK in $private_prefix")"
