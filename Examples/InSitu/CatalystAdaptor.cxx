@@ -14,8 +14,13 @@
 #include "vtkDataSet.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkInitializationHelper.h"
+#include "vtkLogger.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkOverlappingAMR.h"
+#include "vtkProcessModule.h"
+#include "vtkProcessModuleConfiguration.h"
 #include "vtkSMPluginManager.h"
 #include "vtkSMProxyManager.h"
 #include "vtkSmartPointer.h"
@@ -140,8 +145,42 @@ long long CatalystAdaptor::CountSimulationValues(
   return found;
 }
 
+namespace
+{
+
+/// ParaView's engine, started as Catalyst starts it (a batch process, symmetric MPI, no settings
+/// files) but with `--disable-xdisplay-test`, as the Plugin.MPI tests start pvbatch. Catalyst's
+/// own start runs ParaView's X display check on every rank: a rank whose XOpenDisplay is refused
+/// (an Xvfb under load refuses now and then one of the connections opened at the same moment)
+/// turns parallel rendering off on all ranks, and ParaView then deadlocks at the first render
+/// (rank 0 in IceT's MPI_Comm_dup, the others in the data's gather to rank 0): a hang, not an
+/// error (docs/paraview.md, "MPI runs and the X display check"). Without the check, a rank that
+/// cannot open its window aborts with VTK's "bad X server connection" instead. vtkCPProcessor
+/// finds the engine started and leaves starting and finishing it to its owner.
+struct ParaViewEngine
+{
+  ParaViewEngine()
+  {
+    char executable[] = "amrsp_insitu_blobs";
+    char noDisplayCheck[] = "--disable-xdisplay-test";
+    char* argv[] = { executable, noDisplayCheck, nullptr };
+    vtkInitializationHelper::SetLoadSettingsFilesDuringInitialization(false);
+    vtkProcessModuleConfiguration::GetInstance()->SetSymmetricMPIMode(true);
+    if (!vtkInitializationHelper::Initialize(2, argv, vtkProcessModule::PROCESS_BATCH))
+    {
+      throw std::runtime_error("ParaView's engine failed to start (vtkInitializationHelper)");
+    }
+  }
+  ~ParaViewEngine() { vtkInitializationHelper::Finalize(); }
+  ParaViewEngine(const ParaViewEngine&) = delete;
+  ParaViewEngine& operator=(const ParaViewEngine&) = delete;
+};
+
+} // namespace
+
 struct CatalystAdaptor::Internals
 {
+  ParaViewEngine Engine; // first: started before Catalyst, finished after it
   vtkNew<vtkCPProcessor> Processor;
   vtkNew<vtkFieldData> UserData;
 };
@@ -153,6 +192,13 @@ CatalystAdaptor::CatalystAdaptor(
   if (!this->Internal->Processor->Initialize())
   {
     throw std::runtime_error("Catalyst (vtkCPProcessor) failed to initialise");
+  }
+  // Catalyst silences the other ranks' log on stderr; their errors stay visible (a rank that
+  // cannot open its window says so before it aborts: "bad X server connection")
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  if (controller && controller->GetLocalProcessId() > 0)
+  {
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_ERROR);
   }
   if (!plugin.empty() &&
     !vtkSMProxyManager::GetProxyManager()->GetPluginManager()->LoadLocalPlugin(plugin.c_str()))

@@ -124,7 +124,11 @@ def catalyst_execute(info):
     build_s, upload_s = information(proxy, "SinglePassLastBuildSeconds")
     borrowed, converted = information(proxy, "SinglePassLastInputValues")
     copied = information(proxy, "SinglePassCopiedValues")
-    costs = slowest([render_s, screenshot_s, build_s, upload_s])
+    # the mapper's last frame on each rank: interactive (1) or still, its image sample distance
+    # and the seconds the view allocated to it (a still frame has far more than one)
+    interactive, sample_distance, _, budget, _ = information(proxy, "SinglePassLastFrameQuality")
+    costs = slowest([render_s, screenshot_s, build_s, upload_s, interactive, sample_distance,
+                     -budget])
     values = reduce([borrowed, converted, copied], "SUM_OP")
     error = information(proxy, "SinglePassRenderError")
     if rank() != 0:
@@ -145,6 +149,10 @@ def catalyst_execute(info):
             "values_copied": int(values[2]),
             "conversion_borrowed": int(values[0]), "conversion_copied": int(values[1]),
             "texture_builds": information(proxy, "SinglePassTextureBuilds"),
+            # over all ranks: whether any rank's last frame was interactive, the largest image
+            # sample distance and the smallest time budget (seconds)
+            "frame_interactive": int(costs[4]), "image_sample_distance": costs[5],
+            "frame_budget_s": -costs[6],
             "storage": information(proxy, "SinglePassDataStorage"),
             "error": error,
         }, f, indent=1)

@@ -13,7 +13,12 @@
 #     their addresses with the blocks'), the mappers' conversion read every value in place, and
 #     on one rank the mappers read their input without a copy (on two, the region split copies
 #     the blocks its boundary cuts);
-#   - the representation's textures were built once per step (one data change each).
+#   - the representation's textures were built once per step (one data change each);
+#   - on two ranks through GLX, a rank whose X display is refused ends the run at once with VTK's
+#     "bad X server connection" line (which the test's X retry looks for), instead of ParaView's
+#     deadlock when its X display check fails on one rank: the adaptor starts ParaView with
+#     --disable-xdisplay-test (Examples/InSitu/CatalystAdaptor.cxx);
+#   - no run hangs: a simulation that takes more than HANG_SECONDS is killed and the test fails.
 #
 #   pvpython TestInSitu.py MPIEXEC SIMULATION AMRSP RANKS OUTDIR
 # Exit codes: 0 pass, 1 fail, 125 skipped (no X display for a GLX-only ParaView).
@@ -23,8 +28,8 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from PluginTestKit import (clean_environment, coverage, fail, off_share, read_png,  # noqa: E402
-                           require_display, rmse, skip)
+from PluginTestKit import (HANG_SECONDS, clean_environment, coverage, fail,  # noqa: E402
+                           off_share, read_png, require_display, rmse, skip)
 
 STEPS = 5
 REGRID = 2  # steps 2 and 4 regrid
@@ -43,16 +48,37 @@ COPIED_SHARE = {1: 0.0, 2: 0.6}
 OFF_BOUND = {1: 0.004, 2: 0.01}
 
 
+def run_bounded(command, log, seconds):
+    """(exit code, log text) of `command`; None for the code when it ran longer than `seconds`
+    (it is killed, with every process it started)."""
+    import signal
+
+    with open(log, "w") as out:
+        process = subprocess.Popen(command, stdout=out, stderr=subprocess.STDOUT,
+                                   env=clean_environment(), start_new_session=True)
+        try:
+            code = process.wait(timeout=seconds)
+        except subprocess.TimeoutExpired:
+            os.killpg(process.pid, signal.SIGKILL)
+            process.wait()
+            code = None
+    with open(log, errors="replace") as f:
+        return code, f.read()
+
+
 def run(command, log):
     print("running: %s" % " ".join(command))
-    with open(log, "w") as out:
-        result = subprocess.run(command, stdout=out, stderr=subprocess.STDOUT,
-                                env=clean_environment(), timeout=600)
-    with open(log, errors="replace") as f:
-        text = f.read()
-    if result.returncode != 0:
-        fail("%s ended with exit code %d; its log (%s) ends:\n%s"
-             % (command[0], result.returncode, log, text[-3000:]))
+    code, text = run_bounded(command, log, HANG_SECONDS)
+    if code is None:
+        fail("%s did not finish within %d s: it hung (killed); its log (%s) ends:\n%s"
+             % (command[0], HANG_SECONDS, log, text[-3000:]))
+    if code != 0:
+        # a rank that could not open its X window aborts with VTK's line, which the test's
+        # X retry (RetryOnXFailure.py) looks for: named first, wherever it lies in the log
+        x_abort = [line for line in text.splitlines() if "bad X server connection" in line]
+        fail("%s ended with exit code %d%s; its log (%s) ends:\n%s"
+             % (command[0], code, "".join("\n" + line for line in x_abort[:1]), log,
+                text[-3000:]))
     return text
 
 
@@ -81,6 +107,26 @@ def simulate(mpiexec, simulation, ranks, folder, write_data):
         with open(path) as f:
             records.append(json.load(f))
     return costs, records
+
+
+def refused_display_ends_the_run(mpiexec, simulation, outdir):
+    """(seconds, exit code, whether VTK's X abort line is in the log) of a one-step run on two
+    ranks whose second rank is given a display no X server answers."""
+    import shutil
+    import time
+
+    folder = os.path.join(outdir, "refused-display")
+    shutil.rmtree(folder, ignore_errors=True)
+    os.makedirs(folder)
+    unused = next(":%d" % n for n in range(900, 1000)
+                  if not os.path.exists("/tmp/.X11-unix/X%d" % n))
+    step = ["--steps", "1", "--size", "32x32", "--output", folder]
+    command = [mpiexec] + (["--allow-run-as-root"] if os.geteuid() == 0 else [])
+    command += ["--oversubscribe", "-np", "1", "-x", "DISPLAY=" + os.environ["DISPLAY"], simulation]
+    command += step + [":", "-np", "1", "-x", "DISPLAY=" + unused, simulation] + step
+    start = time.monotonic()
+    code, text = run_bounded(command, os.path.join(folder, "simulation.log"), 60)
+    return time.monotonic() - start, code, "bad X server connection. DISPLAY=%s" % unused in text
 
 
 def main():
@@ -172,6 +218,16 @@ def main():
                            "resident_bytes")} for s in steps])))
     print("render, build, upload per step (slowest rank): %s" % json.dumps([
         {k: r[k] for k in ("render_s", "build_s", "upload_s", "screenshot_s")} for r in with_records]))
+    print("the mappers' last frame per step (any rank interactive, largest image sample distance, "
+          "smallest budget in s): %s" % json.dumps([
+              [r.get(k) for k in ("frame_interactive", "image_sample_distance", "frame_budget_s")]
+              for r in with_records]))
+    if ranks > 1 and os.environ.get("AMRSP_GLX_ONLY", "1") != "0":
+        seconds, code, named = refused_display_ends_the_run(mpiexec, simulation, outdir)
+        check(code not in (None, 0) and named,
+              "a rank whose X display is refused ends the run in %.1f s (exit code %s), naming the "
+              "display: %s (ParaView's X display check would deadlock the ranks instead)"
+              % (seconds, code, "yes" if named else "no"))
     if failures:
         fail("%d check(s) failed, the first: %s" % (len(failures), failures[0]))
     print("PASS: %d steps on %d rank(s), %d levels, %d blocks at first"
