@@ -103,6 +103,9 @@ bootstrap() {
   mv "$dir.tmp" "$dir"
 }
 
+# The two phases print their wall seconds on lines of their own, which scripts/test.sh reads for
+# its phase timings: "[root SUITE] phase root: N s" (debootstrap; 0 when reused) and
+# "[root SUITE] phase install: N s" (the packages inside the root).
 ensure_root() {
   local t0=$SECONDS
   if [ ! -f "$root/.amrsp-root" ]; then
@@ -110,12 +113,15 @@ ensure_root() {
   else
     log "reusing $root"
   fi
+  log "phase root: $((SECONDS - t0)) s"
+  local t1=$SECONDS
   log "installing $suite's packages inside the root (log: $root/tmp/amrsp-install-deps.log)"
   if ! run_in_root scripts/install-deps.sh >"$root/tmp/amrsp-install-deps.log" 2>&1; then
     tail -n 40 "$root/tmp/amrsp-install-deps.log" >&2
     die "installing the packages inside the root failed"
   fi
   grep -E '^\[install-deps\] (all done|ParaView|VTK)' "$root/tmp/amrsp-install-deps.log" | sed "s/^/[root $suite] /" || true
+  log "phase install: $((SECONDS - t1)) s"
   log "ready in $((SECONDS - t0)) s ($(du -sh "$root" 2>/dev/null | cut -f1))"
 }
 

@@ -6,6 +6,8 @@
 #   scripts/test-package.sh CONFIG   # paraview, vtk, trixie-paraview, trixie-vtk, forky-paraview, forky-vtk
 # Checks (each prints ok or FAIL; the last line is the summary for scripts/test.sh):
 #   install   apt-get resolves the package's exact ParaView/VTK dependency from the release and installs
+#             it with --no-install-recommends: the Depends alone must make the checks below pass
+#             (a user's default install also brings the Recommends; half the packages, half the time)
 #   files     `dpkg -L` lists nothing outside /usr/{bin,include,lib,share} and /etc/profile.d
 #             (the check is first shown to reject a list with a file in /opt)
 #   plugin    ParaView packages: pvpython, started from a login shell (/etc/profile.d) with no
@@ -72,9 +74,9 @@ in_root() { AMRSP_ROOT_DIR=$scratch AMRSP_ROOT_APT_ARCHIVES=$archives "$repo/scr
 set +e
 t=$SECONDS
 in_root env DEBIAN_FRONTEND=noninteractive apt-get -q -y -o Acquire::Check-Valid-Until=false \
-  install "/tmp/package/$deb_name" >"$out/apt-install.log" 2>&1
+  install --no-install-recommends "/tmp/package/$deb_name" >"$out/apt-install.log" 2>&1
 rc=$?
-check install "apt-get install ./$deb_name: $(grep -oE '^[0-9]+ upgraded, [0-9]+ newly installed' "$out/apt-install.log" || echo 'see apt-install.log') in $((SECONDS - t)) s (Depends: $(dpkg-deb -f "$deb" Depends))"
+check install "apt-get install --no-install-recommends ./$deb_name: $(grep -oE '^[0-9]+ upgraded, [0-9]+ newly installed' "$out/apt-install.log" || echo 'see apt-install.log') in $((SECONDS - t)) s (Depends: $(dpkg-deb -f "$deb" Depends))"
 [ "$rc" = 0 ] || { tail -n 20 "$out/apt-install.log" | tee -a "$log"; finish; exit 1; }
 
 # files: only the usual places, the filter itself shown to reject a file in /opt
