@@ -41,8 +41,9 @@ echo "device: none (TestSkipBackstop)"
 SH
 chmod +x "$work/Tools/amrsp/amrsp"
 suite() {  # $1: the CTestTestfile.cmake lines
-  # every test labelled as the configurations that choose tests by label pick them (configs.sh)
-  printf '%s\nset_directory_properties(PROPERTIES LABELS "core;tool")\n' "$1" >"$work/CTestTestfile.cmake"
+  # every test labelled so that each configuration's label selection picks it (configs.sh,
+  # amrsp_config_labels: each selects tool or everywhere)
+  printf '%s\nset_directory_properties(PROPERTIES LABELS "tool;everywhere")\n' "$1" >"$work/CTestTestfile.cmake"
   rm -rf "$work/Testing"
   CI=true AMRSP_BUILD_DIR="$work" AMRSP_SUMMARY_FILE="$work/summary.txt" AMRSP_JOBS=1 \
     "$repo/scripts/run-tests.sh" "$config" "$backend" >"$work/out.txt" 2>&1

@@ -27,7 +27,7 @@ case "$config" in
   sanitizers)
     # the vtk configuration with AddressSanitizer and UndefinedBehaviorSanitizer
     args=(-DAMRSP_WITH_PARAVIEW=OFF "-DVTK_DIR=$private_prefix/usr/lib/$multiarch/cmake/vtk-$private_vtk"
-      -DAMRSP_SANITIZE=ON -DAMRSP_MAPPER_TESTS=OFF  # it runs the core and tool tests
+      -DAMRSP_SANITIZE=ON  # it runs the core and tool tests
       -DAMRSP_WRAP_PYTHON=OFF) ;;  # Python cannot load an AddressSanitizer module
 esac
 # The VTK configurations wrap the module for Debian's python3-vtk9, which is built for the
@@ -35,11 +35,16 @@ esac
 case "$config" in
   *vtk) [ -x /usr/bin/python3 ] && args+=(-DPython3_EXECUTABLE=/usr/bin/python3) ;;
 esac
+# The test programs this configuration's passes run (scripts/configs.sh; docs/testing.md,
+# "Coverage matrix")
+read -r -a test_options <<<"$(amrsp_config_test_options "$config")"
+args+=("${test_options[@]}")
 # Mapper.ShaderVariants checks the shader sources, which no VTK version changes: once per CI run,
-# in the Debian 12 ParaView configuration
-[ "$config" = paraview ] && args+=(-DAMRSP_SHADER_VARIANT_TEST=ON) || args+=(-DAMRSP_SHADER_VARIANT_TEST=OFF)
+# in the configuration that runs the whole mapper suite on the oldest VTK
+[ "$config" = vtk ] && args+=(-DAMRSP_SHADER_VARIANT_TEST=ON) || args+=(-DAMRSP_SHADER_VARIANT_TEST=OFF)
 # The fuzzer's 300 variants where the oldest and the newest VTK parse (sanitizers: 9.1 with
-# AddressSanitizer, forky-vtk: 9.6), 100 in the other configurations (CI time)
+# AddressSanitizer, forky-vtk: 9.6), 100 in vtk (the other configurations run Tool.DamagedData's
+# fixed damaged files through their VTK's readers)
 case "$config" in
   sanitizers|forky-vtk) args+=(-DAMRSP_FUZZ_VARIANTS=300) ;;
   *) args+=(-DAMRSP_FUZZ_VARIANTS=100) ;;

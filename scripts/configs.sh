@@ -71,25 +71,63 @@ amrsp_config_backends() {  # $1 = config
   esac
 }
 
-# The tests of one backend pass: "REGEX|EXCLUDE" for ctest -R / -E (empty: all tests). The first
-# backend of a configuration runs the whole suite; OSMesa (a second way to render with no X server)
-# runs the mapper and baseline-image tests, the tool's render tests and one pvbatch test. Mesa's
-# OSMesa is llvmpipe only: the zink (bindless) tests belong to the EGL pass.
-amrsp_config_labels() {  # $1 = config: the ctest labels its tests are chosen by ("" = all)
+# What each configuration tests. docs/testing.md's "Coverage matrix" says why, feature by feature,
+# and Testing.CoverageMatrix checks it against what these functions select. The rule: code that is
+# the same in every configuration (the GL-free core, the shader logic on llvmpipe, the command
+# line) is tested fully in one configuration; code that differs between VTK or ParaView versions or
+# window systems is tested in every configuration where it differs. The full suites run on the
+# oldest and the newest VTK (vtk: 9.1, GLX; forky-vtk: 9.6, EGL and OSMesa; the core where the
+# sanitizers run too); elsewhere the tests labelled with what differs there
+# (cmake/SinglePassAMRTestLabels.cmake: readers, data-model, context, rendering, vtk-amr,
+# everywhere), and every ParaView test (plugin) in every ParaView configuration.
+# The ctest labels of a configuration's first backend pass: an anchored regular expression, or
+# nothing for every test.
+amrsp_config_labels() {  # $1 = config
   case "$1" in
-    sanitizers) echo "core|tool" ;;  # the core and tool tests, the fuzzer among them
-    *) echo "" ;;
+    vtk) echo "" ;;
+    sanitizers) echo "^(core|tool)$" ;;  # the core and tool tests, the fuzzer among them
+    paraview|trixie-paraview) echo "^(plugin|readers|data-model|context|vtk-amr|everywhere)$" ;;
+    trixie-vtk) echo "^(python|consumer|readers|data-model|context|rendering|everywhere)$" ;;
+    forky-paraview) echo "^(plugin|everywhere)$" ;;  # forky-vtk runs the suites on this same VTK
+    forky-vtk) echo "^(tool|mapper|python|consumer)$" ;;
   esac
 }
 
-amrsp_backend_tests() {  # $1 = config, $2 = backend
+# The ctest arguments of one backend pass, one per line (scripts/run-tests.sh and
+# Testing.CoverageMatrix use them). OSMesa (a second way to render with no X server, Debian 13's
+# Mesa 25.0 through VTK 9.6's OSMesa window) runs the tests of the context and of the renders
+# through VTK's OpenGL classes, and one pvbatch and one pvpython test. Mesa's OSMesa is llvmpipe
+# only: the zink (bindless) tests belong to the EGL pass.
+amrsp_ctest_selection() {  # $1 = config, $2 = backend
+  local labels
   case "$2" in
     osmesa)
       case "$1" in
-        *paraview) echo '^Plugin\.MPI\.np2\.enzo$|^Plugin\.Representation\.enzo$|Bindless|Zink' ;;
-        *) echo '^AMRSP::SinglePassAMRCxx-|^Mapper\.|^Tool\.CLI\.Render|Bindless|Zink' ;;
+        *paraview) printf '%s\n' -R '^Plugin\.MPI\.np2\.enzo$|^Plugin\.Representation\.enzo$' ;;
+        *) printf '%s\n' -L '^(context|rendering)$' -E 'Bindless|Zink' ;;
       esac ;;
-    *) echo "" ;;
+    *)
+      labels=$(amrsp_config_labels "$1")
+      [ -z "$labels" ] || printf '%s\n' -L "$labels" ;;
+  esac
+}
+
+# Whether a configuration has a Debian package (scripts/package.sh, scripts/test-package.sh):
+# exit status 0 for all but the sanitizers build.
+amrsp_config_packaged() {  # $1 = config
+  [ "$1" != sanitizers ]
+}
+
+# CMake options of a configuration's tests (scripts/build.sh): test programs that no pass of the
+# configuration runs are not built.
+amrsp_config_test_options() {  # $1 = config
+  case "$1" in
+    vtk) echo "-DAMRSP_CORE_TESTS=ON -DAMRSP_MAPPER_TESTS=ON -DAMRSP_MAPPER_IMAGE_TESTS=ON" ;;
+    sanitizers) echo "-DAMRSP_CORE_TESTS=ON -DAMRSP_MAPPER_TESTS=OFF" ;;
+    paraview|trixie-paraview)  # the mapper's context and data-model tests only
+      echo "-DAMRSP_CORE_TESTS=OFF -DAMRSP_MAPPER_TESTS=ON -DAMRSP_MAPPER_IMAGE_TESTS=OFF" ;;
+    forky-paraview) echo "-DAMRSP_CORE_TESTS=OFF -DAMRSP_MAPPER_TESTS=OFF" ;;
+    *) echo "-DAMRSP_CORE_TESTS=OFF -DAMRSP_MAPPER_TESTS=ON -DAMRSP_MAPPER_IMAGE_TESTS=ON" ;;
   esac
 }
 

@@ -27,18 +27,12 @@ if [ "${CI:-}" = true ]; then export AMRSP_REQUIRE_GPU=1; fi
 status=0
 for backend in "${backends[@]}"; do
   log="$build/ctest-$backend.log"
-  IFS='|' read -r -a tests <<<"$(amrsp_backend_tests "$config" "$backend")"
-  select=()
-  if [ "${#tests[@]}" -gt 0 ]; then
-    include=() exclude=()
-    for t in "${tests[@]}"; do
-      case "$t" in ^*) include+=("$t") ;; *) exclude+=("$t") ;; esac
-    done
-    select=(-R "$(IFS='|'; echo "${include[*]}")")
-    [ "${#exclude[@]}" = 0 ] || select+=(-E "$(IFS='|'; echo "${exclude[*]}")")
+  # AMRSP_CTEST_ARGS replaces the pass's selection (scripts/repeat-mpi-tests.sh)
+  if [ -n "${AMRSP_CTEST_ARGS:-}" ]; then
+    read -r -a select <<<"$AMRSP_CTEST_ARGS"
+  else
+    mapfile -t select < <(amrsp_ctest_selection "$config" "$backend")
   fi
-  labels=$(amrsp_config_labels "$config")
-  [ -z "$labels" ] || select+=(-L "$labels")
   echo "[test] ctest: $config, backend $backend (log: $log)"
   t0=$SECONDS
   set +e
