@@ -10,6 +10,8 @@
 #             (a user's default install also brings the Recommends; half the packages, half the time)
 #   files     `dpkg -L` lists nothing outside /usr/{bin,include,lib,share} and /etc/profile.d
 #             (the check is first shown to reject a list with a file in /opt)
+#   pvpython  ParaView packages: python3-paraview installs (pvpython is the checks' tool; paraview
+#             only Recommends it, and the plugin needs only paraview)
 #   plugin    ParaView packages: pvpython, started from a login shell (/etc/profile.d) with no
 #             LoadPlugin, has the plugin and renders the image the build tree's plugin renders
 #             (Testing/Package/CheckPluginPackage.py; it rejects the camera turned by 2 degrees);
@@ -106,10 +108,21 @@ case "$config" in
     rc=$?
     check plugin-build-render "the build tree's plugin rendered build.png and build-turned.png"
     [ "$rc" = 0 ] || tail -n 20 "$out/build-render.log" | tee -a "$log"
-    # control: a pvpython that did not read /etc/profile.d
-    control=$(in_root env "${display_env[@]}" pvpython --force-offscreen-rendering \
-      Testing/Package/CheckPluginPackage.py probe 2>&1 | sed -n 's/^FOUND: //p')
-    [ -z "$control" ]; rc=$?
+    # the checks' tool (the plugin needs only paraview): pvpython is in python3-paraview, which
+    # paraview only Recommends
+    in_root env DEBIAN_FRONTEND=noninteractive apt-get -q -y -o Acquire::Check-Valid-Until=false \
+      install --no-install-recommends python3-paraview >>"$out/apt-install.log" 2>&1
+    rc=$?
+    check pvpython "python3-paraview for pvpython (the checks' tool, not the package's: paraview only Recommends it)"
+    # control: a pvpython that did not read /etc/profile.d; it must have run (its FOUND: line)
+    probe=$(in_root env "${display_env[@]}" pvpython --force-offscreen-rendering \
+      Testing/Package/CheckPluginPackage.py probe 2>&1)
+    control=$(printf '%s\n' "$probe" | sed -n 's/^FOUND: //p')
+    if ! printf '%s\n' "$probe" | grep -q '^FOUND:'; then
+      rc=1; control="no FOUND: line, pvpython did not run: $(printf '%s\n' "$probe" | tail -n 1)"
+    else
+      [ -z "$control" ]; rc=$?
+    fi
     check plugin-control "pvpython started without a login shell has no plugin (found: ${control:-nothing})"
     in_root env "${display_env[@]}" "${require[@]}" bash -lc "pvpython --force-offscreen-rendering \
       Testing/Package/CheckPluginPackage.py installed build/packages/$config/check" >"$out/installed-render.log" 2>&1
