@@ -9,6 +9,10 @@
 #   rendering   the mapper's draws through this VTK's OpenGL classes, against the CPU reference
 #   vtk-amr     VTK's own vtkAMRVolumeMapper method, where the VTK has it
 #   everywhere  the checks of the build and of the test selection themselves
+# and one label that narrows instead:
+#   plugin-datasets  a plugin test's run of another dataset in a mode whose Enzo run carries
+#               `plugin`: the oldest ParaView's configuration runs them (the same plugin code,
+#               another of VTK's readers, which the readers tests check in each VTK)
 
 # amrsp_label_tests(LABEL TEST...): adds LABEL to each TEST, which this folder must have registered.
 function (amrsp_label_tests label)

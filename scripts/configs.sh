@@ -86,7 +86,8 @@ amrsp_config_labels() {  # $1 = config
   case "$1" in
     vtk) echo "" ;;
     sanitizers) echo "^(core|tool)$" ;;  # the core and tool tests, the fuzzer among them
-    paraview|trixie-paraview) echo "^(plugin|readers|data-model|context|vtk-amr|everywhere)$" ;;
+    paraview) echo "^(plugin|plugin-datasets|readers|data-model|context|vtk-amr|everywhere)$" ;;
+    trixie-paraview) echo "^(plugin|readers|data-model|context|vtk-amr|everywhere)$" ;;
     trixie-vtk) echo "^(python|consumer|readers|data-model|context|rendering|everywhere)$" ;;
     forky-paraview) echo "^(plugin|everywhere)$" ;;  # forky-vtk runs the suites on this same VTK
     forky-vtk) echo "^(tool|mapper|python|consumer)$" ;;

@@ -16,8 +16,9 @@
 # - the AMReX plotfile (opened through its Header) and the VTK XML AMR sample read as VTK's own
 #   readers of the same files read them (levels, blocks, every cell array, an array's sum), with
 #   the AMReX Header's time;
-# - ParaView's own EnzoReader on the same deep-then-shallow series, in a separate pvpython, is
-#   reported (ParaView 5.11: SIGABRT) - not judged, as ParaView's readers are not ours;
+# - with AMRSP_REPORT_OWN_READER=1, ParaView's own EnzoReader on the same deep-then-shallow series,
+#   in a separate pvpython, is reported (ParaView 5.11: SIGABRT) - not judged, as ParaView's
+#   readers are not ours, and so not run by default;
 # - damaged files (a NaN grid edge, on which VTK's reader loops; a grid whose start index is past
 #   its end, on which it aborts; a truncated grid file) end in an empty output and one error that
 #   names the file and the problem, and the same reader reads a good file next;
@@ -299,11 +300,13 @@ def main():
                                                    expected[files[1]][0], descriptors))
         simple.Delete(reader)
 
-    rc, output = run_pvpython("--own-reader-series", deep, shallow)
-    said = [line for line in output.splitlines() if line.startswith("OWN")]
-    print("ParaView's own EnzoReader on the deep-shallow series: %s%s" % (
-        "exit code %d" % rc if rc >= 0 else "killed by signal %d" % -rc,
-        "; " + "; ".join(said) if said else ""))
+    if os.environ.get("AMRSP_REPORT_OWN_READER") == "1":
+        # a report on ParaView's reader, judged by nothing (its readers are not ours)
+        rc, output = run_pvpython("--own-reader-series", deep, shallow)
+        said = [line for line in output.splitlines() if line.startswith("OWN")]
+        print("ParaView's own EnzoReader on the deep-shallow series: %s%s" % (
+            "exit code %d" % rc if rc >= 0 else "killed by signal %d" % -rc,
+            "; " + "; ".join(said) if said else ""))
 
     other_formats(data)
 
