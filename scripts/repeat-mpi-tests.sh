@@ -45,7 +45,7 @@ for config in "${configs[@]}"; do
         failed[$name]=$(( ${failed[$name]:-0} + 1 ))
         echo "[repeat] $config run $i: $name $verdict (log: ${out#"$repo/"}/ctest-$i.log)"
       fi
-    done < <(sed -nE 's/^ *[0-9]+\/[0-9]+ Test +#[0-9]+: ([^ ]+) \.+\**([A-Za-z]+).*/\1 \2/p' "$out/ctest-$i.log" 2>/dev/null)
+    done < <(sed -nE 's/^ *[0-9]+\/[0-9]+ Test +#[0-9]+: ([^ ]+) [.]+[* ]*([A-Za-z]+).*/\1 \2/p' "$out/ctest-$i.log" 2>/dev/null)
   done
   names=$(printf '%s\n' "${!passed[@]}" "${!failed[@]}" | sort -u)
   [ -n "$names" ] || { echo "[repeat] $config: no mpi test ran (see ${out#"$repo/"}/run-1.log)"; status=1; }
