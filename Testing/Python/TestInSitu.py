@@ -124,12 +124,22 @@ def refused_display_ends_the_run(mpiexec, simulation, outdir):
     # one program on two ranks, the second given the unused display by a shell around it (MPI's
     # MPMD form, `-np 1 A : -np 1 B`, is not used: Open MPI 5.0.7's mpiexec, Debian 13's, crashes
     # on it at start)
+    # The second rank writes its own stderr to a file: mpiexec forwards a rank's output through
+    # its daemon, which may end the job before it has read what an aborting rank wrote (Open MPI
+    # 5.0.7: 1 of 18 runs lost the line), while the rank's own writes reach the file before abort.
+    import shlex
+
+    rank_log = os.path.join(folder, "rank1-stderr.log")
     second_rank_refused = ('if [ "${OMPI_COMM_WORLD_RANK:-${PMI_RANK:-0}}" = 1 ]; then '
-                           'export DISPLAY=%s; fi; exec "$0" "$@"' % unused)
+                           'export DISPLAY=%s; exec "$0" "$@" 2>%s; fi; exec "$0" "$@"'
+                           % (unused, shlex.quote(rank_log)))
     command = [mpiexec] + (["--allow-run-as-root"] if os.geteuid() == 0 else [])
     command += ["--oversubscribe", "-np", "2", "sh", "-c", second_rank_refused, simulation] + step
     start = time.monotonic()
     code, text = run_bounded(command, os.path.join(folder, "simulation.log"), 60)
+    if os.path.exists(rank_log):
+        with open(rank_log, errors="replace") as f:
+            text += f.read()
     return time.monotonic() - start, code, "bad X server connection. DISPLAY=%s" % unused in text
 
 
