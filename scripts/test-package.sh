@@ -5,9 +5,11 @@
 # with what it installed. Run as root on a Debian 12 host.
 #   scripts/test-package.sh CONFIG   # paraview, vtk, trixie-paraview, trixie-vtk, forky-paraview, forky-vtk
 # Checks (each prints ok or FAIL; the last line is the summary for scripts/test.sh):
-#   install   apt-get resolves the package's exact ParaView/VTK dependency from the release and installs
-#             it with --no-install-recommends: the Depends alone must make the checks below pass
-#             (a user's default install also brings the Recommends; half the packages, half the time)
+#   install   apt-get resolves the package's exact ParaView/VTK dependency from the release
+#             (`apt-get satisfy` of its Depends in the clean root) and then `apt-get install ./x.deb`
+#             adds the package and nothing else, with --no-install-recommends: the Depends alone
+#             must make the checks below pass (a user's default install also brings the
+#             Recommends; half the packages, half the time)
 #   files     `dpkg -L` lists nothing outside /usr/{bin,include,lib,share} and /etc/profile.d
 #             (the check is first shown to reject a list with a file in /opt)
 #   pvpython  ParaView packages: python3-paraview installs (pvpython is the checks' tool; paraview
@@ -21,8 +23,14 @@
 #             two controls: Testing/Python/TestDocumentedVtkPython.py)
 #   tool      VTK packages: the installed `amrsp render --compare` within Tool.CLI.RenderPacking's
 #             bounds of its CPU reference
-# The copy of the clean root is deleted afterwards (AMRSP_KEEP_PACKAGE_ROOT=1 keeps it). Package
-# downloads go to the build root's apt cache (the host's for Debian 12), so they happen once.
+# The package's dependencies are installed once into a copy of the clean root, its *dependencies
+# root* ($AMRSP_ROOTS_DIR/deps-CONFIG), with `apt-get satisfy` of the package's Depends field; the
+# checks run in a throwaway layer over it (an overlay mount; a full copy where overlays cannot be
+# mounted), deleted afterwards (AMRSP_KEEP_PACKAGE_ROOT=1 keeps a copy instead). The dependencies
+# root is made again whenever the clean root or the Depends field changes, so every run installs
+# the package into exactly the root a first run would: its install check then requires that the
+# package is the only package apt adds. Package downloads go to the build root's apt cache (the
+# host's for Debian 12), so they happen once.
 set -Eeuo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 . "$repo/scripts/configs.sh"
@@ -46,10 +54,15 @@ finish() {
   local line="[summary] $config package: $passed passed, $failed failed, 0 skipped of $total checks in $((SECONDS - t0)) s ($deb_name in a clean $suite root)"
   echo "$line" | tee -a "$log"
   echo "$line" >>"$summary"
-  [ "${AMRSP_KEEP_PACKAGE_ROOT:-0}" = 1 ] || rm -rf "$scratch"
+  [ "${AMRSP_KEEP_PACKAGE_ROOT:-0}" = 1 ] || remove_scratch
   [ "$failed" = 0 ] && [ "$total" -gt 0 ]
 }
 scratch=$roots/package-test-$config
+deps=$roots/deps-$config
+remove_scratch() {  # the throwaway layer: unmounted first, so that nothing below it is touched
+  ! mountpoint -q "$scratch" 2>/dev/null || umount "$scratch" || umount -l "$scratch"
+  rm -rf "$scratch" "$scratch.upper" "$scratch.work"
+}
 deb_name="no package"
 if [ "$(amrsp_host_suite)" != bookworm ]; then
   echo "[package-test] clean roots are made on a Debian 12 host; this is $(amrsp_host_suite)" >&2
@@ -65,20 +78,60 @@ package=$(dpkg-deb -f "$deb" Package)
 
 "$repo/scripts/debian-root.sh" "$suite" clean-ensure >>"$log" 2>&1 \
   || { rc=1; check install "the clean $suite root could not be made (log: $log)"; finish; exit 1; }
-rm -rf "$scratch"
-cp -a "$roots/clean-$suite" "$scratch"
+if [ "$suite" = bookworm ]; then archives=/var/cache/apt/archives; else archives=$roots/$suite/var/cache/apt/archives; fi
+apt_in() {  # ROOT ARGS...: apt-get ARGS inside ROOT
+  local dir=$1; shift
+  AMRSP_ROOT_DIR=$dir AMRSP_ROOT_APT_ARCHIVES=$archives "$repo/scripts/debian-root.sh" "$suite" run \
+    env DEBIAN_FRONTEND=noninteractive apt-get -q -y -o Acquire::Check-Valid-Until=false "$@"
+}
+in_root() { AMRSP_ROOT_DIR=$scratch AMRSP_ROOT_APT_ARCHIVES=$archives "$repo/scripts/debian-root.sh" "$suite" run "$@"; }
+set +e
+
+# the dependencies root: the clean root with the package's Depends, as apt resolves them there
+depends=$(dpkg-deb -f "$deb" Depends)
+clean=$roots/clean-$suite
+key="clean root made $(stat -c %y "$clean/.amrsp-clean" 2>/dev/null); Depends: $depends"
+t=$SECONDS
+if [ "$(cat "$deps/.amrsp-deps-key" 2>/dev/null)" = "$key" ]; then
+  deps_how="reused (made $(stat -c %y "$deps/.amrsp-deps-key" | cut -d. -f1))"
+else
+  rm -rf "$deps" "$deps.new"
+  cp -a "$clean" "$deps.new"
+  apt_in "$deps.new" satisfy --no-install-recommends "$depends" >"$out/apt-deps.log" 2>&1
+  rc=$?
+  deps_how="made: $(grep -oE '^[0-9]+ upgraded, [0-9]+ newly installed' "$out/apt-deps.log" || echo 'see apt-deps.log') in $((SECONDS - t)) s"
+  if [ "$rc" != 0 ]; then
+    check install "apt-get satisfy --no-install-recommends '$depends' in a copy of the clean $suite root failed"
+    tail -n 20 "$out/apt-deps.log" | tee -a "$log"; rm -rf "$deps.new"; finish; exit 1
+  fi
+  printf '%s\n' "$key" >"$deps.new/.amrsp-deps-key"
+  mv "$deps.new" "$deps"
+fi
+say "dependencies root $deps: $deps_how"
+
+# the throwaway layer the checks change
+remove_scratch
+layer="a copy of it"
+if [ "${AMRSP_KEEP_PACKAGE_ROOT:-0}" != 1 ] && mkdir -p "$scratch" "$scratch.upper" "$scratch.work" \
+    && mount -t overlay amrsp-package-test -o "lowerdir=$deps,upperdir=$scratch.upper,workdir=$scratch.work" \
+      "$scratch" 2>/dev/null; then
+  layer="an overlay over it"
+else
+  remove_scratch
+  cp -a "$deps" "$scratch"
+fi
+trap remove_scratch EXIT
+[ "${AMRSP_KEEP_PACKAGE_ROOT:-0}" != 1 ] || trap - EXIT
 mkdir -p "$scratch/tmp/package"
 cp "$deb" "$scratch/tmp/package/"
-if [ "$suite" = bookworm ]; then archives=/var/cache/apt/archives; else archives=$roots/$suite/var/cache/apt/archives; fi
-in_root() { AMRSP_ROOT_DIR=$scratch AMRSP_ROOT_APT_ARCHIVES=$archives "$repo/scripts/debian-root.sh" "$suite" run "$@"; }
 
-# install
-set +e
+# install: the package is all that apt adds to its dependencies root
 t=$SECONDS
-in_root env DEBIAN_FRONTEND=noninteractive apt-get -q -y -o Acquire::Check-Valid-Until=false \
-  install --no-install-recommends "/tmp/package/$deb_name" >"$out/apt-install.log" 2>&1
+apt_in "$scratch" install --no-install-recommends "/tmp/package/$deb_name" >"$out/apt-install.log" 2>&1
 rc=$?
-check install "apt-get install --no-install-recommends ./$deb_name: $(grep -oE '^[0-9]+ upgraded, [0-9]+ newly installed' "$out/apt-install.log" || echo 'see apt-install.log') in $((SECONDS - t)) s (Depends: $(dpkg-deb -f "$deb" Depends))"
+added=$(grep -oE '^[0-9]+ upgraded, [0-9]+ newly installed' "$out/apt-install.log")
+[ "$rc" != 0 ] || [ "$added" = "0 upgraded, 1 newly installed" ] || rc=1
+check install "apt-get install --no-install-recommends ./$deb_name into the clean root with its Depends ($deps_how), in $layer: ${added:-see apt-install.log} in $((SECONDS - t)) s (Depends: $depends)"
 [ "$rc" = 0 ] || { tail -n 20 "$out/apt-install.log" | tee -a "$log"; finish; exit 1; }
 
 # files: only the usual places, the filter itself shown to reject a file in /opt
