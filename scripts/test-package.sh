@@ -29,8 +29,9 @@
 # mounted), deleted afterwards (AMRSP_KEEP_PACKAGE_ROOT=1 keeps a copy instead). The dependencies
 # root is made again whenever the clean root or the Depends field changes, so every run installs
 # the package into exactly the root a first run would: its install check then requires that the
-# package is the only package apt adds. Package downloads go to the build root's apt cache (the
-# host's for Debian 12), so they happen once.
+# package is the only package apt adds. It is deleted after the test when less than
+# AMRSP_DEPS_ROOT_MIN_FREE_GB (default 20) GB stay free. Package downloads go to the build root's
+# apt cache (the host's for Debian 12), so they happen once.
 set -Eeuo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 . "$repo/scripts/configs.sh"
@@ -55,6 +56,13 @@ finish() {
   echo "$line" | tee -a "$log"
   echo "$line" >>"$summary"
   [ "${AMRSP_KEEP_PACKAGE_ROOT:-0}" = 1 ] || remove_scratch
+  # a dependencies root (1 to 2.5 GB) is kept only where the disk keeps room for the others
+  local free_gb
+  free_gb=$(df -P -BG "$roots" 2>/dev/null | awk 'NR == 2 {sub("G", "", $4); print $4}')
+  if [ -d "$deps" ] && [ "${free_gb:-0}" -lt "${AMRSP_DEPS_ROOT_MIN_FREE_GB:-20}" ]; then
+    rm -rf "$deps"
+    say "dependencies root deleted: ${free_gb:-?} GB free, under AMRSP_DEPS_ROOT_MIN_FREE_GB=${AMRSP_DEPS_ROOT_MIN_FREE_GB:-20} (the next run makes it again)"
+  fi
   [ "$failed" = 0 ] && [ "$total" -gt 0 ]
 }
 scratch=$roots/package-test-$config
