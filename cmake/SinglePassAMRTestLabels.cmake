@@ -29,7 +29,7 @@ endfunction ()
 # without these, a fresh build folder (no Testing/Temporary/CTestCostData.txt yet, as in CI) starts
 # them in the order they were added, and the last long ones leave a core idle at the end.
 set(amrsp_test_costs
-  Mapper.ShaderVariants=100 Tool.CLI.Series=70 Tool.Fuzz=60 Tool.DamagedData=30
+  Mapper.ShaderVariants=15 Tool.CLI.Series=70 Tool.Fuzz=60 Tool.DamagedData=30
   Plugin.CheckedReader=26 Tool.GpuProfile=45 Plugin.Storage=19 Plugin.Defaults.ClientServer=17
   Mapper.PackingImage=16 Plugin.ClientServer.local.enzo=16 Plugin.Installed=15
   Plugin.Representation.enzo=15 Plugin.Representation.enzo-log=15 Plugin.Representation.amrex=14

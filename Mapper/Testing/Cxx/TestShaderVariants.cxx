@@ -11,8 +11,8 @@
 // power-of-two refinement, empty-space skipping, smooth cells, ropes, shading and shadows, 13
 // levels) and with a second mix of them; then each caster and grid data with each diagnostic
 // output (the work counters, the three work counts, the two ablations). 644 variants. The
-// composition does not depend on the VTK version: CTest registers this test in the paraview
-// configuration only (scripts/build.sh), once per CI run. Two deviations, both glslang 12's limits
+// composition does not depend on the VTK version: one configuration runs this test
+// (docs/testing.md, "Coverage matrix"), once per CI run. Two deviations, both glslang 12's limits
 // and said in the output: the bindless waterfall variants are checked as GLSL 4.50, fragment and
 // compute (glslang declares GL_ARB_shader_ballot's functions from 4.50 only; Mesa and NVIDIA
 // from 1.50, as the spec allows), and the occupancy probe (GL_NV_shader_thread_group, unknown to
@@ -99,11 +99,22 @@ std::string StageSource(const vtkSinglePassAMRShaderVariant& v, const std::strin
   return source;
 }
 
-/// glslangValidator on `path`: empty when it compiles, else its output.
-std::string Validate(const std::string& path)
+/// glslangValidator on a batch of files in one process (one start-up instead of one per file;
+/// without -l each file is compiled and linked on its own). The output names each file on a line
+/// of its own, followed by that file's messages. Returns, per file, its messages when they hold an
+/// ERROR, else "". A file the output does not name, or an exit status that disagrees with the
+/// messages (non-zero exactly when some file has an ERROR), fails every file of the batch with the
+/// whole output.
+std::vector<std::string> Validate(const std::vector<std::string>& batch)
 {
-  const std::string command = "glslangValidator '" + path + "' 2>&1";
+  std::string command = "glslangValidator";
+  for (const std::string& path : batch)
+  {
+    command += " '" + path + "'";
+  }
+  command += " 2>&1";
   std::string output;
+  int status = -1;
   if (FILE* pipe = popen(command.c_str(), "r"))
   {
     std::array<char, 4096> buffer;
@@ -111,12 +122,46 @@ std::string Validate(const std::string& path)
     {
       output.append(buffer.data(), n);
     }
-    if (pclose(pipe) == 0)
+    status = pclose(pipe);
+  }
+  std::vector<std::string> messages(batch.size());
+  std::vector<bool> named(batch.size(), false);
+  std::size_t current = batch.size();
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);)
+  {
+    const auto path = std::find(batch.begin(), batch.end(), line);
+    if (path != batch.end())
     {
-      return "";
+      current = static_cast<std::size_t>(path - batch.begin());
+      named[current] = true;
+    }
+    else if (current < batch.size())
+    {
+      messages[current] += line + "\n";
     }
   }
-  return output.empty() ? "glslangValidator did not run" : output;
+  std::vector<std::string> errors(batch.size());
+  bool anyError = false;
+  bool allNamed = true;
+  for (std::size_t i = 0; i < batch.size(); ++i)
+  {
+    allNamed = allNamed && named[i];
+    if (messages[i].find("ERROR") != std::string::npos)
+    {
+      errors[i] = messages[i];
+      anyError = true;
+    }
+  }
+  if (!allNamed || (status != 0) != anyError)
+  {
+    const std::string why = "glslangValidator (exit status " + std::to_string(status) + ") named " +
+      (allNamed ? "every file" : "not every file") + " of its batch, " +
+      (anyError ? "with" : "without") + " an ERROR:\n" +
+      (output.empty() ? std::string("no output") : output.substr(0, 1500));
+    std::fill(errors.begin(), errors.end(), why);
+  }
+  return errors;
 }
 
 /// Every variant of the test (see the top).
@@ -228,6 +273,8 @@ int Run(const std::string& shaderDir, const std::string& work)
     std::ofstream(paths[i]) << StageSource(
       v, vtkSinglePassAMRComposeShader(v, sources, version, nullptr));
   }
+  // batches of 16 files, taken in turn by one worker per core
+  constexpr std::size_t batchSize = 16;
   std::atomic<std::size_t> next{ 0 };
   std::vector<std::thread> workers;
   for (unsigned w = 0; w < std::max(1u, std::thread::hardware_concurrency()); ++w)
@@ -235,9 +282,12 @@ int Run(const std::string& shaderDir, const std::string& work)
     workers.emplace_back(
       [&]
       {
-        for (std::size_t i; (i = next++) < paths.size();)
+        for (std::size_t first; (first = batchSize * next++) < paths.size();)
         {
-          errors[i] = Validate(paths[i]);
+          const std::size_t end = std::min(paths.size(), first + batchSize);
+          const std::vector<std::string> batch(paths.begin() + first, paths.begin() + end);
+          const std::vector<std::string> batchErrors = Validate(batch);
+          std::copy(batchErrors.begin(), batchErrors.end(), errors.begin() + first);
         }
       });
   }
@@ -270,9 +320,12 @@ int Run(const std::string& shaderDir, const std::string& work)
   const std::string brokenPath = work + "/broken.frag";
   std::ofstream(brokenPath) << StageSource(
     broken, vtkSinglePassAMRComposeShader(broken, brokenSources, version, nullptr));
-  const std::string brokenErrors = Validate(brokenPath);
-  mappertest::Check(!brokenErrors.empty(),
-    "a ray source with a type error (vec4 = float) is rejected: " +
+  // in a batch between two good variants: the error is the broken file's alone
+  const std::vector<std::string> mixed = Validate({ paths.front(), brokenPath, paths.back() });
+  const std::string& brokenErrors = mixed[1];
+  mappertest::Check(!brokenErrors.empty() && mixed[0].empty() && mixed[2].empty(),
+    "a ray source with a type error (vec4 = float) is rejected, and in a batch between two good "
+    "variants only it is: " +
       brokenErrors.substr(0, brokenErrors.find('\n', brokenErrors.find("ERROR"))));
   std::cout << (mappertest::Failures() == 0
                    ? "PASSED"
