@@ -3,15 +3,23 @@
 # InSitu.*) N times in a row in each ParaView configuration, through scripts/run-tests.sh (the same
 # X server, backend and environment as the normal run), and prints how often each test passed.
 # Not part of scripts/test.sh: a check that the tests are not flaky (docs/testing.md, "Flakiness").
-#   scripts/repeat-mpi-tests.sh [-n N] [CONFIG...]   (default: 20 times, every ParaView configuration
-#                                                   of this system; each must be built)
+#   scripts/repeat-mpi-tests.sh [-n N] [-R REGEX] [CONFIG...]   (default: 20 times, every ParaView
+#                                  configuration of this system; each must be built; -R: only the
+#                                  mpi tests whose names match REGEX, as ctest -R reads it; no spaces)
 # With AMRSP_REPEAT_LOAD=K, K busy processes run beside the tests (a loaded machine).
 # Exit status: 0 when every run of every test passed.
 set -Eeuo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 . "$repo/scripts/configs.sh"
 times=20
-if [ "${1:-}" = -n ]; then times=${2:?-n needs a number}; shift 2; fi
+select=('-L' '^mpi$')
+while [ "$#" -gt 0 ]; do
+  case "$1" in
+    -n) times=${2:?-n needs a number}; shift 2 ;;
+    -R) select+=('-R' "${2:?-R needs a regular expression}"); shift 2 ;;
+    *) break ;;
+  esac
+done
 configs=("$@")
 if [ "${#configs[@]}" = 0 ]; then
   for c in $(amrsp_default_configs); do
@@ -34,7 +42,7 @@ for config in "${configs[@]}"; do
   mkdir -p "$out"
   declare -A passed=() failed=()
   for i in $(seq 1 "$times"); do
-    AMRSP_CTEST_ARGS='-L ^mpi$' AMRSP_SUMMARY_FILE="build/repeat-mpi/$config/summary.txt" \
+    AMRSP_CTEST_ARGS="${select[*]}" AMRSP_SUMMARY_FILE="build/repeat-mpi/$config/summary.txt" \
       "$repo/scripts/run-tests.sh" "$config" "$backend" >"$out/run-$i.log" 2>&1 || true
     log="$repo/build/$config/ctest-$backend.log"
     cp "$log" "$out/ctest-$i.log" 2>/dev/null || true
