@@ -171,8 +171,7 @@ case "$config" in
     [ "$rc" = 0 ] || tail -n 20 "$out/build-render.log" | tee -a "$log"
     # the checks' tool (the plugin needs only paraview): pvpython is in python3-paraview, which
     # paraview only Recommends
-    in_root env DEBIAN_FRONTEND=noninteractive apt-get -q -y -o Acquire::Check-Valid-Until=false \
-      install --no-install-recommends python3-paraview >>"$out/apt-install.log" 2>&1
+    apt_in "$scratch" install --no-install-recommends python3-paraview >>"$out/apt-install.log" 2>&1
     rc=$?
     check pvpython "python3-paraview for pvpython (the checks' tool, not the package's: paraview only Recommends it)"
     # control: a pvpython that did not read /etc/profile.d; it must have run (its FOUND: line)
@@ -192,8 +191,7 @@ case "$config" in
     check plugin "pvpython from a login shell loads the installed plugin at start and renders the build's image" ;;
   *vtk)
     # the check's own tool (the example does not need it): numpy for the image comparison
-    in_root env DEBIAN_FRONTEND=noninteractive apt-get -q -y -o Acquire::Check-Valid-Until=false \
-      install --no-install-recommends python3-numpy >>"$out/apt-install.log" 2>&1
+    apt_in "$scratch" install --no-install-recommends python3-numpy >>"$out/apt-install.log" 2>&1
     rc=$?
     check numpy "python3-numpy for the image comparison (the checks' tool, not the package's)"
     in_root env "${display_env[@]}" "${require[@]}" python3 -c \
