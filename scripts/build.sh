@@ -49,6 +49,9 @@ case "$config" in
   sanitizers|forky-vtk) args+=(-DAMRSP_FUZZ_VARIANTS=300) ;;
   *) args+=(-DAMRSP_FUZZ_VARIANTS=100) ;;
 esac
+# Tool.CLI.Series under the sanitizers: every series path once (docs/testing.md, "Coverage matrix":
+# smoke there; vtk and forky-vtk judge the selections, range forms and the 120-change soak)
+[ "$config" = sanitizers ] && args+=(-DAMRSP_SERIES_SMOKE=ON) || args+=(-DAMRSP_SERIES_SMOKE=OFF)
 # The GPU profile command's smoke test where the GPU bundle's amrsp comes from (forky-vtk), the
 # only build the profile runs
 case "$config" in

@@ -20,7 +20,9 @@
 #     --disable-xdisplay-test (Examples/InSitu/CatalystAdaptor.cxx);
 #   - no run hangs: a simulation that takes more than HANG_SECONDS is killed and the test fails.
 #
-#   pvpython TestInSitu.py MPIEXEC SIMULATION AMRSP RANKS OUTDIR
+#   pvpython TestInSitu.py MPIEXEC SIMULATION AMRSP RANKS OUTDIR [--reference-from DIR]
+# --reference-from DIR: the one-rank run's hierarchy and CPU references are DIR/np1-data's (the
+# test InSitu.np1, ctest's fixture for InSitu.np2), made by these binaries (newer than both)
 # Exit codes: 0 pass, 1 fail, 125 skipped (no X display for a GLX-only ParaView).
 import json
 import os
@@ -109,6 +111,23 @@ def simulate(mpiexec, simulation, ranks, folder, write_data):
     return costs, records
 
 
+def shared_reference_run_is_current(folder, simulation, amrsp):
+    """Fails unless FOLDER holds a whole one-rank run (every step's hierarchy and CPU reference)
+    written after SIMULATION and AMRSP were built."""
+    needed = [os.path.join(folder, name) for step in range(STEPS)
+              for name in ("step_%04d.vthb" % step, "reference_%04d.png" % step)]
+    missing = [path for path in needed if not os.path.exists(path)]
+    if missing:
+        fail("the one-rank run in %s is incomplete (%s missing): run InSitu.np1 first"
+             % (folder, missing[0]))
+    made = min(os.path.getmtime(path) for path in needed)
+    newer = [path for path in (simulation, amrsp) if os.path.getmtime(path) > made]
+    if newer:
+        fail("the one-rank run in %s is older than %s: run InSitu.np1 again"
+             % (folder, ", ".join(newer)))
+    print("one-rank run and CPU references: %s (the fixture InSitu.np1)" % folder)
+
+
 def refused_display_ends_the_run(mpiexec, simulation, outdir):
     """(seconds, exit code, whether VTK's X abort line is in the log) of a one-step run on two
     ranks whose second rank is given a display no X server answers."""
@@ -144,7 +163,13 @@ def refused_display_ends_the_run(mpiexec, simulation, outdir):
 
 
 def main():
-    mpiexec, simulation, amrsp, ranks, outdir = sys.argv[1:6]
+    args = sys.argv[1:]
+    reference_from = None
+    if "--reference-from" in args[:-1]:
+        at = args.index("--reference-from")
+        reference_from = args[at + 1]
+        del args[at:at + 2]
+    mpiexec, simulation, amrsp, ranks, outdir = args[:5]
     ranks = int(ranks)
     require_display()
     # A rebuild of this tree while the test runs (another build in the same folder) would make
@@ -162,9 +187,15 @@ def main():
         return found
 
     binaries = identities()
-    reference_run = os.path.join(outdir, "np1-data")
-    costs, with_records = simulate(mpiexec, simulation, 1, reference_run, True)
-    run_dir = reference_run
+    if reference_from is None:
+        reference_run = os.path.join(outdir, "np1-data")
+        costs, with_records = simulate(mpiexec, simulation, 1, reference_run, True)
+        run_dir = reference_run
+    elif ranks > 1:
+        reference_run = os.path.join(reference_from, "np1-data")
+        shared_reference_run_is_current(reference_run, simulation, amrsp)
+    else:
+        fail("--reference-from is for a run on several ranks")
     if ranks > 1:
         run_dir = os.path.join(outdir, "np%d" % ranks)
         costs, with_records = simulate(mpiexec, simulation, ranks, run_dir, False)

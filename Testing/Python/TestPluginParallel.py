@@ -1,10 +1,13 @@
 # MPI-parallel test of the "AMR Single-Pass Volume" representation in pvbatch.
 #
 #   pvpython TestPluginParallel.py MPIEXEC PVBATCH RANKS PLUGIN AMRSP DATASET OUTDIR [regions|gather]
+#       [--serial-from DIR]
 #
 # Runs TestPluginRepresentation.py (same dataset, camera, colour map and checks, including the
 # CPU reference) twice: in pvbatch on one rank, then under `MPIEXEC -np RANKS pvbatch`, where
-# each rank reads only some of the blocks. With `regions` (the default, the representation's
+# each rank reads only some of the blocks. With RANKS 1 only the one-rank run (ctest's fixture
+# Plugin.MPI.np1.DATASET); with --serial-from DIR the one-rank run's screenshot is DIR's, which
+# must be newer than PLUGIN and AMRSP (the parallel runs of one dataset share that run). With `regions` (the default, the representation's
 # default ParallelMode) every rank receives and renders its own box of the domain; the log of
 # that run must show one region per rank, each with blocks, tiling the domain. With `gather`,
 # rank 0 receives every block and renders alone. Then compares the two screenshots: the
@@ -118,16 +121,39 @@ def run(command, log_path):
 
 
 def main():
-    if len(sys.argv) not in (8, 9) or sys.argv[8:] not in ([], ["regions"], ["gather"]):
+    args = sys.argv[1:]
+    serial_from = None
+    if "--serial-from" in args[:-1]:
+        at = args.index("--serial-from")
+        serial_from = args[at + 1]
+        del args[at:at + 2]
+    if len(args) not in (7, 8) or args[7:] not in ([], ["regions"], ["gather"]):
         print("usage: TestPluginParallel.py MPIEXEC PVBATCH RANKS PLUGIN AMRSP DATASET OUTDIR "
-              "[regions|gather]")
+              "[regions|gather] [--serial-from DIR]")
         return 2
-    mpiexec, pvbatch, ranks, plugin, amrsp, dataset, outdir = sys.argv[1:8]
-    mode = sys.argv[8] if len(sys.argv) == 9 else "regions"
+    mpiexec, pvbatch, ranks, plugin, amrsp, dataset, outdir = args[:7]
+    mode = args[7] if len(args) == 8 else "regions"
     os.makedirs(outdir, exist_ok=True)
     script = [os.path.join(HERE, "TestPluginRepresentation.py"), plugin, amrsp, dataset, outdir]
     pvbatch_args = [pvbatch, "--force-offscreen-rendering"]
-    run(pvbatch_args + script, os.path.join(outdir, "%s-serial.log" % dataset))
+    serial_png = os.path.join(serial_from or outdir, "%s-builtin-paraview.png" % dataset)
+    if serial_from is None:
+        if os.path.exists(serial_png):
+            os.remove(serial_png)
+        run(pvbatch_args + script, os.path.join(outdir, "%s-serial.log" % dataset))
+        if ranks == "1":
+            print("PASS")
+            return 0
+    else:
+        # the shared one-rank run must come from these binaries (ctest runs the fixture first)
+        made = os.path.getmtime(serial_png) if os.path.exists(serial_png) else None
+        newer = [p for p in (plugin, amrsp) if made is None or os.path.getmtime(p) > made]
+        if newer:
+            print("FAIL: the one-rank screenshot %s %s (run Plugin.MPI.np1.%s first)"
+                  % (serial_png, "is missing" if made is None else
+                     "is older than " + ", ".join(newer), dataset))
+            return 1
+        print("one-rank run: %s (the fixture Plugin.MPI.np1.%s)" % (serial_png, dataset))
     mpi = [mpiexec, "-np", ranks]
     if os.geteuid() == 0:
         mpi.append("--allow-run-as-root")  # OpenMPI refuses root without it
@@ -149,7 +175,7 @@ def main():
         reader.Update()
         return vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3].astype(float)
 
-    serial = read(os.path.join(outdir, "%s-builtin-paraview.png" % dataset))
+    serial = read(serial_png)
     parallel = read(os.path.join(outdir, "%s-mpi%s-paraview.png" % (dataset, ranks)))
     rmse_bound, differing_bound = distributed_bounds(
         dataset, "whole" if mode == "gather" else "regions")

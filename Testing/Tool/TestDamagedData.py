@@ -300,12 +300,12 @@ def main():
         os.chmod(hierarchy, 0o644)
         truncate(hierarchy, 1500)
         try:
-            p = subprocess.run([amrsp, "inspect", hierarchy, "--read-timeout", "3"],
+            p = subprocess.run([amrsp, "inspect", hierarchy, "--read-timeout", "1"],
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=TIME_LIMIT,
                                env=dict(os.environ, AMRSP_SKIP_FILE_CHECKS="1"))
             err = [l for l in p.stderr.decode(errors="replace").splitlines() if l.strip()]
             ok = (p.returncode == 75 and len(err) == 1 and
-                  "did not finish within 3 s" in err[0] and "moving7_0010.hierarchy" in err[0])
+                  "did not finish within 1 s" in err[0] and "moving7_0010.hierarchy" in err[0])
             detail = "exit code %d: %s" % (p.returncode, " | ".join(err[:3]))
         except subprocess.TimeoutExpired:
             ok, detail = False, "no end within %d s" % TIME_LIMIT
