@@ -41,8 +41,12 @@ for config in "${configs[@]}"; do
   rm -rf "$out"
   mkdir -p "$out"
   declare -A passed=() failed=()
+  # only the mpi tests this configuration's normal pass selects (its labels; ctest ANDs two -L)
+  config_select=("${select[@]}")
+  labels=$(amrsp_config_labels "$config")
+  [ -z "$labels" ] || config_select+=('-L' "$labels")
   for i in $(seq 1 "$times"); do
-    AMRSP_CTEST_ARGS="${select[*]}" AMRSP_SUMMARY_FILE="build/repeat-mpi/$config/summary.txt" \
+    AMRSP_CTEST_ARGS="${config_select[*]}" AMRSP_SUMMARY_FILE="build/repeat-mpi/$config/summary.txt" \
       "$repo/scripts/run-tests.sh" "$config" "$backend" >"$out/run-$i.log" 2>&1 || true
     log="$repo/build/$config/ctest-$backend.log"
     cp "$log" "$out/ctest-$i.log" 2>/dev/null || true
