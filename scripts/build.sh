@@ -63,6 +63,9 @@ esac
 case "$config" in
   trixie-paraview|forky-paraview) args+=(-DAMRSP_MPI_FOUR_RANKS=OFF) ;;
 esac
+# After a change inside the library only the library relinks: the programs linked to it load the
+# new one (CMAKE_LINK_DEPENDS_NO_SHARED; a changed header recompiles and relinks its programs).
+args+=(-DCMAKE_LINK_DEPENDS_NO_SHARED=ON)
 # A unity build (about half the time of a build from nothing; CMakeLists.txt). AMRSP_UNITY_BUILD=OFF
 # builds one object per source, which rebuilds less after a one-file change.
 args+=("-DCMAKE_UNITY_BUILD=${AMRSP_UNITY_BUILD:-ON}")
