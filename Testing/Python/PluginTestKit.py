@@ -29,6 +29,16 @@ def leave(code):
     exit_keeping_output(code)
 
 
+def pop_option(args, name):
+    """The value after NAME in the list ARGS, removed from it with NAME (None when absent)."""
+    if name not in args[:-1]:
+        return None
+    at = args.index(name)
+    value = args[at + 1]
+    del args[at:at + 2]
+    return value
+
+
 def fail(message):
     for hook in BEFORE_FAIL:
         hook()

@@ -31,7 +31,8 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from PluginTestKit import (HANG_SECONDS, clean_environment, coverage, fail,  # noqa: E402
-                           off_share, read_png, require_display, rmse, skip)
+                           off_share, pop_option, read_png, require_display, rmse,
+                           skip)
 
 STEPS = 5
 REGRID = 2  # steps 2 and 4 regrid
@@ -164,11 +165,7 @@ def refused_display_ends_the_run(mpiexec, simulation, outdir):
 
 def main():
     args = sys.argv[1:]
-    reference_from = None
-    if "--reference-from" in args[:-1]:
-        at = args.index("--reference-from")
-        reference_from = args[at + 1]
-        del args[at:at + 2]
+    reference_from = pop_option(args, "--reference-from")
     mpiexec, simulation, amrsp, ranks, outdir = args[:5]
     ranks = int(ranks)
     require_display()

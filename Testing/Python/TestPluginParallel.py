@@ -20,7 +20,8 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from PluginTestKit import (MPI_PVBATCH_OPTIONS, SKIP, call_with_hang_detector,  # noqa: E402
-                           clean_environment, distributed_bounds, off_share, rmse as kit_rmse)
+                           clean_environment, distributed_bounds, off_share, pop_option,
+                           rmse as kit_rmse)
 
 # The parallel image is the ranks' region images composited by IceT in visibility order (or,
 # gathering, rank 0's image over the others' empty ones). Pixels on the volume's silhouette
@@ -122,11 +123,7 @@ def run(command, log_path):
 
 def main():
     args = sys.argv[1:]
-    serial_from = None
-    if "--serial-from" in args[:-1]:
-        at = args.index("--serial-from")
-        serial_from = args[at + 1]
-        del args[at:at + 2]
+    serial_from = pop_option(args, "--serial-from")
     if len(args) not in (7, 8) or args[7:] not in ([], ["regions"], ["gather"]):
         print("usage: TestPluginParallel.py MPIEXEC PVBATCH RANKS PLUGIN AMRSP DATASET OUTDIR "
               "[regions|gather] [--serial-from DIR]")
