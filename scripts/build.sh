@@ -42,15 +42,8 @@ args+=("${test_options[@]}")
 # Mapper.ShaderVariants checks the shader sources, which no VTK version changes: once per CI run,
 # in the configuration that runs the whole mapper suite on the oldest VTK
 [ "$config" = vtk ] && args+=(-DAMRSP_SHADER_VARIANT_TEST=ON) || args+=(-DAMRSP_SHADER_VARIANT_TEST=OFF)
-# The fuzzer's 300 variants where the oldest and the newest VTK parse (sanitizers: 9.1 with
-# AddressSanitizer, forky-vtk: 9.6), 100 in vtk (the other configurations run Tool.DamagedData's
-# fixed damaged files through their VTK's readers)
-case "$config" in
-  sanitizers|forky-vtk) args+=(-DAMRSP_FUZZ_VARIANTS=300) ;;
-  *) args+=(-DAMRSP_FUZZ_VARIANTS=100) ;;
-esac
 # Tool.CLI.Series under the sanitizers: every series path once (docs/testing.md, "Coverage matrix":
-# smoke there; vtk and forky-vtk judge the selections, range forms and the 120-change soak)
+# smoke there; forky-vtk judges the selections, range forms and the 120-change soak)
 [ "$config" = sanitizers ] && args+=(-DAMRSP_SERIES_SMOKE=ON) || args+=(-DAMRSP_SERIES_SMOKE=OFF)
 # The GPU profile command's smoke test where the GPU bundle's amrsp comes from (forky-vtk), the
 # only build the profile runs

@@ -76,8 +76,10 @@ amrsp_config_backends() {  # $1 = config
 # the same in every configuration (the GL-free core, the shader logic on llvmpipe, the command
 # line) is tested fully in one configuration; code that differs between VTK or ParaView versions or
 # window systems is tested in every configuration where it differs. The full suites run on the
-# oldest and the newest VTK (vtk: 9.1, GLX; forky-vtk: 9.6, EGL and OSMesa; the core where the
-# sanitizers run too); elsewhere the tests labelled with what differs there
+# oldest and the newest VTK: on VTK 9.1 (GLX) vtk runs the core and the mapper's suites and the
+# sanitizers build, on the same VTK, compiler and Xvfb, the core and the tool's suite (the tool's
+# tests run once there, not twice); forky-vtk runs the tool's and the mapper's suites on VTK 9.6
+# (EGL and OSMesa). Elsewhere the tests labelled with what differs there
 # (cmake/SinglePassAMRTestLabels.cmake: readers, data-model, context, rendering, vtk-amr,
 # everywhere), and every ParaView test (plugin) in every ParaView configuration.
 # The ctest labels of a configuration's first backend pass: an anchored regular expression, or
@@ -123,11 +125,12 @@ amrsp_config_packaged() {  # $1 = config
 # configuration runs are not built.
 amrsp_config_test_options() {  # $1 = config
   case "$1" in
-    vtk) echo "-DAMRSP_CORE_TESTS=ON -DAMRSP_MAPPER_TESTS=ON -DAMRSP_MAPPER_IMAGE_TESTS=ON" ;;
+    vtk)  # the tool's tests on this VTK 9.1: the sanitizers build's (the same VTK, compiler and Xvfb)
+      echo "-DAMRSP_CORE_TESTS=ON -DAMRSP_MAPPER_TESTS=ON -DAMRSP_MAPPER_IMAGE_TESTS=ON -DAMRSP_TOOL_TESTS=OFF" ;;
     sanitizers) echo "-DAMRSP_CORE_TESTS=ON -DAMRSP_MAPPER_TESTS=OFF" ;;
     paraview|trixie-paraview)  # the mapper's context and data-model tests only
       echo "-DAMRSP_CORE_TESTS=OFF -DAMRSP_MAPPER_TESTS=ON -DAMRSP_MAPPER_IMAGE_TESTS=OFF" ;;
-    forky-paraview) echo "-DAMRSP_CORE_TESTS=OFF -DAMRSP_MAPPER_TESTS=OFF" ;;
+    forky-paraview) echo "-DAMRSP_CORE_TESTS=OFF -DAMRSP_MAPPER_TESTS=OFF -DAMRSP_TOOL_TESTS=OFF" ;;
     *) echo "-DAMRSP_CORE_TESTS=OFF -DAMRSP_MAPPER_TESTS=ON -DAMRSP_MAPPER_IMAGE_TESTS=ON" ;;
   esac
 }

@@ -13,7 +13,7 @@
 # every series path once under the sanitizers (the synthetic series with --compare, its bench,
 # the refusals, the three file series, the 40-step series past `ulimit -n 24`, a soak of 30 step
 # changes over 10 steps judged on descriptors); the --time selections, the --range forms and the
-# 120-change soak are judged in full where the matrix says so (vtk and forky-vtk: the same code).
+# 120-change soak are judged in full where the matrix says so (forky-vtk).
 # Exit codes: 0 pass, 1 fail, 125 skipped (no OpenGL context: see PluginTestKit.skip).
 import json
 import os
