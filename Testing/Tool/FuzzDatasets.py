@@ -12,11 +12,13 @@ of a Cell_D file, the .vthb/.vtm XML, a .vti piece's XML head) replaced by one o
 break readers (0, -1, -2, 1, 2^31 - 1, 1e9, 2e9, NaN, +-Inf, 1e300, 0.5), two numbers of a header
 swapped, a file cut short, a few bytes of a binary file flipped, a file removed or emptied, or two
 pieces swapped. The rule, for every variant: no signal, no hang (60 s), no more than 4 GB of memory
-(RLIMIT_AS on the tool and what it starts), and either a result (exit 0) or exactly one line
+(RLIMIT_AS on the tool and what it starts), and either a result (exit 0 with inspect's JSON of at
+least one level and one grid on stdout, or render's PNG file) or exactly one line
 `amrsp: error: ...` on stderr that names a file or folder of the damaged copy. A variant that
 breaks the rule fails the test with its seed, its damage and what happened.
 """
 import argparse
+import json
 import os
 import random
 import re
@@ -155,17 +157,47 @@ def run_variant(amrsp, data, work, seed, index):
     if index % 4 == 3:
         command = [amrsp, "render", target, "--method", "cpu-kdtree", "--size", "16x16", "-o",
                    copy + ".png", "--quiet", "--read-timeout", "20"]
+        result = png_written(copy + ".png")
     else:
         command = [amrsp, "inspect", target, "--json", "--read-timeout", "20"]
-    outcome, detail = run_and_judge(command, copy, TIME_LIMIT)
+        result = inspect_json
+    outcome, detail = run_and_judge(command, copy, TIME_LIMIT, result)
     shutil.rmtree(copy, ignore_errors=True)
     if os.path.exists(copy + ".png"):
         os.remove(copy + ".png")
     return outcome, label, detail
 
 
-def run_and_judge(command, copy, time_limit):
-    """Runs one command on a damaged copy; returns ("ok" | "error" | "FAIL", detail) by the rule."""
+def inspect_json(stdout):
+    """Why inspect's standard output is not a result (None when it is one): a JSON object with
+    at least one level and one grid."""
+    try:
+        j = json.loads(stdout)
+    except ValueError as e:
+        return "its output is not JSON (%s): %r" % (e, stdout[:80])
+    if not isinstance(j, dict):
+        return "its JSON is not an object: %r" % stdout[:80]
+    for key in ("levels", "grids"):
+        if not isinstance(j.get(key), int) or j[key] < 1:
+            return "its JSON has %s = %r" % (key, j.get(key))
+    return None
+
+
+def png_written(path):
+    """A result check of render: the image file exists and starts as a PNG."""
+    def check(_stdout):
+        try:
+            with open(path, "rb") as f:
+                head = f.read(8)
+        except OSError:
+            return "no image at %s" % path
+        return None if head == b"\x89PNG\r\n\x1a\n" else "%s is not a PNG" % path
+    return check
+
+
+def run_and_judge(command, copy, time_limit, result):
+    """Runs one command on a damaged copy; returns ("ok" | "error" | "FAIL", detail) by the rule.
+    result(stdout) says why an exit 0 gave no result (None when it did)."""
     try:
         p = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                            timeout=time_limit)
@@ -180,7 +212,8 @@ def run_and_judge(command, copy, time_limit):
         # turns into its error line)
         return "FAIL", "a sanitizer's finding: " + " | ".join(err[:4])
     if p.returncode == 0:
-        return "ok", ""
+        missing = result(p.stdout.decode(errors="replace"))
+        return ("FAIL", "exit 0 without a result: " + missing) if missing else ("ok", "")
     if len(err) != 1 or not err[0].startswith("amrsp: error: "):
         return "FAIL", "exit %d with %d stderr lines: %s" % (p.returncode, len(err),
                                                               " | ".join(err[:4]))
@@ -204,11 +237,14 @@ def judge_rejects_broken_behaviour():
         ("echo 'amrsp: error: reading %s/x: the reading process ended with exit code 86: "
          "ERROR: AddressSanitizer: heap-buffer-overflow' >&2; exit 70" % copy, "FAIL"),
         ("echo 'x.cxx:1:2: runtime error: signed integer overflow' >&2; exit 0", "FAIL"),
-        ("exit 0", "ok"),
+        ("exit 0", "FAIL"),
+        ("echo '{\"levels\": 0, \"grids\": 0}'", "FAIL"),
+        ("echo 'levels 3'", "FAIL"),
+        ("echo '{\"levels\": 3, \"grids\": 10}'", "ok"),
     ]
     wrong = []
     for script, expected in cases:
-        outcome, _ = run_and_judge(["sh", "-c", script], copy, 1)
+        outcome, _ = run_and_judge(["sh", "-c", script], copy, 1, inspect_json)
         if outcome != expected:
             wrong.append("%r judged %s, expected %s" % (script, outcome, expected))
     return wrong
