@@ -39,6 +39,46 @@ def pop_option(args, name):
     return value
 
 
+def outdated_fixture_files(outputs, inputs):
+    """Why the files OUTPUTS of a fixture run (ctest FIXTURES_SETUP) cannot stand for a run of
+    the binaries INPUTS, or None when they can: one is missing, or the oldest of them is older
+    than an input (the binaries were rebuilt after the fixture ran)."""
+    missing = [path for path in outputs if not os.path.exists(path)]
+    if missing:
+        return "%s is missing" % missing[0]
+    oldest = min(outputs, key=os.path.getmtime)
+    newer = [path for path in inputs if os.path.getmtime(path) > os.path.getmtime(oldest)]
+    if newer:
+        return "%s is older than %s" % (oldest, ", ".join(newer))
+    return None
+
+
+def show_fixture_check_rejects(folder):
+    """outdated_fixture_files on files made in FOLDER: it must reject a missing output and one
+    older than its binary, and accept a current one; returns what it got wrong (empty when
+    nothing)."""
+    work = os.path.join(folder, "fixture-check")
+    os.makedirs(work, exist_ok=True)
+    output, binary = os.path.join(work, "output"), os.path.join(work, "binary")
+    for path in (output, binary):
+        if os.path.exists(path):
+            os.remove(path)
+    open(binary, "w").close()
+    wrong = []
+    if outdated_fixture_files([output], [binary]) is None:
+        wrong.append("a missing output was accepted")
+    open(output, "w").close()
+    now = time.time()
+    os.utime(output, (now - 100, now - 100))
+    os.utime(binary, (now, now))
+    if outdated_fixture_files([output], [binary]) is None:
+        wrong.append("an output older than its binary was accepted")
+    os.utime(binary, (now - 200, now - 200))
+    if outdated_fixture_files([output], [binary]) is not None:
+        wrong.append("a current output was rejected")
+    return wrong
+
+
 def fail(message):
     for hook in BEFORE_FAIL:
         hook()

@@ -31,8 +31,8 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from PluginTestKit import (HANG_SECONDS, clean_environment, coverage, fail,  # noqa: E402
-                           off_share, pop_option, read_png, require_display, rmse,
-                           skip)
+                           off_share, outdated_fixture_files, pop_option, read_png,
+                           require_display, rmse, show_fixture_check_rejects, skip)
 
 STEPS = 5
 REGRID = 2  # steps 2 and 4 regrid
@@ -112,20 +112,18 @@ def simulate(mpiexec, simulation, ranks, folder, write_data):
     return costs, records
 
 
-def shared_reference_run_is_current(folder, simulation, amrsp):
+def shared_reference_run_is_current(folder, simulation, amrsp, outdir):
     """Fails unless FOLDER holds a whole one-rank run (every step's hierarchy and CPU reference)
-    written after SIMULATION and AMRSP were built."""
+    written after SIMULATION and AMRSP were built; the check is first shown, in OUTDIR, to reject
+    a missing and an outdated file."""
+    wrong = show_fixture_check_rejects(outdir)
+    if wrong:
+        fail("the check of the one-rank run is broken: " + "; ".join(wrong))
     needed = [os.path.join(folder, name) for step in range(STEPS)
               for name in ("step_%04d.vthb" % step, "reference_%04d.png" % step)]
-    missing = [path for path in needed if not os.path.exists(path)]
-    if missing:
-        fail("the one-rank run in %s is incomplete (%s missing): run InSitu.np1 first"
-             % (folder, missing[0]))
-    made = min(os.path.getmtime(path) for path in needed)
-    newer = [path for path in (simulation, amrsp) if os.path.getmtime(path) > made]
-    if newer:
-        fail("the one-rank run in %s is older than %s: run InSitu.np1 again"
-             % (folder, ", ".join(newer)))
+    outdated = outdated_fixture_files(needed, [simulation, amrsp])
+    if outdated:
+        fail("the one-rank run in %s: %s (run InSitu.np1 first)" % (folder, outdated))
     print("one-rank run and CPU references: %s (the fixture InSitu.np1)" % folder)
 
 
@@ -190,7 +188,7 @@ def main():
         run_dir = reference_run
     elif ranks > 1:
         reference_run = os.path.join(reference_from, "np1-data")
-        shared_reference_run_is_current(reference_run, simulation, amrsp)
+        shared_reference_run_is_current(reference_run, simulation, amrsp, outdir)
     else:
         fail("--reference-from is for a run on several ranks")
     if ranks > 1:

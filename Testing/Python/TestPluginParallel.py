@@ -20,8 +20,9 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from PluginTestKit import (MPI_PVBATCH_OPTIONS, SKIP, call_with_hang_detector,  # noqa: E402
-                           clean_environment, distributed_bounds, off_share, pop_option,
-                           rmse as kit_rmse)
+                           clean_environment, distributed_bounds, off_share,
+                           outdated_fixture_files, pop_option, rmse as kit_rmse,
+                           show_fixture_check_rejects)
 
 # The parallel image is the ranks' region images composited by IceT in visibility order (or,
 # gathering, rank 0's image over the others' empty ones). Pixels on the volume's silhouette
@@ -142,13 +143,16 @@ def main():
             print("PASS")
             return 0
     else:
-        # the shared one-rank run must come from these binaries (ctest runs the fixture first)
-        made = os.path.getmtime(serial_png) if os.path.exists(serial_png) else None
-        newer = [p for p in (plugin, amrsp) if made is None or os.path.getmtime(p) > made]
-        if newer:
-            print("FAIL: the one-rank screenshot %s %s (run Plugin.MPI.np1.%s first)"
-                  % (serial_png, "is missing" if made is None else
-                     "is older than " + ", ".join(newer), dataset))
+        # the shared one-rank run must come from these binaries (ctest runs the fixture first);
+        # the check is first shown to reject a missing and an outdated file
+        wrong = show_fixture_check_rejects(outdir)
+        if wrong:
+            print("FAIL: the check of the one-rank run is broken: " + "; ".join(wrong))
+            return 1
+        outdated = outdated_fixture_files([serial_png], [plugin, amrsp])
+        if outdated:
+            print("FAIL: the one-rank screenshot: %s (run Plugin.MPI.np1.%s first)"
+                  % (outdated, dataset))
             return 1
         print("one-rank run: %s (the fixture Plugin.MPI.np1.%s)" % (serial_png, dataset))
     mpi = [mpiexec, "-np", ranks]
