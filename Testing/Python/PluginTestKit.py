@@ -53,6 +53,16 @@ def outdated_fixture_files(outputs, inputs):
     return None
 
 
+def fixture_problem(outputs, inputs, folder):
+    """What keeps a test from using a fixture run's OUTPUTS made by the binaries INPUTS (None when
+    nothing): first the check itself, shown in FOLDER to reject a missing and an outdated file
+    (show_fixture_check_rejects), then outdated_fixture_files."""
+    wrong = show_fixture_check_rejects(folder)
+    if wrong:
+        return "the check of the fixture run is broken: " + "; ".join(wrong)
+    return outdated_fixture_files(outputs, inputs)
+
+
 def show_fixture_check_rejects(folder):
     """outdated_fixture_files on files made in FOLDER: it must reject a missing output and one
     older than its binary, and accept a current one; returns what it got wrong (empty when

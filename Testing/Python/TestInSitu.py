@@ -31,8 +31,8 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from PluginTestKit import (HANG_SECONDS, clean_environment, coverage, fail,  # noqa: E402
-                           off_share, outdated_fixture_files, pop_option, read_png,
-                           require_display, rmse, show_fixture_check_rejects, skip)
+                           fixture_problem, off_share, pop_option, read_png,
+                           require_display, rmse, skip)
 
 STEPS = 5
 REGRID = 2  # steps 2 and 4 regrid
@@ -116,14 +116,11 @@ def shared_reference_run_is_current(folder, simulation, amrsp, outdir):
     """Fails unless FOLDER holds a whole one-rank run (every step's hierarchy and CPU reference)
     written after SIMULATION and AMRSP were built; the check is first shown, in OUTDIR, to reject
     a missing and an outdated file."""
-    wrong = show_fixture_check_rejects(outdir)
-    if wrong:
-        fail("the check of the one-rank run is broken: " + "; ".join(wrong))
     needed = [os.path.join(folder, name) for step in range(STEPS)
               for name in ("step_%04d.vthb" % step, "reference_%04d.png" % step)]
-    outdated = outdated_fixture_files(needed, [simulation, amrsp])
-    if outdated:
-        fail("the one-rank run in %s: %s (run InSitu.np1 first)" % (folder, outdated))
+    problem = fixture_problem(needed, [simulation, amrsp], outdir)
+    if problem:
+        fail("the one-rank run in %s: %s (run InSitu.np1 first)" % (folder, problem))
     print("one-rank run and CPU references: %s (the fixture InSitu.np1)" % folder)
 
 

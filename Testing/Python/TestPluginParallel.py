@@ -20,9 +20,8 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from PluginTestKit import (MPI_PVBATCH_OPTIONS, SKIP, call_with_hang_detector,  # noqa: E402
-                           clean_environment, distributed_bounds, off_share,
-                           outdated_fixture_files, pop_option, rmse as kit_rmse,
-                           show_fixture_check_rejects)
+                           clean_environment, distributed_bounds, fixture_problem,
+                           off_share, pop_option, rmse as kit_rmse)
 
 # The parallel image is the ranks' region images composited by IceT in visibility order (or,
 # gathering, rank 0's image over the others' empty ones). Pixels on the volume's silhouette
@@ -143,16 +142,11 @@ def main():
             print("PASS")
             return 0
     else:
-        # the shared one-rank run must come from these binaries (ctest runs the fixture first);
-        # the check is first shown to reject a missing and an outdated file
-        wrong = show_fixture_check_rejects(outdir)
-        if wrong:
-            print("FAIL: the check of the one-rank run is broken: " + "; ".join(wrong))
-            return 1
-        outdated = outdated_fixture_files([serial_png], [plugin, amrsp])
-        if outdated:
+        # the shared one-rank run must come from these binaries (ctest runs the fixture first)
+        problem = fixture_problem([serial_png], [plugin, amrsp], outdir)
+        if problem:
             print("FAIL: the one-rank screenshot: %s (run Plugin.MPI.np1.%s first)"
-                  % (outdated, dataset))
+                  % (problem, dataset))
             return 1
         print("one-rank run: %s (the fixture Plugin.MPI.np1.%s)" % (serial_png, dataset))
     mpi = [mpiexec, "-np", ranks]
