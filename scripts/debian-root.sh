@@ -103,13 +103,34 @@ bootstrap() {
   mv "$dir.tmp" "$dir"
 }
 
+# minbase DIR: DIR becomes a minbase root of $suite. A newer release's build root and its clean root
+# both start as minbase: one debootstrap serves both, kept in $roots/minbase-$suite (made again after
+# a week, like the clean root) and copied; flock lets the second caller wait for the first.
+minbase() {
+  local dir=$1 base=$roots/minbase-$suite
+  if [ "$suite" = bookworm ]; then bootstrap "$dir"; return; fi  # only the clean root starts from it
+  mkdir -p "$roots"
+  (
+    flock 7
+    if [ -f "$base/.amrsp-root" ] && [ -n "$(find "$base/.amrsp-root" -mtime -7 2>/dev/null)" ]; then
+      log "copying the minbase root $base into $dir"
+    else
+      bootstrap "$base"
+    fi
+    rm -rf "$dir.tmp"
+    cp -a "$base" "$dir.tmp"
+    rm -rf "$dir"
+    mv "$dir.tmp" "$dir"
+  ) 7>"$roots/minbase-$suite.lock"
+}
+
 # The two phases print their wall seconds on lines of their own, which scripts/test.sh reads for
 # its phase timings: "[root SUITE] phase root: N s" (debootstrap; 0 when reused) and
 # "[root SUITE] phase install: N s" (the packages inside the root).
 ensure_root() {
   local t0=$SECONDS
   if [ ! -f "$root/.amrsp-root" ]; then
-    bootstrap "$root"
+    minbase "$root"
   else
     log "reusing $root"
   fi
@@ -136,7 +157,7 @@ clean_ensure() {
     log "reusing the clean root $clean"
     return 0
   fi
-  bootstrap "$clean.new"
+  minbase "$clean.new"
   root=$clean.new  # the root run_in_root enters
   run_in_root apt-get -q -o Acquire::Check-Valid-Until=false update >"$root/tmp/apt-update.log" 2>&1 \
     || { tail -n 20 "$root/tmp/apt-update.log" >&2; die "apt-get update in the clean root failed"; }
