@@ -52,14 +52,24 @@ function (amrsp_apply_test_costs)
   endforeach ()
 endfunction ()
 
-# amrsp_label_discovered_tests(TARGET LABEL...): the labels of every test gtest_discover_tests
-# found in TARGET (call it after gtest_discover_tests). Its PROPERTIES cannot carry a list: the
-# discovery splits "tool;readers" into two words. The tests exist only when ctest reads the
-# discovery's file, so a file ctest includes after it sets them.
+# amrsp_label_discovered_tests(TARGET [MATCHING REGEX] LABEL...): the labels of every test
+# gtest_discover_tests found in TARGET whose name matches REGEX (every test without MATCHING; call
+# it after gtest_discover_tests). Its PROPERTIES cannot carry a list: the discovery splits
+# "tool;readers" into two words. The tests exist only when ctest reads the discovery's file, so a
+# file ctest includes after it sets them.
 function (amrsp_label_discovered_tests target)
-  set(file "${CMAKE_CURRENT_BINARY_DIR}/${target}_labels.cmake")
-  file(WRITE "${file}" "if (${target}_TESTS)\n"
-    "  set_tests_properties(\${${target}_TESTS} PROPERTIES LABELS \"${ARGN}\")\n"
-    "endif ()\n")
+  set(labels ${ARGN})
+  set(regex ".")
+  if (ARGV1 STREQUAL "MATCHING")
+    list(GET labels 1 regex)
+    list(REMOVE_AT labels 0 1)
+  endif ()
+  string(MD5 key "${regex} ${labels}")
+  set(file "${CMAKE_CURRENT_BINARY_DIR}/${target}_labels_${key}.cmake")
+  file(WRITE "${file}" "foreach (amrsp_test IN LISTS ${target}_TESTS)\n"
+    "  if (amrsp_test MATCHES [=[${regex}]=])\n"
+    "    set_tests_properties(\"\${amrsp_test}\" PROPERTIES LABELS \"${labels}\")\n"
+    "  endif ()\n"
+    "endforeach ()\n")
   set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES "${file}")
 endfunction ()
