@@ -10,7 +10,8 @@ repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 . "$repo/scripts/configs.sh"
 config=${1:?usage: scripts/build.sh CONFIG ($AMRSP_ALL_CONFIGS)}
 amrsp_run_where_config_belongs scripts/build.sh "$config"
-jobs=${AMRSP_JOBS:-$(nproc)}
+# one compile job more than cores: a job that links or waits on the disk leaves no core idle
+jobs=${AMRSP_JOBS:-$(($(nproc) + 1))}
 multiarch=$(amrsp_multiarch)
 read -r private_vtk private_prefix <<<"$(amrsp_private_vtk "$config")" || true
 case "$config" in
