@@ -126,7 +126,7 @@ amrsp_config_packaged() {  # $1 = config
 amrsp_config_test_options() {  # $1 = config
   case "$1" in
     vtk)  # the core's and the tool's tests on this VTK 9.1: the sanitizers build's (the same VTK,
-      # compiler and Xvfb; the core's code is the same at every optimisation level)
+      # compiler and Xvfb); this -O3 core is checked here by every image test against the reference
       echo "-DAMRSP_CORE_TESTS=OFF -DAMRSP_MAPPER_TESTS=ON -DAMRSP_MAPPER_IMAGE_TESTS=ON -DAMRSP_TOOL_TESTS=OFF" ;;
     sanitizers) echo "-DAMRSP_CORE_TESTS=ON -DAMRSP_MAPPER_TESTS=OFF" ;;
     paraview|trixie-paraview)  # the mapper's context and data-model tests only

@@ -10,9 +10,11 @@
 #                                              # lists, nothing else (scripts/test-package.sh copies it)
 #
 # SUITE: trixie or forky (bookworm too for clean-ensure). The root lives in $AMRSP_ROOTS_DIR/SUITE
-# (default /var/cache/amrsp/roots), the clean one in $AMRSP_ROOTS_DIR/clean-SUITE; delete a folder to
-# start over. AMRSP_ROOT_DIR=DIR makes `run` use the root in DIR (a copy of a clean root), and
-# AMRSP_ROOT_APT_ARCHIVES=DIR mounts DIR as its /var/cache/apt/archives (packages downloaded once).
+# (default /var/cache/amrsp/roots), the clean one in $AMRSP_ROOTS_DIR/clean-SUITE, both copies of the
+# one debootstrap in $AMRSP_ROOTS_DIR/minbase-SUITE (bookworm's clean root is its own); delete a
+# folder to start over. AMRSP_ROOT_DIR=DIR makes `run` use the root in DIR (a copy of a clean root),
+# and AMRSP_ROOT_APT_ARCHIVES=DIR mounts DIR as its /var/cache/apt/archives (packages downloaded
+# once).
 # Inside a root the repository is mounted at /amrsp/src and ../shared at /amrsp/shared (so the repository's ../shared is the same data), /tmp/.X11-unix is the
 # host's (the X server of scripts/start-xvfb.sh serves GLX-only ParaView builds), and /proc, /sys, /dev
 # are the host's. The mounts live in a private mount namespace (unshare): they disappear when the
@@ -103,6 +105,12 @@ bootstrap() {
   mv "$dir.tmp" "$dir"
 }
 
+# made_this_week FILE: FILE exists and is less than 7 days old (a root made from older package lists
+# is made again)
+made_this_week() {
+  [ -f "$1" ] && [ -n "$(find "$1" -mtime -7 2>/dev/null)" ]
+}
+
 # minbase DIR: DIR becomes a minbase root of $suite. A newer release's build root and its clean root
 # both start as minbase: one debootstrap serves both, kept in $roots/minbase-$suite (made again after
 # a week, like the clean root) and copied; flock lets the second caller wait for the first.
@@ -112,7 +120,7 @@ minbase() {
   mkdir -p "$roots"
   (
     flock 7
-    if [ -f "$base/.amrsp-root" ] && [ -n "$(find "$base/.amrsp-root" -mtime -7 2>/dev/null)" ]; then
+    if made_this_week "$base/.amrsp-root"; then
       log "copying the minbase root $base into $dir"
     else
       bootstrap "$base"
@@ -153,7 +161,7 @@ clean_ensure() {
   mkdir -p "$roots"
   exec 8>"$roots/clean-$suite.lock"
   flock 8  # one maker at a time; a second caller finds the root made
-  if [ -f "$clean/.amrsp-clean" ] && [ -n "$(find "$clean/.amrsp-clean" -mtime -7 2>/dev/null)" ]; then
+  if made_this_week "$clean/.amrsp-clean"; then
     log "reusing the clean root $clean"
     return 0
   fi
